@@ -1,0 +1,435 @@
+"""The three public JSON formats (scene, goals, plan) as validated models.
+
+These models are the public contract documented in ``docs/formats.md``.
+Lengths are metres, angles radians, in the table frame (+x right, +y away
+from the viewer, +z up, yaw counter-clockwise about +z).
+
+Every loader raises :class:`lgmcts.errors.InputError` with a one-line message
+on bad input; nothing else escapes.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated, Any, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from .errors import InputError
+
+__all__ = [
+    "BoxShape",
+    "CylinderShape",
+    "PolygonShape",
+    "PointsShape",
+    "ObjectSpec",
+    "Workspace",
+    "SceneSpec",
+    "Goal",
+    "GoalSpec",
+    "Action",
+    "PlanSpec",
+    "RELATIONS",
+    "PATTERN_NAMES",
+    "load_scene",
+    "load_goals",
+    "load_plan",
+    "save_json",
+    "parse_scene",
+    "parse_goals",
+    "parse_plan",
+]
+
+#: Unit direction of each spatial relation in the table frame.
+RELATIONS: dict[str, tuple[float, float]] = {
+    "left": (-1.0, 0.0),
+    "right": (1.0, 0.0),
+    "front": (0.0, -1.0),
+    "behind": (0.0, 1.0),
+    "left_front": (-math.sqrt(0.5), -math.sqrt(0.5)),
+    "left_behind": (-math.sqrt(0.5), math.sqrt(0.5)),
+    "right_front": (math.sqrt(0.5), -math.sqrt(0.5)),
+    "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
+}
+
+#: Every pattern name the goal format accepts.
+PATTERN_NAMES: tuple[str, ...] = ("line", "circle", "rectangle", "tower", *RELATIONS, "pose")
+
+_MIN_OBJECTS = {"line": 2, "circle": 3, "rectangle": 4, "tower": 2, "pose": 1}
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def _finite(values: Any, what: str) -> None:
+    for v in values:
+        if not math.isfinite(float(v)):
+            raise ValueError(f"{what} must be finite numbers")
+
+
+class BoxShape(_Model):
+    """A box; ``size`` is its full extent along the object's x, y, z axes (m)."""
+
+    type: Literal["box"]
+    size: tuple[float, float, float]
+
+    @field_validator("size")
+    @classmethod
+    def _positive(cls, v: tuple[float, float, float]) -> tuple[float, float, float]:
+        _finite(v, "box size")
+        if min(v) <= 0:
+            raise ValueError("box size must be positive")
+        return v
+
+
+class CylinderShape(_Model):
+    """An upright cylinder of ``radius`` and ``height`` (m)."""
+
+    type: Literal["cylinder"]
+    radius: float
+    height: float
+
+    @model_validator(mode="after")
+    def _positive(self) -> "CylinderShape":
+        _finite((self.radius, self.height), "cylinder radius and height")
+        if self.radius <= 0 or self.height <= 0:
+            raise ValueError("cylinder radius and height must be positive")
+        return self
+
+
+class PolygonShape(_Model):
+    """A convex footprint in the object frame, extruded to ``height`` (m)."""
+
+    type: Literal["polygon"]
+    points: list[tuple[float, float]]
+    height: float
+
+    @model_validator(mode="after")
+    def _convex(self) -> "PolygonShape":
+        _finite((c for p in self.points for c in p), "polygon points")
+        _finite((self.height,), "polygon height")
+        if self.height <= 0:
+            raise ValueError("polygon height must be positive")
+        if len(self.points) < 3:
+            raise ValueError("a polygon needs at least 3 points")
+        from shapely import MultiPoint
+
+        hull = MultiPoint(self.points).convex_hull
+        if hull.geom_type != "Polygon" or hull.area < 1e-8:
+            raise ValueError("polygon points must enclose a positive area")
+        return self
+
+
+class PointsShape(_Model):
+    """A point cloud in the table frame; footprint = convex hull of its xy."""
+
+    type: Literal["points"]
+    points: list[tuple[float, float, float]]
+
+    @model_validator(mode="after")
+    def _enough(self) -> "PointsShape":
+        _finite((c for p in self.points for c in p), "cloud points")
+        if len(self.points) < 3:
+            raise ValueError("a point cloud needs at least 3 points")
+        from shapely import MultiPoint
+
+        hull = MultiPoint([(p[0], p[1]) for p in self.points]).convex_hull
+        if hull.geom_type != "Polygon" or hull.area < 1e-8:
+            raise ValueError("point cloud footprint must have a positive area")
+        return self
+
+
+Shape = Annotated[Union[BoxShape, CylinderShape, PolygonShape, PointsShape], Field(discriminator="type")]
+
+
+class ObjectSpec(_Model):
+    """One object of a scene. ``pose`` is the footprint centre ``[x, y, theta]``."""
+
+    id: int
+    name: str
+    color: str = ""
+    shape: Shape
+    pose: tuple[float, float, float] | None = None
+    on: int | None = None
+
+    @field_validator("pose")
+    @classmethod
+    def _finite_pose(cls, v: tuple[float, float, float] | None) -> tuple[float, float, float] | None:
+        if v is not None:
+            _finite(v, "pose")
+        return v
+
+    @model_validator(mode="after")
+    def _pose_needed(self) -> "ObjectSpec":
+        if self.pose is None and self.shape.type != "points":
+            raise ValueError("pose is required unless the shape is a point cloud")
+        return self
+
+
+class Workspace(_Model):
+    """The rectangle of the table the robot may place objects in (m)."""
+
+    x: tuple[float, float]
+    y: tuple[float, float]
+
+    @model_validator(mode="after")
+    def _ordered(self) -> "Workspace":
+        _finite((*self.x, *self.y), "workspace bounds")
+        if not (self.x[0] < self.x[1] and self.y[0] < self.y[1]):
+            raise ValueError("workspace bounds must be [min, max] with min < max")
+        return self
+
+
+class SceneSpec(_Model):
+    """A tabletop scene: the workspace and its objects."""
+
+    workspace: Workspace
+    objects: list[ObjectSpec]
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "SceneSpec":
+        ids = [o.id for o in self.objects]
+        seen: set[int] = set()
+        for i in ids:
+            if i in seen:
+                raise ValueError(f"duplicate object id {i}")
+            seen.add(i)
+        support = {o.id: o.on for o in self.objects}
+        for o in self.objects:
+            if o.on is not None and o.on not in seen:
+                raise ValueError(f"object {o.id} is on unknown object {o.on}")
+            if o.on == o.id:
+                raise ValueError(f"object {o.id} is on itself")
+        for o in self.objects:
+            chain, cur = [o.id], support[o.id]
+            while cur is not None:
+                if cur in chain:
+                    raise ValueError(f"cycle in 'on' relations through object {o.id}")
+                chain.append(cur)
+                cur = support[cur]
+        return self
+
+    def object(self, object_id: int) -> ObjectSpec:
+        for o in self.objects:
+            if o.id == object_id:
+                return o
+        raise InputError(f"unknown object id {object_id}")
+
+
+class Goal(_Model):
+    """One pattern goal over a set of objects."""
+
+    pattern: str
+    objects: list[int]
+    anchor: int | None = None
+    pose: tuple[float, float, float] | None = None
+
+    @model_validator(mode="after")
+    def _shape(self) -> "Goal":
+        p = self.pattern
+        if p not in PATTERN_NAMES:
+            raise ValueError(f"unknown pattern '{p}' (known: {', '.join(PATTERN_NAMES)})")
+        if len(set(self.objects)) != len(self.objects):
+            raise ValueError(f"{p} goal lists an object twice")
+        n = len(self.objects)
+        if p in RELATIONS:
+            if self.anchor is None:
+                raise ValueError(f"{p} goal needs an 'anchor'")
+            if n < 1:
+                raise ValueError(f"{p} goal needs at least one object")
+            if self.anchor in self.objects:
+                raise ValueError(f"{p} goal: anchor {self.anchor} is also one of its objects")
+        elif self.anchor is not None:
+            raise ValueError(f"{p} goal takes no 'anchor'")
+        if p == "pose":
+            if self.pose is None or n != 1:
+                raise ValueError("pose goal needs exactly one object and a 'pose'")
+            _finite(self.pose, "goal pose")
+        elif self.pose is not None:
+            raise ValueError(f"{p} goal takes no 'pose'")
+        need = _MIN_OBJECTS.get(p, 1)
+        if n < need:
+            noun = "object" if n == 1 else "objects"
+            raise ValueError(f"a {p} needs at least {need} objects, got {n} {noun}")
+        return self
+
+
+class GoalSpec(_Model):
+    """A list of pattern goals; every one must hold at the end of the plan."""
+
+    goals: list[Goal]
+
+    def check_against(self, scene: SceneSpec) -> None:
+        """Raise :class:`InputError` when a goal cannot refer to ``scene``."""
+        ids = {o.id for o in scene.objects}
+        if not self.goals:
+            raise InputError("the goal list is empty")
+        for k, g in enumerate(self.goals):
+            for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]:
+                if i not in ids:
+                    raise InputError(f"goal {k} ({g.pattern}) names unknown object id {i}")
+        # A pose goal and another fixed pose for the same object contradict.
+        fixed: dict[int, tuple[float, float, float]] = {}
+        for g in self.goals:
+            if g.pattern == "pose":
+                o = g.objects[0]
+                if o in fixed and fixed[o] != g.pose:
+                    raise InputError(f"object {o} has two different pose goals")
+                fixed[o] = g.pose  # type: ignore[assignment]
+        # Tower order must not contradict itself or put an object on itself.
+        below: dict[int, int] = {}
+        for g in self.goals:
+            if g.pattern == "tower":
+                for a, b in zip(g.objects, g.objects[1:]):
+                    if b in below and below[b] != a:
+                        raise InputError(f"object {b} must rest on both {below[b]} and {a}")
+                    below[b] = a
+        for o in below:
+            chain, cur = [o], below.get(o)
+            while cur is not None:
+                if cur in chain:
+                    raise InputError(f"tower goals form a cycle through object {o}")
+                chain.append(cur)
+                cur = below.get(cur)
+        # Relations among the same goal objects must not form a cycle of dependencies.
+        dep: dict[int, set[int]] = {}
+        for g in self.goals:
+            if g.anchor is not None:
+                for o in g.objects:
+                    dep.setdefault(o, set()).add(g.anchor)
+
+        def _cyclic(start: int) -> bool:
+            stack, seen = [(start, iter(dep.get(start, ())))], {start}
+            while stack:
+                node, it = stack[-1]
+                nxt = next(it, None)
+                if nxt is None:
+                    stack.pop()
+                    continue
+                if nxt == start:
+                    return True
+                if nxt not in seen:
+                    seen.add(nxt)
+                    stack.append((nxt, iter(dep.get(nxt, ()))))
+            return False
+
+        for o in sorted(dep):
+            if _cyclic(o):
+                raise InputError(f"spatial relations form a cycle through object {o}")
+        on_table_patterns = {"line", "circle", "rectangle", *RELATIONS}
+        for g in self.goals:
+            if g.pattern in on_table_patterns:
+                for o in g.objects:
+                    if o in below:
+                        raise InputError(
+                            f"object {o} must be on the table for its {g.pattern} goal but on object {below[o]} for a tower"
+                        )
+
+
+class Action(_Model):
+    """Pick ``object`` and place it at ``to`` on the table or on object ``on``."""
+
+    object: int
+    to: tuple[float, float, float]
+    on: int | None = None
+    purpose: Literal["goal", "relocate", "unstack"] = "goal"
+
+    @field_validator("to")
+    @classmethod
+    def _finite_to(cls, v: tuple[float, float, float]) -> tuple[float, float, float]:
+        _finite(v, "action pose")
+        return v
+
+
+class PlanSpec(_Model):
+    """A plan: the actions, whether they solve the goals, and search statistics."""
+
+    model_config = ConfigDict(extra="allow", frozen=True)
+
+    solved: bool
+    actions: list[Action]
+    goals: GoalSpec | None = None
+    stats: dict[str, Any] = Field(default_factory=dict)
+
+
+def _one_line(err: ValidationError, what: str) -> str:
+    first = err.errors()[0]
+    loc = ".".join(str(x) for x in first.get("loc", ()) if not isinstance(x, str) or not x.startswith("function-"))
+    msg = first.get("msg", "invalid value")
+    msg = msg.removeprefix("Value error, ")
+    where = f" at {loc}" if loc else ""
+    return f"invalid {what}{where}: {msg}"
+
+
+def _read(source: str | Path | dict, what: str) -> Any:
+    if isinstance(source, dict):
+        return source
+    path = Path(source)
+    try:
+        text = path.read_text()
+    except FileNotFoundError:
+        raise InputError(f"{what} file not found: {path}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read {what} file {path}: {exc}") from None
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{what} file {path} is not valid JSON: {exc.msg} (line {exc.lineno})") from None
+
+
+def parse_scene(data: Any) -> SceneSpec:
+    """Validate a scene given as a dict (or a ``SceneSpec``)."""
+    if isinstance(data, SceneSpec):
+        return data
+    try:
+        return SceneSpec.model_validate(data)
+    except ValidationError as err:
+        raise InputError(_one_line(err, "scene")) from None
+
+
+def parse_goals(data: Any) -> GoalSpec:
+    """Validate a goal specification given as a dict or a list of goals."""
+    if isinstance(data, GoalSpec):
+        return data
+    if isinstance(data, list):
+        data = {"goals": data}
+    try:
+        return GoalSpec.model_validate(data)
+    except ValidationError as err:
+        raise InputError(_one_line(err, "goals")) from None
+
+
+def parse_plan(data: Any) -> PlanSpec:
+    """Validate a plan given as a dict."""
+    if isinstance(data, PlanSpec):
+        return data
+    try:
+        return PlanSpec.model_validate(data)
+    except ValidationError as err:
+        raise InputError(_one_line(err, "plan")) from None
+
+
+def load_scene(source: str | Path | dict) -> SceneSpec:
+    """Read and validate a scene JSON file (or dict)."""
+    return parse_scene(_read(source, "scene"))
+
+
+def load_goals(source: str | Path | dict) -> GoalSpec:
+    """Read and validate a goal JSON file (or dict)."""
+    return parse_goals(_read(source, "goals"))
+
+
+def load_plan(source: str | Path | dict) -> PlanSpec:
+    """Read and validate a plan JSON file (or dict)."""
+    return parse_plan(_read(source, "plan"))
+
+
+def save_json(model: BaseModel, path: str | Path | None = None, *, indent: int = 2) -> str:
+    """Serialise any of the format models; write it to ``path`` when given."""
+    text = model.model_dump_json(indent=indent, exclude_none=False)
+    if path is not None:
+        Path(path).write_text(text + "\n")
+    return text

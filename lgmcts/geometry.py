@@ -1,0 +1,121 @@
+"""Pure, vectorised 2-D geometry of footprints (metres, radians).
+
+A footprint is a convex polygon given in the object frame as an ``(k, 2)``
+array of counter-clockwise vertices around the footprint centre. Poses are
+``(x, y, theta)``. Functions take batches where that pays: ``(m, 3)`` poses
+give ``(m, k, 2)`` vertex arrays and shapely 2 geometry arrays, so collision
+and containment of many candidate placements cost one vectorised call.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+import shapely
+from shapely import STRtree
+
+__all__ = [
+    "CIRCLE_SEGMENTS",
+    "box_footprint",
+    "circle_footprint",
+    "convex_footprint",
+    "transform",
+    "polygons",
+    "inside_workspace",
+    "radius_of",
+    "wrap_angle",
+]
+
+#: A cylinder's footprint is the regular polygon of this many sides that
+#: circumscribes its circle, so the polygon is never smaller than the object.
+CIRCLE_SEGMENTS = 24
+
+
+def box_footprint(sx: float, sy: float) -> np.ndarray:
+    """Corners of an ``sx`` by ``sy`` rectangle centred at the origin, CCW."""
+    hx, hy = sx / 2.0, sy / 2.0
+    return np.array([[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]], dtype=float)
+
+
+def circle_footprint(radius: float, segments: int = CIRCLE_SEGMENTS) -> np.ndarray:
+    """Regular polygon circumscribing a circle of ``radius``, CCW."""
+    a = np.arange(segments) * (2 * math.pi / segments) + math.pi / segments
+    r = radius / math.cos(math.pi / segments)
+    return np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
+
+
+def convex_footprint(points: np.ndarray) -> np.ndarray:
+    """Convex hull of ``(n, 2)`` points as CCW vertices (no repeated end)."""
+    hull = shapely.MultiPoint(np.asarray(points, dtype=float)[:, :2]).convex_hull
+    hull = shapely.orient_polygons(hull) if hasattr(shapely, "orient_polygons") else shapely.geometry.polygon.orient(hull)
+    return np.asarray(hull.exterior.coords, dtype=float)[:-1]
+
+
+def transform(local: np.ndarray, poses: np.ndarray) -> np.ndarray:
+    """Place object-frame vertices at poses.
+
+    Parameters
+    ----------
+    local : (k, 2) vertices in the object frame.
+    poses : (3,) or (m, 3) poses ``(x, y, theta)``.
+
+    Returns
+    -------
+    (k, 2) or (m, k, 2) vertices in the table frame.
+    """
+    poses = np.asarray(poses, dtype=float)
+    single = poses.ndim == 1
+    p = poses.reshape(-1, 3)
+    c, s = np.cos(p[:, 2]), np.sin(p[:, 2])
+    x = c[:, None] * local[None, :, 0] - s[:, None] * local[None, :, 1] + p[:, 0:1]
+    y = s[:, None] * local[None, :, 0] + c[:, None] * local[None, :, 1] + p[:, 1:2]
+    out = np.stack([x, y], axis=-1)
+    return out[0] if single else out
+
+
+def polygons(vertices: np.ndarray) -> np.ndarray:
+    """Shapely polygons from ``(m, k, 2)`` vertex arrays (one call)."""
+    v = np.asarray(vertices, dtype=float)
+    if v.ndim == 2:
+        return shapely.polygons(v)
+    return shapely.polygons(v)
+
+
+def inside_workspace(vertices: np.ndarray, bounds: Sequence[float], margin: float = 0.0) -> np.ndarray:
+    """Whether every vertex lies in ``bounds = (xmin, xmax, ymin, ymax)`` shrunk by ``margin``.
+
+    ``vertices`` is ``(m, k, 2)``; returns a boolean ``(m,)``. Because the
+    workspace is convex, a convex footprint is inside it exactly when all its
+    vertices are.
+    """
+    v = np.asarray(vertices)
+    xmin, xmax, ymin, ymax = bounds
+    x, y = v[..., 0], v[..., 1]
+    ok = (x >= xmin + margin) & (x <= xmax - margin) & (y >= ymin + margin) & (y <= ymax - margin)
+    return ok.all(axis=-1)
+
+
+def radius_of(local: np.ndarray) -> float:
+    """Largest distance from the footprint centre to a vertex (m)."""
+    return float(np.sqrt((np.asarray(local) ** 2).sum(axis=1)).max())
+
+
+def wrap_angle(a: np.ndarray | float) -> np.ndarray | float:
+    """Wrap angles to ``[-pi, pi)``."""
+    return (np.asarray(a) + math.pi) % (2 * math.pi) - math.pi
+
+
+def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``.
+
+    ``tree`` indexes the obstacle polygons; ``candidates`` is an array of
+    shapely polygons. A ``clearance`` of 0 reports touching or overlapping
+    pairs.
+    """
+    if clearance > 0:
+        pairs = tree.query(candidates, predicate="dwithin", distance=clearance)
+    else:
+        pairs = tree.query(candidates, predicate="intersects")
+    return pairs[0], pairs[1]

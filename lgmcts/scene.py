@@ -1,0 +1,238 @@
+"""Immutable scene model: what never changes (:class:`Scene`) and what an
+action changes (:class:`State`).
+
+A :class:`State` holds the poses and supports of every object. States are
+never mutated: :meth:`State.moved` returns a new one that shares every
+footprint polygon but the moved object's, so search-tree nodes stay small.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+import shapely
+from shapely import STRtree
+
+from . import geometry as geo
+from .errors import InputError
+from .formats import ObjectSpec, SceneSpec, Workspace
+
+__all__ = ["Scene", "State", "TABLE"]
+
+#: Support index meaning "on the table".
+TABLE = -1
+
+
+def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, float, float]]:
+    """Object-frame footprint, height and pose of one object spec."""
+    s = obj.shape
+    if s.type == "box":
+        return geo.box_footprint(s.size[0], s.size[1]), float(s.size[2]), tuple(obj.pose)  # type: ignore[arg-type]
+    if s.type == "cylinder":
+        return geo.circle_footprint(s.radius), float(s.height), tuple(obj.pose)  # type: ignore[arg-type]
+    if s.type == "polygon":
+        pts = geo.convex_footprint(np.asarray(s.points, dtype=float))
+        return pts, float(s.height), tuple(obj.pose)  # type: ignore[arg-type]
+    # A point cloud lives in the table frame; its footprint centre is the
+    # centroid of the convex hull of its xy, unless the pose says otherwise.
+    cloud = np.asarray(s.points, dtype=float)
+    hull = geo.convex_footprint(cloud[:, :2])
+    height = float(cloud[:, 2].max() - cloud[:, 2].min())
+    if obj.pose is None:
+        c = shapely.Polygon(hull).centroid
+        pose = (float(c.x), float(c.y), 0.0)
+    else:
+        pose = tuple(float(v) for v in obj.pose)  # type: ignore[assignment]
+    x, y, t = pose
+    ct, st = math.cos(-t), math.sin(-t)
+    d = hull - np.array([x, y])
+    local = np.stack([ct * d[:, 0] - st * d[:, 1], st * d[:, 0] + ct * d[:, 1]], axis=1)
+    return local, max(height, 1e-3), pose  # type: ignore[return-value]
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """The static part of a scene: workspace and object descriptions.
+
+    Attributes
+    ----------
+    ids : object ids in file order; an object's *index* is its position here.
+    local : per object, its ``(k, 2)`` footprint in the object frame (m).
+    heights : ``(n,)`` object heights (m).
+    radii : ``(n,)`` circumradius of each footprint about its centre (m).
+    bounds : ``(xmin, xmax, ymin, ymax)`` of the workspace (m).
+    """
+
+    spec: SceneSpec
+    ids: tuple[int, ...]
+    names: tuple[str, ...]
+    colors: tuple[str, ...]
+    local: tuple[np.ndarray, ...]
+    heights: np.ndarray
+    radii: np.ndarray
+    bounds: tuple[float, float, float, float]
+    initial: "State"
+
+    @classmethod
+    def from_spec(cls, spec: SceneSpec) -> "Scene":
+        """Build the scene; raise :class:`InputError` for objects off the workspace."""
+        ids = tuple(o.id for o in spec.objects)
+        if not ids:
+            raise InputError("the scene has no objects")
+        index = {i: k for k, i in enumerate(ids)}
+        local, heights, poses = [], [], []
+        for o in spec.objects:
+            lf, h, p = _local_footprint(o)
+            lf.setflags(write=False)
+            local.append(lf)
+            heights.append(h)
+            poses.append(p)
+        ws = spec.workspace
+        bounds = (ws.x[0], ws.x[1], ws.y[0], ws.y[1])
+        pose_arr = np.asarray(poses, dtype=float)
+        on = tuple(TABLE if o.on is None else index[o.on] for o in spec.objects)
+        for k, o in enumerate(spec.objects):
+            if on[k] == TABLE:
+                verts = geo.transform(local[k], pose_arr[k])
+                if not geo.inside_workspace(verts[None], bounds, margin=-1e-6)[0]:
+                    raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
+        scene = cls(
+            spec=spec,
+            ids=ids,
+            names=tuple(o.name for o in spec.objects),
+            colors=tuple(o.color for o in spec.objects),
+            local=tuple(local),
+            heights=np.asarray(heights, dtype=float),
+            radii=np.asarray([geo.radius_of(lf) for lf in local], dtype=float),
+            bounds=bounds,
+            initial=None,  # type: ignore[arg-type]
+        )
+        object.__setattr__(scene, "initial", State.make(scene, pose_arr, on))
+        return scene
+
+    @cached_property
+    def index(self) -> dict[int, int]:
+        """Map from object id to index."""
+        return {i: k for k, i in enumerate(self.ids)}
+
+    @property
+    def n(self) -> int:
+        return len(self.ids)
+
+    @property
+    def workspace_area(self) -> float:
+        xmin, xmax, ymin, ymax = self.bounds
+        return (xmax - xmin) * (ymax - ymin)
+
+    def footprint(self, i: int, pose: np.ndarray) -> np.ndarray:
+        """Table-frame vertices of object index ``i`` at ``pose`` (``(3,)`` or ``(m, 3)``)."""
+        return geo.transform(self.local[i], pose)
+
+    def label(self, i: int) -> str:
+        """Short human label of object index ``i``: ``"3 red block"``."""
+        color = f"{self.colors[i]} " if self.colors[i] else ""
+        return f"{self.ids[i]} {color}{self.names[i]}"
+
+    def to_spec(self, state: "State") -> SceneSpec:
+        """The scene JSON model for ``state`` (point clouds moved rigidly)."""
+        objs = []
+        for k, o in enumerate(self.spec.objects):
+            pose = tuple(float(v) for v in state.poses[k])
+            shape = o.shape
+            if shape.type == "points":
+                x0, y0, t0 = self.initial.poses[k]
+                x1, y1, t1 = pose
+                dz = state.base_z(k) - self.initial.base_z(k)
+                pts = np.asarray(shape.points, dtype=float)
+                c, s = math.cos(t1 - t0), math.sin(t1 - t0)
+                dx, dy = pts[:, 0] - x0, pts[:, 1] - y0
+                moved = np.stack([x1 + c * dx - s * dy, y1 + s * dx + c * dy, pts[:, 2] + dz], axis=1)
+                shape = shape.model_copy(update={"points": [tuple(map(float, p)) for p in moved]})
+            sup = state.on[k]
+            objs.append(o.model_copy(update={"pose": pose, "shape": shape, "on": None if sup == TABLE else self.ids[sup]}))
+        return SceneSpec(workspace=Workspace(x=self.spec.workspace.x, y=self.spec.workspace.y), objects=objs)
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """Poses and supports of every object; immutable and cheap to derive.
+
+    ``poses`` is a read-only ``(n, 3)`` array; ``on[i]`` is the index of the
+    object that ``i`` rests on, or :data:`TABLE`.
+    """
+
+    scene: Scene = field(repr=False)
+    poses: np.ndarray
+    on: tuple[int, ...]
+    _polys: tuple = field(repr=False, default=())
+
+    @classmethod
+    def make(cls, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> "State":
+        poses = np.array(poses, dtype=float)
+        poses.setflags(write=False)
+        verts = [geo.transform(scene.local[k], poses[k]) for k in range(len(on))]
+        polys = tuple(shapely.polygons(np.asarray(v)) for v in verts)
+        return cls(scene, poses, tuple(on), polys)
+
+    def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE) -> "State":
+        """A new state with object ``i`` at ``pose`` resting on ``on``."""
+        poses = self.poses.copy()
+        poses[i] = pose
+        poses.setflags(write=False)
+        sup = list(self.on)
+        sup[i] = on
+        polys = list(self._polys)
+        polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i]))
+        return State(self.scene, poses, tuple(sup), tuple(polys))
+
+    @property
+    def polys(self) -> tuple:
+        """Shapely footprint polygon of every object at its pose."""
+        return self._polys
+
+    @cached_property
+    def holding(self) -> tuple[tuple[int, ...], ...]:
+        """``holding[i]``: indices of the objects resting directly on ``i``."""
+        out: list[list[int]] = [[] for _ in self.on]
+        for k, s in enumerate(self.on):
+            if s != TABLE:
+                out[s].append(k)
+        return tuple(tuple(x) for x in out)
+
+    def clear(self, i: int) -> bool:
+        """Whether nothing rests on object ``i`` (so it can be picked or stacked on)."""
+        return not self.holding[i]
+
+    def above(self, i: int) -> list[int]:
+        """All objects resting on ``i``, directly or through others."""
+        out, todo = [], list(self.holding[i])
+        while todo:
+            k = todo.pop()
+            out.append(k)
+            todo.extend(self.holding[k])
+        return out
+
+    def base_z(self, i: int) -> float:
+        """Height of the bottom of object ``i`` above the table (m)."""
+        z, s = 0.0, self.on[i]
+        while s != TABLE:
+            z += float(self.scene.heights[s])
+            s = self.on[s]
+        return z
+
+    @cached_property
+    def table_level(self) -> np.ndarray:
+        """Indices of the objects standing on the table."""
+        return np.asarray([k for k, s in enumerate(self.on) if s == TABLE], dtype=int)
+
+    @cached_property
+    def tree(self) -> STRtree:
+        """R-tree over the table-level footprints (indices follow :attr:`table_level`)."""
+        return STRtree([self._polys[k] for k in self.table_level])
+
+    def key(self) -> tuple:
+        """Hashable summary of the state (poses rounded to 0.1 mm)."""
+        return (tuple(np.round(self.poses, 4).ravel().tolist()), self.on)

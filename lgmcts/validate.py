@@ -1,0 +1,250 @@
+"""The acceptance rules, implemented once and independently of the planner.
+
+:func:`check` replays a plan on a scene with exact polygon geometry (shapely)
+and judges the final state against every goal. It shares no code with the
+samplers or the search: only the footprint definitions of :mod:`lgmcts.scene`.
+
+Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
+
+* every pick is of a clear object (nothing rests on it);
+* a table placement keeps the footprint inside the workspace and overlaps no
+  other table-level footprint by more than ``1e-6`` m²;
+* a placement ``on`` another object needs that object clear and the centre
+  over its footprint;
+* line: every centre within TOL of the total-least-squares line;
+* circle: n ≥ 3, fitted radius ≥ 0.05 m, every centre within TOL of the circle,
+  largest angular gap between consecutive objects < 180°;
+* rectangle: n ≥ 4, every centre within TOL of the perimeter of the
+  minimum-area rectangle around the centres, both sides ≥ 0.05 m, every side
+  holding at least one centre;
+* tower: objects[0] on the table, objects[i+1] on objects[i], xy within 0.02 m;
+* spatial relations: the anchor-to-object vector within 45° of the relation's
+  direction and 0 < length ≤ 0.30 m;
+* pose: within TOL and 0.1 rad;
+* objects of line, circle, rectangle and spatial goals end on the table.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+from scipy.optimize import least_squares
+
+from .errors import InputError
+from .formats import RELATIONS, Goal, GoalSpec, PlanSpec, SceneSpec, parse_goals, parse_plan, parse_scene
+from .scene import TABLE, Scene
+
+__all__ = ["Verdict", "check", "goal_satisfied", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
+
+TOL = 0.015
+OVERLAP_AREA = 1e-6
+TOWER_TOL = 0.02
+MAX_RELATION_DIST = 0.30
+RELATION_HALF_ANGLE = math.pi / 4
+POSE_ANGLE_TOL = 0.1
+MIN_CIRCLE_RADIUS = 0.05
+MIN_RECT_SIDE = 0.05
+ON_TABLE_PATTERNS = frozenset({"line", "circle", "rectangle", *RELATIONS})
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Outcome of :func:`check`.
+
+    ``valid`` holds when every action is legal and every goal is met;
+    ``reasons`` lists each violation in words; ``goals`` says per goal whether
+    it holds in the final state.
+    """
+
+    valid: bool
+    reasons: tuple[str, ...] = ()
+    goals: tuple[bool, ...] = field(default=())
+
+    def __bool__(self) -> bool:
+        return self.valid
+
+
+# ---------------------------------------------------------------- shape fits
+
+
+def line_residuals(xy: np.ndarray) -> np.ndarray:
+    """Distances of points to their total-least-squares line."""
+    c = xy - xy.mean(axis=0)
+    if len(xy) < 3:
+        return np.zeros(len(xy))
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    normal = vt[-1]
+    return np.abs(c @ normal)
+
+
+def fit_circle(xy: np.ndarray) -> tuple[np.ndarray, float]:
+    """Geometric least-squares circle: centre ``(2,)`` and radius (m)."""
+    x, y = xy[:, 0], xy[:, 1]
+    a = np.stack([2 * x, 2 * y, np.ones_like(x)], axis=1)
+    b = x**2 + y**2
+    sol, *_ = np.linalg.lstsq(a, b, rcond=None)
+    c0 = sol[:2]
+    r0 = math.sqrt(max(sol[2] + c0 @ c0, 1e-12))
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        return np.hypot(x - p[0], y - p[1]) - p[2]
+
+    res = least_squares(resid, np.array([c0[0], c0[1], r0]), method="lm")
+    cx, cy, r = res.x
+    return np.array([cx, cy]), abs(float(r))
+
+
+def _circle_ok(xy: np.ndarray) -> str | None:
+    if len(xy) < 3:
+        return "a circle needs at least 3 objects"
+    centre, r = fit_circle(xy)
+    if not math.isfinite(r) or r < MIN_CIRCLE_RADIUS:
+        return f"fitted radius {r:.3f} m is below {MIN_CIRCLE_RADIUS} m"
+    err = np.abs(np.hypot(*(xy - centre).T) - r)
+    if err.max() > TOL:
+        return f"a centre is {err.max():.3f} m off the fitted circle"
+    ang = np.sort(np.arctan2(xy[:, 1] - centre[1], xy[:, 0] - centre[0]))
+    gaps = np.diff(np.concatenate([ang, ang[:1] + 2 * math.pi]))
+    if gaps.max() >= math.pi:
+        return f"largest angular gap {math.degrees(gaps.max()):.0f} deg is not below 180 deg"
+    return None
+
+
+def _rectangle_ok(xy: np.ndarray) -> str | None:
+    if len(xy) < 4:
+        return "a rectangle needs at least 4 objects"
+    rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
+    if rect.geom_type != "Polygon":
+        return "centres are collinear"
+    corners = np.asarray(rect.exterior.coords)[:4]
+    sides = np.linalg.norm(np.roll(corners, -1, axis=0) - corners, axis=1)
+    if sides.min() < MIN_RECT_SIDE:
+        return f"rectangle side {sides.min():.3f} m is below {MIN_RECT_SIDE} m"
+    segs = [shapely.LineString([corners[k], corners[(k + 1) % 4]]) for k in range(4)]
+    pts = shapely.points(xy)
+    d = np.stack([shapely.distance(pts, s) for s in segs], axis=1)  # (n, 4)
+    if d.min(axis=1).max() > TOL:
+        return f"a centre is {d.min(axis=1).max():.3f} m off the rectangle's perimeter"
+    if not (d <= TOL).any(axis=0).all():
+        return "a side of the rectangle holds no object"
+    return None
+
+
+def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
+    """``None`` when ``goal`` holds for ``poses``/``on``, else why it does not."""
+    idx = [scene.index[i] for i in goal.objects]
+    xy = poses[idx, :2]
+    p = goal.pattern
+    if p in ON_TABLE_PATTERNS:
+        for i in idx:
+            if on[i] != TABLE:
+                return f"object {scene.ids[i]} is not on the table"
+    if p == "line":
+        r = line_residuals(xy)
+        if r.max(initial=0.0) > TOL:
+            return f"a centre is {r.max():.3f} m off the fitted line"
+        return None
+    if p == "circle":
+        return _circle_ok(xy)
+    if p == "rectangle":
+        return _rectangle_ok(xy)
+    if p == "tower":
+        if on[idx[0]] != TABLE:
+            return f"tower base {goal.objects[0]} is not on the table"
+        for a, b in zip(idx, idx[1:]):
+            if on[b] != a:
+                return f"object {scene.ids[b]} is not on object {scene.ids[a]}"
+            if math.hypot(*(poses[b, :2] - poses[a, :2])) > TOWER_TOL:
+                return f"object {scene.ids[b]} is off-centre on object {scene.ids[a]}"
+        return None
+    if p in RELATIONS:
+        d = np.asarray(RELATIONS[p])
+        a = poses[scene.index[goal.anchor], :2]  # type: ignore[index]
+        for i in idx:
+            v = poses[i, :2] - a
+            n = float(np.hypot(*v))
+            if n <= 0 or n > MAX_RELATION_DIST:
+                return f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
+            ang = math.acos(max(-1.0, min(1.0, float(v @ d) / n)))
+            if ang > RELATION_HALF_ANGLE + 1e-9:
+                return f"object {scene.ids[i]} is {math.degrees(ang):.0f} deg off '{p}' of anchor {goal.anchor}"
+        return None
+    if p == "pose":
+        tgt = np.asarray(goal.pose)
+        cur = poses[idx[0]]
+        if math.hypot(*(cur[:2] - tgt[:2])) > TOL:
+            return f"object {goal.objects[0]} is {math.hypot(*(cur[:2] - tgt[:2])):.3f} m from its goal pose"
+        dth = (cur[2] - tgt[2] + math.pi) % (2 * math.pi) - math.pi
+        if abs(dth) > POSE_ANGLE_TOL:
+            return f"object {goal.objects[0]} is {abs(dth):.2f} rad off its goal yaw"
+        return None
+    raise InputError(f"unknown pattern '{p}'")  # pragma: no cover - formats reject it
+
+
+# ---------------------------------------------------------------- replay
+
+
+def check(scene: SceneSpec | Scene | dict, goals: GoalSpec | dict | list, plan: PlanSpec | dict) -> Verdict:
+    """Replay ``plan`` on ``scene`` and judge it against ``goals``.
+
+    Raises :class:`InputError` only for inputs that are themselves malformed
+    (unknown ids in the goals, a bad scene); an illegal plan is a verdict.
+    """
+    sc = scene if isinstance(scene, Scene) else Scene.from_spec(parse_scene(scene))
+    gs = parse_goals(goals)
+    gs.check_against(sc.spec)
+    pl = parse_plan(plan)
+    xmin, xmax, ymin, ymax = sc.bounds
+    ws = shapely.box(xmin, ymin, xmax, ymax)
+    poses = np.array(sc.initial.poses, dtype=float)
+    on = list(sc.initial.on)
+    polys = list(sc.initial.polys)
+    reasons: list[str] = []
+    for step, act in enumerate(pl.actions, start=1):
+        if act.object not in sc.index:
+            reasons.append(f"action {step}: unknown object {act.object}")
+            break
+        i = sc.index[act.object]
+        if any(s == i for s in on):
+            top = [sc.ids[k] for k, s in enumerate(on) if s == i]
+            reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
+        new_pose = np.asarray(act.to, dtype=float)
+        poly = shapely.polygons(sc.footprint(i, new_pose))
+        if act.on is None:
+            if shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
+                reasons.append(f"action {step}: object {act.object} placed outside the workspace")
+            for k, s in enumerate(on):
+                if k == i or s != TABLE:
+                    continue
+                area = shapely.area(shapely.intersection(poly, polys[k]))
+                if area > OVERLAP_AREA:
+                    reasons.append(
+                        f"action {step}: object {act.object} overlaps object {sc.ids[k]} by {area * 1e4:.2f} cm^2"
+                    )
+            new_on = TABLE
+        else:
+            if act.on not in sc.index:
+                reasons.append(f"action {step}: unknown support {act.on}")
+                break
+            j = sc.index[act.on]
+            if j == i:
+                reasons.append(f"action {step}: object {act.object} placed on itself")
+                break
+            if any(s == j for k, s in enumerate(on) if k != i):
+                reasons.append(f"action {step}: support {act.on} is not clear")
+            if not shapely.contains_xy(polys[j], new_pose[0], new_pose[1]):
+                reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
+            new_on = j
+        poses[i] = new_pose
+        on[i] = new_on
+        polys[i] = poly
+    results = []
+    for k, g in enumerate(gs.goals):
+        why = goal_satisfied(g, sc, poses, tuple(on))
+        results.append(why is None)
+        if why is not None:
+            reasons.append(f"goal {k} ({g.pattern} {g.objects}): {why}")
+    return Verdict(valid=not reasons, reasons=tuple(reasons), goals=tuple(results))
