@@ -1,0 +1,202 @@
+"""The pattern protocol, the per-goal search progress and the registry.
+
+A pattern is a parametric geometric prior (paper, "Parametric Geometric
+Prior"): given the objects of its goal already placed in the current search
+branch, it proposes poses for the next object (``sample``), tells where that
+next object may go (``density``, the support of f_prior used for products of
+priors and for pictures) and records what a placement fixes (``commit``: the
+curve parameters kappa). Each pattern lives in its own module and registers
+itself here; adding a pattern means adding a module.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, ClassVar, Protocol
+
+import numpy as np
+
+from ..scene import TABLE, Scene, State
+
+__all__ = [
+    "Pattern",
+    "GoalProgress",
+    "CompiledGoal",
+    "Context",
+    "register",
+    "registry",
+    "get",
+    "CLEARANCE",
+    "BAND",
+]
+
+#: Gap kept between footprints by the planner (m); the validator only
+#: requires no overlap, so this margin absorbs rounding.
+CLEARANCE = 0.002
+#: Half-width of the band around a fitted curve that the planner samples in
+#: (m); well inside the validator's 0.015 m tolerance.
+BAND = 0.004
+
+
+@dataclass(frozen=True)
+class CompiledGoal:
+    """A goal with object ids replaced by scene indices."""
+
+    k: int
+    pattern: str
+    objects: tuple[int, ...]
+    anchor: int | None = None
+    pose: tuple[float, float, float] | None = None
+
+
+@dataclass(frozen=True)
+class GoalProgress:
+    """What one search branch has fixed for one goal.
+
+    ``placed`` are the object indices committed so far in commit order,
+    ``slots`` their slot numbers (pattern-specific, -1 when unused), and
+    ``params`` the curve parameters kappa once they are known.
+    """
+
+    placed: tuple[int, ...] = ()
+    slots: tuple[int, ...] = ()
+    params: tuple[float, ...] | None = None
+
+    def add(self, obj: int, slot: int = -1, params: tuple[float, ...] | None = None) -> "GoalProgress":
+        return GoalProgress(self.placed + (obj,), self.slots + (slot,), self.params if params is None else params)
+
+    def without(self, obj: int) -> "GoalProgress":
+        if obj not in self.placed:
+            return self
+        keep = [(o, s) for o, s in zip(self.placed, self.slots) if o != obj]
+        if not keep:
+            return GoalProgress()
+        placed, slots = zip(*keep)
+        return replace(self, placed=tuple(placed), slots=tuple(slots))
+
+
+@dataclass(frozen=True)
+class Context:
+    """Everything a pattern may look at when proposing a pose."""
+
+    scene: Scene
+    state: State
+    goal: CompiledGoal
+    progress: GoalProgress
+
+    @property
+    def n(self) -> int:
+        return len(self.goal.objects)
+
+    def radius(self, i: int) -> float:
+        return float(self.scene.radii[i])
+
+    @property
+    def max_radius(self) -> float:
+        return float(max(self.scene.radii[list(self.goal.objects)]))
+
+
+class Pattern(Protocol):
+    """What every pattern module provides.
+
+    Attributes
+    ----------
+    name : pattern name used in the goal format.
+    keys : phrases that name the pattern in language (its Sentence-BERT keys).
+    description : one sentence meaning, shown to language models.
+    min_objects : fewest objects a goal of this pattern may have.
+    ordered : whether objects must be placed in list order (tower) or after
+        an anchor (relations).
+    on_table : whether the goal's objects must end on the table.
+    """
+
+    name: str
+    keys: tuple[str, ...]
+    description: str
+    min_objects: int
+    ordered: bool
+    on_table: bool
+
+    def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
+        """Whether ``obj`` may be placed now (order constraints)."""
+
+    def support(self, ctx: Context, obj: int) -> int:
+        """Index of the object ``obj`` must rest on, or ``TABLE``."""
+
+    def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+        """``(n, 3)`` candidate poses for ``obj`` from f_prior (may be fewer rows)."""
+
+    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        """f_prior at ``(m, 3)`` poses for ``obj``: ``(m,)`` floats, 0 outside the support."""
+
+    def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
+        """Progress after placing ``obj`` at ``pose``."""
+
+    def region(self, ctx: Context) -> Any:
+        """Shapely geometry where the unplaced objects will go, or ``None`` if unknown."""
+
+
+_REGISTRY: dict[str, Pattern] = {}
+
+
+def register(pattern: Pattern) -> Pattern:
+    """Add a pattern instance to the database (keyed by its name)."""
+    _REGISTRY[pattern.name] = pattern
+    return pattern
+
+
+def registry() -> dict[str, Pattern]:
+    """All registered patterns by name (importing every built-in module)."""
+    from . import circle, line, pose, rectangle, spatial, tower  # noqa: F401  (registration side effect)
+
+    return dict(_REGISTRY)
+
+
+def get(name: str) -> Pattern:
+    return registry()[name]
+
+
+# ---------------------------------------------------------------- helpers
+
+
+def uniform_poses(scene: Scene, obj: int, rng: np.random.Generator, n: int, margin: float = 0.0) -> np.ndarray:
+    """``(n, 3)`` poses uniform over the workspace shrunk by the object's radius."""
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[obj]) + margin
+    lo_x, hi_x = xmin + r, xmax - r
+    lo_y, hi_y = ymin + r, ymax - r
+    if lo_x > hi_x:
+        lo_x = hi_x = (xmin + xmax) / 2
+    if lo_y > hi_y:
+        lo_y = hi_y = (ymin + ymax) / 2
+    out = np.empty((n, 3))
+    out[:, 0] = rng.uniform(lo_x, hi_x, n)
+    out[:, 1] = rng.uniform(lo_y, hi_y, n)
+    out[:, 2] = rng.uniform(-np.pi, np.pi, n)
+    return out
+
+
+def in_bounds(scene: Scene, xy: np.ndarray, margin: float = 0.0) -> np.ndarray:
+    xmin, xmax, ymin, ymax = scene.bounds
+    return (xy[..., 0] >= xmin + margin) & (xy[..., 0] <= xmax - margin) & (xy[..., 1] >= ymin + margin) & (xy[..., 1] <= ymax - margin)
+
+
+@dataclass(frozen=True)
+class BasePattern:
+    """Defaults shared by the pattern classes."""
+
+    name: ClassVar[str] = ""
+    keys: ClassVar[tuple[str, ...]] = ()
+    description: ClassVar[str] = ""
+    min_objects: ClassVar[int] = 1
+    ordered: ClassVar[bool] = False
+    on_table: ClassVar[bool] = True
+
+    def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
+        return True
+
+    def support(self, ctx: Context, obj: int) -> int:
+        return TABLE
+
+    def region(self, ctx: Context) -> Any:
+        return None

@@ -1,0 +1,43 @@
+"""Pose: one object at a fixed pose (the goals of the PMCTS baseline)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from .base import BasePattern, Context, GoalProgress, register
+
+#: How close to the target the planner's placement must be (m, rad); the
+#: acceptance rule allows 0.015 m and 0.1 rad.
+XY_TOL, YAW_TOL = 0.003, 0.03
+
+
+@dataclass(frozen=True)
+class Pose(BasePattern):
+    name = "pose"
+    keys = ("at the pose", "at exactly this position", "move to the coordinates", "place at position")
+    description = "one object at a given pose [x, y, theta]"
+    min_objects = 1
+
+    def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+        return np.asarray(ctx.goal.pose, dtype=float).reshape(1, 3)
+
+    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        t = np.asarray(ctx.goal.pose)
+        dth = np.abs((poses[:, 2] - t[2] + np.pi) % (2 * np.pi) - np.pi)
+        return ((np.hypot(*(poses[:, :2] - t[:2]).T) <= XY_TOL) & (dth <= YAW_TOL)).astype(float)
+
+    def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
+        return ctx.progress.add(obj)
+
+    def region(self, ctx: Context):
+        if ctx.goal.objects[0] in ctx.progress.placed:
+            return None
+        x, y, _ = ctx.goal.pose  # type: ignore[misc]
+        return shapely.Point(x, y).buffer(ctx.max_radius)
+
+
+register(Pose())

@@ -1,0 +1,62 @@
+"""Tower: objects[0] on the table, each next object centred on the previous.
+
+An ordered pattern: object k may only be placed once object k-1 is placed
+in this branch; its pose is the support's centre and heading.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..scene import TABLE
+from .base import BasePattern, Context, GoalProgress, register, uniform_poses
+
+#: How far off the support's centre the planner places a block (m); the
+#: acceptance rule allows 0.02 m.
+CENTRE_TOL = 0.002
+
+
+@dataclass(frozen=True)
+class Tower(BasePattern):
+    name = "tower"
+    keys = (
+        "tower", "stack", "stack up", "pile", "pile up", "on top of each other", "build a tower", "stack them",
+        "one on top of another", "vertical stack",
+    )
+    description = "objects[0] stands on the table and each next object rests centred on the previous one"
+    min_objects = 2
+    ordered = True
+    on_table = False
+
+    def _position(self, ctx: Context, obj: int) -> int:
+        return ctx.goal.objects.index(obj)
+
+    def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
+        k = self._position(ctx, obj)
+        return k == 0 or ctx.goal.objects[k - 1] in ctx.progress.placed
+
+    def support(self, ctx: Context, obj: int) -> int:
+        k = self._position(ctx, obj)
+        return TABLE if k == 0 else ctx.goal.objects[k - 1]
+
+    def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+        k = self._position(ctx, obj)
+        if k == 0:
+            return uniform_poses(ctx.scene, obj, rng, n)
+        return np.asarray(ctx.state.poses[ctx.goal.objects[k - 1]], dtype=float).reshape(1, 3).copy()
+
+    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        k = self._position(ctx, obj)
+        if k == 0:
+            return np.ones(len(poses))
+        base = ctx.state.poses[ctx.goal.objects[k - 1], :2]
+        return (np.hypot(*(poses[:, :2] - base).T) <= CENTRE_TOL).astype(float)
+
+    def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
+        return ctx.progress.add(obj)
+
+
+register(Tower())
