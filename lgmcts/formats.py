@@ -364,8 +364,8 @@ def _one_line(err: ValidationError, what: str) -> str:
     return f"invalid {what}{where}: {msg}"
 
 
-def _read(source: str | Path | dict, what: str) -> Any:
-    if isinstance(source, dict):
+def _read(source: Any, what: str) -> Any:
+    if isinstance(source, (dict, list, BaseModel)):
         return source
     path = Path(source)
     try:

@@ -34,7 +34,7 @@ import shapely
 from scipy.optimize import least_squares
 
 from .errors import InputError
-from .formats import RELATIONS, Goal, GoalSpec, PlanSpec, SceneSpec, parse_goals, parse_plan, parse_scene
+from .formats import RELATIONS, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_plan, load_scene
 from .scene import TABLE, Scene
 
 __all__ = ["Verdict", "check", "goal_satisfied", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
@@ -187,16 +187,16 @@ def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, .
 # ---------------------------------------------------------------- replay
 
 
-def check(scene: SceneSpec | Scene | dict, goals: GoalSpec | dict | list, plan: PlanSpec | dict) -> Verdict:
+def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list | str, plan: PlanSpec | dict | str) -> Verdict:
     """Replay ``plan`` on ``scene`` and judge it against ``goals``.
 
     Raises :class:`InputError` only for inputs that are themselves malformed
     (unknown ids in the goals, a bad scene); an illegal plan is a verdict.
     """
-    sc = scene if isinstance(scene, Scene) else Scene.from_spec(parse_scene(scene))
-    gs = parse_goals(goals)
+    sc = scene if isinstance(scene, Scene) else Scene.from_spec(load_scene(scene))
+    gs = load_goals(goals)
     gs.check_against(sc.spec)
-    pl = parse_plan(plan)
+    pl = load_plan(plan)
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
     poses = np.array(sc.initial.poses, dtype=float)

@@ -1,0 +1,7 @@
+"""The planner: tree, selection, simulation step, search loops and policies."""
+
+from .policies import METHODS, plan
+from .search import SearchOptions, SearchResult
+from .step import StepOptions
+
+__all__ = ["METHODS", "plan", "SearchOptions", "SearchResult", "StepOptions"]

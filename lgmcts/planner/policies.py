@@ -1,0 +1,148 @@
+"""Planning methods built from the shared parts: ``lgmcts``, ``greedy`` and ``pmcts``.
+
+* ``lgmcts`` — MCTS over poses sampled from the pattern priors (the paper's
+  method).
+* ``greedy`` — the same step without a tree: sequential sampling with
+  restarts.
+* ``pmcts`` — the paper's Pose+MCTS baseline: goal poses are fixed first
+  (sampled from the priors among the goal objects alone, blind to the rest of
+  the scene), then MCTS only orders the moves to those fixed ``pose`` goals.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import InputError
+from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
+from ..scene import Scene
+from .search import SearchOptions, SearchResult, greedy, mcts
+from .step import Problem, StepOptions
+
+__all__ = ["plan", "METHODS", "goal_poses"]
+
+
+def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> GoalSpec | None:
+    """Fix a pose for every goal object by sampling the priors among goal objects only.
+
+    Tower goals above their base stay tower goals (their pose follows the
+    base). Returns ``None`` when no arrangement was found within the budget.
+    """
+    blind = replace(opts, step=replace(opts.step, obstacles="placed"), max_iter=max(opts.max_iter // 10, 200))
+    res = greedy(problem, rng, blind)
+    if not res.solved:
+        return None
+    final = {a.object: a.to for a in res.actions}
+    scene = problem.scene
+    goals: list[Goal] = []
+    fixed: set[int] = set()
+    for g in problem.spec.goals:
+        if g.pattern == "tower":
+            goals.append(g)
+            fixed.update(g.objects[1:])
+    for o in problem.targets:
+        oid = scene.ids[o]
+        if oid in fixed:
+            continue
+        pose = final.get(oid, tuple(float(v) for v in scene.initial.poses[o]))
+        goals.append(Goal(pattern="pose", objects=[oid], pose=pose))
+    return GoalSpec(goals=goals)
+
+
+def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
+    return mcts(problem, rng, opts), {}
+
+
+def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
+    return greedy(problem, rng, opts), {}
+
+
+def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
+    if all(g.pattern in ("pose", "tower") for g in problem.spec.goals):
+        return mcts(problem, rng, opts), {}
+    t0 = time.perf_counter()
+    poses = goal_poses(problem, rng, opts)
+    if poses is None:
+        return SearchResult(False, (), 0, 0, time.perf_counter() - t0, reason="no goal arrangement found"), {}
+    fixed = Problem.build(problem.scene, poses)
+    res = mcts(fixed, rng, opts)
+    return replace(res, time_s=time.perf_counter() - t0), {"pose_goals": poses.model_dump(mode="json", exclude_none=True)}
+
+
+METHODS: dict[str, Callable[[Problem, np.random.Generator, SearchOptions], tuple[SearchResult, dict]]] = {
+    "lgmcts": _run_lgmcts,
+    "greedy": _run_greedy,
+    "pmcts": _run_pmcts,
+}
+
+
+def plan(
+    scene: SceneSpec | dict | str | Path,
+    goals: GoalSpec | dict | list | str | Path,
+    *,
+    method: str = "lgmcts",
+    seed: int = 0,
+    max_iter: int = 10_000,
+    time_limit: float | None = None,
+    anytime: bool = False,
+    options: SearchOptions | None = None,
+) -> PlanSpec:
+    """Plan pick-and-place actions that bring ``scene`` to a state meeting ``goals``.
+
+    Parameters
+    ----------
+    scene, goals : models, dicts or JSON file paths (see ``docs/formats.md``).
+    method : ``"lgmcts"``, ``"greedy"`` or ``"pmcts"``.
+    seed : seed of the random generator; the same seed gives the same plan
+        when no ``time_limit`` cuts the search.
+    max_iter : iteration budget (expansions for MCTS, steps for greedy).
+    time_limit : optional wall-clock budget (s).
+    anytime : keep searching within the budget for a plan with fewer actions.
+    options : full :class:`SearchOptions`; ``max_iter``, ``time_limit`` and
+        ``anytime`` override its fields.
+
+    Returns
+    -------
+    PlanSpec
+        ``solved`` false with the best partial plan when the budget ran out.
+        Raises :class:`InputError` only for bad input.
+    """
+    if method not in METHODS:
+        raise InputError(f"unknown method '{method}' (known: {', '.join(METHODS)})")
+    if max_iter < 1:
+        raise InputError("max_iter must be at least 1")
+    if time_limit is not None and time_limit <= 0:
+        raise InputError("time_limit must be positive")
+    spec = scene if isinstance(scene, SceneSpec) else load_scene(scene if isinstance(scene, dict) else Path(scene))
+    gspec = goals if isinstance(goals, GoalSpec) else load_goals(
+        {"goals": goals} if isinstance(goals, list) else goals if isinstance(goals, dict) else Path(goals)
+    )
+    sc = Scene.from_spec(spec)
+    problem = Problem.build(sc, gspec)
+    opts = options or SearchOptions()
+    opts = replace(opts, max_iter=max_iter, time_limit=time_limit, anytime=anytime or opts.anytime)
+    rng = np.random.default_rng(seed)
+    res, extra = METHODS[method](problem, rng, opts)
+    stats: dict[str, Any] = {
+        "method": method,
+        "seed": seed,
+        "iterations": res.iterations,
+        "nodes": res.nodes,
+        "time_s": round(res.time_s, 6),
+        "actions": len(res.actions),
+        "relocations": sum(a.purpose != "goal" for a in res.actions),
+        "max_iter": max_iter,
+    }
+    if time_limit is not None:
+        stats["time_limit"] = time_limit
+    if res.solutions > 1:
+        stats["solutions"] = res.solutions
+    if not res.solved:
+        stats["reason"] = res.reason
+    stats.update(extra)
+    return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats)

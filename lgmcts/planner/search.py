@@ -1,0 +1,278 @@
+"""Search loops: Monte-Carlo tree search (paper, "MCTS for TAMP") and the
+greedy sequential sampler, both over the same simulation step."""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..formats import Action, PlanSpec
+from ..validate import check
+from .selection import select_child
+from .step import Problem, SearchState, StepOptions, attempt, stay
+from .tree import Node
+
+__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
+
+log = logging.getLogger("lgmcts.planner")
+
+
+@dataclass(frozen=True)
+class SearchOptions:
+    """Options of the search loops.
+
+    Attributes
+    ----------
+    max_iter : expansion budget (each expansion simulates one step).
+    time_limit : wall-clock budget in seconds, or ``None``. With a time
+        limit the result may depend on machine speed; ``max_iter`` alone is
+        deterministic for a seed.
+    branching : K, the expansion attempts per object at each node.
+    c_ucb : exploration constant of the UCB rule (rewards lie in [0, 1]).
+    widening : progressive widening exponent alpha: a node visited n times
+        may have tried ``ceil((n + 1) ** alpha)`` expansions before the
+        search descends into its children; 1.0 gives the plain "expand every
+        action first" rule.
+    max_depth : deepest node expanded; ``None`` for ``3 n + 8`` with n the
+        number of objects.
+    rollout : after each expansion, run a random rollout with the same step
+        (as greedy does) and back up its reward; a rollout that reaches every
+        goal ends the search. ``False`` gives the paper's one-step simulation.
+    anytime : keep searching after the first solution, within the budget,
+        for one with fewer actions.
+    step : options of the simulation step.
+    """
+
+    max_iter: int = 10_000
+    time_limit: float | None = None
+    branching: int = 4
+    c_ucb: float = 0.5
+    widening: float = 0.5
+    rollout: bool = True
+    max_depth: int | None = None
+    anytime: bool = False
+    step: StepOptions = field(default_factory=StepOptions)
+
+
+@dataclass(frozen=True)
+class SearchResult:
+    """What a search returns: the plan's actions and statistics."""
+
+    solved: bool
+    actions: tuple[Action, ...]
+    iterations: int
+    nodes: int
+    time_s: float
+    reason: str = ""
+    rejected: int = 0
+    solutions: int = 0
+
+
+def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions, depth: int) -> tuple[float, list[Action] | None, int]:
+    """Random sequential placements from ``ss``: (reward, actions if solved, steps)."""
+    actions: list[Action] = []
+    steps = 0
+    for _ in range(depth):
+        if ss.done(problem):
+            return 1.0, actions, steps
+        ready = ss.ready(problem)
+        if not ready:
+            break
+        o = ready[int(rng.integers(len(ready)))]
+        steps += 1
+        tr = stay(problem, ss, o, rng) or attempt(problem, ss, o, rng, opts.step)
+        if tr is None:
+            break
+        ss = tr.state
+        if tr.action is not None:
+            actions.append(tr.action)
+    if ss.done(problem):
+        return 1.0, actions, steps
+    return ss.reward(problem), None, steps
+
+
+def _valid(problem: Problem, actions: list[Action]) -> bool:
+    plan = PlanSpec(solved=True, actions=actions, goals=problem.spec)
+    return check(problem.scene, problem.spec, plan).valid
+
+
+def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: SearchOptions) -> Node | None:
+    """Try one untried (object, sample) pair at ``node``; return the new child or ``None``."""
+    ready = node.state.ready(problem)
+    open_ = [o for o in ready if node.attempts.get(o, 0) < opts.branching]
+    if not open_:
+        return None
+    fewest = min(node.attempts.get(o, 0) for o in open_)
+    pool = [o for o in open_ if node.attempts.get(o, 0) == fewest]
+    o = pool[int(rng.integers(len(pool)))]
+    first = node.attempts.get(o, 0) == 0
+    node.attempts[o] = node.attempts.get(o, 0) + 1
+    tr = stay(problem, node.state, o, rng) if first else None
+    if tr is None:
+        tr = attempt(problem, node.state, o, rng, opts.step)
+    if tr is None:
+        return None
+    child = Node(
+        state=tr.state,
+        parent=node,
+        action=tr.action,
+        depth=node.depth + 1,
+        n_actions=node.n_actions + (tr.action is not None),
+        reward=tr.state.reward(problem),
+    )
+    node.children.append(child)
+    return child
+
+
+def _fully_expanded(problem: Problem, node: Node, opts: SearchOptions) -> bool:
+    return all(node.attempts.get(o, 0) >= opts.branching for o in node.state.ready(problem))
+
+
+def _descend(problem: Problem, node: Node, opts: SearchOptions) -> bool:
+    """Whether selection should go below ``node`` rather than expand it now."""
+    if not any(not c.dead for c in node.children):
+        return False
+    if _fully_expanded(problem, node, opts):
+        return True
+    tried = sum(node.attempts.values())
+    return tried >= math.ceil((node.visits + 1) ** opts.widening)
+
+
+def _backprop(node: Node | None, reward: float) -> None:
+    while node is not None:
+        node.visits += 1
+        node.value += reward
+        node = node.parent
+
+
+def _mark_dead(node: Node | None) -> None:
+    while node is not None and not node.dead:
+        if node.children and not all(c.dead for c in node.children):
+            return
+        node.dead = True
+        node = node.parent
+
+
+def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult:
+    """Monte-Carlo tree search for a plan reaching every goal."""
+    t0 = time.perf_counter()
+    deadline = None if opts.time_limit is None else t0 + opts.time_limit
+    max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
+    root = Node(problem.root())
+    root.reward = root.state.reward(problem)
+    best: list[Action] | None = None
+    best_partial: tuple[float, int, Node] = (root.reward, 0, root)
+    nodes, rejected, solutions, it, rollout_steps = 1, 0, 0, 0, 0
+    if root.state.done(problem) and _valid(problem, []):
+        return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
+    while it < opts.max_iter and not root.dead:
+        if deadline is not None and time.perf_counter() > deadline:
+            break
+        node = root
+        # Selection: descend through fully expanded nodes by UCB.
+        while not node.dead and _descend(problem, node, opts):
+            live = [c for c in node.children if not c.dead]
+            if not live:
+                break
+            k = select_child(
+                np.array([c.value for c in live]), np.array([c.visits for c in live]), node.visits, opts.c_ucb, rng
+            )
+            node = live[k]
+        if node.dead:
+            _mark_dead(node)
+            continue
+        if node.depth >= max_depth or (best is not None and node.n_actions >= len(best)):
+            node.dead = True
+            _mark_dead(node.parent)
+            continue
+        it += 1
+        child = _expand(problem, node, rng, opts)
+        if child is None:
+            if _fully_expanded(problem, node, opts) and all(c.dead for c in node.children):
+                node.dead = True
+                _mark_dead(node.parent)
+            _backprop(node, node.reward)
+            continue
+        nodes += 1
+        if (child.reward, -child.n_actions) > best_partial[:2]:
+            best_partial = (child.reward, -child.n_actions, child)
+        if child.state.done(problem):
+            actions = child.path()
+            child.dead = True
+            if _valid(problem, actions):
+                solutions += 1
+                if best is None or len(actions) < len(best):
+                    best = actions
+                    log.info("solution with %d actions after %d iterations", len(actions), it)
+                _backprop(child, 1.0)
+                if not opts.anytime:
+                    break
+                continue
+            rejected += 1
+            _mark_dead(child.parent)
+            continue
+        if log.isEnabledFor(logging.DEBUG) and it % 500 == 0:
+            log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, best_partial[0], best_partial[2].depth)
+        value = child.reward
+        if opts.rollout:
+            value, tail, steps = _rollout(problem, child.state, rng, opts, max_depth - child.depth)
+            rollout_steps += steps
+            if tail is not None:
+                actions = child.path() + tail
+                if (best is None or len(actions) < len(best)) and _valid(problem, actions):
+                    solutions += 1
+                    best = actions
+                    log.info("rollout solution with %d actions after %d iterations", len(actions), it)
+                    if not opts.anytime:
+                        break
+        _backprop(child, value)
+    elapsed = time.perf_counter() - t0
+    if best is not None:
+        return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions)
+    reason = "search space exhausted" if root.dead else (
+        "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
+    )
+    return SearchResult(False, tuple(best_partial[2].path()), it, nodes, elapsed, reason=reason, rejected=rejected)
+
+
+def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult:
+    """Sequential sampling with the same step and relocation rules, no tree.
+
+    Each rollout places random ready objects one after another; a dead end
+    restarts from the initial scene. Every step counts as one iteration.
+    """
+    t0 = time.perf_counter()
+    deadline = None if opts.time_limit is None else t0 + opts.time_limit
+    max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
+    it, rollouts = 0, 0
+    best_partial: tuple[float, list[Action]] = (-1.0, [])
+    while it < opts.max_iter:
+        if deadline is not None and time.perf_counter() > deadline:
+            break
+        rollouts += 1
+        ss: SearchState = problem.root()
+        actions: list[Action] = []
+        for _ in range(max_depth):
+            if ss.done(problem):
+                break
+            ready = ss.ready(problem)
+            if not ready or it >= opts.max_iter:
+                break
+            o = ready[int(rng.integers(len(ready)))]
+            it += 1
+            tr = stay(problem, ss, o, rng) or attempt(problem, ss, o, rng, opts.step)
+            if tr is None:
+                break
+            ss = tr.state
+            if tr.action is not None:
+                actions.append(tr.action)
+        r = ss.reward(problem)
+        if r > best_partial[0]:
+            best_partial = (r, actions)
+        if ss.done(problem) and _valid(problem, actions):
+            return SearchResult(True, tuple(actions), it, rollouts, time.perf_counter() - t0, solutions=1)
+    return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason="iteration budget exhausted")

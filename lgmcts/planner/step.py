@@ -1,0 +1,342 @@
+"""The search problem, its immutable search state and the simulation step.
+
+:func:`attempt` is the paper's Algorithm 1 ("Simulation"): given a search
+state and an object to place, it returns one rearrangement action — the
+object to its sampled pose from f = f_prior x f_free, or, when the object is
+covered or its pose is blocked, a relocation of one blocker to a free pose
+outside every remaining goal region — together with the successor state.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import shapely
+
+from .. import geometry as geo
+from ..formats import Action, GoalSpec
+from ..patterns import BAND, CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
+from ..scene import TABLE, Scene, State
+
+__all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
+
+
+@dataclass(frozen=True)
+class StepOptions:
+    """Options of the simulation step.
+
+    Attributes
+    ----------
+    samples : candidate poses drawn from a prior per attempt.
+    clearance : gap kept between footprints and to the workspace edge (m).
+    obstacles : ``"all"`` (every table-level object is an obstacle) or
+        ``"placed"`` (only objects committed to goals; used to sample goal
+        arrangements for the PMCTS baseline).
+    """
+
+    samples: int = 24
+    clearance: float = CLEARANCE
+    obstacles: str = "all"
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A scene and goals compiled to indices, shared by every search node."""
+
+    scene: Scene
+    spec: GoalSpec
+    goals: tuple[CompiledGoal, ...]
+    patterns: tuple[Pattern, ...]
+
+    @classmethod
+    def build(cls, scene: Scene, spec: GoalSpec) -> "Problem":
+        spec.check_against(scene.spec)
+        reg = registry()
+        goals, patterns = [], []
+        for k, g in enumerate(spec.goals):
+            idx = tuple(scene.index[i] for i in g.objects)
+            anchor = None if g.anchor is None else scene.index[g.anchor]
+            goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose)))
+            patterns.append(reg[g.pattern])
+        return cls(scene, spec, tuple(goals), tuple(patterns))
+
+    @cached_property
+    def member(self) -> dict[int, tuple[int, ...]]:
+        """Goal indices in which each object is a target."""
+        out: dict[int, list[int]] = {}
+        for g in self.goals:
+            for o in g.objects:
+                out.setdefault(o, []).append(g.k)
+        return {o: tuple(v) for o, v in out.items()}
+
+    @cached_property
+    def anchored(self) -> dict[int, tuple[int, ...]]:
+        """Goal indices that use each object as their anchor."""
+        out: dict[int, list[int]] = {}
+        for g in self.goals:
+            if g.anchor is not None:
+                out.setdefault(g.anchor, []).append(g.k)
+        return {o: tuple(v) for o, v in out.items()}
+
+    @cached_property
+    def targets(self) -> tuple[int, ...]:
+        return tuple(sorted(self.member))
+
+    def root(self) -> "SearchState":
+        return SearchState(self.scene.initial, tuple(GoalProgress() for _ in self.goals))
+
+
+@dataclass(frozen=True, eq=False)
+class SearchState:
+    """World state plus, per goal, what this branch has fixed."""
+
+    world: State
+    progress: tuple[GoalProgress, ...]
+
+    def ctx(self, problem: Problem, k: int) -> Context:
+        return Context(problem.scene, self.world, problem.goals[k], self.progress[k])
+
+    def committed(self, problem: Problem, o: int) -> bool:
+        goals = problem.member.get(o, ())
+        return bool(goals) and o in self.progress[goals[0]].placed
+
+    def settled(self, problem: Problem) -> frozenset[int]:
+        """Objects that will not move for a goal any more in this branch."""
+        return frozenset(
+            o for o in range(problem.scene.n) if o not in problem.member or self.committed(problem, o)
+        )
+
+    def goal_done(self, problem: Problem, k: int, settled: frozenset[int] | None = None) -> bool:
+        g = problem.goals[k]
+        if len(self.progress[k].placed) != len(g.objects):
+            return False
+        if g.anchor is not None:
+            settled = self.settled(problem) if settled is None else settled
+            return g.anchor in settled
+        return True
+
+    def solved_goals(self, problem: Problem) -> int:
+        s = self.settled(problem)
+        return sum(self.goal_done(problem, k, s) for k in range(len(problem.goals)))
+
+    def done(self, problem: Problem) -> bool:
+        return self.solved_goals(problem) == len(problem.goals)
+
+    def reward(self, problem: Problem) -> float:
+        """Share of goals solved, blended with the share of goal objects placed (in [0, 1])."""
+        nt = len(problem.targets)
+        placed = sum(self.committed(problem, o) for o in problem.targets)
+        return 0.5 * self.solved_goals(problem) / len(problem.goals) + 0.5 * placed / nt
+
+    def ready(self, problem: Problem) -> list[int]:
+        """Goal objects that may be placed now, in index order."""
+        settled = self.settled(problem)
+        out = []
+        for o in problem.targets:
+            if self.committed(problem, o):
+                continue
+            if all(problem.patterns[k].ready(self.ctx(problem, k), o, settled) for k in problem.member[o]):
+                out.append(o)
+        return out
+
+
+@dataclass(frozen=True)
+class Transition:
+    """Result of one step: the action taken (``None`` when the object stays) and the new state."""
+
+    action: Action | None
+    state: SearchState
+
+
+def _required_support(problem: Problem, ss: SearchState, o: int) -> int | None:
+    sup = {problem.patterns[k].support(ss.ctx(problem, k), o) for k in problem.member[o]}
+    return sup.pop() if len(sup) == 1 else None
+
+
+def _commit(problem: Problem, ss: SearchState, world: State, o: int, pose: np.ndarray, rng: np.random.Generator) -> SearchState:
+    prog = list(ss.progress)
+    for k in problem.member[o]:
+        ctx = Context(problem.scene, world, problem.goals[k], ss.progress[k])
+        prog[k] = problem.patterns[k].commit(ctx, o, pose, rng)
+    return SearchState(world, tuple(prog))
+
+
+def _uncommit(problem: Problem, progress: tuple[GoalProgress, ...], o: int) -> tuple[GoalProgress, ...]:
+    """Progress after object ``o`` moved away from where the branch had put it."""
+    prog = list(progress)
+    for k in problem.member.get(o, ()):
+        prog[k] = prog[k].without(o)
+    for k in problem.anchored.get(o, ()):
+        # The anchor moved: every object placed relative to it must be re-placed.
+        prog[k] = GoalProgress()
+    return tuple(prog)
+
+
+def stay(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator) -> Transition | None:
+    """Commit ``o`` where it already is, when that satisfies every prior it is in."""
+    world = ss.world
+    if _required_support(problem, ss, o) != world.on[o]:
+        return None
+    pose = np.asarray(world.poses[o])
+    for k in problem.member[o]:
+        if problem.patterns[k].density(ss.ctx(problem, k), o, pose[None])[0] <= 0:
+            return None
+    return Transition(None, _commit(problem, ss, world, o, pose, rng))
+
+
+def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, n: int) -> np.ndarray:
+    """Candidate poses for ``o`` from the product of the priors it is in."""
+    goals = list(problem.member[o])
+
+    def rank(k: int) -> int:
+        g, p = problem.goals[k], ss.progress[k]
+        if g.pattern == "pose":
+            return 0
+        if g.pattern == "tower":
+            return 1 if g.objects.index(o) > 0 else 5
+        if p.params is not None:
+            return 2
+        return 3 if g.anchor is not None else 4
+
+    goals.sort(key=rank)
+    for driver in goals:
+        cand = problem.patterns[driver].sample(ss.ctx(problem, driver), o, rng, n)
+        if len(cand) == 0:
+            continue
+        keep = np.ones(len(cand), dtype=bool)
+        for k in goals:
+            if k != driver:
+                keep &= problem.patterns[k].density(ss.ctx(problem, k), o, cand) > 0
+        if keep.any():
+            return cand[keep]
+    return np.empty((0, 3))
+
+
+def _obstacles(problem: Problem, ss: SearchState, moving: int, opts: StepOptions) -> np.ndarray:
+    world = ss.world
+    lv = world.table_level
+    lv = lv[lv != moving]
+    if opts.obstacles == "placed":
+        lv = np.asarray([k for k in lv if ss.committed(problem, k)], dtype=int)
+    return lv
+
+
+def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
+    """Inside-workspace mask and, per candidate, the colliding table-level objects."""
+    scene = problem.scene
+    verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
+    inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
+    obs = _obstacles(problem, ss, o, opts)
+    hits: list[list[int]] = [[] for _ in range(len(poses))]
+    if len(obs):
+        cands = shapely.polygons(verts)
+        tree = shapely.STRtree([ss.world.polys[k] for k in obs])
+        ci, oi = geo.colliding(tree, cands, opts.clearance)
+        for a, b in zip(ci.tolist(), oi.tolist()):
+            hits[a].append(int(obs[b]))
+    return inside, hits
+
+
+def _goal_region(problem: Problem, ss: SearchState):
+    """Union of the regions where remaining goal objects will go (or None)."""
+    parts = []
+    for k, g in enumerate(problem.goals):
+        if len(ss.progress[k].placed) == len(g.objects):
+            continue
+        reg = problem.patterns[k].region(ss.ctx(problem, k))
+        if reg is not None:
+            parts.append(reg)
+    return shapely.union_all(parts) if parts else None
+
+
+def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
+    """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible."""
+    scene, world = problem.scene, ss.world
+    n = 2 * opts.samples
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b])
+    poses = np.empty((n, 3))
+    poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
+    poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
+    poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
+    inside, hits = _collisions(problem, ss, b, poses, StepOptions(opts.samples, opts.clearance, "all"))
+    free = inside & np.array([not h for h in hits])
+    if not free.any():
+        return None
+    idx = np.flatnonzero(free)
+    region = _goal_region(problem, ss)
+    if region is not None:
+        polys = shapely.polygons(scene.footprint(b, poses[idx]))
+        outside = ~shapely.intersects(polys, region)
+        if outside.any():
+            idx = idx[outside]
+    pose = poses[idx[0]]
+    new_world = world.moved(b, pose, TABLE)
+    act = Action(object=scene.ids[b], to=tuple(float(v) for v in pose), on=None, purpose=purpose)  # type: ignore[arg-type]
+    return Transition(act, SearchState(new_world, _uncommit(problem, ss.progress, b)))
+
+
+def _clear_top(world: State, i: int, rng: np.random.Generator, exclude: int = -2) -> int:
+    tops = [k for k in world.above(i) if world.clear(k) and k != exclude]
+    return int(tops[int(rng.integers(len(tops)))])
+
+
+def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str, depth: int) -> Transition | None:
+    """Clear blocker ``b``: straight to its own goal when it is a goal object
+    that may be placed now (saving the second move), else to a free pose."""
+    if depth < 2 and b in problem.member and not ss.committed(problem, b) and b in ss.ready(problem):
+        tr = attempt(problem, ss, b, rng, opts, _depth=depth + 1)
+        if tr is not None and tr.action is not None and tr.action.object == problem.scene.ids[b]:
+            return tr
+    return relocate(problem, ss, b, rng, opts, purpose)
+
+
+def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0) -> Transition | None:
+    """One simulation step for goal object ``o`` (paper, Algorithm 1).
+
+    Returns ``None`` when no action could be found (no pose in the prior, no
+    free pose for a blocker).
+    """
+    scene, world = problem.scene, ss.world
+    if not world.clear(o):
+        return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", _depth)
+    support = _required_support(problem, ss, o)
+    if support is None:
+        return None
+    cand = _sample(problem, ss, o, rng, opts.samples)
+    if len(cand) == 0:
+        return None
+    if support != TABLE:
+        if any(k != o for k in world.holding[support]):
+            return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", _depth)
+        pose = cand[0]
+        if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
+            return None
+        new_world = world.moved(o, pose, support)
+        act = Action(object=scene.ids[o], to=tuple(float(v) for v in pose), on=scene.ids[support], purpose="goal")  # type: ignore[arg-type]
+        return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
+    inside, hits = _collisions(problem, ss, o, cand, opts)
+    ok = inside & np.array([not h for h in hits])
+    if ok.any():
+        pose = cand[int(np.flatnonzero(ok)[0])]
+        new_world = world.moved(o, pose, TABLE)
+        act = Action(object=scene.ids[o], to=tuple(float(v) for v in pose), on=None, purpose="goal")  # type: ignore[arg-type]
+        return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
+    if opts.obstacles != "all":
+        return None
+    # Every candidate collides: clear the way for one of them (fewest blockers first).
+    blocked = [k for k in np.flatnonzero(inside) if hits[k]]
+    if not blocked:
+        return None
+    fewest = min(len(hits[k]) for k in blocked)
+    pick = [k for k in blocked if len(hits[k]) == fewest]
+    chosen = hits[int(pick[int(rng.integers(len(pick)))])]
+    b = int(chosen[int(rng.integers(len(chosen)))])
+    if b == o:
+        return None
+    if not world.clear(b):
+        return _move_blocker(problem, ss, _clear_top(world, b, rng), rng, opts, "unstack", _depth)
+    return _move_blocker(problem, ss, b, rng, opts, "relocate", _depth)
