@@ -37,6 +37,7 @@ __all__ = [
     "load_goals",
     "load_plan",
     "save_json",
+    "to_dict",
     "parse_scene",
     "parse_goals",
     "parse_plan",
@@ -427,9 +428,24 @@ def load_plan(source: str | Path | dict) -> PlanSpec:
     return parse_plan(_read(source, "plan"))
 
 
+def to_dict(model: BaseModel) -> dict:
+    """JSON-ready dict of a format model; goals omit their unused keys."""
+    data = model.model_dump(mode="json")
+
+    def clean(goals: dict | None) -> None:
+        if goals:
+            goals["goals"] = [{k: v for k, v in g.items() if v is not None} for g in goals["goals"]]
+
+    if isinstance(model, GoalSpec):
+        clean(data)
+    elif isinstance(model, PlanSpec):
+        clean(data.get("goals"))
+    return data
+
+
 def save_json(model: BaseModel, path: str | Path | None = None, *, indent: int = 2) -> str:
     """Serialise any of the format models; write it to ``path`` when given."""
-    text = model.model_dump_json(indent=indent, exclude_none=False)
+    text = json.dumps(to_dict(model), indent=indent)
     if path is not None:
         Path(path).write_text(text + "\n")
     return text

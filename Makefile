@@ -1,0 +1,42 @@
+# Two commands for a fresh machine: `make demo` and `make test`.
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV   := .venv
+PY     := $(VENV)/bin/python
+STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
+export HF_HUB_OFFLINE := 1
+export TRANSFORMERS_OFFLINE := 1
+export MUJOCO_GL ?= osmesa
+export PYOPENGL_PLATFORM ?= osmesa
+
+.PHONY: install system-deps demo test bench clean
+
+$(STAMP): pyproject.toml
+	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	# The CPU build of PyTorch first, so nothing pulls the multi-GB CUDA build.
+	$(PY) -m pip install -q torch==2.13.0
+	$(PY) -m pip install -q -e ".[test,ray]"
+	@rm -f $(VENV)/.installed-*
+	@touch $(STAMP)
+
+install: $(STAMP)
+
+system-deps:
+	@bash scripts/system-deps.sh
+
+demo: install system-deps
+	@mkdir -p out/demo
+	$(PY) -m lgmcts plan examples/tabletop.json \
+	    "Move all blocks into a circle; while put the white bottle behind one block" \
+	    --seed 0 -o out/demo/plan.json --viz out/demo
+	@cat out/demo/plan.json
+	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/plan.gif, out/demo/before_after.png"
+
+test: install system-deps
+	$(PY) -m pytest tests
+
+bench: install
+	$(PY) benchmarks/planner.py --n 300
+
+clean:
+	rm -rf out .pytest_cache

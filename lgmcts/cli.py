@@ -1,0 +1,139 @@
+"""The ``lgmcts`` command line. Errors become exit codes here: 2 for bad
+input (one line on stderr), 1 for a plan or check that did not succeed."""
+
+from __future__ import annotations
+
+import importlib
+import json
+import sys
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from .cli_util import fail, write_text
+from .errors import InputError
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    help="Plan tabletop rearrangements from goals or plain-language commands.",
+)
+
+_PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
+
+
+def _verbosity(verbose: int) -> None:
+    try:
+        from .progress import configure_logging
+    except ModuleNotFoundError:  # pragma: no cover - progress helpers always ship
+        import logging
+
+        logging.basicConfig(level=logging.WARNING - 10 * min(verbose, 2), stream=sys.stderr)
+        return
+    configure_logging(verbose)
+
+
+@app.command()
+def plan(
+    scene: Path = typer.Argument(..., help="Scene JSON file."),
+    instruction: Optional[str] = typer.Argument(None, help="Plain-language command (instead of --goal)."),
+    goal: Optional[Path] = typer.Option(None, "--goal", "-g", help="Goal JSON file."),
+    method: str = typer.Option("lgmcts", help="lgmcts, greedy or pmcts."),
+    seed: int = typer.Option(0, help="Random seed; the same seed gives the same plan."),
+    max_iter: int = typer.Option(10_000, "--max-iter", help="Iteration budget."),
+    time_limit: Optional[float] = typer.Option(None, "--time-limit", help="Wall-clock budget in seconds."),
+    anytime: bool = typer.Option(False, help="Keep searching within the budget for a shorter plan."),
+    parser: str = typer.Option("rules", help="Instruction parser: rules or llm."),
+    llm_model: Optional[str] = typer.Option(None, "--llm-model"),
+    llm_base_url: Optional[str] = typer.Option(None, "--llm-base-url"),
+    output: Optional[str] = typer.Option(None, "-o", "--output", help="Write the plan JSON here (default stdout)."),
+    viz: Optional[Path] = typer.Option(None, "--viz", help="Write pictures of the plan into this folder."),
+    verbose: int = typer.Option(0, "-v", "--verbose", count=True, help="-v: search log, -vv: debug."),
+) -> None:
+    """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
+
+    Exit status: 0 solved, 1 not solved (the partial plan is still written), 2 bad input.
+    """
+    from . import formats
+    from .planner import plan as run_plan
+
+    _verbosity(verbose)
+    try:
+        spec = formats.load_scene(scene)
+        if (goal is None) == (instruction is None):
+            fail("give either --goal GOALS.json or an instruction, not both or neither")
+        if goal is not None:
+            goals = formats.load_goals(goal)
+        else:
+            from .language import parse
+
+            goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime)
+    except InputError as exc:
+        fail(str(exc))
+    if instruction is not None:
+        result = result.model_copy(update={"instruction": instruction})
+    write_text(formats.save_json(result), output)
+    if viz is not None:
+        from .viz import write_plan_figures
+
+        paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
+        typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+    st = result.stats
+    status = "solved" if result.solved else f"not solved ({st.get('reason', '')})"
+    typer.echo(
+        f"{status}: {len(result.actions)} actions, {st['iterations']} iterations, {st['time_s']:.3f} s", err=True
+    )
+    raise typer.Exit(0 if result.solved else 1)
+
+
+@app.command()
+def check(
+    scene: Path = typer.Argument(..., help="Scene JSON file."),
+    goals: Path = typer.Argument(..., help="Goal JSON file."),
+    plan_file: Path = typer.Argument(..., metavar="PLAN", help="Plan JSON file."),
+    as_json: bool = typer.Option(False, "--json", help="Print the verdict as JSON."),
+) -> None:
+    """Replay PLAN on SCENE and judge it against GOALS (exit 0 valid, 1 invalid, 2 bad input)."""
+    from .validate import check as run_check
+
+    try:
+        verdict = run_check(scene, goals, plan_file)
+    except InputError as exc:
+        fail(str(exc))
+    if as_json:
+        typer.echo(json.dumps({"valid": verdict.valid, "reasons": list(verdict.reasons), "goals": list(verdict.goals)}))
+    else:
+        typer.echo("valid" if verdict.valid else "invalid")
+        for r in verdict.reasons:
+            typer.echo(f"  - {r}")
+    raise typer.Exit(0 if verdict.valid else 1)
+
+
+def _register_plugins() -> None:
+    for name in _PLUGINS:
+        try:
+            mod = importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name is not None and name.startswith(exc.name):
+                continue  # that part is not installed
+            raise
+        mod.register(app)
+
+
+_register_plugins()
+
+
+def main() -> None:
+    """Entry point: run the app, turning stray exceptions into one line."""
+    try:
+        app()
+    except InputError as exc:  # pragma: no cover - commands catch their own
+        typer.echo(str(exc), err=True)
+        sys.exit(2)
+
+
+if __name__ == "__main__":
+    main()
