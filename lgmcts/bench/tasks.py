@@ -1,0 +1,155 @@
+"""Benchmark tasks as data: the task record, seeds and the JSONL suite files.
+
+A suite file holds one task per line::
+
+    {"id": "elgr-00042", "seed": 42, "suite": "elgr", "category": "line+circle",
+     "scene": {...scene JSON...}, "instruction": "Put all blocks in a line; and ...",
+     "goals": {"goals": [...]},            # ground truth
+     "final": {"3": [x, y, theta], ...},   # the arrangement the task was built from
+     "final_on": {"5": 4, ...},            # supports in that arrangement (towers)
+     "start": {"blockers": [[top, base]], "clutter": [[object, target]]}}
+
+Seeds: task ``k`` of a suite generated with seed ``S`` is built from the
+integer ``S * 1_000_000 + k`` alone, so any task can be rebuilt from its
+record, and suites with different ``S`` never share a task. Seed 0 is the
+reported test suite; use seeds >= 1 to tune a method ("train").
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Iterator
+
+from ..errors import InputError
+from ..formats import GoalSpec, SceneSpec, parse_goals, parse_scene
+
+__all__ = ["Task", "task_seed", "read_suite", "write_suite", "SEED_STRIDE"]
+
+#: Task seeds of suite seed S are ``S * SEED_STRIDE + k``.
+SEED_STRIDE = 1_000_000
+
+
+def task_seed(suite_seed: int, index: int) -> int:
+    """Seed of task ``index`` of a suite generated with ``suite_seed``."""
+    if suite_seed < 0 or not 0 <= index < SEED_STRIDE:
+        raise InputError(f"seed must be >= 0 and a suite may hold at most {SEED_STRIDE} tasks")
+    return suite_seed * SEED_STRIDE + index
+
+
+@dataclass(frozen=True)
+class Task:
+    """One benchmark task: a start scene, an instruction and its ground-truth goals.
+
+    ``final``/``final_on`` hold the arrangement the generator built first (it
+    meets every goal); ``start`` says how the start state was made hard.
+    """
+
+    id: str
+    seed: int
+    suite: str
+    category: str
+    scene: dict
+    instruction: str
+    goals: dict
+    final: dict = field(default_factory=dict)
+    final_on: dict = field(default_factory=dict)
+    start: dict = field(default_factory=dict)
+
+    def scene_spec(self) -> SceneSpec:
+        """The start scene as a validated model."""
+        return parse_scene(self.scene)
+
+    def goal_spec(self) -> GoalSpec:
+        """The ground-truth goals as a validated model."""
+        return parse_goals(self.goals)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "id": self.id,
+            "seed": self.seed,
+            "suite": self.suite,
+            "category": self.category,
+            "scene": self.scene,
+            "instruction": self.instruction,
+            "goals": self.goals,
+            "final": self.final,
+            "final_on": self.final_on,
+            "start": self.start,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], *, where: str = "task") -> "Task":
+        """Build a task from a JSON record; :class:`InputError` names what is missing."""
+        if not isinstance(data, dict):
+            raise InputError(f"{where}: a task must be a JSON object")
+        need = ("id", "scene", "instruction", "goals")
+        missing = [k for k in need if k not in data]
+        if missing:
+            raise InputError(f"{where}: missing field(s) {', '.join(missing)}")
+        task = cls(
+            id=str(data["id"]),
+            seed=int(data.get("seed", 0)),
+            suite=str(data.get("suite", "")),
+            category=str(data.get("category", "")),
+            scene=data["scene"],
+            instruction=str(data["instruction"]),
+            goals=data["goals"] if isinstance(data["goals"], dict) else {"goals": data["goals"]},
+            final=dict(data.get("final") or {}),
+            final_on=dict(data.get("final_on") or {}),
+            start=dict(data.get("start") or {}),
+        )
+        try:
+            scene = task.scene_spec()
+            task.goal_spec().check_against(scene)
+        except InputError as exc:
+            raise InputError(f"{where} ({task.id}): {exc}") from None
+        return task
+
+
+def write_suite(tasks: Iterable[Task], path: str | Path) -> int:
+    """Write ``tasks`` to a JSONL file; returns how many were written."""
+    n = 0
+    try:
+        with open(path, "w") as fh:
+            for t in tasks:
+                fh.write(json.dumps(t.to_dict(), separators=(",", ":")) + "\n")
+                n += 1
+    except OSError as exc:
+        raise InputError(f"cannot write {path}: {exc.strerror}") from None
+    return n
+
+
+def read_suite(path: str | Path, *, limit: int | None = None) -> list[Task]:
+    """Read a JSONL suite file (the first ``limit`` tasks when given)."""
+    return list(_iter_suite(Path(path), limit))
+
+
+def _iter_suite(path: Path, limit: int | None) -> Iterator[Task]:
+    try:
+        fh = open(path)
+    except FileNotFoundError:
+        raise InputError(f"suite file not found: {path}") from None
+    except OSError as exc:
+        raise InputError(f"cannot read suite file {path}: {exc.strerror}") from None
+    seen: set[str] = set()
+    n = 0
+    with fh:
+        for lineno, line in enumerate(fh, start=1):
+            if limit is not None and n >= limit:
+                return
+            if not line.strip():
+                continue
+            try:
+                data = json.loads(line)
+            except json.JSONDecodeError as exc:
+                raise InputError(f"{path} line {lineno} is not valid JSON: {exc.msg}") from None
+            task = Task.from_dict(data, where=f"{path} line {lineno}")
+            if task.id in seen:
+                raise InputError(f"{path} line {lineno}: duplicate task id {task.id}")
+            seen.add(task.id)
+            n += 1
+            yield task
+    if n == 0:
+        raise InputError(f"suite file {path} holds no tasks")
