@@ -1,0 +1,174 @@
+"""Work done inside the service's worker processes.
+
+Each function here takes one frozen, picklable job description and returns a
+JSON-ready dict. They run in a process of :class:`lgmcts.service.pool.WorkerPool`,
+never in the process that serves HTTP, so a slow or crashing planner cannot
+stall the event loop. Bad input raises :class:`lgmcts.errors.InputError`
+(pickled back to the server, which answers 422); a missing optional part of
+the package raises :class:`Unavailable` (answered 501).
+
+The language parser (and with it torch) is imported lazily, only by the jobs
+that need it.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+from dataclasses import dataclass
+
+from ..formats import GoalSpec, PlanSpec, SceneSpec, to_dict
+
+__all__ = [
+    "CheckJob",
+    "ParseJob",
+    "PlanJob",
+    "Unavailable",
+    "DeadlinePassed",
+    "run_check",
+    "run_parse",
+    "run_plan",
+    "warm_up",
+    "worker_init",
+    "HOOK_METHODS",
+]
+
+#: Margin (s) added to the planner's own time limit beyond the request's
+#: deadline. The server gives up at the deadline; the margin only ensures the
+#: planner is not what decides the race, so an over-long search ends as a 504.
+DEADLINE_MARGIN = 0.2
+
+#: Methods that exist only when the server runs with test hooks enabled:
+#: ``_crash`` kills the worker process, ``_sleep`` ignores every budget and
+#: sleeps for the request's ``time_limit`` seconds (a hung planner).
+HOOK_METHODS = ("_crash", "_sleep")
+
+
+class Unavailable(RuntimeError):
+    """An optional part of the package (the language parser) is missing."""
+
+
+class DeadlinePassed(RuntimeError):
+    """The request's wall-clock deadline passed before the work could start."""
+
+
+@dataclass(frozen=True)
+class ParseJob:
+    """Turn ``instruction`` into goals for ``scene``."""
+
+    scene: SceneSpec
+    instruction: str
+    parser: str = "rules"
+    llm_model: str | None = None
+    llm_base_url: str | None = None
+
+
+@dataclass(frozen=True)
+class PlanJob:
+    """Plan for ``scene`` towards ``goals`` or the goals parsed from ``parse``.
+
+    ``deadline`` is the request's wall-clock deadline (``time.time()`` seconds);
+    the planner's time limit never runs past it by more than
+    :data:`DEADLINE_MARGIN`. ``time_limit`` is the client's own budget (s) or
+    ``None``.
+    """
+
+    scene: SceneSpec
+    goals: GoalSpec | None
+    parse: ParseJob | None
+    method: str
+    seed: int
+    max_iter: int
+    time_limit: float | None
+    anytime: bool
+    deadline: float
+    hooks: bool = False
+
+
+@dataclass(frozen=True)
+class CheckJob:
+    """Judge ``plan`` on ``scene`` against ``goals``."""
+
+    scene: SceneSpec
+    goals: GoalSpec
+    plan: PlanSpec
+
+
+def worker_init() -> None:
+    """Initialise a worker: leave Ctrl-C to the server, which shuts workers down."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _parse(job: ParseJob) -> GoalSpec:
+    try:
+        from ..language import parse
+    except ImportError as exc:
+        # Absent, or present without its parse() (a partial install): a 501,
+        # not a planner failure. Errors inside its own imports still surface.
+        missing = getattr(exc, "name", None) or ""
+        if missing and not "lgmcts.language".startswith(missing):
+            raise
+        raise Unavailable("the language parser (lgmcts.language) is not installed") from None
+    return parse(
+        job.scene, job.instruction, parser=job.parser, llm_model=job.llm_model, llm_base_url=job.llm_base_url
+    )
+
+
+def run_parse(job: ParseJob) -> dict:
+    """Goal JSON (a dict) for ``job.instruction``."""
+    return to_dict(_parse(job))
+
+
+def run_plan(job: PlanJob) -> dict:
+    """Plan JSON (a dict) for ``job``; the instruction, when given, is kept in it."""
+    if job.hooks and job.method == "_crash":
+        os._exit(70)
+    if job.hooks and job.method == "_sleep":
+        time.sleep(job.time_limit or 60.0)
+        raise DeadlinePassed("slept past the deadline")
+    from ..planner import plan
+
+    goals = job.goals if job.goals is not None else _parse(job.parse)  # type: ignore[arg-type]
+    remaining = job.deadline - time.time()
+    if remaining <= 0:
+        raise DeadlinePassed("the request's deadline passed before planning started")
+    backstop = remaining + DEADLINE_MARGIN
+    limit = backstop if job.time_limit is None else min(job.time_limit, backstop)
+    result = plan(
+        job.scene,
+        goals,
+        method=job.method,
+        seed=job.seed,
+        max_iter=job.max_iter,
+        time_limit=limit,
+        anytime=job.anytime,
+    )
+    data = to_dict(result)
+    stats = data.get("stats", {})
+    if job.time_limit is None:
+        # The backstop is the server's business; the plan should read as if
+        # the client had called the library without a time limit.
+        stats.pop("time_limit", None)
+    else:
+        stats["time_limit"] = job.time_limit
+    if job.parse is not None:
+        data["instruction"] = job.parse.instruction
+    return data
+
+
+def run_check(job: CheckJob) -> dict:
+    """Verdict JSON (a dict): ``valid``, ``reasons`` and per-goal ``goals``."""
+    from ..validate import check
+
+    verdict = check(job.scene, job.goals, job.plan)
+    return {"valid": verdict.valid, "reasons": list(verdict.reasons), "goals": list(verdict.goals)}
+
+
+def warm_up(pause: float) -> int:
+    """Import the planner and pause briefly, so warm-up jobs land on distinct workers."""
+    from .. import planner, validate  # noqa: F401
+
+    time.sleep(pause)
+    return os.getpid()
+

@@ -1,0 +1,89 @@
+"""Request and response bodies of the planning service.
+
+The scene, goal and plan parts are the library's own format models
+(:mod:`lgmcts.formats`), so the service accepts exactly what the command line
+reads from files and its OpenAPI description documents the same formats.
+"""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from ..formats import GoalSpec, PlanSpec, SceneSpec
+
+__all__ = ["PlanOptions", "ParseRequest", "PlanRequest", "CheckRequest", "VerdictOut", "ErrorOut", "HealthOut"]
+
+
+class _Body(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class PlanOptions(_Body):
+    """Planner settings; the same meaning as the options of ``lgmcts plan``."""
+
+    method: str = Field("lgmcts", description="lgmcts, greedy or pmcts.")
+    seed: int = Field(0, description="Random seed; the same seed gives the same plan.")
+    max_iter: int = Field(10_000, description="Iteration budget; the server caps it (see /healthz).")
+    time_limit: float | None = Field(None, description="Planning budget in seconds (wall clock).")
+    anytime: bool = Field(False, description="Keep searching within the budget for a shorter plan.")
+    timeout: float | None = Field(
+        None, description="Wall-clock limit of this request in seconds; at most the server's timeout."
+    )
+
+
+class ParseRequest(_Body):
+    """Turn a plain-language instruction into goals for a scene."""
+
+    scene: SceneSpec
+    instruction: str = Field(..., description="Plain-language command.")
+    parser: str = Field("rules", description="Instruction parser: rules or llm.")
+    llm_model: str | None = Field(None, description="Model name for the llm parser.")
+    llm_base_url: str | None = Field(None, description="OpenAI-compatible endpoint for the llm parser.")
+    timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
+
+
+class PlanRequest(_Body):
+    """Plan for a scene towards ``goals`` or towards the goals of ``instruction`` (exactly one)."""
+
+    scene: SceneSpec
+    instruction: str | None = Field(None, description="Plain-language command (instead of goals).")
+    goals: GoalSpec | None = Field(None, description="Goal specification (instead of an instruction).")
+    parser: str = Field("rules", description="Instruction parser: rules or llm.")
+    llm_model: str | None = None
+    llm_base_url: str | None = None
+    options: PlanOptions = Field(default_factory=PlanOptions)
+
+
+class CheckRequest(_Body):
+    """Replay a plan on a scene and judge it against goals."""
+
+    scene: SceneSpec
+    goals: GoalSpec
+    plan: PlanSpec
+    timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
+
+
+class VerdictOut(BaseModel):
+    """Outcome of /check: validity, the violations in words, and per-goal success."""
+
+    valid: bool
+    reasons: list[str]
+    goals: list[bool]
+
+
+class ErrorOut(BaseModel):
+    """Every error: one line for a person."""
+
+    detail: str
+
+
+class HealthOut(BaseModel):
+    """Liveness and the server's limits."""
+
+    status: str
+    version: str
+    workers: int
+    restarts: int = Field(..., description="How many times the worker pool was replaced.")
+    timeout_s: float
+    max_iter: int
+    max_body_bytes: int

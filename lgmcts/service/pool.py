@@ -1,0 +1,186 @@
+"""A process pool for planning jobs that survives crashed and hung workers.
+
+:class:`WorkerPool` wraps :class:`concurrent.futures.ProcessPoolExecutor` for
+use from an asyncio server:
+
+* every job has a wall-clock deadline; past it the awaiting request gets
+  :class:`JobTimeout` at once, and a job still queued is withdrawn;
+* a worker that dies (segfault, ``os._exit``, the OOM killer) breaks a
+  ``ProcessPoolExecutor`` and fails every job it held. The pool is replaced by
+  a fresh one, and each failed job is run once more alone in a single-use
+  process: a job that crashes again is the culprit and gets
+  :class:`WorkerCrashed`; the bystanders get their results;
+* a job still running ``grace`` seconds after its deadline is taken as hung:
+  the pool is replaced and the old one's processes are killed, which sends its
+  other jobs through the same retry.
+
+Processes are started with ``forkserver`` where available (a fork of a server
+that has already imported the planner, so a replacement pool is ready in
+milliseconds) and ``spawn`` elsewhere; never plain ``fork`` from a process that
+runs threads.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import multiprocessing
+import time
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any, Callable
+
+from . import jobs
+
+__all__ = ["WorkerPool", "JobTimeout", "WorkerCrashed", "PRELOAD"]
+
+log = logging.getLogger("lgmcts.service")
+
+#: Modules the fork server imports once so that every worker starts warm.
+PRELOAD = ("lgmcts.formats", "lgmcts.scene", "lgmcts.validate", "lgmcts.planner", "lgmcts.service.jobs")
+
+
+class JobTimeout(Exception):
+    """The job did not finish before its deadline."""
+
+
+class WorkerCrashed(Exception):
+    """The worker process running the job died, also when the job ran alone."""
+
+
+def _context(start_method: str | None) -> multiprocessing.context.BaseContext:
+    if start_method is None:
+        start_method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+    if start_method == "fork":
+        raise ValueError("the 'fork' start method is unsafe in a threaded server; use forkserver or spawn")
+    ctx = multiprocessing.get_context(start_method)
+    if start_method == "forkserver":
+        ctx.set_forkserver_preload(list(PRELOAD))
+    return ctx
+
+
+def _kill(executor: ProcessPoolExecutor) -> None:
+    """Kill an executor's processes and shut it down without waiting."""
+    # ProcessPoolExecutor has no public way to stop a running job before
+    # Python 3.14 (terminate_workers); its process table is the only handle.
+    procs = list((getattr(executor, "_processes", None) or {}).values())
+    for p in procs:
+        try:
+            p.kill()
+        except (OSError, ValueError, AttributeError):  # already gone or closed
+            pass
+    executor.shutdown(wait=False, cancel_futures=True)
+
+
+class WorkerPool:
+    """A replaceable process pool running :mod:`lgmcts.service.jobs` functions.
+
+    Parameters
+    ----------
+    workers : number of worker processes (>= 1).
+    grace : seconds a job may run past its deadline before its pool is
+        declared hung, replaced and its processes killed.
+    start_method : ``"forkserver"``, ``"spawn"`` or ``None`` (forkserver
+        where the platform has it).
+    """
+
+    def __init__(self, *, workers: int, grace: float = 2.0, start_method: str | None = None) -> None:
+        if workers < 1:
+            raise ValueError("workers must be at least 1")
+        self.workers = workers
+        self.grace = grace
+        self._ctx = _context(start_method)
+        self._executor: ProcessPoolExecutor | None = None
+        self._generation = 0
+        self.restarts = 0
+        self._isolated: asyncio.Semaphore | None = None
+
+    # ------------------------------------------------------------ lifecycle
+
+    def _new_executor(self) -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(max_workers=self.workers, mp_context=self._ctx, initializer=jobs.worker_init)
+
+    def start(self, *, warm: bool = True) -> None:
+        """Create the executor; with ``warm``, start every worker now (blocks)."""
+        self._executor = self._new_executor()
+        if warm:
+            futures = [self._executor.submit(jobs.warm_up, 0.2) for _ in range(self.workers)]
+            for f in futures:
+                f.result(timeout=120)
+
+    def close(self) -> None:
+        """Stop every worker; running jobs are abandoned."""
+        if self._executor is not None:
+            _kill(self._executor)
+            self._executor = None
+
+    def _renew(self, generation: int, why: str) -> None:
+        """Replace the executor of ``generation`` (no-op when already replaced)."""
+        if generation != self._generation or self._executor is None:
+            return
+        old = self._executor
+        self._executor = self._new_executor()
+        self._generation += 1
+        self.restarts += 1
+        log.warning("worker pool replaced (%s); %d replacement(s) so far", why, self.restarts)
+        _kill(old)
+
+    # ------------------------------------------------------------ running
+
+    async def run(self, fn: Callable[[Any], Any], job: Any, *, deadline: float) -> Any:
+        """Run ``fn(job)`` in a worker and return its result.
+
+        Parameters
+        ----------
+        fn : a module-level function of :mod:`lgmcts.service.jobs`.
+        job : its picklable argument.
+        deadline : wall-clock deadline, ``time.time()`` seconds.
+
+        Raises
+        ------
+        JobTimeout : the deadline passed.
+        WorkerCrashed : the job killed its worker twice (once in the pool, once alone).
+        Exception : whatever ``fn`` raised (``InputError`` for bad input).
+        """
+        if self._executor is None:
+            raise RuntimeError("the worker pool is not started")
+        generation, executor = self._generation, self._executor
+        try:
+            future = executor.submit(fn, job)
+        except (BrokenProcessPool, RuntimeError):
+            # Broken or shut down between two requests: replace it and go on.
+            self._renew(generation, "broken before submission")
+            generation, future = self._generation, self._executor.submit(fn, job)  # type: ignore[union-attr]
+        try:
+            return await asyncio.wait_for(asyncio.wrap_future(future), timeout=deadline - time.time())
+        except asyncio.TimeoutError:
+            self._watch(future, generation)
+            raise JobTimeout() from None
+        except BrokenProcessPool:
+            self._renew(generation, "a worker died")
+        return await self._run_alone(fn, job, deadline=deadline)
+
+    def _watch(self, future: Future, generation: int) -> None:
+        """After ``grace`` s, replace the pool if ``future`` is still running."""
+
+        def check() -> None:
+            if not future.done():
+                self._renew(generation, "a job ran past its deadline")
+
+        asyncio.get_running_loop().call_later(self.grace, check)
+
+    async def _run_alone(self, fn: Callable[[Any], Any], job: Any, *, deadline: float) -> Any:
+        """Run one job in a single-use process, to tell a culprit from a bystander."""
+        if self._isolated is None:
+            self._isolated = asyncio.Semaphore(self.workers)
+        async with self._isolated:
+            executor = ProcessPoolExecutor(max_workers=1, mp_context=self._ctx, initializer=jobs.worker_init)
+            try:
+                future = executor.submit(fn, job)
+                return await asyncio.wait_for(asyncio.wrap_future(future), timeout=deadline - time.time())
+            except asyncio.TimeoutError:
+                raise JobTimeout() from None
+            except BrokenProcessPool:
+                raise WorkerCrashed() from None
+            finally:
+                _kill(executor)

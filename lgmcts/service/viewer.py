@@ -1,0 +1,254 @@
+"""The page served at ``/``: paste or upload a scene, plan, and see the plan.
+
+The page is one self-contained HTML document (no network access besides the
+calls to this service). When the package ships the plan viewer script
+``lgmcts/viz/assets/viewer.js`` (which defines
+``LGMCTSViewer.render(container, {scene, plan, instruction})``) it is inlined
+and draws the plan; otherwise a small built-in drawing of the start and final
+footprints and the plan JSON are shown.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+__all__ = ["page", "viewer_script", "EXAMPLE_SCENE", "EXAMPLE_INSTRUCTION"]
+
+VIEWER_JS = Path(__file__).resolve().parent.parent / "viz" / "assets" / "viewer.js"
+
+#: The scene loaded by the page's "example" button (metres, radians).
+EXAMPLE_SCENE = {
+    "workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+    "objects": [
+        {"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [-0.25, -0.15, 0.3]},
+        {"id": 2, "name": "block", "color": "blue", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.05, 0.02, 0.0]},
+        {"id": 3, "name": "block", "color": "green", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.05, 0.02, 0.2], "on": 2},
+        {"id": 4, "name": "block", "color": "yellow", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.28, 0.18, -0.4]},
+        {"id": 5, "name": "bottle", "color": "white", "shape": {"type": "cylinder", "radius": 0.035, "height": 0.2}, "pose": [-0.3, 0.2, 0.0]},
+        {"id": 6, "name": "bowl", "color": "green", "shape": {"type": "cylinder", "radius": 0.07, "height": 0.05}, "pose": [0.15, -0.15, 0.0]},
+    ],
+}
+EXAMPLE_GOALS = {"goals": [{"pattern": "line", "objects": [1, 2, 3, 4]}, {"pattern": "behind", "objects": [5], "anchor": 1}]}
+EXAMPLE_INSTRUCTION = "put all blocks in a line and the white bottle behind the red block"
+
+_cache: dict[str, tuple[float, str]] = {}
+
+
+def viewer_script(path: Path = VIEWER_JS) -> str | None:
+    """The viewer script's text, safe to inline in a ``<script>`` element, or ``None`` if absent.
+
+    Read when its modification time changes, so a viewer installed after the
+    server started is picked up on the next page load.
+    """
+    try:
+        mtime = path.stat().st_mtime
+    except OSError:
+        return None
+    hit = _cache.get(str(path))
+    if hit is not None and hit[0] == mtime:
+        return hit[1]
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    text = _inline_safe(text)
+    _cache[str(path)] = (mtime, text)
+    return text
+
+
+def _inline_safe(js: str) -> str:
+    # Inside <script>, the HTML parser ends the element at "</script" whatever
+    # the JavaScript context; "<\/" means the same in every JS string or regex.
+    return re.sub(r"</(script)", r"<\\/\1", js, flags=re.IGNORECASE).replace("<!--", "<\\!--")
+
+
+def _json_for_script(data: object) -> str:
+    return json.dumps(data).replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def page() -> str:
+    """The HTML of the viewer page."""
+    script = viewer_script()
+    viewer = f"<script>{script}</script>" if script is not None else ""
+    return (
+        _PAGE.replace("/*VIEWER*/", viewer)
+        .replace("/*EXAMPLE_SCENE*/null", _json_for_script(EXAMPLE_SCENE))
+        .replace("/*EXAMPLE_GOALS*/null", _json_for_script(EXAMPLE_GOALS))
+        .replace("/*EXAMPLE_INSTRUCTION*/null", _json_for_script(EXAMPLE_INSTRUCTION))
+    )
+
+
+_PAGE = """<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>lgmcts planner</title>
+<style>
+  body { font: 14px/1.4 system-ui, sans-serif; margin: 0; color: #222; }
+  header { background: #263238; color: #fff; padding: 8px 16px; }
+  header a { color: #b3e5fc; margin-left: 12px; }
+  main { display: flex; gap: 16px; padding: 12px 16px; flex-wrap: wrap; }
+  #inputs { flex: 0 0 380px; display: flex; flex-direction: column; gap: 6px; }
+  #inputs textarea { width: 100%; box-sizing: border-box; font: 12px monospace; }
+  #output { flex: 1 1 520px; min-width: 320px; }
+  .row { display: flex; gap: 8px; align-items: center; flex-wrap: wrap; }
+  #status { min-height: 1.4em; font-weight: 600; }
+  #status.error { color: #b71c1c; }
+  #status.ok { color: #1b5e20; }
+  #json { background: #f5f5f5; padding: 8px; max-height: 320px; overflow: auto; font: 12px monospace; }
+  #fallback svg { border: 1px solid #ccc; background: #fafafa; max-width: 100%; }
+  .legend span { margin-right: 12px; }
+</style>
+</head>
+<body>
+<header><strong>lgmcts</strong> language-guided tabletop rearrangement planner
+  <a href="/docs">API docs</a><a href="/openapi.json">OpenAPI</a><a href="/healthz">health</a></header>
+<main>
+<section id="inputs">
+  <label for="scene">Scene JSON</label>
+  <textarea id="scene" rows="12" spellcheck="false"></textarea>
+  <div class="row"><input type="file" id="scene-file" accept=".json,application/json">
+    <button type="button" id="example">Load example</button></div>
+  <label for="instruction">Instruction</label>
+  <input id="instruction" type="text">
+  <label for="goals">or goals JSON (used when the instruction is empty)</label>
+  <textarea id="goals" rows="4" spellcheck="false"></textarea>
+  <div class="row">
+    <label>method <select id="method"><option>lgmcts</option><option>greedy</option><option>pmcts</option></select></label>
+    <label>seed <input id="seed" type="number" value="0" style="width:5em"></label>
+    <label>max iter <input id="max-iter" type="number" value="10000" style="width:6em"></label>
+  </div>
+  <div class="row"><button type="button" id="plan">Plan</button><button type="button" id="check">Check plan</button></div>
+  <div id="status" role="status"></div>
+</section>
+<section id="output">
+  <div id="view"></div>
+  <div id="fallback"></div>
+  <details open><summary>Plan JSON</summary><pre id="json"></pre></details>
+</section>
+</main>
+/*VIEWER*/
+<script>
+(function () {
+  "use strict";
+  var EXAMPLE = { scene: /*EXAMPLE_SCENE*/null, goals: /*EXAMPLE_GOALS*/null, instruction: /*EXAMPLE_INSTRUCTION*/null };
+  var $ = function (id) { return document.getElementById(id); };
+  var last = null;
+
+  function status(text, cls) { var s = $("status"); s.textContent = text; s.className = cls || ""; }
+
+  function loadExample() {
+    $("scene").value = JSON.stringify(EXAMPLE.scene, null, 1);
+    $("instruction").value = EXAMPLE.instruction;
+    $("goals").value = JSON.stringify(EXAMPLE.goals);
+  }
+
+  function readJSON(id, what) {
+    var text = $(id).value.trim();
+    if (!text) return null;
+    try { return JSON.parse(text); } catch (e) { throw new Error(what + " is not valid JSON: " + e.message); }
+  }
+
+  async function post(path, body) {
+    var r = await fetch(path, { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+    var data = null;
+    try { data = await r.json(); } catch (e) { data = { detail: r.statusText }; }
+    if (!r.ok) throw new Error(r.status + ": " + (data && data.detail ? data.detail : r.statusText));
+    return data;
+  }
+
+  // ---- built-in drawing, used when the full viewer script is not installed
+  function footprint(o, pose) {
+    var s = o.shape, pts = [];
+    if (s.type === "box") {
+      var hx = s.size[0] / 2, hy = s.size[1] / 2;
+      pts = [[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]];
+    } else if (s.type === "cylinder") {
+      for (var k = 0; k < 24; k++) { var a = 2 * Math.PI * k / 24; pts.push([s.radius * Math.cos(a), s.radius * Math.sin(a)]); }
+    } else if (s.type === "polygon") {
+      pts = s.points;
+    } else if (s.type === "points") {
+      return s.points.map(function (p) { return [p[0], p[1]]; });
+    }
+    var c = Math.cos(pose[2]), d = Math.sin(pose[2]);
+    return pts.map(function (p) { return [pose[0] + c * p[0] - d * p[1], pose[1] + d * p[0] + c * p[1]]; });
+  }
+
+  function drawFallback(scene, plan) {
+    var ws = scene.workspace, W = 520, pad = 10;
+    var sx = (W - 2 * pad) / (ws.x[1] - ws.x[0]);
+    var H = Math.round((ws.y[1] - ws.y[0]) * sx + 2 * pad);
+    var X = function (x) { return pad + (x - ws.x[0]) * sx; }, Y = function (y) { return H - pad - (y - ws.y[0]) * sx; };
+    var poses = {}, moved = {};
+    scene.objects.forEach(function (o) { poses[o.id] = o.pose || [0, 0, 0]; });
+    (plan ? plan.actions : []).forEach(function (a) { poses[a.object] = a.to; moved[a.object] = true; });
+    var svg = '<svg xmlns="http://www.w3.org/2000/svg" width="' + W + '" height="' + H + '">';
+    svg += '<rect x="' + pad + '" y="' + pad + '" width="' + (W - 2 * pad) + '" height="' + (H - 2 * pad) + '" fill="none" stroke="#888"/>';
+    function poly(pts, fill, opacity, dash) {
+      return '<polygon points="' + pts.map(function (p) { return X(p[0]).toFixed(1) + "," + Y(p[1]).toFixed(1); }).join(" ") +
+        '" fill="' + fill + '" fill-opacity="' + opacity + '" stroke="#333"' + (dash ? ' stroke-dasharray="4 3"' : "") + "/>";
+    }
+    function colour(o) { var c = (o.color || "").split(" ")[0]; return CSS.supports("color", c) ? c : "#9e9e9e"; }
+    scene.objects.forEach(function (o) { if (moved[o.id]) svg += poly(footprint(o, o.pose || [0, 0, 0]), colour(o), 0.15, true); });
+    scene.objects.forEach(function (o) {
+      var p = poses[o.id];
+      svg += poly(footprint(o, p), colour(o), 0.8, false);
+      svg += '<text x="' + X(p[0]).toFixed(1) + '" y="' + (Y(p[1]) + 4).toFixed(1) + '" font-size="11" text-anchor="middle">' + o.id + "</text>";
+    });
+    svg += '<text x="' + (W / 2) + '" y="' + (H - 1) + '" font-size="10" text-anchor="middle" fill="#555">viewer side</text></svg>';
+    $("fallback").innerHTML = '<div class="legend"><span>dashed: start</span><span>solid: after the plan</span></div>' + svg;
+  }
+
+  function show(scene, plan, instruction) {
+    $("json").textContent = JSON.stringify(plan, null, 2);
+    if (window.LGMCTSViewer && typeof window.LGMCTSViewer.render === "function") {
+      $("fallback").innerHTML = "";
+      window.LGMCTSViewer.render($("view"), { scene: scene, plan: plan, instruction: instruction });
+    } else {
+      drawFallback(scene, plan);
+    }
+  }
+
+  async function doPlan() {
+    try {
+      var scene = readJSON("scene", "the scene");
+      if (!scene) throw new Error("paste, upload or load a scene first");
+      var instruction = $("instruction").value.trim();
+      var body = { scene: scene, options: { method: $("method").value, seed: parseInt($("seed").value || "0", 10),
+                                             max_iter: parseInt($("max-iter").value || "10000", 10) } };
+      if (instruction) body.instruction = instruction; else body.goals = readJSON("goals", "the goals");
+      status("planning...");
+      var t0 = performance.now();
+      var plan = await post("/plan", body);
+      last = { scene: scene, plan: plan };
+      show(scene, plan, instruction || null);
+      status((plan.solved ? "solved: " : "not solved: ") + plan.actions.length + " actions in " +
+             Math.round(performance.now() - t0) + " ms", plan.solved ? "ok" : "error");
+    } catch (e) { status(e.message, "error"); }
+  }
+
+  async function doCheck() {
+    try {
+      if (!last) throw new Error("plan first");
+      var v = await post("/check", { scene: last.scene, goals: last.plan.goals, plan: last.plan });
+      status(v.valid ? "the plan is valid" : "invalid: " + v.reasons.join("; "), v.valid ? "ok" : "error");
+    } catch (e) { status(e.message, "error"); }
+  }
+
+  $("scene-file").addEventListener("change", function (ev) {
+    var f = ev.target.files[0]; if (!f) return;
+    f.text().then(function (t) { $("scene").value = t; status("loaded " + f.name); });
+  });
+  $("example").addEventListener("click", loadExample);
+  $("plan").addEventListener("click", doPlan);
+  $("check").addEventListener("click", doCheck);
+  loadExample();
+  window.LGMCTSPage = { plan: doPlan, check: doCheck };
+})();
+</script>
+</body>
+</html>
+"""
