@@ -124,11 +124,11 @@ def validation_message(errors: list[dict]) -> str:
         return "invalid request: a JSON body is required"
     if kind in ("model_attributes_type", "dict_type", "model_type") and not loc:
         return "invalid request: the body must be a JSON object sent as Content-Type: application/json"
-    what = "request"
-    if len(loc) >= 2 and loc[0] in ("scene", "goals", "plan"):
-        what, loc = str(loc[0]), loc[1:]
-    elif kind == "missing" and len(loc) == 1:
+    if kind == "missing" and len(loc) == 1:
         return f"invalid request: '{loc[0]}' is required"
+    what = "request"
+    if loc and loc[0] in ("scene", "goals", "plan"):
+        what, loc = str(loc[0]), loc[1:]
     msg = str(first.get("msg", "invalid value")).removeprefix("Value error, ")
     where = f" at {'.'.join(str(p) for p in loc)}" if loc else ""
     return f"invalid {what}{where}: {msg}"

@@ -40,8 +40,9 @@ __all__ = [
 DEADLINE_MARGIN = 0.2
 
 #: Methods that exist only when the server runs with test hooks enabled:
-#: ``_crash`` kills the worker process, ``_sleep`` ignores every budget and
-#: sleeps for the request's ``time_limit`` seconds (a hung planner).
+#: ``_crash`` kills the worker process; ``_sleep`` first sleeps for the
+#: request's ``time_limit`` seconds, deaf to every deadline (a hung planner),
+#: then plans with ``lgmcts`` and no time limit.
 HOOK_METHODS = ("_crash", "_sleep")
 
 
@@ -124,9 +125,10 @@ def run_plan(job: PlanJob) -> dict:
     """Plan JSON (a dict) for ``job``; the instruction, when given, is kept in it."""
     if job.hooks and job.method == "_crash":
         os._exit(70)
-    if job.hooks and job.method == "_sleep":
-        time.sleep(job.time_limit or 60.0)
-        raise DeadlinePassed("slept past the deadline")
+    method, time_limit = job.method, job.time_limit
+    if job.hooks and method == "_sleep":
+        time.sleep(time_limit or 60.0)
+        method, time_limit = "lgmcts", None
     from ..planner import plan
 
     goals = job.goals if job.goals is not None else _parse(job.parse)  # type: ignore[arg-type]
@@ -134,11 +136,11 @@ def run_plan(job: PlanJob) -> dict:
     if remaining <= 0:
         raise DeadlinePassed("the request's deadline passed before planning started")
     backstop = remaining + DEADLINE_MARGIN
-    limit = backstop if job.time_limit is None else min(job.time_limit, backstop)
+    limit = backstop if time_limit is None else min(time_limit, backstop)
     result = plan(
         job.scene,
         goals,
-        method=job.method,
+        method=method,
         seed=job.seed,
         max_iter=job.max_iter,
         time_limit=limit,
@@ -146,12 +148,12 @@ def run_plan(job: PlanJob) -> dict:
     )
     data = to_dict(result)
     stats = data.get("stats", {})
-    if job.time_limit is None:
+    if time_limit is None:
         # The backstop is the server's business; the plan should read as if
         # the client had called the library without a time limit.
         stats.pop("time_limit", None)
     else:
-        stats["time_limit"] = job.time_limit
+        stats["time_limit"] = time_limit
     if job.parse is not None:
         data["instruction"] = job.parse.instruction
     return data

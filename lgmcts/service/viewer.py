@@ -36,12 +36,14 @@ EXAMPLE_INSTRUCTION = "put all blocks in a line and the white bottle behind the 
 _cache: dict[str, tuple[float, str]] = {}
 
 
-def viewer_script(path: Path = VIEWER_JS) -> str | None:
+def viewer_script(path: Path | None = None) -> str | None:
     """The viewer script's text, safe to inline in a ``<script>`` element, or ``None`` if absent.
 
     Read when its modification time changes, so a viewer installed after the
-    server started is picked up on the next page load.
+    server started is picked up on the next page load. ``path`` defaults to
+    :data:`VIEWER_JS`.
     """
+    path = VIEWER_JS if path is None else path
     try:
         mtime = path.stat().st_mtime
     except OSError:
