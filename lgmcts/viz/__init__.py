@@ -1,0 +1,20 @@
+"""Pictures, animations and an HTML viewer of plans (outside the core).
+
+* :func:`write_plan_figures` — top-down PNGs of the initial scene, every
+  action and the final scene with each goal's shape, a before/after pair, an
+  animated GIF and the pose-field heatmaps of one step (matplotlib).
+* :func:`render_html` — one self-contained HTML page that plays the plan.
+* :func:`viewer_data` / :func:`viewer_js` — the pieces of that page, for
+  embedding the viewer elsewhere (the planning service serves it).
+
+Nothing in the planner imports this package; matplotlib is imported only when
+a picture is drawn.
+"""
+
+from __future__ import annotations
+
+from .figures import FigureOptions, write_plan_figures
+from .html import render_html, viewer_data, viewer_js
+from .paint import Paint, paint
+
+__all__ = ["FigureOptions", "Paint", "paint", "render_html", "viewer_data", "viewer_js", "write_plan_figures"]
