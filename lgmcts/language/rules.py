@@ -1,0 +1,446 @@
+"""The default offline parser: clauses, object grounding, pattern choice.
+
+Pipeline for one command:
+
+1. **Split** into clauses at sentence ends, ";", and the connectives
+   "then", "while", "also", "after that", "meanwhile"; then split a clause
+   that names two arrangements at the "and" (or ",") between them
+   ("put all blocks in a circle and the white bottle behind one block").
+2. **Ground** the object references of each clause (:mod:`.grounding`).
+3. **Choose the pattern** of each clause by Sentence-BERT similarity between
+   what is left of the clause once its object references are removed
+   ("put ... in a line pattern") and the keys of the pattern database
+   (:mod:`.matcher`).
+4. **Assemble goals**: a pattern with an anchor (the spatial relations) takes
+   the objects named before the relation phrase as targets and the object
+   named right after it as anchor ("X left of Y"); other patterns take every
+   object the clause names. Towers keep the order of naming (first named at
+   the bottom) except after "on"/"onto" ("stack A on B": B is below A), and
+   "from top to bottom" reverses it.
+5. **Resolve choices**: "one X" as a target prefers objects no other goal
+   uses; as an anchor it prefers an object of another goal of the same
+   command (the paper's "behind one block" next to "all blocks in a circle").
+6. **Check** the result: too few objects for a pattern, contradicting
+   relations, cycles and other impossible combinations are refused with one
+   line, never turned into a silently wrong goal.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field, replace
+
+from ..errors import InputError
+from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
+from .grounding import Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
+
+__all__ = ["RulesOptions", "parse_rules", "split_clauses"]
+
+_STRONG_WORDS = frozenset({"then", "while", "also", "afterwards", "meanwhile", "additionally", "furthermore", "whereas"})
+_STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"))
+_PUNCT_END = frozenset({";", ".", "!", "?", ":"})
+_LEADING = frozenset(
+    {"and", ",", "but", "then", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
+     "next", "now", "after", "that", "so", "meanwhile", "additionally", "furthermore", "plus", "kindly", "can", "could",
+     "you", "would", "will", "whereas", "while", "afterwards"}
+)
+_COORD = frozenset({"and", ",", "&", "plus"})
+_ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
+#: Words never counted as naming an arrangement when deciding where to split.
+_NOT_PATTERN = frozenset({"other", "top", "exactly", "position", "coordinate", "shape", "pose", "this", "single"})
+_DET_WORDS = frozenset({"the", "all", "every", "each", "both", "these", "those", "my"})
+_ALLOWED_EXTRA = frozenset(
+    {"another", "second", "first", "new", "neat", "big", "large", "small", "tidy", "nice", "perfect", "bottom",
+     "pattern", "shape", "formation", "well", "too", "again", "afterward", "there", "following", "order", "straight",
+     "please", "robot", "scene", "arrangement"}
+)
+
+
+@dataclass(frozen=True)
+class RulesOptions:
+    """Options of the rule-based parser.
+
+    Attributes
+    ----------
+    prefer_anchor_from_other_goal : bool
+        Resolve "one X" as a relation anchor to an object of another goal of
+        the same command when there is one (the paper's reading).
+    """
+
+    prefer_anchor_from_other_goal: bool = True
+
+
+@dataclass
+class _Pending:
+    pattern: str
+    objects: list[int | Choice]
+    anchor: int | Choice | None
+    pose: tuple[float, float, float] | None
+    clause: str
+
+
+@dataclass
+class _State:
+    named: set[int] = field(default_factory=set)
+    last: list[int | Choice] = field(default_factory=list)
+
+
+def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
+    """Split at sentence ends, ";" and connectives; drop leading connectors."""
+    parts: list[list[str]] = [[]]
+    i = 0
+    while i < len(words):
+        w = words[i]
+        seq = next((s for s in _STRONG_SEQ if words[i : i + len(s)] == s), None)
+        if seq is not None:
+            parts.append([])
+            i += len(seq)
+            continue
+        if w in _PUNCT_END or w in _STRONG_WORDS:
+            parts.append([])
+            i += 1
+            continue
+        parts[-1].append(w)
+        i += 1
+    out = []
+    for p in parts:
+        while p and p[0] in _LEADING:
+            p = p[1:]
+        while p and p[-1] in (",", "and"):
+            p = p[:-1]
+        if p:
+            out.append(tuple(p))
+    return out
+
+
+def _gaps(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[int, int]]:
+    """Token ranges between mentions: before the first, between, after the last."""
+    out, prev = [], 0
+    for m in mentions:
+        out.append((prev, m.start))
+        prev = m.end
+    out.append((prev, len(words)))
+    return out
+
+
+def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozenset[str]) -> list[int]:
+    return [
+        k for k in range(lo, hi)
+        if words[k] not in STOPWORDS and words[k] not in FILLERS and _stem(words[k]) in vocab
+        and _stem(words[k]) not in _NOT_PATTERN
+    ]
+
+
+def _weak_split(words: tuple[str, ...], mentions: list[Mention], vocab: frozenset[str]) -> list[tuple[str, ...]]:
+    """Split a clause naming two arrangements at the "and" between them."""
+    gaps = _gaps(words, mentions)
+    pat = [(g, _pattern_positions(words, lo, hi, vocab)) for g, (lo, hi) in enumerate(gaps)]
+    pat = [(g, pos) for g, pos in pat if pos]
+    if len(pat) < 2:
+        return [words]
+    cuts: list[int] = []
+    for (p, ppos), (q, qpos) in zip(pat, pat[1:]):
+        cut = None
+        if p > 0:  # objects come before the pattern phrase: cut at the first "and" after it
+            for k in range(ppos[-1] + 1, qpos[0]):
+                if words[k] in _COORD and not any(m.start <= k < m.end for m in mentions):
+                    cut = k
+                    break
+        if cut is None:  # the pattern phrase leads its objects: cut at the last "and" before the next one
+            for k in range(qpos[0] - 1, ppos[-1], -1):
+                if words[k] in _COORD and not any(m.start <= k < m.end for m in mentions):
+                    cut = k
+                    break
+        if cut is not None:
+            cuts.append(cut)
+    if not cuts:
+        return [words]
+    out, prev = [], 0
+    for c in cuts:
+        out.append(words[prev:c])
+        prev = c + 1
+    out.append(words[prev:])
+    return [tuple(x) for x in out if x]
+
+
+def _groups(words: tuple[str, ...], mentions: list[Mention]) -> tuple[list[list[Mention]], list[tuple[int, int]]]:
+    """Merge mentions joined only by "and"/","/"as well as" into groups."""
+    groups: list[list[Mention]] = []
+    for m in mentions:
+        if groups:
+            prev = groups[-1][-1]
+            between = words[prev.end : m.start]
+            joined = " ".join(between)
+            if between and (all(w in _COORD or w == "or" for w in between) or joined in ("as well as", ", as well as")):
+                groups[-1].append(m)
+                continue
+        groups.append([m])
+    gaps, prev = [], 0
+    for g in groups:
+        gaps.append((prev, g[0].start))
+        prev = g[-1].end
+    gaps.append((prev, len(words)))
+    return groups, gaps
+
+
+def _numbers(words: tuple[str, ...]) -> list[float]:
+    return [float(w) for w in words if re.fullmatch(r"-?\d+(?:\.\d+)?", w)]
+
+
+class _Parser:
+    def __init__(self, spec: SceneSpec, matcher: PatternMatcher, options: RulesOptions) -> None:
+        self.spec = spec
+        self.vocab = Vocabulary.from_scene(spec)
+        self.matcher = matcher
+        self.options = options
+        self.infos = matcher.infos()
+        self.key_vocab = matcher.vocabulary
+        self.state = _State()
+
+    # ------------------------------------------------------------ one clause
+    def clause(self, words: tuple[str, ...]) -> list[_Pending]:
+        text = " ".join(words)
+        mentions = find_mentions(self.vocab, words, self.key_vocab)
+        groups, gaps = _groups(words, mentions)
+        rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
+        phrase_words = [words[k] for k in rest]
+        while phrase_words and phrase_words[0] in _LEADING:
+            phrase_words = phrase_words[1:]
+        self._unknown_objects(words, rest)
+        phrase = " ".join(phrase_words)
+        if not mentions:
+            if not phrase_words:
+                raise InputError(f"'{text}' names nothing to arrange")
+            raise InputError(f"'{text}' names no object in the scene")
+        meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
+        if not meaningful and len(groups) >= 2:
+            for lo, hi in gaps[1:-1]:
+                if tuple(words[lo:hi]) in _ON_WORDS:
+                    phrase = "on top of each other"
+                    break
+        info_all = self.infos
+        allowed = frozenset(n for n, inf in info_all.items() if not inf.needs_pose or len(_numbers(tuple(phrase_words))) >= 2)
+        m = self.matcher.match(phrase, allowed=allowed)
+        if not m:
+            known = ", ".join(sorted(info_all))
+            shown = phrase or text
+            if m.reason == "no arrangement is named":
+                raise InputError(f"'{text}' does not say how to arrange the objects (known patterns: {known})")
+            hint = f"; closest is '{m.runner_up}' ({m.score:.2f})" if m.runner_up else ""
+            raise InputError(f"no pattern in the database matches '{shown}'{hint}; known patterns: {known}")
+        info = info_all[m.pattern]
+        # Where the pattern phrase sits among the groups of objects.
+        counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
+        p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
+        sels = [[self._select(mm) for mm in g] for g in groups]
+        if re.search(r"\b(another|second|new|separate|different)\b", phrase):
+            # "another line": a second arrangement of objects no other goal uses.
+            sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
+        if info.anchored:
+            if p >= len(groups):
+                raise InputError(f"'{text}': {m.pattern.replace('_', ' and ')} of what? name the reference object")
+            anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
+            target_sel = [x for g, s in enumerate(sels) if g != p for y in s for x in (y if isinstance(y, list) else [y])]
+            if not target_sel:
+                raise InputError(f"'{text}': nothing to put {m.pattern.replace('_', ' and ')} of the reference object")
+            anchors: list[int | Choice] = []
+            for a in anchor_sel:
+                if isinstance(a, Choice) and a.k > 1:
+                    raise InputError(f"'{a.text}': a relation needs one reference object")
+                anchors.append(a)
+            fixed_anchor = {a for a in anchors if isinstance(a, int)}
+            targets = [t for t in target_sel if not (isinstance(t, int) and t in fixed_anchor)]
+            if not targets:
+                raise InputError(f"'{text}': an object cannot be {m.pattern.replace('_', ' and ')} of itself")
+            self.state.last = targets
+            return [_Pending(m.pattern, list(targets), a, None, text) for a in anchors]
+        order = list(range(len(groups)))
+        if info.ordered and len(groups) > 1:
+            if any(tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1]):
+                order.reverse()
+        objs: list[int | Choice] = []
+        for g in order:
+            for s in sels[g]:
+                for x in s if isinstance(s, list) else [s]:
+                    if x not in objs:
+                        objs.append(x)
+        if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
+            objs.reverse()
+        n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
+        if n < info.min_objects:
+            what = " and ".join(mm.text for g in groups for mm in g)
+            noun = "object" if n == 1 else "objects"
+            raise InputError(
+                f"a {m.pattern} needs at least {info.min_objects} objects, but '{what}' gives {n} {noun}"
+            )
+        pose = None
+        if info.needs_pose:
+            nums = _numbers(tuple(phrase_words))
+            if len(objs) != 1 or not isinstance(objs[0], int):
+                raise InputError(f"'{text}': a {m.pattern} goal takes exactly one definite object")
+            yaw = nums[2] if len(nums) > 2 else float(self.spec.object(objs[0]).pose[2] if self.spec.object(objs[0]).pose else 0.0)
+            pose = (nums[0], nums[1], yaw)
+        self.state.last = objs
+        return [_Pending(m.pattern, objs, None, pose, text)]
+
+    def _select(self, m: Mention) -> list[int] | Choice:
+        if m.det == "pronoun":
+            if not self.state.last:
+                raise InputError(f"'{m.text}' refers to nothing named before it")
+            last = self.state.last
+            if len(last) == 1 and isinstance(last[0], Choice):
+                return last[0]
+            if any(isinstance(x, Choice) for x in last):
+                raise InputError(f"'{m.text}' is unclear: the objects it refers to are not fixed yet")
+            return [x for x in last if isinstance(x, int)]
+        sel = select(self.vocab, m, named=frozenset(self.state.named))
+        if isinstance(sel, list):
+            self.state.named.update(sel)
+        return sel
+
+    def _unknown_objects(self, words: tuple[str, ...], rest: list[int]) -> None:
+        """Refuse a determiner followed by a word that names nothing here."""
+        restset = set(rest)
+        for k in rest:
+            w = words[k]
+            if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA:
+                continue
+            if _stem(w) in self.key_vocab:
+                continue
+            j = k - 1
+            while j >= 0 and j in restset and words[j] not in _DET_WORDS and words[j].isalpha() and words[j] not in STOPWORDS:
+                j -= 1
+            if j >= 0 and j in restset and words[j] in _DET_WORDS:
+                end = k + 1
+                while end < len(words) and end in restset and words[end].isalpha() and words[end] not in STOPWORDS and _stem(words[end]) not in self.key_vocab:
+                    end += 1
+                raise InputError(f"'{' '.join(words[j:end])}' names nothing in the scene")
+
+    # ------------------------------------------------------------ the command
+    def command(self, text: str) -> GoalSpec:
+        words = tuple(t.text for t in tokenize(text))
+        if not any(w.isalnum() for w in words):
+            raise InputError("the instruction is empty")
+        pending: list[_Pending] = []
+        for clause in split_clauses(words):
+            mentions = find_mentions(self.vocab, clause, self.key_vocab)
+            for sub in _weak_split(clause, mentions, self.key_vocab):
+                while sub and sub[0] in _LEADING:
+                    sub = sub[1:]
+                if sub:
+                    pending.extend(self.clause(sub))
+        if not pending:
+            raise InputError("the instruction names nothing to arrange")
+        return self._finish(pending)
+
+    def _finish(self, pending: list[_Pending]) -> GoalSpec:
+        picked: dict[int, list[int]] = {}
+        used: set[int] = set()
+        for p in pending:
+            for x in p.objects:
+                if isinstance(x, int):
+                    used.add(x)
+        for p in pending:  # targets first: prefer objects no goal uses yet
+            fixed = {x for x in p.objects if isinstance(x, int)}
+            if isinstance(p.anchor, int):
+                fixed.add(p.anchor)
+            for x in p.objects:
+                if isinstance(x, Choice) and id(x) not in picked:
+                    free = [o for o in x.options if o not in used and o not in fixed]
+                    rest = [] if x.fresh else [o for o in x.options if o not in free and o not in fixed]
+                    got = (free + rest)[: x.k]
+                    if len(got) < x.k:
+                        noun = "object" if len(got) == 1 else "objects"
+                        raise InputError(
+                            f"'{x.text}': only {len(got)} matching {noun} left that no other goal uses, {x.k} needed"
+                        )
+                    picked[id(x)] = got
+                    used.update(got)
+                    fixed.update(got)
+        goals: list[dict] = []
+        resolved: list[tuple[_Pending, list[int]]] = []
+        for p in pending:
+            objs: list[int] = []
+            for x in p.objects:
+                for o in picked[id(x)] if isinstance(x, Choice) else [x]:
+                    if o not in objs:
+                        objs.append(o)
+            resolved.append((p, objs))
+        for k, (p, objs) in enumerate(resolved):
+            anchor = p.anchor
+            if isinstance(anchor, Choice):
+                if id(anchor) in picked:
+                    anchor = picked[id(anchor)][0]
+                else:
+                    others = {o for j, (_, ob) in enumerate(resolved) if j != k for o in ob}
+                    opts = [o for o in anchor.options if o not in objs]
+                    pref = [o for o in opts if o in others] if self.options.prefer_anchor_from_other_goal else []
+                    if not opts:
+                        raise InputError(f"'{anchor.text}': no object left to serve as reference")
+                    choice = (pref or opts)[0]
+                    picked[id(p.anchor)] = [choice]
+                    anchor = choice
+            if anchor is not None:
+                objs = [o for o in objs if o != anchor]
+                if not objs:
+                    raise InputError(f"'{p.clause}': an object cannot be placed relative to itself")
+            g: dict = {"pattern": p.pattern, "objects": objs}
+            if anchor is not None:
+                g["anchor"] = anchor
+            if p.pose is not None:
+                g["pose"] = list(p.pose)
+            if g not in goals:
+                goals.append(g)
+        self._contradictions(goals)
+        spec = parse_goals({"goals": goals})
+        try:
+            spec.check_against(self.spec)
+        except InputError as exc:
+            raise InputError(f"contradiction: {exc}") from None
+        return spec
+
+    def _contradictions(self, goals: list[dict]) -> None:
+        rel = [g for g in goals if g["pattern"] in RELATIONS]
+        for a_i, a in enumerate(rel):
+            for b in rel[a_i + 1 :]:
+                if a["anchor"] != b["anchor"]:
+                    continue
+                da, db = RELATIONS[a["pattern"]], RELATIONS[b["pattern"]]
+                if da[0] * db[0] + da[1] * db[1] > 0:
+                    continue
+                common = set(a["objects"]) & set(b["objects"])
+                if common:
+                    o = min(common)
+                    raise InputError(
+                        f"contradiction: object {describe(self.vocab, [o])} cannot be both "
+                        f"{a['pattern'].replace('_', ' and ')} and {b['pattern'].replace('_', ' and ')} of object "
+                        f"{describe(self.vocab, [a['anchor']])}"
+                    )
+        for g in goals:
+            if g["pattern"] in RELATIONS:
+                continue
+        pos: dict[int, tuple[float, float, float]] = {}
+        for g in goals:
+            if "pose" in g:
+                o = g["objects"][0]
+                if o in pos and tuple(pos[o]) != tuple(g["pose"]):
+                    raise InputError(f"contradiction: object {o} is given two different poses")
+                pos[o] = g["pose"]
+
+
+def _is_number(w: str) -> bool:
+    return bool(re.fullmatch(r"-?\d+(?:\.\d+)?", w))
+
+
+def parse_rules(
+    spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: RulesOptions | None = None
+) -> GoalSpec:
+    """Parse ``text`` against ``spec`` with the rule-based parser.
+
+    Raises
+    ------
+    InputError
+        With one line saying what was not understood.
+    """
+    return _Parser(spec, matcher, options or RulesOptions()).command(text)
