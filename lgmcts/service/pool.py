@@ -108,11 +108,22 @@ class WorkerPool:
             for f in futures:
                 f.result(timeout=120)
 
-    def close(self) -> None:
-        """Stop every worker; running jobs are abandoned."""
+    def close(self, *, timeout: float = 3.0) -> None:
+        """Stop every worker; jobs still running after ``timeout`` seconds are killed."""
         if self._executor is not None:
-            _kill(self._executor)
-            self._executor = None
+            executor, self._executor = self._executor, None
+            procs = list((getattr(executor, "_processes", None) or {}).values())
+            manager = getattr(executor, "_executor_manager_thread", None)
+            executor.shutdown(wait=False, cancel_futures=True)
+            # Idle workers exit at once; give running jobs a moment, then kill
+            # them. Joining the manager thread lets the executor free its queues.
+            t_end = time.monotonic() + timeout
+            for p in procs:
+                p.join(max(0.0, t_end - time.monotonic()))
+                if p.is_alive():
+                    p.kill()
+            if manager is not None:
+                manager.join(timeout)
 
     def _renew(self, generation: int, why: str) -> None:
         """Replace the executor of ``generation`` (no-op when already replaced)."""
