@@ -13,8 +13,8 @@ a picture is drawn.
 
 from __future__ import annotations
 
-from .figures import FigureOptions, write_plan_figures
+from .figures import FigureOptions, heatmap_fields, write_plan_figures
 from .html import render_html, viewer_data, viewer_js
 from .paint import Paint, paint
 
-__all__ = ["FigureOptions", "Paint", "paint", "render_html", "viewer_data", "viewer_js", "write_plan_figures"]
+__all__ = ["FigureOptions", "Paint", "heatmap_fields", "paint", "render_html", "viewer_data", "viewer_js", "write_plan_figures"]

@@ -24,10 +24,10 @@ import numpy as np
 from ..errors import InputError
 from ..formats import GoalSpec, PlanSpec, SceneSpec, load_plan, load_scene, parse_goals
 from ..scene import TABLE, Scene, State
-from .model import GOAL_COLORS, PURPOSE_COLORS, GoalShape, describe_action, describe_goal, goal_shapes, replay
+from .model import GOAL_COLORS, PURPOSE_COLORS, GoalShape, describe_goal, goal_shapes, replay
 from .paint import Paint, paint
 
-__all__ = ["FigureOptions", "write_plan_figures", "render_state", "render_heatmaps", "render_before_after"]
+__all__ = ["FigureOptions", "write_plan_figures", "heatmap_fields", "step_name"]
 
 _HATCH = {"dots": "o", "stripes": "////", "checks": "++", "speckles": "..", "grain": "---", "waves": "\\\\"}
 _TABLE_FILL = "#f4efe6"
@@ -558,6 +558,37 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
     return _to_image(fig)
 
 
+def _fields(ctx: _Ctx, step: int) -> Any:
+    from ..planner.fields import pose_fields
+
+    if ctx.goals is None:
+        raise InputError("heatmaps need the goals (the plan carries none; pass them)")
+    if not 1 <= step <= ctx.n_actions:
+        raise InputError(f"step {step} is outside the plan's {ctx.n_actions} actions (steps count from 1)")
+    return pose_fields(ctx.scene, ctx.goals, list(ctx.plan.actions), step - 1, resolution=ctx.options.heatmap_resolution)
+
+
+def heatmap_fields(
+    scene: SceneSpec | Scene | dict | str | Path,
+    plan: PlanSpec | dict | str | Path,
+    step: int,
+    *,
+    goals: GoalSpec | dict | list | None = None,
+    resolution: float = 0.005,
+) -> Any:
+    """The grids drawn in ``heatmaps_step_XX.png`` for action ``step`` (counted from 1).
+
+    Returns
+    -------
+    lgmcts.planner.fields.Fields
+        ``prior`` (H, W) in [0, 1], ``free`` (H, W) bool and ``product``
+        ``= prior * free``, on cell centres ``xs`` (W,) and ``ys`` (H,) in metres,
+        ``resolution`` metres apart.
+    """
+    ctx = _context(scene, plan, goals, None, FigureOptions(heatmap_resolution=resolution))
+    return _fields(ctx, step)
+
+
 def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     """f_prior, f_free and f = f_prior × f_free for action ``step`` (1-based) as RGB.
 
@@ -567,13 +598,7 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     """
     import matplotlib.patheffects as pe
 
-    from ..planner.fields import pose_fields
-
-    if ctx.goals is None:
-        raise InputError("heatmaps need the goals (the plan carries none; pass them)")
-    if not 1 <= step <= ctx.n_actions:
-        raise InputError(f"step {step} is outside the plan's {ctx.n_actions} actions (steps count from 1)")
-    fields = pose_fields(ctx.scene, ctx.goals, list(ctx.plan.actions), step - 1, resolution=ctx.options.heatmap_resolution)
+    fields = _fields(ctx, step)
     a = ctx.plan.actions[step - 1]
     k = ctx.scene.index[a.object]
     before = ctx.states[step - 1]
