@@ -28,6 +28,7 @@ __all__ = [
     "get",
     "CLEARANCE",
     "BAND",
+    "EDGE_EPS",
 ]
 
 #: Gap kept between footprints by the planner (m); the validator only
@@ -36,6 +37,9 @@ CLEARANCE = 0.002
 #: Half-width of the band around a fitted curve that the planner samples in
 #: (m); well inside the validator's 0.015 m tolerance.
 BAND = 0.004
+#: Slack on the edges of a prior's support (m or rad), so that a sample
+#: clipped exactly to an edge is not lost to floating-point rounding.
+EDGE_EPS = 1e-9
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .base import BAND, CLEARANCE, BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import BAND, CLEARANCE, EDGE_EPS, BasePattern, Context, GoalProgress, register, uniform_poses
 
 #: Largest angular deviation from a slot, as a fraction of half the slot pitch.
 SLOT_SPREAD = 0.3
@@ -75,7 +75,7 @@ class Circle(BasePattern):
         a = np.arctan2(poses[:, 1] - cy, poses[:, 0] - cx)
         da = np.abs((a[:, None] - angles[None, :] + math.pi) % (2 * math.pi) - math.pi).min(axis=1)
         spread = SLOT_SPREAD * math.pi / k
-        ok = (np.abs(d) <= BAND) & (da <= spread)
+        ok = (np.abs(d) <= BAND + EDGE_EPS) & (da <= spread + EDGE_EPS)
         return np.where(ok, np.exp(-0.5 * (d / (BAND / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .base import BAND, CLEARANCE, BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import BAND, CLEARANCE, EDGE_EPS, BasePattern, Context, GoalProgress, register, uniform_poses
 
 #: Largest distance of the second object from the first (m).
 DELTA = 0.35
@@ -85,11 +85,11 @@ class Line(BasePattern):
             return np.ones(len(poses))
         if len(placed) == 1:
             d = np.hypot(*(poses[:, :2] - ctx.state.poses[placed[0], :2]).T)
-            return (d <= DELTA).astype(float)
+            return (d <= DELTA + EDGE_EPS).astype(float)
         p0, u = self._params(ctx)  # type: ignore[misc]
         normal = np.array([-u[1], u[0]])
         e = (poses[:, :2] - p0) @ normal
-        return np.where(np.abs(e) <= BAND, np.exp(-0.5 * (e / (BAND / 2)) ** 2), 0.0)
+        return np.where(np.abs(e) <= BAND + EDGE_EPS, np.exp(-0.5 * (e / (BAND / 2)) ** 2), 0.0)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .base import BAND, CLEARANCE, BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import BAND, CLEARANCE, EDGE_EPS, BasePattern, Context, GoalProgress, register, uniform_poses
 
 #: Corner positions in units of (w/2, h/2), counter-clockwise from front-left.
 _CORNERS = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
@@ -99,7 +99,7 @@ class Rectangle(BasePattern):
             loc = self._local(ctx, poses)
             inside = (np.abs(loc[:, 0]) <= w / 2 + 1e-9) & (np.abs(loc[:, 1]) <= h / 2 + 1e-9)
             to_edge = np.minimum(w / 2 - np.abs(loc[:, 0]), h / 2 - np.abs(loc[:, 1]))
-            out = np.maximum(out, (inside & (to_edge <= BAND)).astype(float))
+            out = np.maximum(out, (inside & (to_edge <= BAND + EDGE_EPS)).astype(float))
         return out
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:

@@ -1,0 +1,310 @@
+"""Seeded random planning cases, solvable by construction.
+
+Used by the planner benchmark (``benchmarks/planner.py``) and by the
+property tests. A case is built backwards: first a final arrangement that
+meets every goal (checked with the acceptance rules), then a start state
+with the goal objects scattered, and either blockers stacked on goal objects
+or clutter standing where goal objects must go.
+
+Also the protocol of Labbé et al. (RA-L 2020): N discs of radius 3.75 cm in a
+0.5 m x 0.5 m workspace with random collision-free start and goal poses.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
+from .scene import TABLE, Scene
+from .validate import goal_satisfied
+
+__all__ = ["Case", "random_case", "labbe_case", "lower_bound"]
+
+WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
+_COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One planning case: scene, goals, kind and the action lower bound."""
+
+    scene: SceneSpec
+    goals: GoalSpec
+    kind: str
+    lower_bound: int
+
+
+def _shape(rng: np.random.Generator) -> tuple[str, dict]:
+    k = rng.integers(3)
+    if k == 0:
+        s = rng.uniform(0.03, 0.055)
+        return "block", {"type": "box", "size": [float(s), float(rng.uniform(0.03, 0.055)), float(rng.uniform(0.03, 0.06))]}
+    if k == 1:
+        return "can", {"type": "cylinder", "radius": float(rng.uniform(0.016, 0.03)), "height": float(rng.uniform(0.04, 0.1))}
+    r = rng.uniform(0.02, 0.032)
+    m = int(rng.integers(3, 7))
+    a = np.arange(m) * 2 * math.pi / m
+    pts = [[float(r * math.cos(t)), float(r * math.sin(t))] for t in a]
+    return "tile", {"type": "polygon", "points": pts, "height": float(rng.uniform(0.01, 0.04))}
+
+
+class _Placer:
+    """Rejection sampler of non-overlapping footprints (exact polygons)."""
+
+    def __init__(self, scene: Scene, gap: float = 0.004):
+        self.scene, self.gap = scene, gap
+        self.polys: dict[int, shapely.Polygon] = {}
+
+    def fits(self, i: int, pose: np.ndarray) -> bool:
+        v = self.scene.footprint(i, pose)
+        xmin, xmax, ymin, ymax = self.scene.bounds
+        if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+            return False
+        p = shapely.Polygon(v)
+        return all(p.distance(q) > self.gap for q in self.polys.values())
+
+    def put(self, i: int, pose: np.ndarray) -> None:
+        self.polys[i] = shapely.Polygon(self.scene.footprint(i, pose))
+
+    def random(self, i: int, rng: np.random.Generator, tries: int = 400) -> np.ndarray | None:
+        xmin, xmax, ymin, ymax = self.scene.bounds
+        for _ in range(tries):
+            p = np.array([rng.uniform(xmin, xmax), rng.uniform(ymin, ymax), rng.uniform(-math.pi, math.pi)])
+            if self.fits(i, p):
+                self.put(i, p)
+                return p
+        return None
+
+
+def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, anchor_pose=None) -> list[np.ndarray]:
+    rmax = float(scene.radii[objs].max())
+    n = len(objs)
+    c = np.array([rng.uniform(-0.25, 0.25), rng.uniform(-0.17, 0.17)])
+    if kind == "line":
+        phi = rng.uniform(-math.pi, math.pi)
+        u = np.array([math.cos(phi), math.sin(phi)])
+        step = 2 * rmax + 0.015
+        return [np.array([*(c + (k - (n - 1) / 2) * step * u), phi]) for k in range(n)]
+    if kind == "circle":
+        r = max(0.06, (2 * rmax + 0.02) / (2 * math.sin(math.pi / n)))
+        a0 = rng.uniform(-math.pi, math.pi)
+        return [np.array([c[0] + r * math.cos(a0 + 2 * math.pi * k / n), c[1] + r * math.sin(a0 + 2 * math.pi * k / n), a0 + 2 * math.pi * k / n + math.pi / 2]) for k in range(n)]
+    if kind == "rectangle":
+        side = max(0.07, 2 * rmax + 0.02)
+        w = side * (1 + (n > 4))
+        h = side
+        pts = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2)] + [(0.0, -h / 2), (0.0, h / 2)][: n - 4]
+        return [np.array([c[0] + x, c[1] + y, 0.0]) for x, y in pts]
+    if kind == "tower":
+        return [np.array([c[0], c[1], 0.0]) for _ in objs]
+    raise ValueError(kind)
+
+
+def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None) -> Case:
+    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``."""
+    rng = np.random.default_rng(seed)
+    for _ in range(200):
+        case = _try_case(rng, n_objects, kind)
+        if case is not None:
+            return case
+    raise RuntimeError(f"could not build a case for seed {seed}")  # pragma: no cover
+
+
+def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None) -> Case | None:
+    n = int(n_objects or rng.integers(6, 17))
+    kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
+    objects = []
+    for i in range(n):
+        name, shape = _shape(rng)
+        objects.append({"id": i + 1, "name": name, "color": _COLORS[i % len(_COLORS)], "shape": shape, "pose": [0.0, 0.0, 0.0], "on": None})
+    scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}))
+    order = list(rng.permutation(n))
+    n_goals = int(rng.integers(1, 3))
+    final = _Placer(scene)
+    goals: list[dict] = []
+    final_pose: dict[int, np.ndarray] = {}
+    final_on: dict[int, int] = {}
+    used: list[int] = []
+    for _ in range(n_goals):
+        pat = str(rng.choice(["line", "circle", "rectangle", "tower", "relation"]))
+        if pat == "relation":
+            anchor_pool = used or order[:1]
+            anchor = int(anchor_pool[int(rng.integers(len(anchor_pool)))])
+            if anchor not in final_pose:
+                p = final.random(anchor, rng)
+                if p is None:
+                    return None
+                final_pose[anchor] = p
+                used.append(anchor)
+                order.remove(anchor)
+            if not order:
+                return None
+            obj = order.pop()
+            rel = str(rng.choice(list(RELATIONS)))
+            d = np.asarray(RELATIONS[rel])
+            a = math.atan2(d[1], d[0]) + rng.uniform(-0.5, 0.5)
+            rho = rng.uniform(scene.radii[anchor] + scene.radii[obj] + 0.01, 0.27)
+            p = np.array([*(final_pose[anchor][:2] + rho * np.array([math.cos(a), math.sin(a)])), rng.uniform(-3, 3)])
+            if not final.fits(obj, p):
+                return None
+            final.put(obj, p)
+            final_pose[obj] = p
+            used.append(obj)
+            goals.append({"pattern": rel, "objects": [scene.ids[obj]], "anchor": scene.ids[anchor]})
+            continue
+        size = {"line": (3, 6), "circle": (3, 7), "rectangle": (4, 7), "tower": (2, 4)}[pat]
+        m = int(rng.integers(*size))
+        if len(order) < m + 2:
+            return None
+        objs = [order.pop() for _ in range(m)]
+        poses = _pattern_poses(pat, objs, scene, rng)
+        if pat == "tower":
+            if not final.fits(objs[0], poses[0]):
+                return None
+            final.put(objs[0], poses[0])
+            for k, o in enumerate(objs):
+                final_pose[o] = poses[k]
+                if k:
+                    final_on[o] = objs[k - 1]
+        else:
+            for o, p in zip(objs, poses):
+                if not final.fits(o, p):
+                    return None
+                final.put(o, p)
+                final_pose[o] = p
+        used.extend(objs)
+        goals.append({"pattern": pat, "objects": [scene.ids[o] for o in objs]})
+    others = [o for o in range(n) if o not in final_pose]
+    for o in others:
+        p = final.random(o, rng)
+        if p is None:
+            return None
+        final_pose[o] = p
+    gspec = parse_goals({"goals": goals})
+    poses = np.array([final_pose[o] for o in range(n)])
+    on = tuple(final_on.get(o, TABLE) for o in range(n))
+    for g in gspec.goals:
+        if goal_satisfied(g, scene, poses, on) is not None:
+            return None
+    # Start state: goal targets scattered, non-goal objects as blockers or clutter.
+    targets = sorted({scene.index[i] for g in gspec.goals for i in g.objects})
+    start = _Placer(scene)
+    spose: dict[int, np.ndarray] = {}
+    son: dict[int, int] = {}
+    blockers = 0
+    free_others = [o for o in others if o not in used]
+    rng.shuffle(free_others)
+    if kind == "clutter":
+        # Clutter stands on the final spots of goal objects.
+        for o, t in zip(free_others[: max(1, len(free_others) // 2)], targets):
+            p = np.array([*final_pose[t][:2], rng.uniform(-3, 3)])
+            if start.fits(o, p):
+                start.put(o, p)
+                spose[o] = p
+    for o in range(n):
+        if o in spose:
+            continue
+        if o in targets or o in used or kind == "clutter" or o not in free_others[:2]:
+            p = start.random(o, rng)
+            if p is None:
+                return None
+            spose[o] = p
+    if kind == "blockers":
+        for o in free_others[:2]:
+            base = int(rng.choice(targets))
+            while base in son.values():
+                base = int(rng.choice(targets))
+            if scene.radii[o] > 1.3 * scene.radii[base]:
+                p = start.random(o, rng)
+                if p is None:
+                    return None
+                spose[o] = p
+                continue
+            spose[o] = np.array([*spose[base][:2], spose[base][2]])
+            son[o] = base
+            blockers += 1
+    objs_out = []
+    for k, ob in enumerate(objects):
+        objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})
+    sspec = parse_scene({"workspace": WORKSPACE, "objects": objs_out})
+    return Case(sspec, gspec, kind, lower_bound(sspec, gspec))
+
+
+def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
+    """Fewest actions any plan needs: goal objects whose goals do not hold yet,
+    plus objects resting on goal objects that must move.
+
+    A goal that already holds costs nothing. For one that does not, every
+    target object not already meeting it counts; shape patterns may keep two
+    objects where they stand (two points lie on some line, circle and
+    rectangle) and a tower its base.
+    """
+    sc = Scene.from_spec(scene)
+    st = sc.initial
+    must_move: set[int] = set()
+    for g in goals.goals:
+        if goal_satisfied(g, sc, st.poses, st.on) is None:
+            continue
+        idx = [sc.index[i] for i in g.objects]
+        if g.pattern in ("line", "circle", "rectangle"):
+            on_table = [i for i in idx if st.on[i] == TABLE]
+            keep = set(on_table[:2])
+            must_move.update(i for i in idx if i not in keep)
+        elif g.pattern == "tower":
+            must_move.update(idx[1:])
+            if st.on[idx[0]] != TABLE:
+                must_move.add(idx[0])
+        elif g.pattern in RELATIONS:
+            for i in idx:
+                sub = g.model_copy(update={"objects": [sc.ids[i]]})
+                if goal_satisfied(sub, sc, st.poses, st.on) is not None:
+                    must_move.add(i)
+        else:
+            must_move.update(idx)
+    blockers = {k for k, s in enumerate(st.on) if s in must_move and k not in must_move}
+    return len(must_move) + len(blockers)
+
+
+def labbe_case(n: int, seed: int) -> Case:
+    """N discs (r = 3.75 cm) in 0.5 m x 0.5 m with random start and goal poses."""
+    rng = np.random.default_rng(seed)
+    r = 0.0375
+    ws = {"x": [0.0, 0.5], "y": [0.0, 0.5]}
+
+    def config() -> np.ndarray:
+        # Random sequential addition; dense counts start from a jittered hex lattice.
+        if n <= 24:
+            for _ in range(100):
+                pts: list[np.ndarray] = []
+                for _ in range(3000):
+                    p = rng.uniform(r + 0.002, 0.5 - r - 0.002, 2)
+                    if all(np.hypot(*(p - q)) > 2 * r * 1.0087 + 0.004 for q in pts):
+                        pts.append(p)
+                        if len(pts) == n:
+                            return np.array(pts)
+        cols, rows = 6, 7
+        grid = []
+        for j in range(rows):
+            for i in range(cols):
+                x = r + 0.003 + i * (2 * r + 0.006) + (j % 2) * (r + 0.003)
+                y = r + 0.003 + j * 0.0685
+                if x <= 0.5 - r - 0.003 and y <= 0.5 - r - 0.003:
+                    grid.append((x, y))
+        grid = np.array(grid)
+        pick = rng.choice(len(grid), n, replace=False)
+        return grid[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
+
+    start, goal = config(), config()
+    objs = [
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
+        for i in range(n)
+    ]
+    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    sspec = parse_scene({"workspace": ws, "objects": objs})
+    gspec = parse_goals({"goals": goals})
+    return Case(sspec, gspec, "labbe", lower_bound(sspec, gspec))

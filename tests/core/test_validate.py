@@ -1,0 +1,130 @@
+"""The acceptance rules, on crafted plans that obey or break each one."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from core_helpers import box, can, goals, scene
+from lgmcts import check
+
+
+def act(o, x, y, t=0.0, on=None, purpose="goal"):
+    return {"object": o, "to": [x, y, t], "on": on, "purpose": purpose}
+
+
+def plan(*actions):
+    return {"solved": True, "actions": list(actions)}
+
+
+ROW = scene(box(1, -0.3, -0.2), box(2, 0.0, 0.2), box(3, 0.3, -0.2), box(4, 0.3, 0.2))
+
+
+def test_empty_plan_meets_goal_already_met():
+    sc = scene(box(1, -0.1, 0.0), box(2, 0.0, 0.0), box(3, 0.1, 0.0))
+    assert check(sc, goals({"pattern": "line", "objects": [1, 2, 3]}), plan()).valid
+
+
+@pytest.mark.parametrize("offset,valid", [(0.0, True), (0.0149, True), (0.02, False)])
+def test_line_tolerance(offset, valid):
+    # Three centres with the middle off the line by `offset`; the total-least-squares
+    # line splits the error, so only the residual against the fitted line counts.
+    sc = scene(box(1, -0.2, 0.0), box(2, 0.0, 0.1), box(3, 0.2, 0.0))
+    p = plan(act(2, 0.0, offset * 1.5))  # fitted-line residual of the middle point = 2/3 of its offset
+    v = check(sc, goals({"pattern": "line", "objects": [1, 2, 3]}), p)
+    assert v.valid is valid, v.reasons
+
+
+def test_overlap_and_workspace_rules():
+    g = goals({"pattern": "line", "objects": [1, 2]})
+    v = check(ROW, g, plan(act(1, 0.0, 0.21)))
+    assert not v.valid and any("overlaps object 2" in r for r in v.reasons)
+    v = check(ROW, g, plan(act(1, 0.39, 0.0)))
+    assert not v.valid and any("outside the workspace" in r for r in v.reasons)
+    # Touching edges (zero overlap area) are allowed.
+    assert check(ROW, g, plan(act(1, 0.04, 0.2))).valid
+
+
+def test_pick_of_covered_object_and_stacking_rules():
+    sc = scene(box(1, 0.0, 0.0), box(2, 0.0, 0.0, on=1), box(3, 0.2, 0.0), box(4, -0.2, 0.0))
+    tower = goals({"pattern": "tower", "objects": [3, 1]})
+    v = check(sc, tower, plan(act(1, 0.2, 0.0, on=3)))
+    assert not v.valid and any("not clear" in r for r in v.reasons)
+    good = plan(act(2, -0.2, 0.2, purpose="unstack"), act(1, 0.2, 0.0, on=3))
+    assert check(sc, tower, good).valid
+    off = plan(act(2, -0.2, 0.2, purpose="unstack"), act(1, 0.25, 0.0, on=3))
+    v = check(sc, tower, off)
+    assert not v.valid and any("not over support" in r or "off-centre" in r for r in v.reasons)
+    # Stacking onto an object that has something on it.
+    v = check(sc, goals({"pattern": "tower", "objects": [1, 3]}), plan(act(3, 0.0, 0.0, on=1)))
+    assert not v.valid and any("support 1 is not clear" in r for r in v.reasons)
+
+
+def _ring(n, r, c=(0.0, 0.0), gap_from=None):
+    out = []
+    for k in range(n):
+        a = 2 * math.pi * k / n if gap_from is None else gap_from * k / (n - 1)
+        out.append((c[0] + r * math.cos(a), c[1] + r * math.sin(a)))
+    return out
+
+
+@pytest.mark.parametrize("n,r,spread,valid", [
+    (4, 0.12, None, True),
+    (3, 0.04, None, False),           # radius below 0.05 m
+    (4, 0.12, math.pi * 0.9, False),  # all on a half circle: gap over 180 degrees
+    (5, 0.15, math.pi * 1.2, True),
+])
+def test_circle_rule(n, r, spread, valid):
+    pts = _ring(n, r, gap_from=spread)
+    objs = [can(i + 1, -0.35 + 0.05 * i, -0.25, r=0.015) for i in range(n)]
+    sc = scene(*objs)
+    p = plan(*[act(i + 1, x, y) for i, (x, y) in enumerate(pts)])
+    v = check(sc, goals({"pattern": "circle", "objects": list(range(1, n + 1))}), p)
+    assert v.valid is valid, v.reasons
+
+
+def test_rectangle_rule():
+    objs = [can(i + 1, -0.35 + 0.05 * i, -0.25, r=0.015) for i in range(6)]
+    sc = scene(*objs)
+    g = goals({"pattern": "rectangle", "objects": [1, 2, 3, 4, 5]})
+    corners = [(-0.1, -0.05), (0.1, -0.05), (0.1, 0.05), (-0.1, 0.05)]
+    ok = plan(*[act(i + 1, x, y) for i, (x, y) in enumerate(corners)], act(5, 0.0, 0.05))
+    assert check(sc, g, ok).valid
+    inside = plan(*[act(i + 1, x, y) for i, (x, y) in enumerate(corners)], act(5, 0.0, 0.0))
+    v = check(sc, g, inside)
+    assert not v.valid and any("perimeter" in r for r in v.reasons)
+    thin = plan(*[act(i + 1, x, y * 0.3) for i, (x, y) in enumerate(corners)], act(5, 0.0, 0.015))
+    assert not check(sc, g, thin).valid
+
+
+@pytest.mark.parametrize("rel,dx,dy,valid", [
+    ("left", -0.1, 0.0, True), ("left", -0.1, 0.09, True), ("left", -0.1, 0.11, False),
+    ("behind", 0.0, 0.2, True), ("behind", 0.0, 0.31, False), ("front", 0.0, -0.1, True),
+    ("right_behind", 0.1, 0.1, True), ("right_behind", 0.1, -0.01, False), ("left_front", -0.05, -0.2, True),
+])
+def test_spatial_rule(rel, dx, dy, valid):
+    sc = scene(box(1, 0.0, 0.0, size=0.02), box(2, 0.3, -0.25, size=0.02))
+    v = check(sc, goals({"pattern": rel, "objects": [2], "anchor": 1}), plan(act(2, dx, dy)))
+    assert v.valid is valid, v.reasons
+
+
+def test_pose_rule():
+    sc = scene(box(1, 0.0, 0.0))
+    g = goals({"pattern": "pose", "objects": [1], "pose": [0.1, 0.1, 0.5]})
+    assert check(sc, g, plan(act(1, 0.11, 0.1, 0.55))).valid
+    assert not check(sc, g, plan(act(1, 0.12, 0.1, 0.5))).valid
+    assert not check(sc, g, plan(act(1, 0.1, 0.1, 0.7))).valid
+
+
+def test_pattern_objects_must_end_on_table():
+    sc = scene(box(1, -0.2, 0.0), box(2, 0.0, 0.0), box(3, 0.2, 0.0))
+    v = check(sc, goals({"pattern": "line", "objects": [1, 3]}), plan(act(3, 0.0, 0.0, on=2)))
+    assert not v.valid and any("not on the table" in r for r in v.reasons)
+
+
+def test_verdict_reports_each_goal():
+    sc = scene(box(1, -0.2, 0.0), box(2, 0.0, 0.0), box(3, 0.2, 0.0), box(4, 0.0, 0.2))
+    g = goals({"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4], "anchor": 1})
+    v = check(sc, g, plan())
+    assert v.goals == (True, False) and not v.valid
