@@ -136,11 +136,12 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
     w, h = xmax - xmin, ymax - ymin
     m = 0.09 * max(w, h)
     ax.add_patch(Rectangle((xmin, ymin), w, h, facecolor=_TABLE_FILL, edgecolor=_TABLE_EDGE, lw=1.2, zorder=0))
+    from matplotlib.collections import LineCollection
+
     step = 0.1 if max(w, h) <= 2.0 else 0.5
-    for gx in np.arange(math.ceil(xmin / step) * step, xmax, step):
-        ax.plot([gx, gx], [ymin, ymax], color="#e2dacb", lw=0.6, zorder=0.5)
-    for gy in np.arange(math.ceil(ymin / step) * step, ymax, step):
-        ax.plot([xmin, xmax], [gy, gy], color="#e2dacb", lw=0.6, zorder=0.5)
+    segs = [[(gx, ymin), (gx, ymax)] for gx in np.arange(math.ceil(xmin / step) * step, xmax, step)]
+    segs += [[(xmin, gy), (xmax, gy)] for gy in np.arange(math.ceil(ymin / step) * step, ymax, step)]
+    ax.add_collection(LineCollection(segs, colors="#e2dacb", linewidths=0.6, zorder=0.5))
     ax.set_xlim(xmin - m * 0.6, xmax + m * 0.6)
     ax.set_ylim(ymin - m, ymax + m * 0.45)
     ax.set_aspect("equal")

@@ -1,0 +1,50 @@
+"""The HTML page as text: self-contained, with the data the viewer needs."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+
+from lgmcts.formats import load_scene
+from lgmcts.scene import Scene
+from lgmcts.viz import render_html, viewer_data, viewer_js
+
+DATA = Path(__file__).parent / "data"
+SCENE = DATA / "cluttered_scene.json"
+PLAN = DATA / "cluttered_plan.json"
+
+
+def test_page_is_self_contained():
+    page = render_html(SCENE, PLAN)
+    assert page.startswith("<!DOCTYPE html>")
+    assert viewer_js().strip()[:40] in page
+    assert not re.search(r"<(link|img|iframe)\b", page, re.I)
+    assert not re.search(r"<script[^>]+src=", page, re.I)
+    # The only URL is the SVG namespace, which is a name and never fetched.
+    urls = set(re.findall(r"https?://[^\s\"')]+", page))
+    assert urls <= {"http://www.w3.org/2000/svg"}
+
+
+def test_viewer_data_contract():
+    data = viewer_data(SCENE, PLAN, instruction="hi")
+    plan = json.loads(PLAN.read_text())
+    sc = Scene.from_spec(load_scene(SCENE))
+    assert set(data) == {"scene", "plan", "instruction", "footprints", "paints", "frames"}
+    assert data["instruction"] == "hi"
+    assert len(data["frames"]) == len(plan["actions"]) + 1
+    assert [g["met"] for g in data["frames"][-1]["goals"]] == [True, True]
+    assert data["frames"][0]["goals"][1]["met"] is False
+    for k, i in enumerate(sc.ids):
+        assert np.allclose(data["footprints"][str(i)], sc.local[k], atol=1e-6)
+    assert data["paints"]["7"]["texture"] == "dots"
+    json.dumps(data, allow_nan=False)
+
+
+def test_instruction_defaults_to_the_plans_own():
+    plan = json.loads(PLAN.read_text())
+    plan["instruction"] = "stored command"
+    assert viewer_data(SCENE, plan)["instruction"] == "stored command"
+    assert "stored command" in render_html(SCENE, plan)
