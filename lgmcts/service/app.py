@@ -26,7 +26,7 @@ from typing import Any, Awaitable, Callable
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi.responses import HTMLResponse, JSONResponse, Response
 
 from .. import __version__
 from ..errors import InputError
@@ -328,6 +328,10 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     async def viewer() -> HTMLResponse:
         """A page to paste or upload a scene, give an instruction or goals, plan and see the plan drawn."""
         return HTMLResponse(page())
+
+    @app.get("/favicon.ico", include_in_schema=False)
+    async def favicon() -> Response:
+        return Response(status_code=204)
 
     return app
 

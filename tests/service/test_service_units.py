@@ -1,0 +1,76 @@
+"""Pieces of the service that need no server: error lines, the viewer page, options."""
+
+from __future__ import annotations
+
+import pytest
+
+from lgmcts.errors import InputError
+from lgmcts.formats import parse_scene
+from lgmcts.service import ServiceOptions
+from lgmcts.service import viewer
+from lgmcts.service.app import validation_message
+
+
+@pytest.mark.parametrize(
+    "errors, line",
+    [
+        ([], "invalid request"),
+        ([{"type": "json_invalid", "loc": ("body", 3), "msg": "JSON decode error", "ctx": {"error": "Expecting value"}}],
+         "invalid request: the body is not valid JSON (Expecting value)"),
+        ([{"type": "missing", "loc": ("body",), "msg": "Field required"}], "invalid request: a JSON body is required"),
+        ([{"type": "missing", "loc": ("body", "goals"), "msg": "Field required"}], "invalid request: 'goals' is required"),
+        ([{"type": "value_error", "loc": ("body", "scene", "function-after[_consistent()]"), "msg": "Value error, duplicate object id 1"}],
+         "invalid scene: duplicate object id 1"),
+        ([{"type": "int_parsing", "loc": ("body", "options", "seed"), "msg": "bad int"}], "invalid request at options.seed: bad int"),
+    ],
+)
+def test_validation_message(errors, line):
+    assert validation_message(errors) == line
+
+
+def test_validation_message_matches_the_format_loader():
+    bad = {"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [{"id": 1, "name": "a", "shape": {"type": "box", "size": [1, 1]}, "pose": [0, 0, 0]}]}
+    from pydantic import ValidationError
+
+    from lgmcts.formats import SceneSpec
+
+    try:
+        SceneSpec.model_validate(bad)
+    except ValidationError as err:
+        errors = [{**e, "loc": ("body", "scene", *e["loc"])} for e in err.errors()]
+    with pytest.raises(InputError) as exc:
+        parse_scene(bad)
+    assert validation_message(errors) == str(exc.value)
+
+
+def test_viewer_script_is_inlined_safely(tmp_path, monkeypatch):
+    js = tmp_path / "viewer.js"
+    js.write_text('window.LGMCTSViewer = {render: function (c, d) { c.innerHTML = "</script><b>" + "<!--"; }};')
+    monkeypatch.setattr(viewer, "VIEWER_JS", js)
+    html = viewer.page()
+    assert "window.LGMCTSViewer = {render" in html
+    body = html.split("<script>", 1)[1].split("</script>", 1)[0]
+    assert "</script" not in body.lower() and "<!--" not in body
+    assert "<\\/script>" in body
+
+
+def test_viewer_page_without_the_script_keeps_its_own_drawing(tmp_path, monkeypatch):
+    monkeypatch.setattr(viewer, "VIEWER_JS", tmp_path / "absent.js")
+    html = viewer.page()
+    assert "drawFallback" in html and "window.LGMCTSViewer = {" not in html
+    assert viewer.viewer_script() is None
+    assert "/*EXAMPLE_SCENE*/" not in html
+
+
+def test_example_scene_is_valid():
+    parse_scene(viewer.EXAMPLE_SCENE)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [({"workers": 0}, "workers must be at least 1"), ({"timeout": -1.0}, "timeout must be positive"),
+     ({"max_iter": 0}, "max_iter must be at least 1"), ({"grace": 0.0}, "grace must be positive")],
+)
+def test_service_options_reject_bad_limits(kwargs, message):
+    with pytest.raises(InputError, match=message):
+        ServiceOptions(**kwargs)
