@@ -403,10 +403,17 @@ def run_suite(
     return sorted((r for r in done.values() if r["id"] in order), key=lambda r: order[r["id"]])
 
 
+def _worker_init() -> None:
+    # One math thread per worker: the workers already use every core, and
+    # oversubscribed BLAS/torch threads make each parse many times slower.
+    for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
+
+
 def _pool_map(tasks: list[Task], options: RunOptions, workers: int) -> Iterator[dict[str, Any]]:
     # Spawned workers: no torch or MuJoCo state is inherited through fork.
     ctx = get_context("spawn")
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init) as pool:
         pending = set()
         it = iter(tasks)
         # Keep a bounded queue so an interrupted run loses little work.
