@@ -102,6 +102,8 @@ def _plural(word: str) -> str:
         return word + "es"
     if word.endswith("y") and len(word) > 1 and word[-2] not in "aeiou":
         return word[:-1] + "ies"
+    if word.endswith("fe"):
+        return word[:-2] + "ves"
     if word.endswith("f") and not word.endswith("ff"):
         return word[:-1] + "ves"
     return word + "s"

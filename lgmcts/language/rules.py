@@ -132,8 +132,18 @@ def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozense
     ]
 
 
-def _weak_split(words: tuple[str, ...], mentions: list[Mention], vocab: frozenset[str]) -> list[tuple[str, ...]]:
-    """Split a clause naming two arrangements at the "and" between them."""
+def _weak_split(
+    words: tuple[str, ...], mentions: list[Mention], vocab: frozenset[str], rel_words: frozenset[str] = frozenset()
+) -> list[tuple[str, ...]]:
+    """Split a clause naming two arrangements at the "and" between them.
+
+    A cut is made at an "and" (or ",") that shares a gap with a pattern
+    phrase: after it ("X in a circle and Y behind Z") or before it ("a line
+    with X and a circle with Y"). A pattern phrase that fills its gap alone
+    ("line up X, Y and Z to the left of W", "stack X, Y and Z into a
+    tower") is not cut, except after the anchor of a relation ("X left of
+    Y and the Zs in a circle").
+    """
     gaps = _gaps(words, mentions)
     pat = [(g, _pattern_positions(words, lo, hi, vocab)) for g, (lo, hi) in enumerate(gaps)]
     pat = [(g, pos) for g, pos in pat if pos]
@@ -142,17 +152,20 @@ def _weak_split(words: tuple[str, ...], mentions: list[Mention], vocab: frozense
     cuts: list[int] = []
     for (p, ppos), (q, qpos) in zip(pat, pat[1:]):
         cut = None
-        if p > 0:  # objects come before the pattern phrase: cut at the first "and" after it
-            for k in range(ppos[-1] + 1, qpos[0]):
-                if words[k] in _COORD and not any(m.start <= k < m.end for m in mentions):
-                    cut = k
-                    break
-        if cut is None:  # the pattern phrase leads its objects: cut at the last "and" before the next one
-            for k in range(qpos[0] - 1, ppos[-1], -1):
-                if words[k] in _COORD and not any(m.start <= k < m.end for m in mentions):
-                    cut = k
-                    break
-        if cut is not None:
+        lo, hi = gaps[p]
+        after = [k for k in range(ppos[-1] + 1, hi) if words[k] in _COORD]
+        if after:
+            cut = after[0]
+        else:
+            qlo, _ = gaps[q]
+            before = [k for k in range(qlo, qpos[0]) if words[k] in _COORD]
+            if before:
+                cut = before[-1]
+            elif any(words[k] in rel_words for k in ppos) and q > p + 1:
+                alo, ahi = gaps[p + 1]
+                if ahi > alo and all(words[k] in _COORD for k in range(alo, ahi)):
+                    cut = alo
+        if cut is not None and (not cuts or cut > cuts[-1]):
             cuts.append(cut)
     if not cuts:
         return [words]
@@ -199,64 +212,119 @@ class _Parser:
         self.state = _State()
 
     # ------------------------------------------------------------ one clause
+    def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
+        """Key words found only in anchored patterns, and only in the others."""
+        if not hasattr(self, "_kinds"):
+            from .matcher import content_words
+
+            rel: set[str] = set()
+            free: set[str] = set()
+            for info in self.infos.values():
+                if info.needs_pose:
+                    continue
+                for k in info.keys:
+                    (rel if info.anchored else free).update(content_words(k))
+            skip = FILLERS | _NOT_PATTERN
+            self._kinds = (frozenset(rel - free - skip), frozenset(free - rel - skip))
+        return self._kinds
+
+    def _match(self, phrase: str, text: str, allowed: frozenset[str]):
+        m = self.matcher.match(phrase, allowed=allowed)
+        if not m:
+            known = ", ".join(sorted(self.infos))
+            if m.reason == "no arrangement is named":
+                raise InputError(f"'{text}' does not say how to arrange the objects (known patterns: {known})")
+            hint = f"; closest is '{m.runner_up}' ({m.score:.2f})" if m.runner_up else ""
+            raise InputError(f"no pattern in the database matches '{phrase or text}'{hint}; known patterns: {known}")
+        return m
+
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
         text = " ".join(words)
         mentions = find_mentions(self.vocab, words, self.key_vocab)
         groups, gaps = _groups(words, mentions)
         rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
+        while rest and words[rest[0]] in _LEADING:
+            rest = rest[1:]
         phrase_words = [words[k] for k in rest]
-        while phrase_words and phrase_words[0] in _LEADING:
-            phrase_words = phrase_words[1:]
         self._unknown_objects(words, rest)
-        phrase = " ".join(phrase_words)
-        if not mentions:
-            if not phrase_words:
-                raise InputError(f"'{text}' names nothing to arrange")
-            raise InputError(f"'{text}' names no object in the scene")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
+        if not mentions:
+            if not meaningful:
+                return []  # a preamble such as "set the table" or "please"
+            raise InputError(f"'{text}' names no object in the scene")
+        # Order and emphasis words ("the first one at the bottom", "another")
+        # carry no pattern meaning: leave them out of the phrase to match.
+        phrase = " ".join(w for w in phrase_words if w not in _ALLOWED_EXTRA or _stem(w) in self.key_vocab)
         if not meaningful and len(groups) >= 2:
             for lo, hi in gaps[1:-1]:
                 if tuple(words[lo:hi]) in _ON_WORDS:
                     phrase = "on top of each other"
                     break
-        info_all = self.infos
-        allowed = frozenset(n for n, inf in info_all.items() if not inf.needs_pose or len(_numbers(tuple(phrase_words))) >= 2)
-        m = self.matcher.match(phrase, allowed=allowed)
-        if not m:
-            known = ", ".join(sorted(info_all))
-            shown = phrase or text
-            if m.reason == "no arrangement is named":
-                raise InputError(f"'{text}' does not say how to arrange the objects (known patterns: {known})")
-            hint = f"; closest is '{m.runner_up}' ({m.score:.2f})" if m.runner_up else ""
-            raise InputError(f"no pattern in the database matches '{shown}'{hint}; known patterns: {known}")
-        info = info_all[m.pattern]
-        # Where the pattern phrase sits among the groups of objects.
-        counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
-        p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
+        infos = self.infos
+        n_numbers = len(_numbers(tuple(phrase_words)))
+        usable = frozenset(n for n, inf in infos.items() if not inf.needs_pose or n_numbers >= 2)
+        anchored = frozenset(n for n in usable if infos[n].anchored)
+        rel_words, free_words = self._word_kinds()
+        rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
+        free_pos = [k for k in rest if _stem(words[k]) in free_words]
         sels = [[self._select(mm) for mm in g] for g in groups]
         if re.search(r"\b(another|second|new|separate|different)\b", phrase):
             # "another line": a second arrangement of objects no other goal uses.
             sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
-        if info.anchored:
-            if p >= len(groups):
-                raise InputError(f"'{text}': {m.pattern.replace('_', ' and ')} of what? name the reference object")
-            anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
-            target_sel = [x for g, s in enumerate(sels) if g != p for y in s for x in (y if isinstance(y, list) else [y])]
-            if not target_sel:
-                raise InputError(f"'{text}': nothing to put {m.pattern.replace('_', ' and ')} of the reference object")
-            anchors: list[int | Choice] = []
-            for a in anchor_sel:
-                if isinstance(a, Choice) and a.k > 1:
-                    raise InputError(f"'{a.text}': a relation needs one reference object")
-                anchors.append(a)
-            fixed_anchor = {a for a in anchors if isinstance(a, int)}
-            targets = [t for t in target_sel if not (isinstance(t, int) and t in fixed_anchor)]
-            if not targets:
-                raise InputError(f"'{text}': an object cannot be {m.pattern.replace('_', ' and ')} of itself")
-            self.state.last = targets
-            return [_Pending(m.pattern, list(targets), a, None, text) for a in anchors]
-        order = list(range(len(groups)))
-        if info.ordered and len(groups) > 1:
+        if rel_pos and free_pos:
+            # One clause, two goals: "line up the forks to the left of the plate".
+            k0 = rel_pos[0]
+            g_rel = next(g for g, (lo, hi) in enumerate(gaps) if lo <= k0 < hi)
+            lo, hi = gaps[g_rel]
+            start = k0
+            while start > lo and words[start - 1] in ("to", "the", "on", "in", "at", "and", "of", "towards", "toward"):
+                start -= 1
+            rel_phrase = " ".join(words[start:hi])
+            shape_phrase = " ".join(words[k] for k in rest if not start <= k < hi)
+            m_rel = self._match(rel_phrase, text, anchored)
+            m_shape = self._match(shape_phrase, text, usable - anchored)
+            out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
+            targets = out[0].objects
+            out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
+            return out
+        m = self._match(phrase, text, usable)
+        if infos[m.pattern].anchored:
+            counts = [len([k for k in rel_pos if lo <= k < hi]) for lo, hi in gaps]
+            if not any(counts):
+                counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
+            p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
+            return self._relation(m.pattern, groups, sels, p, text)
+        return [self._shape(m.pattern, sels, words, gaps, text, phrase_words)]
+
+    def _relation(self, pattern: str, groups, sels, p: int, text: str) -> list[_Pending]:
+        words_rel = pattern.replace("_", " and ")
+        if p >= len(groups):
+            raise InputError(f"'{text}': {words_rel} of what? name the reference object")
+        anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
+        target_sel: list[int | Choice] = []
+        for g, s in enumerate(sels):
+            if g == p:
+                continue
+            for y in s:
+                for x in y if isinstance(y, list) else [y]:
+                    if x not in target_sel:
+                        target_sel.append(x)
+        if not target_sel:
+            raise InputError(f"'{text}': nothing to put {words_rel} of the reference object")
+        for a in anchor_sel:
+            if isinstance(a, Choice) and a.k > 1:
+                raise InputError(f"'{a.text}': a relation needs one reference object")
+        fixed_anchor = {a for a in anchor_sel if isinstance(a, int)}
+        targets = [t for t in target_sel if not (isinstance(t, int) and t in fixed_anchor)]
+        if not targets:
+            raise InputError(f"'{text}': an object cannot be {words_rel} of itself")
+        self.state.last = targets
+        return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
+
+    def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words) -> _Pending:
+        info = self.infos[pattern]
+        order = list(range(len(sels)))
+        if info.ordered and len(sels) > 1:
             if any(tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1]):
                 order.reverse()
         objs: list[int | Choice] = []
@@ -269,20 +337,18 @@ class _Parser:
             objs.reverse()
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
         if n < info.min_objects:
-            what = " and ".join(mm.text for g in groups for mm in g)
             noun = "object" if n == 1 else "objects"
-            raise InputError(
-                f"a {m.pattern} needs at least {info.min_objects} objects, but '{what}' gives {n} {noun}"
-            )
+            raise InputError(f"'{text}': a {pattern} needs at least {info.min_objects} objects, this names {n} {noun}")
         pose = None
         if info.needs_pose:
             nums = _numbers(tuple(phrase_words))
             if len(objs) != 1 or not isinstance(objs[0], int):
-                raise InputError(f"'{text}': a {m.pattern} goal takes exactly one definite object")
-            yaw = nums[2] if len(nums) > 2 else float(self.spec.object(objs[0]).pose[2] if self.spec.object(objs[0]).pose else 0.0)
+                raise InputError(f"'{text}': a {pattern} goal takes exactly one definite object")
+            cur = self.spec.object(objs[0]).pose
+            yaw = nums[2] if len(nums) > 2 else float(cur[2] if cur else 0.0)
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
-        return [_Pending(m.pattern, objs, None, pose, text)]
+        return _Pending(pattern, objs, None, pose, text)
 
     def _select(self, m: Mention) -> list[int] | Choice:
         if m.det == "pronoun":
@@ -325,7 +391,7 @@ class _Parser:
         pending: list[_Pending] = []
         for clause in split_clauses(words):
             mentions = find_mentions(self.vocab, clause, self.key_vocab)
-            for sub in _weak_split(clause, mentions, self.key_vocab):
+            for sub in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
                 while sub and sub[0] in _LEADING:
                     sub = sub[1:]
                 if sub:

@@ -1,0 +1,236 @@
+"""Exact-goal accuracy of a parser on a labelled set of commands.
+
+Case file (JSON Lines). A line with ``"scene_id"`` and ``"scene"`` defines a
+named scene; every other line is a case::
+
+    {"id": "rel-003", "category": "relation", "scene": "vima_a",
+     "instruction": "Put the red swirl flower left and behind of ...",
+     "expect": {"goals": [{"pattern": "left_behind", "objects": [4], "anchor": 5}]}}
+    {"id": "ref-001", "category": "refusal", "scene": "vima_a",
+     "instruction": "put the purple giraffe in a line", "refuse": "giraffe"}
+
+``scene`` is a name defined earlier in the file, a path (relative to the
+case file) or an inline scene. Benchmark task files (``lgmcts
+bench-generate``) are read too: their ``goals`` are the expected goals.
+
+Comparison (:func:`goals_match`): goals as sets (one-to-one, order free);
+object lists as sets except for ordered patterns without anchor (towers);
+an expected goal may say ``"objects_from": [ids], "count": k`` (any k of
+those: "three blocks") and ``"anchor_any": [ids]`` (any one: "behind one
+block"); ``"disjoint": [[i, j]]`` at the top requires goals i and j to share
+no object ("another line"). A refusal case passes when the parser raises
+:class:`~lgmcts.errors.InputError` (and its message contains ``refuse``
+when that is a non-empty string).
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import statistics
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from ..errors import InputError
+from ..formats import GoalSpec, SceneSpec, parse_scene, to_dict
+
+__all__ = ["Case", "CaseResult", "EvalReport", "load_cases", "goals_match", "evaluate"]
+
+
+@dataclass(frozen=True)
+class Case:
+    """One labelled command."""
+
+    id: str
+    category: str
+    scene: SceneSpec
+    instruction: str
+    expect: dict | None = None
+    refuse: str | bool | None = None
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    case: Case
+    ok: bool
+    got: dict | None
+    error: str | None
+    time_s: float
+
+
+@dataclass
+class EvalReport:
+    """Accuracy overall and per category, the failures, and parse speed."""
+
+    results: list[CaseResult] = field(default_factory=list)
+    load_time_s: float | None = None
+
+    @property
+    def accuracy(self) -> float:
+        return sum(r.ok for r in self.results) / len(self.results) if self.results else 0.0
+
+    def per_category(self) -> dict[str, tuple[int, int]]:
+        out: dict[str, list[int]] = {}
+        for r in self.results:
+            c = out.setdefault(r.case.category, [0, 0])
+            c[0] += r.ok
+            c[1] += 1
+        return {k: (v[0], v[1]) for k, v in sorted(out.items())}
+
+    @property
+    def failures(self) -> list[CaseResult]:
+        return [r for r in self.results if not r.ok]
+
+    def timing(self) -> dict[str, float]:
+        ts = sorted(r.time_s for r in self.results)
+        if not ts:
+            return {}
+        p95 = ts[min(len(ts) - 1, int(round(0.95 * (len(ts) - 1))))]
+        return {"mean_ms": 1e3 * statistics.fmean(ts), "median_ms": 1e3 * statistics.median(ts), "p95_ms": 1e3 * p95,
+                "max_ms": 1e3 * ts[-1]}
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "cases": len(self.results),
+            "correct": sum(r.ok for r in self.results),
+            "accuracy": self.accuracy,
+            "per_category": {k: {"correct": a, "total": b, "accuracy": a / b} for k, (a, b) in self.per_category().items()},
+            "model_load_s": self.load_time_s,
+            "parse_time": self.timing(),
+            "failures": [
+                {"id": r.case.id, "category": r.case.category, "instruction": r.case.instruction,
+                 "expected": r.case.expect if r.case.refuse is None else {"refuse": r.case.refuse},
+                 "got": r.got, "error": r.error}
+                for r in self.failures
+            ],
+        }
+
+
+def load_cases(path: str | Path) -> list[Case]:
+    """Read a case file (or a benchmark task file); bad lines raise :class:`InputError`."""
+    path = Path(path)
+    try:
+        lines = path.read_text().splitlines()
+    except FileNotFoundError:
+        raise InputError(f"case file not found: {path}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read case file {path}: {exc}") from None
+    scenes: dict[str, SceneSpec] = {}
+    cases: list[Case] = []
+    for n, line in enumerate(lines, 1):
+        if not line.strip() or line.lstrip().startswith("//"):
+            continue
+        try:
+            row = json.loads(line)
+        except json.JSONDecodeError as exc:
+            raise InputError(f"{path}:{n}: not valid JSON ({exc.msg})") from None
+        if not isinstance(row, dict):
+            raise InputError(f"{path}:{n}: each line must be a JSON object")
+        try:
+            if "scene_id" in row:
+                scenes[str(row["scene_id"])] = parse_scene(row["scene"])
+                continue
+            ref = row["scene"]
+            if isinstance(ref, dict):
+                scene = parse_scene(ref)
+            elif isinstance(ref, str) and ref in scenes:
+                scene = scenes[ref]
+            elif isinstance(ref, str):
+                from ..formats import load_scene
+
+                scene = load_scene(path.parent / ref)
+            else:
+                raise InputError("'scene' must be a scene name, a path or an inline scene")
+            expect = row.get("expect")
+            if expect is None and "goals" in row and "refuse" not in row:
+                g = row["goals"]
+                expect = g if isinstance(g, dict) else {"goals": g}
+            refuse = row.get("refuse")
+            if expect is None and refuse is None:
+                raise InputError("a case needs 'expect' (goals) or 'refuse'")
+            cases.append(Case(str(row.get("id", f"line-{n}")), str(row.get("category", "uncategorised")), scene,
+                              str(row["instruction"]), expect, refuse))
+        except KeyError as exc:
+            raise InputError(f"{path}:{n}: missing field {exc.args[0]!r}") from None
+        except InputError as exc:
+            raise InputError(f"{path}:{n}: {exc}") from None
+    if not cases:
+        raise InputError(f"{path}: no cases")
+    return cases
+
+
+def _ordered_patterns() -> frozenset[str]:
+    from .matcher import pattern_infos
+
+    return frozenset(n for n, i in pattern_infos().items() if i.ordered and not i.anchored)
+
+
+def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
+    if exp.get("pattern") != got.get("pattern"):
+        return False
+    objs = list(got.get("objects", []))
+    if "objects" in exp:
+        if exp["pattern"] in ordered:
+            if list(exp["objects"]) != objs:
+                return False
+        elif sorted(exp["objects"]) != sorted(objs):
+            return False
+    if "objects_from" in exp:
+        k = int(exp.get("count", 1))
+        if len(objs) != k or len(set(objs)) != k or not set(objs) <= set(exp["objects_from"]):
+            return False
+    anchor = got.get("anchor")
+    if "anchor_any" in exp:
+        if anchor not in exp["anchor_any"]:
+            return False
+    elif exp.get("anchor") != anchor:
+        return False
+    if exp.get("pose") is not None or got.get("pose") is not None:
+        a, b = exp.get("pose"), got.get("pose")
+        if a is None or b is None or any(abs(x - y) > 1e-6 for x, y in zip(a, b)):
+            return False
+    return True
+
+
+def goals_match(expected: dict, got: GoalSpec | dict) -> bool:
+    """Whether ``got`` equals the expected goals under the rules above."""
+    data = to_dict(got) if isinstance(got, GoalSpec) else got
+    exp_goals, got_goals = list(expected.get("goals", [])), list(data.get("goals", []))
+    if len(exp_goals) != len(got_goals):
+        return False
+    ordered = _ordered_patterns()
+    disjoint = [tuple(p) for p in expected.get("disjoint", [])]
+    for perm in itertools.permutations(range(len(got_goals))):
+        if all(_goal_ok(e, got_goals[j], ordered) for e, j in zip(exp_goals, perm)):
+            if all(not set(got_goals[perm[a]]["objects"]) & set(got_goals[perm[b]]["objects"]) for a, b in disjoint):
+                return True
+    return False
+
+
+def evaluate(
+    cases: list[Case],
+    parse_fn: Callable[[SceneSpec, str], GoalSpec],
+    *,
+    progress: Callable[[int, int], None] | None = None,
+) -> EvalReport:
+    """Run ``parse_fn`` on every case and score it (wall time per case in s)."""
+    report = EvalReport()
+    for k, case in enumerate(cases):
+        t0 = time.perf_counter()
+        got, err = None, None
+        try:
+            got = to_dict(parse_fn(case.scene, case.instruction))
+        except InputError as exc:
+            err = str(exc)
+        dt = time.perf_counter() - t0
+        if case.refuse is not None:
+            want = case.refuse if isinstance(case.refuse, str) else ""
+            ok = err is not None and want.lower() in err.lower()
+        else:
+            ok = got is not None and goals_match(case.expect or {}, got)
+        report.results.append(CaseResult(case, ok, got, err, dt))
+        if progress is not None:
+            progress(k + 1, len(cases))
+    return report
