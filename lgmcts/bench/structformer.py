@@ -109,9 +109,9 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         names = [_the(objs[k]) for k in range(n)]
         lst = ", ".join(names[:-1]) + " and " + names[-1]
         instruction = str(rng.choice([
-            f"Stack {lst} into a tower",
             f"Build a tower of {lst}, from the bottom up",
-            f"Pile up {lst}, the first one at the bottom",
+            f"Put {lst} in a tower, the first one at the bottom",
+            f"Pile up {lst}, from the bottom up",
         ]))
     else:  # dinner
         plate_color, bowl_color = _pick(rng, PLAIN_COLORS), _pick(rng, PLAIN_COLORS)
@@ -132,9 +132,12 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         side = _pick(rng, ("left", "right"))
         cut_words = ", ".join(f"the {c}" for c in cut[:-1]) + f" and the {cut[-1]}"
         bowls = " and ".join(_the(objs[k]) for k in tower[1:])
+        plate = _the(objs[0])
+        tower_words = ", ".join(_the(objs[k]) for k in tower[:-1]) + " and " + _the(objs[tower[-1]])
         instruction = str(rng.choice([
-            f"Set the table: stack {bowls} on {_the(objs[0])} and line up {cut_words} to the {side} of the plate",
-            f"Put {bowls} on top of {_the(objs[0])}, then place {cut_words} in a row on the {side} side of the plate",
+            f"Stack {bowls} on {plate}; and put {cut_words} in a line; and put {cut_words} to the {side} of the plate",
+            f"Put {tower_words} in a tower; then put {cut_words} in a line to the {side} of {plate}",
+            f"Build a tower of {tower_words}, from the bottom up; and arrange {cut_words} in a row on the {side} side of the plate",
         ]))
     n = len(objs)
     perm = rng.permutation(n)
