@@ -471,6 +471,7 @@
     var gPaths = el(doc, "g", { class: "lgv-paths" }, svg);
     var gRings = el(doc, "g", { class: "lgv-rings" }, svg);
     var gObjs = el(doc, "g", { class: "lgv-objects" }, svg);
+    var gRel = el(doc, "g", { class: "lgv-relations" }, svg);
     var gTop = el(doc, "g", { class: "lgv-top" }, svg);
     var gLabels = el(doc, "g", { class: "lgv-labels" }, svg);
 
@@ -539,10 +540,13 @@
 
     function drawGoals(shapes) {
       gGoals.innerHTML = "";
+      gRel.innerHTML = "";
       shapes.forEach(function (s) {
         var col = GOAL_COLORS[s.index % GOAL_COLORS.length];
         var op = s.met === false ? 0.35 : 0.9;
-        var g = el(doc, "g", { class: "lgv-goal lgv-goal-" + s.index, opacity: op, fill: "none", stroke: col, "stroke-width": fs * 0.22, "stroke-dasharray": fs * 0.7 + " " + fs * 0.45 }, gGoals);
+        // Relation arrows go above the objects so their heads stay visible.
+        var layer = s.kind === "relation" ? gRel : gGoals;
+        var g = el(doc, "g", { class: "lgv-goal lgv-goal-" + s.index, opacity: op, fill: "none", stroke: col, "stroke-width": fs * 0.22, "stroke-dasharray": fs * 0.7 + " " + fs * 0.45 }, layer);
         if (s.kind === "line") {
           var p = s.points, d = [p[1][0] - p[0][0], p[1][1] - p[0][1]], L = Math.hypot(d[0], d[1]) || 1, e = 0.03;
           el(doc, "line", { x1: X(p[0][0] - d[0] / L * e), y1: Y(p[0][1] - d[1] / L * e), x2: X(p[1][0] + d[0] / L * e), y2: Y(p[1][1] + d[1] / L * e) }, g);
@@ -556,8 +560,8 @@
           s.arrows.forEach(function (ab) {
             var a = ab[0], b = ab[1], dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
             if (L < 1e-6) return;
-            var sh = Math.min(0.02, L * 0.25);
-            el(doc, "line", { x1: X(a[0] + dx / L * sh), y1: Y(a[1] + dy / L * sh), x2: X(b[0] - dx / L * sh), y2: Y(b[1] - dy / L * sh), "marker-end": "url(#" + uid + "-garrow-" + (s.index % GOAL_COLORS.length) + ")" }, g);
+            var sa = Math.min(0.02, L * 0.25), sb = Math.min(0.012, L * 0.2);
+            el(doc, "line", { x1: X(a[0] + dx / L * sa), y1: Y(a[1] + dy / L * sa), x2: X(b[0] - dx / L * sb), y2: Y(b[1] - dy / L * sb), "marker-end": "url(#" + uid + "-garrow-" + (s.index % GOAL_COLORS.length) + ")" }, g);
           });
         } else if (s.kind === "tower") {
           el(doc, "circle", { cx: X(s.centre[0]), cy: Y(s.centre[1]), r: (radius(s.levels[0]) + 0.016) * MM }, g);
