@@ -23,7 +23,7 @@ def test_small_suite_end_to_end(tmp_path, suite, parser):
         if parser == "rules":
             assert r["parse"]["correct"] is True, r
         assert r["sr_p"], r
-        assert r["execution"] is not None and r["execution"]["steps"] == r["planning"]["actions"]
+        assert r["execution"] is not None and 0 < r["execution"]["steps"] <= r["planning"]["actions"]
         assert r["sr_ep"] == r["execution"]["success"]
         assert r["sr_ep"] or r["cause"] == "execution failed"
     row = summarise(recs)[-1]
