@@ -363,7 +363,7 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
             k0 = ctx.scene.index[s.goal.objects[0]]
             verts = ctx.scene.footprint(k0, t)
             ax.add_patch(Polygon(verts, closed=True, edgecolor=_rgba(col, alpha), facecolor="none", lw=1.4, ls=":", zorder=4.5))
-            ax.plot(t[0], t[1], marker="x", color=col, ms=6, mew=1.4, zorder=4.5)
+            ax.plot(t[0], t[1], marker="x", color=col, ms=6, mew=1.4, zorder=1.9)
 
 
 def _draw_path(ax: Any, a: Sequence[float], b: Sequence[float], color: Any, *, lw: float = 2.2, faint: bool = False) -> None:
@@ -527,7 +527,8 @@ def render_state(ctx: _Ctx, step: int, *, goals_drawn: str = "met") -> np.ndarra
         col = PURPOSE_COLORS[a.purpose]
         before = ctx.states[step - 1]
         old = _footprint(ctx, before, k)
-        ax.add_patch(Polygon(old, closed=True, fill=False, edgecolor=col, lw=1.4, ls="--", zorder=1.7))
+        # Drawn above the objects: the old pose is often under another object (an unstacked blocker).
+        ax.add_patch(Polygon(old, closed=True, fill=False, edgecolor=col, lw=1.4, ls="--", zorder=4.7))
         _draw_path(ax, before.poses[k], a.to, col)
         highlight[k] = col
     _draw_objects(ax, ctx, state, highlight=highlight, rings=step == 0 or goals_drawn == "all")

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import html as _html
 import json
+import re
 from functools import lru_cache
 from importlib import resources
 from typing import Any
@@ -49,6 +50,16 @@ def script_json(value: Any) -> str:
     """JSON safe to put inside a ``<script>`` element (no ``</script>`` break-out)."""
     text = json.dumps(value, separators=(",", ":"), allow_nan=False)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026").replace("\u2028", "\\u2028").replace("\u2029", "\\u2029")
+
+
+def _inline_safe(js: str) -> str:
+    """Script text that cannot end its ``<script>`` element early.
+
+    The HTML parser closes a script at ``</script`` in any letter case and treats
+    ``<!--`` specially whatever the JavaScript context; ``<\\/`` and ``<\\!``
+    mean the same characters inside every JavaScript string or regex.
+    """
+    return re.sub(r"</(script)", r"<\\/\1", js, flags=re.IGNORECASE).replace("<!--", "<\\!--")
 
 
 def viewer_data(
@@ -126,7 +137,7 @@ def render_html(
         title = f"lgmcts plan: {n} action{'s' if n != 1 else ''}, {'solved' if data['plan']['solved'] else 'not solved'}"
     return _PAGE.format(
         title=_html.escape(title),
-        script=viewer_js().replace("</script", "<\\/script"),
+        script=_inline_safe(viewer_js()),
         data=script_json(data),
     )
 

@@ -604,7 +604,7 @@
       var cap;
       if (k > 0) {
         var a = actions[k - 1], col = PURPOSE_COLORS[a.purpose || "goal"], before = frames[k - 1].poses[a.object];
-        el(doc, "polygon", { class: "lgv-ghost", points: pointsAttr(transform(byId[a.object].local, before)), fill: "none", stroke: col, "stroke-width": fs * 0.15, "stroke-dasharray": fs * 0.5 + " " + fs * 0.35 }, gPaths);
+        el(doc, "polygon", { class: "lgv-ghost", points: pointsAttr(transform(byId[a.object].local, before)), fill: "none", stroke: col, "stroke-width": fs * 0.15, "stroke-dasharray": fs * 0.5 + " " + fs * 0.35 }, gTop);
         el(doc, "path", { class: "lgv-move", d: arc(before, a.to), fill: "none", stroke: col, "stroke-width": fs * 0.28, "marker-end": "url(#" + uid + "-arrow-" + (a.purpose || "goal") + ")" }, gTop);
         nodes[a.object].outline.setAttribute("stroke", col);
         nodes[a.object].outline.setAttribute("stroke-width", fs * 0.35);
