@@ -30,6 +30,7 @@ from fastapi.responses import HTMLResponse, JSONResponse, Response
 
 from .. import __version__
 from ..errors import InputError
+from ..formats import GoalSpec
 from . import jobs
 from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
@@ -59,6 +60,10 @@ class ServiceOptions:
     Parameters
     ----------
     workers : planning processes; requests beyond this many wait in a queue.
+    language_workers : processes that parse instructions; each holds its own
+        copy of the sentence model (torch), loaded on its first instruction.
+    preload_language : load the sentence model in the language workers at
+        start-up (in the background) instead of on the first instruction.
     max_body : largest accepted request body (bytes).
     timeout : wall-clock limit of a request (s), queueing included; a request
         may ask for less with its ``timeout`` field, never for more.
@@ -71,6 +76,8 @@ class ServiceOptions:
     """
 
     workers: int = 2
+    language_workers: int = 1
+    preload_language: bool = False
     max_body: int = 4 * 1024 * 1024
     timeout: float = 30.0
     max_iter: int = 10_000
@@ -81,6 +88,8 @@ class ServiceOptions:
     def __post_init__(self) -> None:
         if self.workers < 1:
             raise InputError("workers must be at least 1")
+        if self.language_workers < 1:
+            raise InputError("language_workers must be at least 1")
         if self.max_body < 1:
             raise InputError("max_body must be at least 1 byte")
         if not self.timeout > 0:
@@ -204,15 +213,26 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     and stopped when it stops.
     """
     opts = options or ServiceOptions()
-    pool = WorkerPool(workers=opts.workers, grace=opts.grace)
+    pool = WorkerPool(workers=opts.workers, grace=opts.grace, name="planning")
+    # Parsing has its own processes: the sentence model (torch, a few hundred
+    # MB) is loaded once per language worker, never in the planning workers
+    # nor in this process.
+    language = WorkerPool(workers=opts.language_workers, grace=opts.grace, name="language")
 
     @asynccontextmanager
     async def lifespan(_: FastAPI):
         pool.start(warm=opts.warm)
+        language.start(warm=False)
+        if opts.preload_language:
+            from .viewer import EXAMPLE_INSTRUCTION, EXAMPLE_SCENE
+
+            for _ in range(opts.language_workers):
+                language.submit_background(jobs.warm_language, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE)
         try:
             yield
         finally:
             pool.close()
+            language.close()
 
     app = FastAPI(
         title="lgmcts planning service",
@@ -225,6 +245,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         lifespan=lifespan,
     )
     app.state.pool = pool
+    app.state.language = language
     app.state.options = opts
     app.add_middleware(BodyLimit, max_body=opts.max_body)
 
@@ -238,9 +259,11 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         limit = opts.timeout if requested is None else min(requested, opts.timeout)
         return time.time() + limit
 
-    async def run(fn: Callable[[Any], Any], job: Any, deadline: float, what: str) -> JSONResponse | dict:
+    async def run(
+        fn: Callable[[Any], Any], job: Any, deadline: float, what: str, on: WorkerPool = pool
+    ) -> JSONResponse | dict:
         try:
-            return await pool.run(fn, job, deadline=deadline)
+            return await on.run(fn, job, deadline=deadline)
         except InputError as exc:
             return _error(422, str(exc))
         except (JobTimeout, jobs.DeadlinePassed):
@@ -260,7 +283,8 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             "status": "ok",
             "version": __version__,
             "workers": opts.workers,
-            "restarts": pool.restarts,
+            "language_workers": opts.language_workers,
+            "restarts": pool.restarts + language.restarts,
             "timeout_s": opts.timeout,
             "max_iter": opts.max_iter,
             "max_body_bytes": opts.max_body,
@@ -273,8 +297,8 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             deadline = deadline_of(req.timeout)
         except InputError as exc:
             return _error(422, str(exc))
-        job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, req.llm_base_url)
-        return await run(jobs.run_parse, job, deadline, "parsing")
+        job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, req.llm_base_url, deadline)
+        return await run(jobs.run_parse, job, deadline, "parsing", on=language)
 
     @app.post("/plan", response_model=None, responses={200: {"description": "Plan JSON."}, **_ERRORS}, tags=["planning"])
     async def plan(req: PlanRequest) -> Any:
@@ -298,13 +322,17 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
                 raise InputError(f"unknown method '{o.method}' (known: {', '.join(METHODS)})")
         except InputError as exc:
             return _error(422, str(exc))
-        parse_job = None
+        goals = req.goals
         if req.instruction is not None:
-            parse_job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, req.llm_base_url)
+            parse_job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, req.llm_base_url, deadline)
+            parsed = await run(jobs.run_parse, parse_job, deadline, "parsing", on=language)
+            if isinstance(parsed, JSONResponse):
+                return parsed
+            goals = GoalSpec.model_validate(parsed)
         job = jobs.PlanJob(
             scene=req.scene,
-            goals=req.goals,
-            parse=parse_job,
+            goals=goals,
+            instruction=req.instruction,
             method=o.method,
             seed=o.seed,
             max_iter=min(o.max_iter, opts.max_iter),

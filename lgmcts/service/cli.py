@@ -39,6 +39,10 @@ def register(app: typer.Typer) -> None:
         host: str = typer.Option("127.0.0.1", help="Address to listen on."),
         port: int = typer.Option(8000, help="TCP port."),
         workers: int = typer.Option(default_workers(), help="Planning processes (default: one per CPU)."),
+        language_workers: int = typer.Option(1, "--language-workers", help="Processes that parse instructions."),
+        preload_language: bool = typer.Option(
+            False, "--preload-language", help="Load the sentence model at start-up, not on the first instruction."
+        ),
         max_body: int = typer.Option(4 * 1024 * 1024, "--max-body", help="Largest request body in bytes (413 above)."),
         timeout: float = typer.Option(30.0, help="Wall-clock limit of a request in seconds (504 past it)."),
         max_iter: int = typer.Option(10_000, "--max-iter", help="Cap on a request's planner iteration budget."),
@@ -57,7 +61,15 @@ def register(app: typer.Typer) -> None:
         if log_level not in ("critical", "error", "warning", "info", "debug"):
             fail(f"unknown log level '{log_level}' (known: critical, error, warning, info, debug)")
         try:
-            opts = options_from_env(workers=workers, max_body=max_body, timeout=timeout, max_iter=max_iter, grace=grace)
+            opts = options_from_env(
+                workers=workers,
+                language_workers=language_workers,
+                preload_language=preload_language,
+                max_body=max_body,
+                timeout=timeout,
+                max_iter=max_iter,
+                grace=grace,
+            )
         except InputError as exc:
             fail(str(exc))
         _check_port(host, port)

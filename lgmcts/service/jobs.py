@@ -18,6 +18,7 @@ import signal
 import time
 from dataclasses import dataclass
 
+from ..errors import InputError
 from ..formats import GoalSpec, PlanSpec, SceneSpec, to_dict
 
 __all__ = [
@@ -29,6 +30,7 @@ __all__ = [
     "run_check",
     "run_parse",
     "run_plan",
+    "warm_language",
     "warm_up",
     "worker_init",
     "HOOK_METHODS",
@@ -56,34 +58,36 @@ class DeadlinePassed(RuntimeError):
 
 @dataclass(frozen=True)
 class ParseJob:
-    """Turn ``instruction`` into goals for ``scene``."""
+    """Turn ``instruction`` into goals for ``scene`` before ``deadline`` (``time.time()`` s)."""
 
     scene: SceneSpec
     instruction: str
     parser: str = "rules"
     llm_model: str | None = None
     llm_base_url: str | None = None
+    deadline: float = float("inf")
 
 
 @dataclass(frozen=True)
 class PlanJob:
-    """Plan for ``scene`` towards ``goals`` or the goals parsed from ``parse``.
+    """Plan for ``scene`` towards ``goals``.
 
     ``deadline`` is the request's wall-clock deadline (``time.time()`` seconds);
     the planner's time limit never runs past it by more than
     :data:`DEADLINE_MARGIN`. ``time_limit`` is the client's own budget (s) or
-    ``None``.
+    ``None``. ``instruction``, when the goals came from one, is copied into
+    the plan.
     """
 
     scene: SceneSpec
-    goals: GoalSpec | None
-    parse: ParseJob | None
+    goals: GoalSpec
     method: str
     seed: int
     max_iter: int
     time_limit: float | None
     anytime: bool
     deadline: float
+    instruction: str | None = None
     hooks: bool = False
 
 
@@ -101,7 +105,8 @@ def worker_init() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _parse(job: ParseJob) -> GoalSpec:
+def run_parse(job: ParseJob) -> dict:
+    """Goal JSON (a dict) for ``job.instruction``."""
     try:
         from ..language import parse
     except ImportError as exc:
@@ -111,18 +116,32 @@ def _parse(job: ParseJob) -> GoalSpec:
         if missing and not "lgmcts.language".startswith(missing):
             raise
         raise Unavailable("the language parser (lgmcts.language) is not installed") from None
-    return parse(
-        job.scene, job.instruction, parser=job.parser, llm_model=job.llm_model, llm_base_url=job.llm_base_url
+    remaining = job.deadline - time.time()
+    if remaining <= 0:
+        raise DeadlinePassed("the request's deadline passed before parsing started")
+    goals = parse(
+        job.scene,
+        job.instruction,
+        parser=job.parser,
+        llm_model=job.llm_model,
+        llm_base_url=job.llm_base_url,
+        timeout=max(1.0, min(remaining, 60.0)),
     )
+    return to_dict(goals)
 
 
-def run_parse(job: ParseJob) -> dict:
-    """Goal JSON (a dict) for ``job.instruction``."""
-    return to_dict(_parse(job))
+def warm_language(instruction: str, scene: dict) -> float:
+    """Parse once so that the sentence model is loaded; returns the time taken (s)."""
+    t0 = time.perf_counter()
+    try:
+        run_parse(ParseJob(SceneSpec.model_validate(scene), instruction))
+    except (Unavailable, InputError):
+        pass
+    return time.perf_counter() - t0
 
 
 def run_plan(job: PlanJob) -> dict:
-    """Plan JSON (a dict) for ``job``; the instruction, when given, is kept in it."""
+    """Plan JSON (a dict) for ``job``."""
     if job.hooks and job.method == "_crash":
         os._exit(70)
     method, time_limit = job.method, job.time_limit
@@ -131,7 +150,6 @@ def run_plan(job: PlanJob) -> dict:
         method, time_limit = "lgmcts", None
     from ..planner import plan
 
-    goals = job.goals if job.goals is not None else _parse(job.parse)  # type: ignore[arg-type]
     remaining = job.deadline - time.time()
     if remaining <= 0:
         raise DeadlinePassed("the request's deadline passed before planning started")
@@ -139,7 +157,7 @@ def run_plan(job: PlanJob) -> dict:
     limit = backstop if time_limit is None else min(time_limit, backstop)
     result = plan(
         job.scene,
-        goals,
+        job.goals,
         method=method,
         seed=job.seed,
         max_iter=job.max_iter,
@@ -154,8 +172,8 @@ def run_plan(job: PlanJob) -> dict:
         stats.pop("time_limit", None)
     else:
         stats["time_limit"] = time_limit
-    if job.parse is not None:
-        data["instruction"] = job.parse.instruction
+    if job.instruction is not None:
+        data["instruction"] = job.instruction
     return data
 
 

@@ -83,7 +83,8 @@ class HealthOut(BaseModel):
     status: str
     version: str
     workers: int
-    restarts: int = Field(..., description="How many times the worker pool was replaced.")
+    language_workers: int
+    restarts: int = Field(..., description="How many times a worker pool was replaced.")
     timeout_s: float
     max_iter: int
     max_body_bytes: int

@@ -82,11 +82,13 @@ class WorkerPool:
         declared hung, replaced and its processes killed.
     start_method : ``"forkserver"``, ``"spawn"`` or ``None`` (forkserver
         where the platform has it).
+    name : what the pool runs, for log messages.
     """
 
-    def __init__(self, *, workers: int, grace: float = 2.0, start_method: str | None = None) -> None:
+    def __init__(self, *, workers: int, grace: float = 2.0, start_method: str | None = None, name: str = "worker") -> None:
         if workers < 1:
             raise ValueError("workers must be at least 1")
+        self.name = name
         self.workers = workers
         self.grace = grace
         self._ctx = _context(start_method)
@@ -101,12 +103,28 @@ class WorkerPool:
         return ProcessPoolExecutor(max_workers=self.workers, mp_context=self._ctx, initializer=jobs.worker_init)
 
     def start(self, *, warm: bool = True) -> None:
-        """Create the executor; with ``warm``, start every worker now (blocks)."""
+        """Create the executor; with ``warm``, start every worker now (blocks).
+
+        Without ``warm`` no process starts before the first job.
+        """
         self._executor = self._new_executor()
         if warm:
             futures = [self._executor.submit(jobs.warm_up, 0.2) for _ in range(self.workers)]
             for f in futures:
                 f.result(timeout=120)
+
+    def submit_background(self, fn: Callable[..., Any], *args: Any) -> Future:
+        """Submit ``fn(*args)`` without awaiting it (warm-up work); failures are logged."""
+        if self._executor is None:
+            raise RuntimeError("the worker pool is not started")
+        future = self._executor.submit(fn, *args)
+
+        def report(f: Future) -> None:
+            if not f.cancelled() and f.exception() is not None:
+                log.warning("%s pool: background job failed: %s", self.name, f.exception())
+
+        future.add_done_callback(report)
+        return future
 
     def close(self, *, timeout: float = 3.0) -> None:
         """Stop every worker; jobs still running after ``timeout`` seconds are killed."""
@@ -133,7 +151,7 @@ class WorkerPool:
         self._executor = self._new_executor()
         self._generation += 1
         self.restarts += 1
-        log.warning("worker pool replaced (%s); %d replacement(s) so far", why, self.restarts)
+        log.warning("%s pool replaced (%s); %d replacement(s) so far", self.name, why, self.restarts)
         _kill(old)
 
     # ------------------------------------------------------------ running

@@ -66,10 +66,12 @@ def stop_server(proc: subprocess.Popen) -> None:
 
 @pytest.fixture(scope="session")
 def server(tmp_path_factory: pytest.TempPathFactory) -> Server:
-    """Two workers, test hooks on, a 10 s timeout, 1 s grace and a 256 KiB body limit."""
+    """Two planning workers, one language worker loading its model at once, test
+    hooks on, a 60 s timeout (tests ask for less per request), 1 s grace and a
+    256 KiB body limit."""
     log = tmp_path_factory.mktemp("service") / "server.log"
     proc, url = start_server(
-        "--workers", "2", "--timeout", "10", "--grace", "1", "--max-body", str(MAX_BODY), "--max-iter", "5000", log=log
+        "--workers", "2", "--preload-language", "--timeout", "60", "--grace", "1", "--max-body", str(MAX_BODY), "--max-iter", "5000", log=log
     )
     try:
         yield Server(url=url, pid=proc.pid, log=log)

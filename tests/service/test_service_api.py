@@ -42,8 +42,8 @@ def test_healthz_reports_limits(client):
     r = client.get("/healthz")
     assert r.status_code == 200
     h = r.json()
-    assert h["status"] == "ok" and h["workers"] == 2
-    assert h["max_body_bytes"] == MAX_BODY and h["timeout_s"] == 10.0 and h["max_iter"] == 5000
+    assert h["status"] == "ok" and h["workers"] == 2 and h["language_workers"] == 1
+    assert h["max_body_bytes"] == MAX_BODY and h["timeout_s"] == 60.0 and h["max_iter"] == 5000
 
 
 def test_plan_is_valid_and_matches_the_library(client):
@@ -81,27 +81,6 @@ def test_check_accepts_a_plan_and_rejects_an_illegal_one(client):
     assert v["valid"] is False and any("not clear" in x for x in v["reasons"])
 
 
-def test_parse_answers_goals_or_says_the_parser_is_missing(client):
-    r = client.post("/parse", json={"scene": SCENE, "instruction": "put all blocks in a circle"})
-    if r.status_code == 501:
-        assert "not installed" in r.json()["detail"]
-        return
-    assert r.status_code == 200, r.text
-    goals = lgmcts.formats.parse_goals(r.json())
-    assert goals.goals
-
-
-def test_plan_from_an_instruction(client):
-    body = {"scene": SCENE, "instruction": "put all blocks in a circle"}
-    r = client.post("/plan", json=body)
-    if r.status_code == 501:
-        pytest.skip("language parser not installed yet")
-    assert r.status_code == 200, r.text
-    plan = r.json()
-    assert plan["instruction"] == body["instruction"]
-    assert lgmcts.check(SCENE, plan["goals"], plan).valid == plan["solved"]
-
-
 def test_viewer_page_and_api_docs(client):
     page = client.get("/")
     assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
@@ -111,13 +90,6 @@ def test_viewer_page_and_api_docs(client):
     assert {"/plan", "/parse", "/check", "/healthz"} <= set(spec["paths"])
     # The test-only methods stay out of the public description.
     assert "_crash" not in json.dumps(spec) and "_sleep" not in json.dumps(spec)
-
-
-def test_main_process_never_loads_torch(client, server):
-    _plan(client)
-    client.post("/parse", json={"scene": SCENE, "instruction": "put all blocks in a line"})
-    maps = Path(f"/proc/{server.pid}/maps").read_text()
-    assert "torch" not in maps
 
 
 # ---------------------------------------------------------------- bad input
