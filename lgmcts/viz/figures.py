@@ -757,7 +757,9 @@ def write_plan_figures(
     img = render_state(ctx, 0)
     frames.append(img)
     written.append(_save_png(img, out / "initial.png", options.dpi))
-    for s in range(1, n + 1):
+    from ..progress import progress
+
+    for s in progress(range(1, n + 1), desc="drawing steps"):
         img = render_state(ctx, s)
         frames.append(img)
         written.append(_save_png(img, out / f"step_{step_name(s, n)}.png", options.dpi))
