@@ -48,3 +48,33 @@ def test_instruction_defaults_to_the_plans_own():
     plan["instruction"] = "stored command"
     assert viewer_data(SCENE, plan)["instruction"] == "stored command"
     assert "stored command" in render_html(SCENE, plan)
+
+
+def test_viz_imports_no_plotting_library_until_drawing():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, lgmcts, lgmcts.viz, lgmcts.progress\n"
+        "from lgmcts.viz import render_html\n"
+        f"render_html({str(SCENE)!r}, {str(PLAN)!r})\n"
+        "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'\n"
+        "import lgmcts.planner, lgmcts.validate\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+
+
+def test_core_does_not_import_viz():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, lgmcts\n"
+        f"s = lgmcts.load_scene({str(SCENE)!r})\n"
+        "lgmcts.plan(s, lgmcts.load_plan(" + repr(str(PLAN)) + ").goals, seed=0)\n"
+        "bad = [m for m in sys.modules if m.startswith('lgmcts.viz') or m == 'matplotlib']\n"
+        "assert not bad, bad\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
