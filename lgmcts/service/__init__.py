@@ -1,12 +1,37 @@
 """The planning service: an HTTP API over the planner (``lgmcts serve``).
 
 ``create_app(ServiceOptions(...))`` builds the FastAPI application; run it
-with uvicorn. Planning, parsing and checking run in a process pool
+with uvicorn. Planning, parsing and checking run in process pools
 (:class:`WorkerPool`), so the event loop never plans and a crashing planner
 costs one request, not the service. See ``docs/service.md``.
+
+The names below load on first use, so that ``lgmcts`` commands other than
+``serve`` never import FastAPI.
 """
 
-from .app import ServiceOptions, create_app
-from .pool import JobTimeout, WorkerCrashed, WorkerPool
+from __future__ import annotations
 
-__all__ = ["ServiceOptions", "create_app", "WorkerPool", "JobTimeout", "WorkerCrashed"]
+from importlib import import_module
+from typing import Any
+
+__all__ = ["ServiceOptions", "create_app", "WorkerPool", "JobTimeout", "WorkerCrashed", "LoadReport", "fire"]
+
+_WHERE = {
+    "ServiceOptions": ".app",
+    "create_app": ".app",
+    "WorkerPool": ".pool",
+    "JobTimeout": ".pool",
+    "WorkerCrashed": ".pool",
+    "LoadReport": ".load",
+    "fire": ".load",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(import_module(_WHERE[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

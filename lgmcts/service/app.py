@@ -36,21 +36,13 @@ from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
 from .viewer import page
 
-__all__ = ["ServiceOptions", "create_app", "TEST_HOOKS_ENV", "default_workers"]
+__all__ = ["ServiceOptions", "create_app", "options_from_env", "validation_message", "BodyLimit", "TEST_HOOKS_ENV"]
 
 log = logging.getLogger("lgmcts.service")
 
 #: Environment variable that enables the test-only planner methods
 #: (:data:`lgmcts.service.jobs.HOOK_METHODS`). Never set it in production.
 TEST_HOOKS_ENV = "LGMCTS_SERVICE_TEST_HOOKS"
-
-
-def default_workers() -> int:
-    """One worker per CPU this process may use."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - not Linux
-        return max(1, os.cpu_count() or 1)
 
 
 @dataclass(frozen=True)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+import os
 import socket
 
 import typer
@@ -30,9 +31,19 @@ def _check_port(host: str, port: int) -> None:
             fail(f"cannot listen on {host}:{port}: {exc.strerror}")
 
 
+def default_workers() -> int:
+    """One planning worker per CPU this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
 def register(app: typer.Typer) -> None:
-    """Add the ``serve`` command to the ``lgmcts`` command line."""
-    from .app import default_workers
+    """Add the ``serve`` command to the ``lgmcts`` command line.
+
+    Nothing heavy is imported here: FastAPI and uvicorn load when ``serve`` runs.
+    """
 
     @app.command()
     def serve(
