@@ -52,8 +52,8 @@ def execute(
 def observe(
     scene: Path = typer.Argument(..., help="Scene JSON file (the simulator's ground truth)."),
     output: Optional[str] = typer.Option(None, "-o", "--output", help="Write the observed scene here (default stdout)."),
-    width: int = typer.Option(800, help="Image width (pixels)."),
-    height: int = typer.Option(600, help="Image height (pixels)."),
+    width: int = typer.Option(640, help="Image width (pixels)."),
+    height: int = typer.Option(480, help="Image height (pixels)."),
 ) -> None:
     """Render SCENE from a camera above the table and write the observed scene
     (objects as point clouds). The footprint IoU against SCENE goes to stderr."""

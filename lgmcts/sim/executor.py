@@ -80,7 +80,7 @@ class ExecOptions:
     approach_speed: float = 0.08
     overshoot: float = 0.02
     settle_min: float = 0.06
-    settle_max: float = 0.6
+    settle_max: float = 2.0
     settle_speed: float = 0.003
     max_tilt_deg: float = 15.0
     place_tol: float = 0.01
@@ -423,6 +423,10 @@ def _run(
             continue
         targets[k] = (to, TABLE if on is None else on)
     poses, sup = ex.state()
+    moving = physics.speeds(sim, ex.data)
+    if moving.max(initial=0.0) > 10 * opts.settle_speed:
+        k = int(moving.argmax())
+        reasons.append(f"object {sc.ids[k]} is still moving ({moving[k]:.3f} m/s) after settling")
     tilt = np.degrees(physics.tilts(sim, ex.data))
     bottom = ex.data.xpos[sim.body][:, 2] - sim.heights / 2
     xmin, xmax, ymin, ymax = sc.bounds

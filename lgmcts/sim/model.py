@@ -26,7 +26,7 @@ import numpy as np
 from ..formats import SceneSpec
 from ..scene import TABLE, Scene
 
-__all__ = ["ModelOptions", "SimModel", "build_model", "yaw_quat", "GRIPPER", "OVERHEAD_CAMERA", "VIEW_CAMERA"]
+__all__ = ["ModelOptions", "SimModel", "build_model", "yaw_quat", "look_at", "GRIPPER", "SIDE_CAMERA", "OVERHEAD_CAMERA", "VIEW_CAMERA"]
 
 #: Name of the mocap body that plays the suction gripper.
 GRIPPER = "gripper"
@@ -34,6 +34,8 @@ GRIPPER = "gripper"
 OVERHEAD_CAMERA = "overhead"
 #: Name of the angled camera used for videos.
 VIEW_CAMERA = "view"
+#: Prefix of the four angled perception cameras (``side0`` ... ``side3``).
+SIDE_CAMERA = "side"
 
 _COLOR_RGBA = {
     "red": (0.85, 0.15, 0.15),
@@ -86,6 +88,21 @@ class ModelOptions:
 def yaw_quat(theta: float) -> np.ndarray:
     """Unit quaternion ``(w, x, y, z)`` of a rotation by ``theta`` (rad) about +z."""
     return np.array([math.cos(theta / 2), 0.0, 0.0, math.sin(theta / 2)])
+
+
+def look_at(eye: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Quaternion ``(w, x, y, z)`` of a MuJoCo camera at ``eye`` looking at
+    ``target`` with the image's up direction towards +z (m)."""
+    back = np.asarray(eye, dtype=float) - np.asarray(target, dtype=float)
+    back /= np.linalg.norm(back)
+    right = np.cross([0.0, 0.0, 1.0], back)
+    if np.linalg.norm(right) < 1e-9:  # looking straight down: image up is +y
+        right = np.array([1.0, 0.0, 0.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(back, right)
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, np.column_stack([right, up, back]).ravel())
+    return quat
 
 
 def _rgba(color: str, k: int) -> list[float]:
@@ -216,15 +233,18 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     t = math.tan(math.radians(fovy) / 2)
     height = 1.08 * max(hy / t, hx / (t * aspect)) + float(np.max(sc.heights, initial=0.0))
     wb.add_camera(name=OVERHEAD_CAMERA, pos=[cx, cy, height], quat=[1.0, 0.0, 0.0, 0.0], fovy=fovy)
-    # Angled camera from the front, looking at the table centre.
-    tilt = math.radians(40.0)
+    # Angled camera from the front, looking at the table centre (videos).
     dist = 1.25 * max(hx * 1.6, hy * 2.2)
-    wb.add_camera(
-        name=VIEW_CAMERA,
-        pos=[cx, cy - dist * math.sin(tilt), dist * math.cos(tilt)],
-        quat=[math.cos(tilt / 2), math.sin(tilt / 2), 0.0, 0.0],
-        fovy=fovy,
-    )
+    elev = math.radians(50.0)
+    eye = np.array([cx, cy - dist * math.cos(elev), dist * math.sin(elev)])
+    wb.add_camera(name=VIEW_CAMERA, pos=eye.tolist(), quat=look_at(eye, np.array([cx, cy, 0.0])).tolist(), fovy=fovy)
+    # Four angled cameras around the table for perception: they see the
+    # sides of objects that the overhead camera sees only from the top.
+    side = 1.1 * math.hypot(hx, hy) / t
+    for j, az in enumerate((-90.0, 0.0, 90.0, 180.0)):
+        a = math.radians(az)
+        eye = np.array([cx + side * math.cos(elev) * math.cos(a), cy + side * math.cos(elev) * math.sin(a), side * math.sin(elev)])
+        wb.add_camera(name=f"{SIDE_CAMERA}{j}", pos=eye.tolist(), quat=look_at(eye, np.array([cx, cy, 0.0])).tolist(), fovy=fovy)
     grip = wb.add_body(name=GRIPPER, mocap=True, pos=[cx, cy, height * 0.5])
     grip.add_geom(
         name="gripper_cup",

@@ -38,29 +38,31 @@ import shapely  # noqa: E402
 from ..errors import InputError  # noqa: E402
 from ..formats import SceneSpec, load_scene, parse_scene  # noqa: E402
 from ..scene import TABLE, Scene  # noqa: E402
-from .model import OVERHEAD_CAMERA, VIEW_CAMERA, SimModel, build_model  # noqa: E402
+from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model  # noqa: E402
 
 __all__ = ["CameraOptions", "Frames", "render_frames", "backproject", "observe", "footprint_iou", "VideoRecorder"]
 
 
 @dataclass(frozen=True)
 class CameraOptions:
-    """Options of the perception camera.
+    """Options of the perception cameras.
 
     Attributes
     ----------
-    width, height : image size (pixels); the footprint error shrinks with
-        the pixel size, about 1.1 mm per pixel at 800 x 600 on the example table.
-    camera : name of the model camera to render from.
+    width, height : image size (pixels); about 1.5 mm per pixel on the
+        example table at 640 x 480 from overhead.
+    cameras : names of the model cameras whose clouds are fused; the overhead
+        camera alone cannot see an object hidden under a larger one, the four
+        angled ``side`` cameras see their sides.
     max_points : most points kept per object in the observed scene.
-    min_pixels : objects seen in fewer pixels are left out of the observed
-        scene.
+    min_pixels : objects seen in fewer pixels (over all cameras) are left out
+        of the observed scene.
     seed : seed of the point subsampling.
     """
 
-    width: int = 800
-    height: int = 600
-    camera: str = OVERHEAD_CAMERA
+    width: int = 640
+    height: int = 480
+    cameras: tuple[str, ...] = (OVERHEAD_CAMERA, *(f"{SIDE_CAMERA}{j}" for j in range(4)))
     max_points: int = 400
     min_pixels: int = 12
     seed: int = 0
@@ -116,40 +118,65 @@ def backproject(depth: np.ndarray, cam_pos: np.ndarray, cam_mat: np.ndarray, fov
     return cam @ np.asarray(cam_mat).reshape(3, 3).T + np.asarray(cam_pos)
 
 
-def render_frames(sim: SimModel, data: mujoco.MjData, *, options: CameraOptions | None = None) -> Frames:
-    """Render RGB, depth and segmentation of ``data`` and back-project the depth."""
-    opts = options or CameraOptions()
+def render_frames(
+    sim: SimModel,
+    data: mujoco.MjData,
+    *,
+    camera: str = OVERHEAD_CAMERA,
+    width: int = 640,
+    height: int = 480,
+    renderer: mujoco.Renderer | None = None,
+) -> Frames:
+    """Render RGB, depth and segmentation of ``data`` from ``camera`` and
+    back-project the depth into table-frame points.
+
+    ``renderer`` may be an open renderer of ``sim.model`` of the same size
+    (reused across cameras); otherwise one is opened and closed here.
+    """
     model = sim.model
-    cam = model.camera(opts.camera).id
+    cam = model.camera(camera).id
     mujoco.mj_forward(model, data)
-    with _open_renderer(model, opts.height, opts.width) as r:
-        r.update_scene(data, camera=cam)
-        rgb = r.render().copy()
-        r.enable_depth_rendering()
-        r.update_scene(data, camera=cam)
-        depth = r.render().astype(float)
-        r.disable_depth_rendering()
-        r.enable_segmentation_rendering()
-        r.update_scene(data, camera=cam)
-        seg = r.render()
-        r.disable_segmentation_rendering()
+    if renderer is None:
+        with _open_renderer(model, height, width) as r:
+            return render_frames(sim, data, camera=camera, width=width, height=height, renderer=r)
+    r = renderer
+    r.update_scene(data, camera=cam)
+    rgb = r.render().copy()
+    r.enable_depth_rendering()
+    r.update_scene(data, camera=cam)
+    depth = r.render().astype(float)
+    r.enable_segmentation_rendering()
+    r.update_scene(data, camera=cam)
+    seg = r.render().copy()
+    r.disable_segmentation_rendering()
     geom = np.where(seg[..., 1] == int(mujoco.mjtObj.mjOBJ_GEOM), seg[..., 0], -1)
     pts = backproject(depth, data.cam_xpos[cam], data.cam_xmat[cam], float(model.cam_fovy[cam]))
     return Frames(rgb=rgb, depth=depth, segmentation=geom, points=pts)
 
 
 def _cloud(pts: np.ndarray, bottom: float, max_points: int, rng: np.random.Generator) -> np.ndarray:
-    """Subsample a visible cloud and close it down to ``bottom`` (m)."""
-    hull = shapely.MultiPoint(pts[:, :2]).convex_hull
-    ring = np.asarray(hull.exterior.coords)[:-1] if hull.geom_type == "Polygon" else pts[:, :2]
-    # Keep the cloud points that are hull vertices, so the footprint survives
-    # subsampling exactly.
-    on_hull = np.flatnonzero(np.isin(pts[:, 0], ring[:, 0]) & np.isin(pts[:, 1], ring[:, 1]))
-    budget = max(max_points - 2 * len(on_hull), 0)
-    rest = np.setdiff1d(np.arange(len(pts)), on_hull)
+    """Subsample a visible cloud and close it down to ``bottom`` (m).
+
+    The outline (convex hull of the xy, simplified to at most a quarter of
+    ``max_points`` vertices, each an actual cloud point) is kept at its own
+    height and repeated at ``bottom``; the rest of the budget goes to a random
+    sample of the other points.
+    """
+    xy = pts[:, :2]
+    hull = shapely.MultiPoint(xy).convex_hull
+    ring = np.asarray(hull.exterior.coords)[:-1] if hull.geom_type == "Polygon" else xy
+    tol = 2e-4
+    while len(ring) > max_points // 4:
+        ring = np.asarray(shapely.Polygon(ring).simplify(tol).exterior.coords)[:-1]
+        tol *= 2
+    # Douglas-Peucker keeps original vertices, so each is a cloud point.
+    d = np.linalg.norm(xy[None, :, :] - ring[:, None, :], axis=2)
+    outline = np.unique(d.argmin(axis=1))
+    budget = max(max_points - 2 * len(outline), 0)
+    rest = np.setdiff1d(np.arange(len(pts)), outline)
     extra = rng.choice(rest, size=min(budget, len(rest)), replace=False) if len(rest) else rest
-    top = pts[np.concatenate([on_hull, np.sort(extra)])]
-    base = pts[on_hull].copy()
+    top = pts[np.concatenate([outline, np.sort(extra)])]
+    base = pts[outline].copy()
     base[:, 2] = bottom
     return np.concatenate([top, base])
 
@@ -176,13 +203,20 @@ def observe(scene: SceneSpec | dict | str | Path, *, options: CameraOptions | No
     sc = Scene.from_spec(spec)
     sim = build_model(sc)
     data = mujoco.MjData(sim.model)
-    frames = render_frames(sim, data, options=opts)
+    clouds: dict[int, list[np.ndarray]] = {}
+    with _open_renderer(sim.model, opts.height, opts.width) as r:
+        for name in opts.cameras:
+            try:
+                sim.model.camera(name)
+            except KeyError:
+                raise InputError(f"unknown camera '{name}'") from None
+            frames = render_frames(sim, data, camera=name, width=opts.width, height=opts.height, renderer=r)
+            for k in range(sc.n):
+                mask = frames.segmentation == sim.geom[k]
+                if mask.any():
+                    clouds.setdefault(k, []).append(frames.points[mask])
     rng = np.random.default_rng(opts.seed)
-    seen: dict[int, np.ndarray] = {}
-    for k in range(sc.n):
-        mask = frames.segmentation == sim.geom[k]
-        if int(mask.sum()) >= opts.min_pixels:
-            seen[k] = frames.points[mask]
+    seen = {k: np.concatenate(c) for k, c in clouds.items() if sum(len(x) for x in c) >= opts.min_pixels}
     if not seen:
         raise InputError("the camera sees no object")
     state = sc.initial
