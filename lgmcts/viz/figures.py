@@ -199,11 +199,14 @@ def _draw_object(ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, 
 
 
 def _label_positions(ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], fontsize: float) -> dict[int, tuple[float, float, str, str]]:
-    """Place each label next to its object, avoiding other labels and footprints.
+    """Place each label next to its object, keeping clear of labels and objects.
 
-    A label is tried below, above, right and left of its object's footprint; the
-    first spot that overlaps no placed label and no other footprint wins.
-    Returns ``index -> (x, y, ha, va)``.
+    Spots around the object's bounding box (below, above, right, left, the four
+    diagonals, then the same a little further out) are scored by how much of
+    the label would cover labels already placed, other objects, or leave the
+    axes; the cheapest wins, earlier spots breaking ties. Text size is
+    estimated from the font size, which is close enough for a greedy choice.
+    Returns ``index -> (x, y, ha, va)`` in data coordinates (m).
     """
     fig = ax.figure
     bbox = ax.get_position()
@@ -211,46 +214,61 @@ def _label_positions(ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], f
     w_in = bbox.width * fig.get_figwidth()
     m_per_pt = (xl[1] - xl[0]) / (w_in * 72.0)
     ch_w, ch_h = 0.56 * fontsize * m_per_pt, 1.3 * fontsize * m_per_pt
-    boxes: list[tuple[float, float, float, float]] = []
-    fps = {k: _footprint(ctx, state, k) for k in labels}
-    foot_boxes = [(v[:, 0].min(), v[:, 1].min(), v[:, 0].max(), v[:, 1].max()) for v in (_footprint(ctx, state, j) for j in range(ctx.scene.n))]
+    placed = np.zeros((0, 4))
+    verts = [_footprint(ctx, state, j) for j in range(ctx.scene.n)]
+    feet = np.array([(v[:, 0].min(), v[:, 1].min(), v[:, 0].max(), v[:, 1].max()) for v in verts])
     out = {}
 
-    def hits(b: tuple[float, float, float, float], own: tuple[float, float, float, float]) -> int:
-        n = 0
-        for o in boxes:
-            if b[0] < o[2] and b[2] > o[0] and b[1] < o[3] and b[3] > o[1]:
-                n += 3
-        for o in foot_boxes:
-            if o == own:
-                continue
-            if b[0] < o[2] and b[2] > o[0] and b[1] < o[3] and b[3] > o[1]:
-                n += 1
+    def overlap(b: np.ndarray, others: np.ndarray) -> float:
+        if not len(others):
+            return 0.0
+        w = np.clip(np.minimum(b[2], others[:, 2]) - np.maximum(b[0], others[:, 0]), 0, None)
+        h = np.clip(np.minimum(b[3], others[:, 3]) - np.maximum(b[1], others[:, 1]), 0, None)
+        return float((w * h).sum())
+
+    def cost(b: np.ndarray, k: int) -> float:
+        area = (b[2] - b[0]) * (b[3] - b[1])
+        mine = [j for j in range(ctx.scene.n) if j != k and not _same_stack(state, j, k)]
+        c = 3.0 * overlap(b, placed) / area + 1.5 * overlap(b, feet[mine]) / area
         if b[0] < xl[0] or b[2] > xl[1] or b[1] < yl[0] or b[3] > yl[1]:
-            n += 5
-        return n
+            c += 5.0
+        return c
 
     order = sorted(labels, key=lambda k: (-state.poses[k, 1], state.poses[k, 0]))
     for k in order:
         lines = labels[k].split("\n")
-        tw = max(len(s) for s in lines) * ch_w
+        tw = max(len(t) for t in lines) * ch_w
         th = len(lines) * ch_h
-        v = fps[k]
-        x0, y0, x1, y1 = v[:, 0].min(), v[:, 1].min(), v[:, 0].max(), v[:, 1].max()
-        cx = (x0 + x1) / 2
-        cy = (y0 + y1) / 2
-        gap = 0.004
-        cands = [
-            ((cx - tw / 2, y0 - gap - th, cx + tw / 2, y0 - gap), (cx, y0 - gap, "center", "top")),
-            ((cx - tw / 2, y1 + gap, cx + tw / 2, y1 + gap + th), (cx, y1 + gap, "center", "bottom")),
-            ((x1 + gap, cy - th / 2, x1 + gap + tw, cy + th / 2), (x1 + gap, cy, "left", "center")),
-            ((x0 - gap - tw, cy - th / 2, x0 - gap, cy + th / 2), (x0 - gap, cy, "right", "center")),
-        ]
-        own = (x0, y0, x1, y1)
-        best = min(range(len(cands)), key=lambda j: (hits(cands[j][0], own), j))
-        boxes.append(cands[best][0])
+        x0, y0, x1, y1 = feet[k]
+        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+        cands = []
+        for gap in (0.004, 0.02):
+            cands += [
+                ((cx - tw / 2, y0 - gap - th, cx + tw / 2, y0 - gap), (cx, y0 - gap, "center", "top")),
+                ((cx - tw / 2, y1 + gap, cx + tw / 2, y1 + gap + th), (cx, y1 + gap, "center", "bottom")),
+                ((x1 + gap, cy - th / 2, x1 + gap + tw, cy + th / 2), (x1 + gap, cy, "left", "center")),
+                ((x0 - gap - tw, cy - th / 2, x0 - gap, cy + th / 2), (x0 - gap, cy, "right", "center")),
+                ((x1, y0 - gap - th, x1 + tw, y0 - gap), (x1, y0 - gap, "left", "top")),
+                ((x0 - tw, y0 - gap - th, x0, y0 - gap), (x0, y0 - gap, "right", "top")),
+                ((x1, y1 + gap, x1 + tw, y1 + gap + th), (x1, y1 + gap, "left", "bottom")),
+                ((x0 - tw, y1 + gap, x0, y1 + gap + th), (x0, y1 + gap, "right", "bottom")),
+            ]
+        scores = [cost(np.asarray(b), k) + 0.002 * j for j, (b, _) in enumerate(cands)]
+        best = int(np.argmin(scores))
+        placed = np.vstack([placed, np.asarray(cands[best][0])[None]])
         out[k] = cands[best][1]
     return out
+
+
+def _same_stack(state: State, a: int, b: int) -> bool:
+    """Whether objects ``a`` and ``b`` stand in the same stack."""
+
+    def base(i: int) -> int:
+        while state.on[i] != TABLE:
+            i = state.on[i]
+        return i
+
+    return base(a) == base(b)
 
 
 def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str] | None = None, rings: bool = False, fontsize: float = 7.0, dim: set[int] | None = None) -> None:
