@@ -115,7 +115,7 @@ def supports(sim: SimModel, data: mujoco.MjData) -> tuple[int, ...]:
     for k in range(n):
         cand = below[k]
         if not cand:
-            out.append(TABLE if z[k] > 0 else FLOOR)
+            out.append(_support_by_geometry(sim, k, z, pose))
             continue
         if len(cand) == 1:
             out.append(next(iter(cand)))
@@ -129,6 +129,19 @@ def supports(sim: SimModel, data: mujoco.MjData) -> tuple[int, ...]:
         else:
             out.append(TABLE if TABLE in cand else FLOOR)
     return tuple(out)
+
+
+def _support_by_geometry(sim: SimModel, k: int, z: np.ndarray, pose: np.ndarray, tol: float = 0.005) -> int:
+    h = sim.heights
+    bottom = z[k] - h[k] / 2
+    best, best_top = TABLE if bottom > -tol else FLOOR, -math.inf
+    for j in range(len(z)):
+        if j == k:
+            continue
+        top = z[j] + h[j] / 2
+        if abs(top - bottom) < tol and top > best_top and _contains(sim, j, pose[j], pose[k, :2]):
+            best, best_top = j, top
+    return best
 
 
 def _contains(sim: SimModel, j: int, pose: np.ndarray, xy: np.ndarray) -> bool:

@@ -94,3 +94,23 @@ def test_stack_starts_on_its_support_and_reads_back(all_shapes):
 def test_unknown_friction_cone_is_rejected(all_shapes):
     with pytest.raises(ValueError, match="friction cone"):
         build_model(all_shapes, options=ModelOptions(cone="round"))
+
+
+def test_supports_read_back_while_objects_sleep(all_shapes):
+    # Objects at rest fall asleep and then report no contacts; the read-back
+    # must still see the stack, and a covered object must still be covered.
+    sim = build_model(all_shapes)
+    ex = Executor(sim)
+    ex.step(500)
+    assert ex.data.ncon == 0  # everything sleeps
+    assert physics.supports(sim, ex.data) == Scene.from_spec(all_shapes).initial.on
+    out = ex.pick_and_place(4, np.array([0.0, 0.12, 0.0]), None, index=1)
+    assert not out.ok and "covered by object 6" in out.message
+
+
+def test_contacts_decide_support_when_awake(all_shapes):
+    sim = build_model(all_shapes, options=ModelOptions(sleep=False))
+    ex = Executor(sim)
+    ex.step(100)
+    assert ex.data.ncon > 0
+    assert physics.supports(sim, ex.data) == Scene.from_spec(all_shapes).initial.on
