@@ -489,7 +489,7 @@
     var nodes = {};
     objects.forEach(function (o) {
       var g = el(doc, "g", { class: "lgv-obj", "data-id": o.id }, gObjs);
-      el(doc, "title", {}, g).textContent = o.id + " " + (o.color ? o.color + " " : "") + o.name;
+      var tip = el(doc, "title", {}, g);
       var shadow = el(doc, "polygon", { class: "lgv-shadow", points: ptsLocal(o.id), fill: "rgba(0,0,0,0.3)" }, g);
       var body = el(doc, "g", {}, g);
       el(doc, "polygon", { class: "lgv-fill", points: ptsLocal(o.id), fill: o.paint.fill }, body);
@@ -505,7 +505,7 @@
       idText.textContent = String(o.id);
       var name = el(doc, "text", { class: "lgv-name", "text-anchor": "middle", "font-size": fs * 0.85, fill: "#333", stroke: "#fff", "stroke-width": fs * 0.25, "paint-order": "stroke" }, gLabels);
       name.textContent = o.name;
-      nodes[o.id] = { g: g, shadow: shadow, outline: outline, rings: rings, idText: idText, name: name };
+      nodes[o.id] = { g: g, tip: tip, shadow: shadow, outline: outline, rings: rings, idText: idText, name: name };
     });
 
     function level(frame, id) {
@@ -590,6 +590,8 @@
         nd.g.setAttribute("data-theta", String(p[2]));
         nd.g.setAttribute("data-on", f.on[o.id] === null || f.on[o.id] === undefined ? "" : String(f.on[o.id]));
         placeObject(o.id, p, lv);
+        nd.tip.textContent = o.id + " " + (o.color ? o.color + " " : "") + o.name + "\n(x, y, \u03b8) = (" + fmt(p[0]) + " m, " + fmt(p[1]) + " m, " + fmt(p[2]) + " rad)" +
+          (f.on[o.id] !== null && f.on[o.id] !== undefined ? "\non " + f.on[o.id] : "") + (member[o.id] ? "\ngoal: " + member[o.id].map(function (g) { return describeGoal(goals[g]); }).join("; ") : "");
         nd.outline.setAttribute("stroke", o.paint.edge);
         nd.outline.setAttribute("stroke-width", fs * 0.12);
         nd.idText.style.display = holding(f, o.id) ? "none" : "";
