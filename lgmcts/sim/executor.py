@@ -24,6 +24,7 @@ support the plan named, and every pick of a clear object.
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -234,6 +235,19 @@ class Executor:
             if stop is not None and stop():
                 return True
         return False
+
+    def snapshot(self) -> mujoco.MjData:
+        """A copy of the whole simulation, to :meth:`restore` later.
+
+        A full ``MjData`` copy rather than ``mj_getState``: the state vector
+        does not record which objects sleep, and replays from it differ in the
+        last digits when sleeping is on.
+        """
+        return copy.copy(self.data)
+
+    def restore(self, snapshot: mujoco.MjData) -> None:
+        """Return to a state taken by :meth:`snapshot` (the snapshot stays reusable)."""
+        self.data = copy.copy(snapshot)
 
     # ------------------------------------------------------------ read-back
 
