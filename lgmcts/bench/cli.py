@@ -89,9 +89,22 @@ def bench(
     rows = summarise(records)
     title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
     md = to_markdown(rows, title=title)
-    (output / "summary.md").write_text(md)
+    (output / "summary.md").write_text(md + "\n" + _provenance() + "\n")
     (output / "summary.csv").write_text(to_csv(rows))
     typer.echo(md)
+
+
+def _provenance() -> str:
+    """The command line, date and machine, for the summary file."""
+    import os
+    import platform
+    import shlex
+    import sys
+    import time
+
+    cmd = shlex.join(["lgmcts", *sys.argv[1:]])
+    return (f"Command: `{cmd}`; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
+            f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}.")
 
 
 def register(app: typer.Typer) -> None:
