@@ -183,3 +183,17 @@ def test_instruction_cannot_break_out_of_the_page(page, tmp_path):
     assert evil in page.page.inner_text(".lgv-instr")
     assert page.page.title() == "<i>t</i>"
     assert page.errors == []
+
+
+def test_empty_plan_shows_the_scene(page, tmp_path):
+    plan = {"solved": False, "actions": [], "goals": json.loads(PLAN.read_text())["goals"], "stats": {}}
+    _open(page, tmp_path, render_html(SCENE, plan))
+    pg = page.page
+    assert pg.evaluate("window.lgmctsViewer.count()") == 0
+    pg.click(".lgv-play")
+    pg.click(".lgv-next")
+    assert pg.get_attribute(".lgv", "data-step") == "0"
+    for i, p in _expected(0).items():
+        assert np.allclose(page.poses()[i], p, atol=1e-9)
+    assert "not solved" in pg.inner_text(".lgv-head")
+    assert page.errors == []
