@@ -17,6 +17,7 @@ import os
 import signal
 import time
 from dataclasses import dataclass
+from typing import Any, Callable
 
 from ..errors import InputError
 from ..formats import GoalSpec, PlanSpec, SceneSpec, to_dict
@@ -32,6 +33,7 @@ __all__ = [
     "run_plan",
     "warm_language",
     "warm_up",
+    "tracked",
     "worker_init",
     "HOOK_METHODS",
 ]
@@ -100,9 +102,39 @@ class CheckJob:
     plan: PlanSpec
 
 
-def worker_init() -> None:
-    """Initialise a worker: leave Ctrl-C to the server, which shuts workers down."""
+_slot: tuple[Any, int] | None = None
+
+
+def worker_init(slots: Any = None, counter: Any = None) -> None:
+    """Initialise a worker: leave Ctrl-C to the server, which shuts workers down.
+
+    ``slots`` (a shared integer array, one entry per worker) and ``counter``
+    (a shared integer) let :func:`tracked` publish which job each worker runs.
+    """
+    global _slot
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if slots is not None and counter is not None:
+        with counter.get_lock():
+            index = counter.value
+            counter.value += 1
+        if index < len(slots):
+            _slot = (slots, index)
+
+
+def tracked(fn: Callable[[Any], Any], job_id: int, job: Any) -> Any:
+    """Run ``fn(job)`` with ``job_id`` published in this worker's slot meanwhile.
+
+    The server reads the slots to tell a job that is really running (and may
+    hang) from one that only waits in the executor's queue.
+    """
+    if _slot is None:
+        return fn(job)
+    slots, index = _slot
+    slots[index] = job_id
+    try:
+        return fn(job)
+    finally:
+        slots[index] = 0
 
 
 def run_parse(job: ParseJob) -> dict:

@@ -23,6 +23,7 @@ runs threads.
 from __future__ import annotations
 
 import asyncio
+import itertools
 import logging
 import multiprocessing
 import time
@@ -96,11 +97,22 @@ class WorkerPool:
         self._generation = 0
         self.restarts = 0
         self._isolated: asyncio.Semaphore | None = None
+        self._slots: Any = None
+        self._job_ids = itertools.count(1)
 
     # ------------------------------------------------------------ lifecycle
 
     def _new_executor(self) -> ProcessPoolExecutor:
-        return ProcessPoolExecutor(max_workers=self.workers, mp_context=self._ctx, initializer=jobs.worker_init)
+        # Each worker publishes the id of the job it runs in its slot, so a
+        # job past its deadline can be told running (maybe hung) from queued.
+        self._slots = self._ctx.Array("q", self.workers, lock=False)
+        counter = self._ctx.Value("i", 0)
+        return ProcessPoolExecutor(
+            max_workers=self.workers,
+            mp_context=self._ctx,
+            initializer=jobs.worker_init,
+            initargs=(self._slots, counter),
+        )
 
     def start(self, *, warm: bool = True) -> None:
         """Create the executor; with ``warm``, start every worker now (blocks).
@@ -173,30 +185,41 @@ class WorkerPool:
         """
         if self._executor is None:
             raise RuntimeError("the worker pool is not started")
-        generation, executor = self._generation, self._executor
+        generation, executor, job_id = self._generation, self._executor, next(self._job_ids)
         try:
-            future = executor.submit(fn, job)
+            future = executor.submit(jobs.tracked, fn, job_id, job)
         except (BrokenProcessPool, RuntimeError):
             # Broken or shut down between two requests: replace it and go on.
             self._renew(generation, "broken before submission")
-            generation, future = self._generation, self._executor.submit(fn, job)  # type: ignore[union-attr]
+            generation = self._generation
+            future = self._executor.submit(jobs.tracked, fn, job_id, job)  # type: ignore[union-attr]
+        slots = self._slots
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), timeout=deadline - time.time())
         except asyncio.TimeoutError:
-            self._watch(future, generation)
+            self._watch(future, generation, job_id, slots)
             raise JobTimeout() from None
         except BrokenProcessPool:
             self._renew(generation, "a worker died")
         return await self._run_alone(fn, job, deadline=deadline)
 
-    def _watch(self, future: Future, generation: int) -> None:
-        """After ``grace`` s, replace the pool if ``future`` is still running."""
+    def _watch(self, future: Future, generation: int, job_id: int, slots: Any) -> None:
+        """Every ``grace`` s, replace the pool if job ``job_id`` is still running.
+
+        A job that only waits in the executor's queue is left alone: it ends
+        at once when a worker takes it, its deadline being past.
+        """
+        loop = asyncio.get_running_loop()
 
         def check() -> None:
-            if not future.done():
-                self._renew(generation, "a job ran past its deadline")
+            if future.done() or generation != self._generation:
+                return
+            if job_id in list(slots):
+                self._renew(generation, f"a job ran {self.grace:g} s past its deadline")
+            else:
+                loop.call_later(self.grace, check)
 
-        asyncio.get_running_loop().call_later(self.grace, check)
+        loop.call_later(self.grace, check)
 
     async def _run_alone(self, fn: Callable[[Any], Any], job: Any, *, deadline: float) -> Any:
         """Run one job in a single-use process, to tell a culprit from a bystander."""

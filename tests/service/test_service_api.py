@@ -257,3 +257,22 @@ def test_crash_is_500_for_that_request_only(server):
         assert _plan(clients[1]).status_code == 200
         for c in clients:
             c.close()
+
+
+def test_queued_request_past_its_deadline_replaces_nothing(server):
+    """Both workers busy: a request that times out while queued is a 504, and
+    the busy workers (not hung, only slow) keep their jobs."""
+    clients = [httpx.Client(base_url=server.url, timeout=30.0) for _ in range(3)]
+    try:
+        before = clients[0].get("/healthz").json()["restarts"]
+        with ThreadPoolExecutor(2) as ex:
+            busy = [ex.submit(_plan, c, method="_sleep", time_limit=2.5) for c in clients[:2]]
+            time.sleep(0.4)
+            queued = _plan(clients[2], timeout=0.3)
+            assert queued.status_code == 504
+            assert all(f.result().status_code == 200 for f in busy)
+        time.sleep(1.2)  # past the grace after the queued job's deadline
+        assert clients[0].get("/healthz").json()["restarts"] == before
+    finally:
+        for c in clients:
+            c.close()
