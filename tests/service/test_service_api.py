@@ -126,20 +126,19 @@ def test_bad_scene_gets_the_cli_message(client, scene):
 
 
 def test_bad_scene_message_equals_the_command_line(client, tmp_path):
-    import subprocess
-    import sys
+    from typer.testing import CliRunner
+
+    from lgmcts.cli import app
 
     scene = _bad_scene()
     path = tmp_path / "scene.json"
     path.write_text(json.dumps(scene))
     goals = tmp_path / "goals.json"
     goals.write_text(json.dumps(GOALS))
-    cli = subprocess.run(
-        [sys.executable, "-m", "lgmcts", "check", str(path), str(goals), str(goals)], capture_output=True, text=True
-    )
-    assert cli.returncode == 2
+    cli = CliRunner().invoke(app, ["check", str(path), str(goals), str(goals)])
+    assert cli.exit_code == 2
     r = client.post("/check", json={"scene": scene, "goals": GOALS, "plan": {"solved": False, "actions": []}})
-    assert r.status_code == 422 and r.json()["detail"] == cli.stderr.strip()
+    assert r.status_code == 422 and r.json()["detail"] == cli.output.strip()
 
 
 @pytest.mark.parametrize(

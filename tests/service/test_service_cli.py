@@ -3,17 +3,12 @@
 from __future__ import annotations
 
 import socket
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 import typer
 from typer.testing import CliRunner
 
 from lgmcts.service.cli import register
-
-ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")
@@ -24,12 +19,12 @@ def serve_app() -> typer.Typer:
 
 
 def test_serve_is_a_command_of_lgmcts():
-    r = subprocess.run(
-        [sys.executable, "-m", "lgmcts", "serve", "--help"], cwd=ROOT, capture_output=True, text=True, timeout=120
-    )
-    assert r.returncode == 0, r.stderr
+    from lgmcts.cli import app
+
+    r = CliRunner().invoke(app, ["serve", "--help"])
+    assert r.exit_code == 0, r.output
     for option in ("--host", "--port", "--workers", "--max-body", "--timeout"):
-        assert option in r.stdout
+        assert option in r.output
 
 
 @pytest.mark.parametrize(
