@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import InputError
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..scene import Scene
+from .polish import polish
 from .search import SearchOptions, SearchResult, greedy, mcts
 from .step import Problem, StepOptions
 
@@ -127,7 +128,12 @@ def plan(
     opts = options or SearchOptions()
     opts = replace(opts, max_iter=max_iter, time_limit=time_limit, anytime=anytime or opts.anytime)
     rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
     res, extra = METHODS[method](problem, rng, opts)
+    found = len(res.actions)
+    if res.solved and opts.polish:
+        res = replace(res, actions=tuple(polish(problem, res.actions)))
+    res = replace(res, time_s=time.perf_counter() - t0)
     stats: dict[str, Any] = {
         "method": method,
         "seed": seed,
@@ -138,6 +144,8 @@ def plan(
         "relocations": sum(a.purpose != "goal" for a in res.actions),
         "max_iter": max_iter,
     }
+    if res.solved and found != len(res.actions):
+        stats["actions_before_polish"] = found
     if time_limit is not None:
         stats["time_limit"] = time_limit
     if res.solutions > 1:

@@ -44,6 +44,8 @@ class SearchOptions:
         goal ends the search. ``False`` gives the paper's one-step simulation.
     anytime : keep searching after the first solution, within the budget,
         for one with fewer actions.
+    polish : drop the moves a found plan does not need (see
+        :mod:`lgmcts.planner.polish`); applied by every method.
     step : options of the simulation step.
     """
 
@@ -55,6 +57,7 @@ class SearchOptions:
     rollout: bool = True
     max_depth: int | None = None
     anytime: bool = False
+    polish: bool = True
     step: StepOptions = field(default_factory=StepOptions)
 
 

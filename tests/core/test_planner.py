@@ -1,0 +1,128 @@
+"""The planner on hard crafted cases, its baselines, determinism and budgets."""
+
+from __future__ import annotations
+
+import pytest
+
+from core_helpers import box, can, goals, scene
+from lgmcts import InputError, check, plan
+from lgmcts.casegen import labbe_case, random_case
+from lgmcts.planner import SearchOptions
+
+
+def _solved(sc, gs, **kw):
+    p = plan(sc, gs, **kw)
+    v = check(sc, gs, p)
+    assert p.solved, p.stats
+    assert v.valid, v.reasons
+    return p
+
+
+def test_example(example_scene, example_goals):
+    p = _solved(str(example_scene), str(example_goals), seed=0)
+    assert p.stats["iterations"] >= 1 and p.goals is not None
+
+
+def test_targets_under_stacks():
+    # Goal objects 1 and 2 are buried under two-high stacks of non-goal objects.
+    sc = scene(
+        box(1, -0.2, 0.0), box(5, -0.2, 0.0, on=1), box(6, -0.2, 0.0, on=5),
+        box(2, 0.2, 0.0), box(7, 0.2, 0.0, on=2),
+        box(3, 0.0, 0.2), box(4, 0.0, -0.2),
+    )
+    gs = goals({"pattern": "tower", "objects": [3, 1, 2]}, {"pattern": "left", "objects": [4], "anchor": 3})
+    p = _solved(sc, gs, seed=1)
+    # Every blocker must leave before its target can be picked; the validator
+    # has checked the order, here we check that nothing else was disturbed.
+    assert {6, 5, 7} <= {a.object for a in p.actions}
+    assert len(p.actions) <= 6
+
+
+def test_tower_with_blocked_base_and_blocked_top():
+    sc = scene(box(1, -0.2, 0.0), box(9, -0.2, 0.0, on=1), box(2, 0.2, 0.0), box(8, 0.2, 0.0, on=2), box(3, 0.0, 0.2))
+    gs = goals({"pattern": "tower", "objects": [1, 2, 3]})
+    p = _solved(sc, gs, seed=0)
+    assert [a.object for a in p.actions if a.purpose == "goal"][-2:] == [2, 3]
+
+
+def test_goal_region_occupied_by_clutter_in_tight_workspace():
+    # A 0.3 m x 0.2 m table crowded with clutter: the circle can only go where clutter stands.
+    objs = [can(1, -0.12, -0.07, r=0.018), can(2, 0.12, -0.07, r=0.018), can(3, -0.12, 0.07, r=0.018),
+            can(4, 0.12, 0.07, r=0.018)]
+    objs += [box(10 + k, x, y, size=0.035) for k, (x, y) in enumerate([(-0.04, 0.0), (0.04, 0.0), (0.0, 0.06), (0.0, -0.06)])]
+    sc = scene(*objs, x=(-0.15, 0.15), y=(-0.1, 0.1))
+    gs = goals({"pattern": "circle", "objects": [1, 2, 3, 4]})
+    p = _solved(sc, gs, seed=0)
+    assert any(a.purpose == "relocate" for a in p.actions)
+
+
+def test_object_shared_by_two_goals():
+    sc = scene(*[box(i, -0.3 + 0.12 * i, -0.2) for i in range(1, 6)], box(6, 0.1, 0.2))
+    gs = goals({"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "line", "objects": [3, 4, 5]},
+               {"pattern": "behind", "objects": [6], "anchor": 3})
+    _solved(sc, gs, seed=2)
+
+
+def test_relation_and_rectangle_composition():
+    sc = scene(*[box(i, -0.3 + 0.1 * i, 0.25 if i % 2 else -0.25) for i in range(1, 7)], can(7, 0.0, 0.0))
+    gs = goals({"pattern": "rectangle", "objects": [1, 2, 3, 4, 5]}, {"pattern": "right_front", "objects": [7], "anchor": 6})
+    _solved(sc, gs, seed=3)
+
+
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_methods_on_random_cases(method):
+    for seed in (3, 11):
+        c = random_case(seed)
+        _solved(c.scene, c.goals, method=method, seed=seed)
+
+
+def test_pmcts_on_pose_goals():
+    c = labbe_case(12, seed=4)
+    p = _solved(c.scene, c.goals, method="pmcts", seed=0)
+    assert len(p.actions) >= c.lower_bound
+
+
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_same_seed_same_plan(method):
+    c = random_case(21)
+    a = plan(c.scene, c.goals, method=method, seed=5)
+    b = plan(c.scene, c.goals, method=method, seed=5)
+    assert a.actions == b.actions and a.solved == b.solved
+
+
+def test_unsolvable_returns_partial_plan():
+    # Five wide boxes cannot form a circle in a table this small: a failure value, not an exception.
+    sc = scene(*[box(i, -0.08 + 0.04 * i, 0.0, size=0.03) for i in range(5)], x=(-0.1, 0.2), y=(-0.03, 0.03))
+    gs = goals({"pattern": "circle", "objects": [0, 1, 2, 3, 4]})
+    p = plan(sc, gs, seed=0, max_iter=200)
+    assert not p.solved
+    assert p.stats["reason"]
+    assert p.stats["iterations"] <= 200
+
+
+def test_anytime_never_longer():
+    c = random_case(7)
+    first = plan(c.scene, c.goals, seed=1, max_iter=2000)
+    best = plan(c.scene, c.goals, seed=1, max_iter=2000, anytime=True)
+    assert first.solved and best.solved
+    assert len(best.actions) <= len(first.actions)
+    assert check(c.scene, c.goals, best).valid
+
+
+def test_time_limit_is_respected():
+    sc = scene(*[box(i, -0.08 + 0.04 * i, 0.0, size=0.03) for i in range(5)], x=(-0.1, 0.2), y=(-0.03, 0.03))
+    p = plan(sc, goals({"pattern": "circle", "objects": [0, 1, 2, 3, 4]}), seed=0, time_limit=0.3)
+    assert not p.solved and p.stats["time_s"] < 2.0
+
+
+@pytest.mark.parametrize("kw,needle", [
+    ({"method": "astar"}, "unknown method"), ({"max_iter": 0}, "max_iter"), ({"time_limit": -1.0}, "time_limit"),
+])
+def test_bad_options(kw, needle, example_scene, example_goals):
+    with pytest.raises(InputError, match=needle):
+        plan(str(example_scene), str(example_goals), **kw)
+
+
+def test_options_dataclass_is_frozen():
+    with pytest.raises(Exception):
+        SearchOptions().max_iter = 3  # type: ignore[misc]
