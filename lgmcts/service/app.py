@@ -308,6 +308,9 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
                 req.goals.check_against(req.scene)
             from ..planner import METHODS
 
+            if o.seed < 0:
+                # numpy's generators take no negative seeds.
+                raise InputError("seed must be a non-negative integer")
             if o.time_limit is not None and not (math.isfinite(o.time_limit) and o.time_limit > 0):
                 raise InputError("time_limit must be positive")
             if o.method not in METHODS and not (opts.test_hooks and o.method in jobs.HOOK_METHODS):

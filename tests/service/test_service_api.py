@@ -151,17 +151,26 @@ def test_bad_scene_message_equals_the_command_line(client, tmp_path):
         ({"scene": SCENE, "goals": GOALS, "options": {"method": "astar"}}, "unknown method 'astar' (known: lgmcts, greedy, pmcts)"),
         ({"scene": SCENE, "goals": GOALS, "options": {"max_iter": 0}}, "max_iter must be at least 1"),
         ({"scene": SCENE, "goals": GOALS, "options": {"time_limit": -1}}, "time_limit must be positive"),
+        ({"scene": SCENE, "goals": GOALS, "options": {"seed": -1}}, "seed must be a non-negative integer"),
         ({"scene": SCENE, "goals": GOALS, "options": {"timeout": 0}}, "timeout must be positive"),
         ({"scene": SCENE, "goals": GOALS, "options": {"seed": "x"}}, "invalid request at options.seed: Input should be a valid integer, unable to parse string as an integer"),
         ({"scene": SCENE, "goals": GOALS, "colour": 1}, "invalid request at colour: Extra inputs are not permitted"),
         ({"goals": GOALS}, "invalid request: 'scene' is required"),
     ],
-    ids=["unknown-id", "small-circle", "neither", "both", "method", "max-iter", "time-limit", "timeout", "seed", "extra", "no-scene"],
+    ids=["unknown-id", "small-circle", "neither", "both", "method", "max-iter", "time-limit", "negative-seed", "timeout", "seed", "extra", "no-scene"],
 )
 def test_bad_plan_request_is_one_line_422(client, body, message):
     r = client.post("/plan", json=body)
     assert r.status_code == 422
     assert r.json() == {"detail": message}
+
+
+def test_scene_error_found_by_the_planner_is_422(client):
+    scene = copy.deepcopy(SCENE)
+    scene["objects"][0]["pose"] = [5.0, 0.0, 0.0]
+    r = client.post("/plan", json={"scene": scene, "goals": GOALS})
+    assert r.status_code == 422
+    assert r.json() == {"detail": "object 1 (block) lies outside the workspace"}
 
 
 def test_unknown_id_in_check_goals(client):
