@@ -77,7 +77,23 @@ NUMBERS = {
 }
 
 #: Tokens before a pattern noun: "in a square", "into a ring", "form a cross".
-PATTERN_LEAD = frozenset({"in", "into", "as", "form", "forming", "forms", "make", "making", "like", "of"})
+PATTERN_LEAD = frozenset({"in", "into", "as", "form", "forming", "forms", "make", "making", "like", "shape"})
+_SHAPE_ADJ = frozenset({"a", "an", "single", "big", "large", "small", "neat", "perfect", "nice", "tidy", "straight"})
+
+
+def _pattern_context(words: tuple[str, ...], i: int) -> bool:
+    """Whether position ``i`` follows "in a", "into a", "form a", "shape of a"..."""
+    j, skipped = i - 1, 0
+    while j >= 0 and words[j] in _SHAPE_ADJ:
+        j, skipped = j - 1, skipped + 1
+    if j >= 1 and words[j] == "of" and words[j - 1] == "shape":
+        return True
+    if j < 0:
+        return False
+    if words[j] in ("into", "form", "forming", "forms"):
+        return True
+    return words[j] in ("in", "as", "like", "make", "making") and skipped > 0
+
 
 _TOKEN_RE = re.compile(r"-?\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[;,.!?#()&:]")
 
@@ -147,6 +163,7 @@ class Vocabulary:
                 add(w[:-1] + (_plural(w[-1]),), n, True)
             if len(w) > 1 and len(w[-1]) == 1:  # "letters" selects every "letter x"
                 add((_plural(w[0]),), n, True)
+        real = set(cats)
         for canon, syns in SYNONYMS.items():
             if canon not in names:
                 continue
@@ -154,7 +171,7 @@ class Vocabulary:
                 if s in names:
                     continue
                 sw = _words(s)
-                if sw in cats:
+                if sw in real:
                     continue
                 add(sw, canon, False)
                 add(sw[:-1] + (_plural(sw[-1]),), canon, True)
@@ -362,6 +379,9 @@ def _mention_at(
         if _starts(words, j, ("of", "the")):
             j += 2
         det = "count" if det in ("", "the", "one") else det
+        if j < n and words[j] in ("other", "more", "additional", "different", "remaining", "new", "further"):
+            j += 1  # "three other blocks": three not named before
+            det = "fresh" if det == "count" else det
         if det == "all":  # "all three blocks" names them all
             count = None
         if det == "another":  # "another three blocks": three not named before
@@ -371,30 +391,26 @@ def _mention_at(
     if det in ("the", "all", "other") and j < n and words[j] in ("rest", "others", "remaining"):
         end = j + 1
         return Mention(i, end, " ".join(words[i:end]), "other", True)
+    everything = None
     if det == "" and _starts(words, j, ("everything", "else")):
-        return Mention(i, j + 2, "everything else", "other", True)
-    if det == "" and j < n and words[j] == "everything":
-        return Mention(i, j + 1, "everything", "all", True)
-    cols = _colors(vocab, words, j)
+        everything, det, end = "other", "other", j + 2
+    elif det == "" and j < n and words[j] in ("everything", "anything"):
+        everything, det, end = "all", "all", j + 1
+    cols = None if everything else _colors(vocab, words, j)
     colors, color_order = None, ()
     if cols is not None:
         colors, j = cols
         color_order = colors
-    cat = vocab.longest(vocab.categories, words, j) if j < n else None
+    cat = vocab.longest(vocab.categories, words, j) if j < n and not everything else None
     names: frozenset[str] | None
-    if cat is not None:
+    if everything:
+        names, plural = None, True
+    elif cat is not None:
         key, end = cat
         names, plural = vocab.categories[key]
         # "in a square", "into a ring": the word names a pattern, not an object.
-        if (
-            colors is None
-            and len(key) == 1
-            and key[0] in pattern_words
-            and det in ("one", "")
-            and i > 0
-            and words[i - 1] in PATTERN_LEAD
-        ):
-            return None
+        if colors is None and det in ("one", "") and _pattern_context(words, j):
+            return None  # "in a square", "into a ring", "in a star shape": a shape, not an object
     elif j < n and words[j] in GENERIC:
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None

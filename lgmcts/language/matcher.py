@@ -51,11 +51,10 @@ STOPWORDS = frozenset(
 )
 
 #: Verbs and fillers that ask for a rearrangement without naming one.
-FILLERS = frozenset(
-    """put place move arrange set position make form get bring organize organise lay rearrange sort order reorder
-    create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
-    want need like would table workspace tabletop please group line_up""".split()
-)
+_FILLER_WORDS = """put place move arrange set position make form get bring organize organise lay rearrange sort order
+    reorder create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
+    want need like would table workspace tabletop please group go goes going should must end ends stand stands sit
+    sits located placed positioned moved put arranged""".split()
 
 
 @dataclass(frozen=True)
@@ -120,6 +119,9 @@ def _stem(word: str) -> str:
     if len(word) > 3 and word.endswith("s") and not word.endswith("ss"):
         return word[:-1]
     return word
+
+
+FILLERS = frozenset(w for x in _FILLER_WORDS for w in (x, _stem(x)))
 
 
 def content_words(text: str) -> tuple[str, ...]:
@@ -194,8 +196,17 @@ class Encoder:
                 os.environ.setdefault("HF_HUB_OFFLINE", "1")
                 os.environ.setdefault("TRANSFORMERS_OFFLINE", "1")
                 os.environ.setdefault("TOKENIZERS_PARALLELISM", "false")
+                os.environ.setdefault("HF_HUB_DISABLE_PROGRESS_BARS", "1")
                 path = self._path or model_path()
                 from sentence_transformers import SentenceTransformer
+
+                try:  # no progress bars on stderr: one line per error is the contract there
+                    from transformers.utils import logging as hf_logging
+
+                    hf_logging.disable_progress_bar()
+                    hf_logging.set_verbosity_error()
+                except Exception:  # pragma: no cover - cosmetic only
+                    pass
 
                 self._model = SentenceTransformer(str(path), device="cpu", local_files_only=True)
                 self.load_time_s = time.perf_counter() - t0

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses"]
@@ -132,6 +132,31 @@ def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozense
     ]
 
 
+def _regions(words: tuple[str, ...], gaps: list[tuple[int, int]], vocab: frozenset[str], rel_words: frozenset[str]):
+    """Pattern phrases of a clause as (gap index, positions) runs.
+
+    A gap holding two arrangements of the non-relational kind joined by "and"
+    ("in a line and another line of") gives two runs; relation words joined
+    by "and" ("to the left and behind") stay one run.
+    """
+    out = []
+    for g, (lo, hi) in enumerate(gaps):
+        pos = _pattern_positions(words, lo, hi, vocab)
+        if not pos:
+            continue
+        run = [pos[0]]
+        for k in pos[1:]:
+            coord = any(words[j] in _COORD for j in range(run[-1] + 1, k))
+            free_both = not any(words[j] in rel_words for j in run) and words[k] not in rel_words
+            if coord and free_both:
+                out.append((g, run))
+                run = [k]
+            else:
+                run.append(k)
+        out.append((g, run))
+    return out
+
+
 def _weak_split(
     words: tuple[str, ...], mentions: list[Mention], vocab: frozenset[str], rel_words: frozenset[str] = frozenset()
 ) -> list[tuple[str, ...]]:
@@ -145,20 +170,19 @@ def _weak_split(
     Y and the Zs in a circle").
     """
     gaps = _gaps(words, mentions)
-    pat = [(g, _pattern_positions(words, lo, hi, vocab)) for g, (lo, hi) in enumerate(gaps)]
-    pat = [(g, pos) for g, pos in pat if pos]
+    pat = _regions(words, gaps, vocab, rel_words)
     if len(pat) < 2:
         return [words]
     cuts: list[int] = []
     for (p, ppos), (q, qpos) in zip(pat, pat[1:]):
         cut = None
-        lo, hi = gaps[p]
-        after = [k for k in range(ppos[-1] + 1, hi) if words[k] in _COORD]
+        _, hi = gaps[p]
+        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _COORD]
         if after:
             cut = after[0]
         else:
             qlo, _ = gaps[q]
-            before = [k for k in range(qlo, qpos[0]) if words[k] in _COORD]
+            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _COORD]
             if before:
                 cut = before[-1]
             elif any(words[k] in rel_words for k in ppos) and q > p + 1:
@@ -240,13 +264,15 @@ class _Parser:
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
         text = " ".join(words)
+        if any(w in ("itself", "themselves", "himself", "herself") for w in words):
+            raise InputError(f"'{text}': an object cannot be placed relative to itself")
         mentions = find_mentions(self.vocab, words, self.key_vocab)
         groups, gaps = _groups(words, mentions)
         rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
         while rest and words[rest[0]] in _LEADING:
             rest = rest[1:]
         phrase_words = [words[k] for k in rest]
-        self._unknown_objects(words, rest)
+        self._unknown_objects(words, rest, mentions)
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
         if not mentions:
             if not meaningful:
@@ -365,7 +391,7 @@ class _Parser:
             self.state.named.update(sel)
         return sel
 
-    def _unknown_objects(self, words: tuple[str, ...], rest: list[int]) -> None:
+    def _unknown_objects(self, words: tuple[str, ...], rest: list[int], mentions: list[Mention]) -> None:
         """Refuse a determiner followed by a word that names nothing here."""
         restset = set(rest)
         for k in rest:
@@ -379,8 +405,15 @@ class _Parser:
                 j -= 1
             if j >= 0 and j in restset and words[j] in _DET_WORDS:
                 end = k + 1
-                while end < len(words) and end in restset and words[end].isalpha() and words[end] not in STOPWORDS and _stem(words[end]) not in self.key_vocab:
+                while (end < len(words) and end in restset and words[end].isalpha() and words[end] not in STOPWORDS
+                       and _stem(words[end]) not in self.key_vocab):
                     end += 1
+                if w in COLOUR_WORDS:
+                    # "all purple bowls" with no purple object: show the whole phrase.
+                    nxt = next((mm for mm in mentions if mm.start == end), None)
+                    if nxt is not None:
+                        end = nxt.end
+                    raise InputError(f"nothing in the scene matches '{' '.join(words[j:end])}' (no {w} object)")
                 raise InputError(f"'{' '.join(words[j:end])}' names nothing in the scene")
 
     # ------------------------------------------------------------ the command

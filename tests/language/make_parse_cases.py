@@ -1,0 +1,354 @@
+"""Write ``data/parse_cases.jsonl``: the labelled set for ``lgmcts eval-parse``.
+
+Run ``.venv/bin/python tests/language/make_parse_cases.py`` from the
+repository root. Part of the set is templated (relations, shapes, composite
+ELGR-style commands), the expected goals computed here from what each
+template refers to, never from the parser; the rest is written by hand
+(free-form phrasings, grounding rules and refusals). The output is
+deterministic.
+"""
+
+from __future__ import annotations
+
+import json
+import random
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "data" / "parse_cases.jsonl"
+
+WS = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
+
+
+def _scene(items: list[tuple[str, str]]) -> dict:
+    objs = []
+    for k, (name, color) in enumerate(items):
+        x = -0.33 + 0.11 * (k % 7)
+        y = -0.22 + 0.11 * (k // 7)
+        objs.append({"id": k + 1, "name": name, "color": color,
+                     "shape": {"type": "box", "size": [0.04, 0.04, 0.04]}, "pose": [round(x, 3), round(y, 3), 0.0], "on": None})
+    return {"workspace": WS, "objects": objs}
+
+
+SCENES = {
+    "vima_a": _scene([
+        ("block", "red"), ("block", "blue"), ("block", "green and blue stripe"), ("flower", "red swirl"),
+        ("letter A", "red and green polka dot"), ("letter R", "yellow"), ("heart", "green"), ("triangle", "green"),
+        ("bowl", "granite"), ("star", "purple"), ("pan", "tiger"), ("ring", "rainbow"), ("hexagon", "yellow"),
+        ("cross", "blue"), ("block", "yellow"),
+    ]),
+    "vima_b": _scene([
+        ("pentagon", "red"), ("square", "purple"), ("triangle", "red"), ("block", "yellow"), ("block", "red swirl"),
+        ("bowl", "white"), ("heart", "purple"), ("flower", "green"), ("letter A", "blue"), ("ring", "green"),
+        ("hexagon", "red"), ("pan", "granite"), ("star", "tiger"), ("cross", "rainbow"),
+    ]),
+    "kitchen": _scene([
+        ("mug", "red"), ("mug", "blue"), ("bowl", "white"), ("bowl", "green"), ("bottle", "white"), ("bottle", "blue"),
+        ("phone", "black"), ("pan", "gray"), ("block", "red"), ("block", "green"), ("block", "blue"), ("block", "yellow"),
+        ("plate", "white"),
+    ]),
+    "blocks8": _scene([
+        ("block", "red"), ("block", "red"), ("block", "blue"), ("block", "blue"), ("block", "green"), ("block", "green"),
+        ("block", "yellow"), ("block", "white"), ("bowl", "white"), ("mug", "purple"),
+    ]),
+}
+# The bundled example scene, copied so the case file stands alone.
+SCENES["tabletop"] = json.loads((ROOT / "examples" / "tabletop.json").read_text())
+
+REL_PHRASES = {
+    "left": ["to the left of", "left of", "on the left side of", "on the left of"],
+    "right": ["to the right of", "right of", "on the right side of", "on the right of"],
+    "front": ["in front of", "at the front of", "in front of"],
+    "behind": ["behind", "at the back of", "in back of"],
+    "left_front": ["to the left and in front of", "in front left of", "front left of", "left and in front of"],
+    "left_behind": ["left and behind of", "to the left and behind", "behind and to the left of", "back left of"],
+    "right_front": ["to the right and in front of", "in front right of", "front right of", "right and in front of"],
+    "right_behind": ["right and behind of", "to the right and behind", "behind and to the right of", "back right of"],
+}
+REL_TEMPLATES = ["Put {a} {rel} {b}", "Place {a} {rel} {b}", "Move {a} {rel} {b}", "Set {a} {rel} {b}"]
+SHAPE_TEMPLATES = {
+    "line": ["Place {x} in a line pattern", "Put {x} in a line", "Line up {x}", "Arrange {x} in a straight line",
+             "Move {x} into a row", "Put {x} in a row", "Align {x} in a line"],
+    "circle": ["Put {x} in a circle", "Arrange {x} in a circle pattern", "Move {x} into a circle",
+               "Place {x} in a ring", "Form a circle with {x}", "Arrange {x} in a ring"],
+    "rectangle": ["Place {x} in a rectangle pattern", "Arrange {x} in a rectangle", "Put {x} into a rectangle",
+                  "Move {x} to form a rectangular frame", "Put {x} on the border of a square"],
+}
+CONNECTIVES = ["; and ", " while ", "; then ", ". Also ", ", and then ", ". Then "]
+
+
+def _label(scene: dict, oid: int, article: bool = True) -> str:
+    o = next(o for o in scene["objects"] if o["id"] == oid)
+    words = f"{o['color']} {o['name']}"
+    return f"the {words}" if article else words
+
+
+def _unique_ids(scene: dict) -> list[int]:
+    seen: dict[tuple[str, str], int] = {}
+    for o in scene["objects"]:
+        seen[(o["name"], o["color"])] = seen.get((o["name"], o["color"]), 0) + 1
+    return [o["id"] for o in scene["objects"] if seen[(o["name"], o["color"])] == 1]
+
+
+#: Group references per scene: (phrase, ids) usable for shapes (at least 2 objects).
+GROUPS = {
+    "vima_a": [("all blocks", [1, 2, 3, 15]), ("all the blocks", [1, 2, 3, 15]), ("all yellow objects", [6, 13, 15]),
+               ("objects whose color is the same as the letter R", [13, 15]),
+               ("the red block, the blue cross and the purple star", [1, 14, 10]),
+               ("all blue objects", [2, 14]), ("the blocks", [1, 2, 3, 15]),
+               ("all the green objects", [7, 8]), ("the yellow hexagon, the granite bowl, the tiger pan and the rainbow ring", [13, 9, 11, 12])],
+    "vima_b": [("objects whose color is the same as the triangle", [1, 11]), ("all red objects", [1, 3, 11]),
+               ("all purple items", [2, 7]), ("all the green objects", [8, 10]),
+               ("the objects that have the same color as the heart", [2]),
+               ("the yellow block, the blue letter A, the white bowl and the granite pan", [4, 9, 6, 12]),
+               ("all blocks", [4, 5]), ("the red pentagon, the red triangle and the red hexagon", [1, 3, 11])],
+    "kitchen": [("all blocks", [9, 10, 11, 12]), ("the mugs", [1, 2]), ("all the bowls", [3, 4]),
+                ("all white objects", [3, 5, 13]), ("the red mug, the blue bottle and the black phone", [1, 6, 7]),
+                ("all blue items", [2, 6, 11]), ("the bottles", [5, 6])],
+}
+
+
+def _shape_cases(rng: random.Random) -> list[dict]:
+    out = []
+    for scene_id, groups in GROUPS.items():
+        for phrase, ids in groups:
+            for pattern, templates in SHAPE_TEMPLATES.items():
+                need = {"line": 2, "circle": 3, "rectangle": 4}[pattern]
+                if len(ids) < need:
+                    continue
+                t = rng.choice(templates)
+                text = t.format(x=phrase)
+                text = text[0].upper() + text[1:]
+                out.append({"category": "shape", "scene": scene_id, "instruction": text,
+                            "expect": {"goals": [{"pattern": pattern, "objects": sorted(ids)}]}})
+    return out
+
+
+def _relation_cases(rng: random.Random) -> list[dict]:
+    out = []
+    for scene_id in ("vima_a", "vima_b", "kitchen"):
+        scene = SCENES[scene_id]
+        uniq = _unique_ids(scene)
+        for rel, phrases in REL_PHRASES.items():
+            for phrase in phrases[:3]:
+                a, b = rng.sample(uniq, 2)
+                bare = scene_id != "kitchen" and rng.random() < 0.4  # ELGR style: "Put red swirl flower left of ..."
+                text = rng.choice(REL_TEMPLATES).format(a=_label(scene, a, not bare), rel=phrase, b=_label(scene, b, not bare))
+                out.append({"category": "relation", "scene": scene_id, "instruction": text,
+                            "expect": {"goals": [{"pattern": rel, "objects": [a], "anchor": b}]}})
+    return out
+
+
+def _composite_cases(rng: random.Random) -> list[dict]:
+    out = []
+    for scene_id in ("vima_a", "vima_b", "kitchen"):
+        scene = SCENES[scene_id]
+        uniq = _unique_ids(scene)
+        for _ in range(14):
+            phrase, ids = rng.choice([g for g in GROUPS[scene_id] if len(g[1]) >= 2])
+            pattern = rng.choice([p for p in SHAPE_TEMPLATES if {"line": 2, "circle": 3, "rectangle": 4}[p] <= len(ids)])
+            first = rng.choice(SHAPE_TEMPLATES[pattern]).format(x=phrase)
+            free = [i for i in uniq if i not in ids]
+            a, b = rng.sample(free, 2)
+            rel = rng.choice(list(REL_PHRASES))
+            second = rng.choice(REL_TEMPLATES).format(a=_label(scene, a), rel=rng.choice(REL_PHRASES[rel]), b=_label(scene, b))
+            conn = rng.choice(CONNECTIVES)
+            if rng.random() < 0.5:
+                first, second = second, first
+            if conn.startswith(". "):
+                second = second[0].upper() + second[1:]
+            else:
+                second = second[0].lower() + second[1:]
+            text = first[0].upper() + first[1:] + conn + second
+            out.append({"category": "composite", "scene": scene_id, "instruction": text,
+                        "expect": {"goals": [{"pattern": pattern, "objects": sorted(ids)},
+                                             {"pattern": rel, "objects": [a], "anchor": b}]}})
+    return out
+
+
+def _g(pattern: str, objects: list[int], anchor: int | None = None, **extra) -> dict:
+    g = {"pattern": pattern, "objects": objects}
+    if anchor is not None:
+        g["anchor"] = anchor
+    g.update(extra)
+    return g
+
+
+#: Hand-written cases: (category, scene, instruction, goals | refusal substring).
+HAND: list[tuple[str, str, str, object]] = [
+    # The paper's example and other free-form commands.
+    ("free", "tabletop", "Move all blocks into a circle; while put the white bottle behind one block",
+     [_g("circle", [1, 2, 3, 4]), {"pattern": "behind", "objects": [5], "anchor_any": [1, 2, 3, 4]}]),
+    ("free", "tabletop", "put all blocks in a circle and the white bottle behind one block",
+     [_g("circle", [1, 2, 3, 4]), {"pattern": "behind", "objects": [5], "anchor_any": [1, 2, 3, 4]}]),
+    ("free", "tabletop", "Could you please line up the blocks for me?", [_g("line", [1, 2, 3, 4])]),
+    ("free", "tabletop", "I want the mug to the right of the bowl", [_g("right", [7], 6)]),
+    ("free", "tabletop", "Arrange the four blocks in a ring, then put the phone in front of the bowl",
+     [_g("circle", [1, 2, 3, 4]), _g("front", [9], 6)]),
+    ("free", "tabletop", "Make a square border with the blocks", [_g("rectangle", [1, 2, 3, 4])]),
+    ("free", "tabletop", "Build a tower with the red block at the bottom and the blue block on top", [_g("tower", [1, 2])]),
+    ("free", "tabletop", "Pile up the yellow block, the green block and the red block", [_g("tower", [4, 3, 1])]),
+    ("free", "tabletop", "Stack the green block on the yellow block", [_g("tower", [4, 3])]),
+    ("free", "tabletop", "Put the red and green polka dot letter A behind the phone", [_g("behind", [8], 9)]),
+    ("free", "tabletop", "place the bottle behind and to the left of the purple mug", [_g("left_behind", [5], 7)]),
+    ("free", "tabletop", "The mug goes in front of the bottle", [_g("front", [7], 5)]),
+    ("free", "tabletop", "Put every block in a straight row. Also put the bowl to the right of the phone.",
+     [_g("line", [1, 2, 3, 4]), _g("right", [6], 9)]),
+    ("free", "tabletop", "First line up the red block and the blue block, then put the cup left of the bowl",
+     [_g("line", [1, 2]), _g("left", [7], 6)]),
+    ("free", "kitchen", "Set the table: stack the white bowl on the white plate and line up the red mug and the blue mug to the left of the plate",
+     [_g("tower", [13, 3]), _g("line", [1, 2]), _g("left", [1, 2], 13)]),
+    ("free", "kitchen", "put the red mug and the blue mug in a row on the right side of the plate",
+     [_g("line", [1, 2]), _g("right", [1, 2], 13)]),
+    ("free", "kitchen", "Put the blocks in a circle and the bottles in a line", [_g("circle", [9, 10, 11, 12]), _g("line", [5, 6])]),
+    ("free", "kitchen", "make a line with the red block and the blue block and a circle with the mugs and the phone",
+     [_g("line", [9, 11]), _g("circle", [1, 2, 7])]),
+    ("free", "kitchen", "put the red block and the green block to the left of the pan and the mugs in a line",
+     [_g("left", [9, 10], 8), _g("line", [1, 2])]),
+    ("free", "kitchen", "Place the phone in front right of the white plate", [_g("right_front", [7], 13)]),
+    ("free", "kitchen", "Put the pan at the back of the black phone", [_g("behind", [8], 7)]),
+    ("free", "kitchen", "Put the phone to the left of the blue bottle and the pan to the right of the blue bottle",
+     [_g("left", [7], 6), _g("right", [8], 6)]),
+    ("free", "kitchen", "arrange all the blocks in a rectangle while the bottles go behind the plate",
+     [_g("rectangle", [9, 10, 11, 12]), _g("behind", [5, 6], 13)]),
+    ("free", "vima_a", "Put red swirl flower left and behind of red and green polka dot letter A; then Place objects whose color is same as letter R in a line pattern",
+     [_g("left_behind", [4], 5), _g("line", [13, 15])]),
+    ("free", "vima_a", "Put the green heart in front of the purple star while the blocks form a circle",
+     [_g("front", [7], 10), _g("circle", [1, 2, 3, 15])]),
+    ("free", "vima_a", "arrange all blocks except the yellow one in a line", [_g("line", [1, 2, 3])]),
+    ("free", "vima_a", "arrange all blocks except the red one and the blue one in a line", [_g("line", [3, 15])]),
+    ("free", "vima_a", "put the blocks but not the green and blue stripe block in a ring", [_g("circle", [1, 2, 15])]),
+    ("free", "vima_a", "Place the green and blue striped block to the right of the tiger pan", [_g("right", [3], 11)]),
+    ("free", "vima_a", "Put the polka dot letter A behind the star", "nothing"),
+    ("free", "vima_a", "arrange the blocks in a square", [_g("rectangle", [1, 2, 3, 15])]),
+    ("free", "vima_b", "arrange the red objects in a ring and put the square to the left of the ring",
+     [_g("circle", [1, 3, 11]), _g("left", [2], 10)]),
+    ("free", "vima_b", "Put the square in front of the star", [_g("front", [2], 13)]),
+    ("free", "vima_b", "Put the hexagon, the pentagon, the triangle and the cross in a square",
+     [_g("rectangle", [11, 1, 3, 14])]),
+    # Grounding rules: synonyms and plurals.
+    ("grounding", "tabletop", "put the cup behind the phone", [_g("behind", [7], 9)]),
+    ("grounding", "tabletop", "line up the cubes", [_g("line", [1, 2, 3, 4])]),
+    ("grounding", "tabletop", "put the boxes in a circle", [_g("circle", [1, 2, 3, 4])]),
+    ("grounding", "kitchen", "put the cups in a line", [_g("line", [1, 2])]),
+    ("grounding", "kitchen", "put the cellphone to the left of the frying pan", [_g("left", [7], 8)]),
+    ("grounding", "kitchen", "put the blue bottle behind the dish", "ambiguous"),
+    ("grounding", "kitchen", "put the blue bottle behind the white dish", "ambiguous"),
+    ("grounding", "kitchen", "put the blue bottle behind the plate", [_g("behind", [6], 13)]),
+    ("grounding", "kitchen", "put the red, green and blue blocks in a line", [_g("line", [9, 10, 11])]),
+    ("grounding", "kitchen", "Stack the red, green and blue blocks", [_g("tower", [9, 10, 11])]),
+    ("grounding", "kitchen", "stack the blue, green and red blocks into a tower", [_g("tower", [11, 10, 9])]),
+    ("grounding", "kitchen", "put the red and blue mugs in front of the phone", [_g("front", [1, 2], 7)]),
+    ("grounding", "kitchen", "put object 7 behind object 13", [_g("behind", [7], 13)]),
+    ("grounding", "kitchen", "put objects 9, 10 and 11 in a circle", [_g("circle", [9, 10, 11])]),
+    ("grounding", "kitchen", "put object #5 to the right of the red mug", [_g("right", [5], 1)]),
+    ("grounding", "kitchen", "line up objects 1, 2 and 42", "42"),
+    ("grounding", "kitchen", "put all white objects in a circle", [_g("circle", [3, 5, 13])]),
+    ("grounding", "kitchen", "put the white ones in a circle", [_g("circle", [3, 5, 13])]),
+    ("grounding", "kitchen", "arrange everything except the blocks in a line",
+     [_g("line", [1, 2, 3, 4, 5, 6, 7, 8, 13])]),
+    ("grounding", "kitchen", "put the bottles in a line, then put the phone behind them",
+     [_g("line", [5, 6]), _g("behind", [7], 5), _g("behind", [7], 6)]),
+    ("grounding", "kitchen", "put the red block left of the pan and the other blocks in a row",
+     [_g("left", [9], 8), _g("line", [10, 11, 12])]),
+    ("grounding", "kitchen", "put the red mug left of the bowls", [_g("left", [1], 3), _g("left", [1], 4)]),
+    ("grounding", "kitchen", "put the red mug in front of the green bowl and the other mug behind it",
+     [_g("front", [1], 4), _g("behind", [2], 1)]),
+    ("grounding", "kitchen", "put the phone to the left of one block", [{"pattern": "left", "objects": [7], "anchor_any": [9, 10, 11, 12]}]),
+    ("grounding", "kitchen", "put one bottle in front of the plate", [{"pattern": "front", "objects_from": [5, 6], "count": 1, "anchor": 13}]),
+    ("grounding", "kitchen", "put a mug behind the pan", [{"pattern": "behind", "objects_from": [1, 2], "count": 1, "anchor": 8}]),
+    ("grounding", "kitchen", "put three blocks in a circle", [{"pattern": "circle", "objects_from": [9, 10, 11, 12], "count": 3}]),
+    ("grounding", "kitchen", "put two blocks in a line and the phone behind one block",
+     [{"pattern": "line", "objects_from": [9, 10, 11, 12], "count": 2},
+      {"pattern": "behind", "objects": [7], "anchor_any": [9, 10, 11, 12]}]),
+    ("grounding", "blocks8", "put three blocks in a line and another three blocks in a line",
+     {"goals": [{"pattern": "line", "objects_from": [1, 2, 3, 4, 5, 6, 7, 8], "count": 3},
+                {"pattern": "line", "objects_from": [1, 2, 3, 4, 5, 6, 7, 8], "count": 3}], "disjoint": [[0, 1]]}),
+    ("grounding", "blocks8", "make a line of four blocks, then make another line with four blocks",
+     {"goals": [{"pattern": "line", "objects_from": [1, 2, 3, 4, 5, 6, 7, 8], "count": 4},
+                {"pattern": "line", "objects_from": [1, 2, 3, 4, 5, 6, 7, 8], "count": 4}], "disjoint": [[0, 1]]}),
+    ("grounding", "blocks8", "put the red blocks in a line and another line of two blocks",
+     {"goals": [_g("line", [1, 2]), {"pattern": "line", "objects_from": [3, 4, 5, 6, 7, 8], "count": 2}], "disjoint": [[0, 1]]}),
+    ("grounding", "blocks8", "put the red blocks in a line and three other blocks in a circle",
+     [_g("line", [1, 2]), {"pattern": "circle", "objects_from": [3, 4, 5, 6, 7, 8], "count": 3}]),
+    ("grounding", "blocks8", "put both red blocks behind the bowl", [_g("behind", [1, 2], 9)]),
+    ("grounding", "blocks8", "put both blue blocks and the white block in a circle", [_g("circle", [3, 4, 8])]),
+    ("grounding", "blocks8", "place all blocks except the green ones and the yellow one in a rectangle", [_g("rectangle", [1, 2, 3, 4, 8])]),
+    ("grounding", "blocks8", "put the blocks whose color is the same as the bowl behind the mug", [_g("behind", [8], 10)]),
+    ("grounding", "blocks8", "put the objects with the same color as the bowl in a line", "needs at least"),
+    ("grounding", "blocks8", "stack the green blocks on the blue blocks", [_g("tower", [3, 4, 5, 6])]),
+    ("grounding", "vima_a", "Place objects whose color is same as heart in a line pattern", "needs at least"),
+    ("grounding", "vima_a", "Place objects whose colour is the same as the yellow hexagon in a line pattern", [_g("line", [6, 15])]),
+    ("grounding", "vima_a", "Place the objects that have the same color as the blue cross and the red block in a line",
+     [_g("line", [2, 1])]),
+    ("grounding", "vima_a", "put the letters in a line", [_g("line", [5, 6])]),
+    ("grounding", "vima_a", "put the letter A left of the letter R", [_g("left", [5], 6)]),
+    ("grounding", "vima_a", "put the rainbow ring on the right of the granite bowl", [_g("right", [12], 9)]),
+    ("grounding", "vima_a", "put the ring into the bowl", "does not say how"),
+    # Refusals: each must be refused with one line that names the problem.
+    ("refusal", "tabletop", "put the purple giraffe in a line", "giraffe"),
+    ("refusal", "tabletop", "put the spaceship behind the bowl", "spaceship"),
+    ("refusal", "tabletop", "arrange the blocks in a Fibonacci spiral", "no pattern"),
+    ("refusal", "tabletop", "arrange the blocks in a zigzag", "no pattern"),
+    ("refusal", "vima_a", "arrange the blocks in a triangle", "no pattern"),
+    ("refusal", "vima_a", "put all blocks in a star shape", "no pattern"),
+    ("refusal", "tabletop", "put the mug next to the bowl", "no pattern"),
+    ("refusal", "tabletop", "put all green bowls in a line", "needs at least"),
+    ("refusal", "kitchen", "put all purple bowls in a line", "nothing in the scene matches"),
+    ("refusal", "kitchen", "put the mugs in a circle", "needs at least 3"),
+    ("refusal", "kitchen", "put the red block in a line", "needs at least 2"),
+    ("refusal", "kitchen", "put the phone in a rectangle with the mugs", "needs at least 4"),
+    ("refusal", "kitchen", "put the bottle behind the plate", "ambiguous"),
+    ("refusal", "kitchen", "put the block to the left of the phone", "ambiguous"),
+    ("refusal", "kitchen", "put the red mug left of the bowl", "ambiguous"),
+    ("refusal", "kitchen", "put the mug left of the plate and the mug right of the plate", "ambiguous"),
+    ("refusal", "kitchen", "put the red mug left of the plate and the red mug right of the plate", "contradiction"),
+    ("refusal", "kitchen", "stack the red block on the blue block and stack the blue block on the red block", "contradiction"),
+    ("refusal", "kitchen", "put the phone left of the pan and the pan left of the phone", "contradiction"),
+    ("refusal", "kitchen", "put the red block in a line with the green block and stack the red block on the blue block", "contradiction"),
+    ("refusal", "kitchen", "move the red mug", "does not say how"),
+    ("refusal", "kitchen", "put the red mug to the left", "of what"),
+    ("refusal", "kitchen", "asdf qwerty", "names no object"),
+    ("refusal", "kitchen", "   ", "empty"),
+    ("refusal", "kitchen", "put five blocks in a line", "only 4"),
+    ("refusal", "blocks8", "put four blocks in a line and another five blocks in a circle", "needed"),
+    ("refusal", "blocks8", "put the red block behind the bowl", "ambiguous"),
+    ("refusal", "blocks8", "put the mug behind itself", "itself"),
+    ("refusal", "vima_b", "put the square behind the square", "itself"),
+    ("refusal", "vima_b", "put the orange block in a line", "nothing"),
+    ("refusal", "vima_b", "put the red swirl star left of the bowl", "nothing in the scene matches"),
+    ("refusal", "vima_b", "put objects whose color is the same as the unicorn in a line", "unicorn"),
+    ("refusal", "vima_b", "Put all blocks in a circle", "needs at least 3"),
+    ("refusal", "vima_b", "put the heart on the left of the bowl and on the right of the bowl", "right"),
+]
+
+
+def main() -> None:
+    rng = random.Random(20240501)
+    rows: list[dict] = []
+    for sid, scene in SCENES.items():
+        rows.append({"scene_id": sid, "scene": scene})
+    cases = _relation_cases(rng) + _shape_cases(rng) + _composite_cases(rng)
+    for cat, sid, text, want in HAND:
+        row = {"category": cat, "scene": sid, "instruction": text}
+        if isinstance(want, str):
+            row["category"] = "refusal" if cat == "refusal" else cat
+            row["refuse"] = want
+        elif isinstance(want, dict):
+            row["expect"] = want
+        else:
+            row["expect"] = {"goals": want}
+        cases.append(row)
+    counters: dict[str, int] = {}
+    for c in cases:
+        counters[c["category"]] = counters.get(c["category"], 0) + 1
+        c["id"] = f"{c['category']}-{counters[c['category']]:03d}"
+        rows.append({k: c[k] for k in ("id", "category", "scene", "instruction") if k in c}
+                    | {k: c[k] for k in ("expect", "refuse") if k in c})
+    OUT.parent.mkdir(parents=True, exist_ok=True)
+    OUT.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    print(f"wrote {len(cases)} cases and {len(SCENES)} scenes to {OUT.relative_to(ROOT)}")
+
+
+if __name__ == "__main__":
+    main()
