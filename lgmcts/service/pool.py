@@ -185,23 +185,30 @@ class WorkerPool:
         """
         if self._executor is None:
             raise RuntimeError("the worker pool is not started")
-        generation, executor, job_id = self._generation, self._executor, next(self._job_ids)
-        try:
-            future = executor.submit(jobs.tracked, fn, job_id, job)
-        except (BrokenProcessPool, RuntimeError):
-            # Broken or shut down between two requests: replace it and go on.
-            self._renew(generation, "broken before submission")
-            generation = self._generation
-            future = self._executor.submit(jobs.tracked, fn, job_id, job)  # type: ignore[union-attr]
-        slots = self._slots
-        try:
-            return await asyncio.wait_for(asyncio.wrap_future(future), timeout=deadline - time.time())
-        except asyncio.TimeoutError:
-            self._watch(future, generation, job_id, slots)
-            raise JobTimeout() from None
-        except BrokenProcessPool:
-            self._renew(generation, "a worker died")
-        return await self._run_alone(fn, job, deadline=deadline)
+        for _ in range(3):
+            generation, job_id = self._generation, next(self._job_ids)
+            try:
+                future = self._executor.submit(jobs.tracked, fn, job_id, job)
+            except RuntimeError:  # broken or shut down (BrokenProcessPool is one)
+                self._renew(generation, "broken before submission")
+                continue
+            slots = self._slots
+            try:
+                return await asyncio.wait_for(asyncio.wrap_future(future), timeout=deadline - time.time())
+            except asyncio.TimeoutError:
+                self._watch(future, generation, job_id, slots)
+                raise JobTimeout() from None
+            except BrokenProcessPool:
+                # It may have been the culprit or a bystander: run it alone.
+                self._renew(generation, "a worker died")
+                return await self._run_alone(fn, job, deadline=deadline)
+            except asyncio.CancelledError:
+                task = asyncio.current_task()
+                if not future.cancelled() or (task is not None and task.cancelling()):
+                    raise
+                # Withdrawn, unstarted, from a pool that was replaced: submit again.
+                continue
+        raise WorkerCrashed()  # the pool broke on every attempt
 
     def _watch(self, future: Future, generation: int, job_id: int, slots: Any) -> None:
         """Every ``grace`` s, replace the pool if job ``job_id`` is still running.

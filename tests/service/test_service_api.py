@@ -284,3 +284,26 @@ def test_queued_request_past_its_deadline_replaces_nothing(server):
     finally:
         for c in clients:
             c.close()
+
+
+def test_replacing_a_hung_pool_loses_no_other_request(server):
+    """A hung job gets its pool replaced; the job running beside it and the
+    requests queued behind it are run again and all answer 200."""
+    # Two running, three in the executor's call queue, three still pending.
+    clients = [httpx.Client(base_url=server.url, timeout=60.0) for _ in range(8)]
+    try:
+        before = clients[0].get("/healthz").json()["restarts"]
+        with ThreadPoolExecutor(8) as ex:
+            hung = ex.submit(_plan, clients[0], method="_sleep", time_limit=20.0, timeout=0.3)
+            time.sleep(0.2)
+            slow = ex.submit(_plan, clients[1], method="_sleep", time_limit=1.5)
+            time.sleep(0.2)
+            queued = [ex.submit(_plan, c, seed=k) for k, c in enumerate(clients[2:])]
+            assert hung.result().status_code == 504
+            answers = [slow.result(), *(f.result() for f in queued)]
+        assert [a.status_code for a in answers] == [200] * 7, [a.text for a in answers]
+        assert all(a.json()["solved"] for a in answers)
+        assert clients[0].get("/healthz").json()["restarts"] == before + 1
+    finally:
+        for c in clients:
+            c.close()
