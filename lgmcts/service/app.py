@@ -241,6 +241,11 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     app.state.options = opts
     app.add_middleware(BodyLimit, max_body=opts.max_body)
 
+    @app.exception_handler(Exception)
+    async def _unexpected(_: Request, exc: Exception) -> JSONResponse:
+        # Last resort (the server logs the traceback): still one line of JSON.
+        return _error(500, f"internal error: {type(exc).__name__}")
+
     @app.exception_handler(RequestValidationError)
     async def _invalid(_: Request, exc: RequestValidationError) -> JSONResponse:
         return _error(422, validation_message(list(exc.errors())))
