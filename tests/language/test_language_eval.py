@@ -1,0 +1,37 @@
+"""The labelled set and the comparison rules of the evaluation."""
+
+from __future__ import annotations
+
+from lgmcts.language import parse
+from lgmcts.language.evaluate import evaluate, goals_match, load_cases
+
+from .conftest import CASES
+
+
+def test_labelled_set_is_large_and_covers_refusals():
+    cases = load_cases(CASES)
+    assert len(cases) >= 200
+    cats = {c.category for c in cases}
+    assert {"relation", "shape", "composite", "grounding", "free", "refusal"} <= cats
+    assert sum(c.refuse is not None for c in cases) >= 30
+
+
+def test_accuracy_on_the_labelled_set(matcher):
+    report = evaluate(load_cases(CASES), lambda s, t: parse(s, t))
+    fails = [(r.case.id, r.error or r.got) for r in report.failures]
+    assert report.accuracy >= 0.97, fails
+
+
+def test_goal_comparison_rules():
+    tower = {"goals": [{"pattern": "tower", "objects": [1, 2, 3]}]}
+    assert goals_match(tower, {"goals": [{"pattern": "tower", "objects": [1, 2, 3]}]})
+    assert not goals_match(tower, {"goals": [{"pattern": "tower", "objects": [3, 2, 1]}]})
+    line = {"goals": [{"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4], "anchor_any": [1, 2]}]}
+    assert goals_match(line, {"goals": [{"pattern": "left", "objects": [4], "anchor": 2}, {"pattern": "line", "objects": [3, 1, 2]}]})
+    assert not goals_match(line, {"goals": [{"pattern": "left", "objects": [4], "anchor": 3}, {"pattern": "line", "objects": [3, 1, 2]}]})
+    assert not goals_match(line, {"goals": [{"pattern": "line", "objects": [3, 1, 2]}]})
+    pick = {"goals": [{"pattern": "line", "objects_from": [1, 2, 3, 4], "count": 2},
+                      {"pattern": "line", "objects_from": [1, 2, 3, 4], "count": 2}], "disjoint": [[0, 1]]}
+    assert goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4]}]})
+    assert not goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 2]}, {"pattern": "line", "objects": [2, 3]}]})
+    assert not goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 5]}, {"pattern": "line", "objects": [3, 4]}]})

@@ -1,0 +1,109 @@
+"""Grounding rules: object references resolved against a scene (no model needed)."""
+
+from __future__ import annotations
+
+import pytest
+
+from lgmcts.errors import InputError
+from lgmcts.language.grounding import Choice, Vocabulary, find_mentions, select, tokenize
+from lgmcts.language.matcher import key_vocabulary
+
+
+def _resolve(scene, text):
+    vocab = Vocabulary.from_scene(scene)
+    words = tuple(t.text for t in tokenize(text))
+    ms = find_mentions(vocab, words, key_vocabulary())
+    assert ms, f"no mention in {text!r}"
+    return select(vocab, ms[0])
+
+
+@pytest.mark.parametrize(
+    "text, ids",
+    [
+        ("all blocks", [1, 2, 3, 4]),
+        ("the blocks", [1, 2, 3, 4]),
+        ("the cubes", [1, 2, 3, 4]),
+        ("boxes", [1, 2, 3, 4]),
+        ("the cup", [7]),
+        ("the mugs", [7]),
+        ("the red and green polka dot letter A", [8]),
+        ("red and green polka dot letter a", [8]),
+        ("all blocks except the red one", [2, 3, 4]),
+        ("all blocks but not the green one and the yellow one", [1, 2]),
+        ("the red, blue and green blocks", [1, 2, 3]),
+        ("object 7", [7]),
+        ("objects 3, 4 and 5", [3, 4, 5]),
+        ("object #9", [9]),
+        ("everything except the blocks", [5, 6, 7, 8, 9]),
+    ],
+)
+def test_references_select_the_right_objects(tabletop, text, ids):
+    assert _resolve(tabletop, text) == ids
+
+
+def test_colour_list_keeps_the_order_it_was_named_in(tabletop):
+    assert _resolve(tabletop, "the yellow, red and blue blocks") == [4, 1, 2]
+
+
+def test_same_colour_reference_excludes_the_reference_object(scenes):
+    # vima_b: the triangle is red; the red pentagon and red hexagon share its colour.
+    assert _resolve(scenes["vima_b"], "objects whose color is the same as the triangle") == [1, 11]
+    # "red" does not select "red swirl": colours match exactly.
+    assert 5 not in _resolve(scenes["vima_b"], "all red objects")
+
+
+def test_scene_names_win_over_synonyms(scenes):
+    # The kitchen has mugs and no cups: "cups" means the mugs.
+    assert _resolve(scenes["kitchen"], "the cups") == [1, 2]
+    # "dish" is a synonym of both bowl and plate: two white dishes are ambiguous.
+    with pytest.raises(InputError, match="ambiguous"):
+        _resolve(scenes["kitchen"], "the white dish")
+
+
+def test_a_count_or_one_x_is_a_choice(scenes):
+    got = _resolve(scenes["kitchen"], "three blocks")
+    assert isinstance(got, Choice) and got.k == 3 and set(got.options) == {9, 10, 11, 12}
+    one = _resolve(scenes["kitchen"], "one bottle")
+    assert isinstance(one, Choice) and one.k == 1 and set(one.options) == {5, 6}
+
+
+def test_ambiguous_singular_lists_every_match(scenes):
+    with pytest.raises(InputError) as err:
+        _resolve(scenes["kitchen"], "the bottle")
+    msg = str(err.value)
+    assert "ambiguous" in msg and "5 (white bottle)" in msg and "6 (blue bottle)" in msg
+    assert "\n" not in msg
+
+
+@pytest.mark.parametrize(
+    "text, needle",
+    [
+        ("all green mugs", "nothing in the scene matches"),
+        ("five blocks", "only 4"),
+        ("objects 1 and 99", "99"),
+        ("both mugs", "both"),
+    ],
+)
+def test_bad_references_are_refused_in_one_line(scenes, text, needle):
+    scene = scenes["kitchen"] if "mugs" not in text else scenes["blocks8"]
+    with pytest.raises(InputError) as err:
+        _resolve(scene, text)
+    assert needle in str(err.value) and "\n" not in str(err.value)
+
+
+def test_unknown_colour_and_noun_is_refused(tabletop):
+    vocab = Vocabulary.from_scene(tabletop)
+    words = tuple(t.text for t in tokenize("put the purple giraffe in a line"))
+    with pytest.raises(InputError, match="purple giraffe"):
+        find_mentions(vocab, words, key_vocabulary())
+
+
+def test_pattern_nouns_are_not_objects(scenes):
+    # vima_b has a square and a ring; "in a square"/"into a ring" name shapes.
+    vocab = Vocabulary.from_scene(scenes["vima_b"])
+    for text in ("arrange the blocks in a square", "move the blocks into a ring", "put them in a star shape"):
+        words = tuple(t.text for t in tokenize(text))
+        names = [m.names for m in find_mentions(vocab, words, key_vocabulary())]
+        assert all(n is None or not ({"square", "ring", "star"} & set(n)) for n in names), text
+    words = tuple(t.text for t in tokenize("put the square left of the ring"))
+    assert len(find_mentions(vocab, words, key_vocabulary())) == 2

@@ -1,0 +1,130 @@
+"""The LLM parser against a real Chat Completions server on loopback."""
+
+from __future__ import annotations
+
+import json
+import threading
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+import pytest
+
+from lgmcts.errors import InputError
+from lgmcts.formats import to_dict
+from lgmcts.language import parse
+from lgmcts.language.matcher import pattern_infos
+
+CIRCLE = json.dumps({"goals": [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "behind", "objects": [5], "anchor": 1}]})
+
+
+class _Server:
+    """Answers ``POST /v1/chat/completions`` from a script; records the requests."""
+
+    def __init__(self, answers: list) -> None:
+        self.answers = list(answers)
+        self.requests: list[dict] = []
+        outer = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def log_message(self, *args):  # keep test output clean
+                pass
+
+            def do_POST(self):
+                body = json.loads(self.rfile.read(int(self.headers["Content-Length"])))
+                outer.requests.append({"path": self.path, "body": body, "auth": self.headers.get("Authorization")})
+                ans = outer.answers.pop(0)
+                if isinstance(ans, int):  # an HTTP error status
+                    payload, status = {"error": {"message": "unsupported", "type": "invalid_request_error"}}, ans
+                else:
+                    status = 200
+                    payload = {
+                        "id": "cmpl-1", "object": "chat.completion", "created": 0, "model": body["model"],
+                        "choices": [{"index": 0, "message": {"role": "assistant", "content": ans}, "finish_reason": "stop"}],
+                        "usage": {"prompt_tokens": 1, "completion_tokens": 1, "total_tokens": 2},
+                    }
+                data = json.dumps(payload).encode()
+                self.send_response(status)
+                self.send_header("Content-Type", "application/json")
+                self.send_header("Content-Length", str(len(data)))
+                self.end_headers()
+                self.wfile.write(data)
+
+        self.httpd = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.thread = threading.Thread(target=self.httpd.serve_forever, daemon=True)
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.httpd.server_address[1]}/v1"
+
+    def __enter__(self):
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.httpd.shutdown()
+        self.httpd.server_close()
+
+
+def _llm(scene, url, text="put all blocks in a circle and the bottle behind one block", **kw):
+    return parse(scene, text, parser="llm", llm_model="test-model", llm_base_url=url, api_key="k", timeout=10, **kw)
+
+
+def test_valid_answer_and_the_prompt(tabletop):
+    with _Server([CIRCLE]) as srv:
+        goals = _llm(tabletop, srv.url)
+    assert to_dict(goals) == json.loads(CIRCLE)
+    (req,) = srv.requests
+    assert req["path"] == "/v1/chat/completions" and req["auth"] == "Bearer k"
+    body = req["body"]
+    assert body["model"] == "test-model" and body["response_format"]["type"] == "json_schema"
+    system, user = body["messages"][0]["content"], body["messages"][1]["content"]
+    for name, info in pattern_infos().items():  # the same database as the offline parser
+        assert f"- {name}: {info.description}" in system
+    assert "- id 8: red and green polka dot letter A" in user and user.endswith("behind one block")
+
+
+def test_malformed_json_is_retried_once(tabletop):
+    with _Server(["Sure! here it is: {goals: [", "```json\n" + CIRCLE + "\n```"]) as srv:
+        goals = _llm(tabletop, srv.url)
+    assert to_dict(goals)["goals"][0]["pattern"] == "circle"
+    retry = srv.requests[1]["body"]["messages"]
+    assert retry[-1]["role"] == "user" and "not valid JSON" in retry[-1]["content"]
+
+
+def test_unknown_ids_then_valid(tabletop):
+    bad = json.dumps({"goals": [{"pattern": "line", "objects": [1, 42]}]})
+    with _Server([bad, CIRCLE]) as srv:
+        _llm(tabletop, srv.url)
+    assert "unknown object id 42" in srv.requests[1]["body"]["messages"][-1]["content"]
+
+
+@pytest.mark.parametrize(
+    "answers, needle",
+    [
+        ([json.dumps({"goals": [{"pattern": "spiral", "objects": [1, 2, 3]}]})] * 2, "unknown pattern"),
+        ([json.dumps({"goals": [{"pattern": "left", "objects": [1]}]})] * 2, "anchor"),
+        ([json.dumps({"goals": [{"pattern": "circle", "objects": [1, 2]}]})] * 2, "at least 3"),
+        ([json.dumps({"goals": [], "error": "there is no giraffe"})], "no giraffe"),
+    ],
+)
+def test_invalid_twice_or_reported_failure_is_one_clear_error(tabletop, answers, needle):
+    with _Server(answers) as srv:
+        with pytest.raises(InputError) as err:
+            _llm(tabletop, srv.url)
+    assert needle in str(err.value) and "\n" not in str(err.value)
+    assert len(srv.requests) == len(answers)
+
+
+def test_server_without_structured_output_is_asked_plainly(tabletop):
+    with _Server([400, CIRCLE]) as srv:
+        _llm(tabletop, srv.url)
+    assert "response_format" in srv.requests[0]["body"] and "response_format" not in srv.requests[1]["body"]
+
+
+def test_unreachable_endpoint_and_missing_model(tabletop, monkeypatch):
+    with _Server([]) as srv:
+        url = srv.url
+    with pytest.raises(InputError, match="cannot reach"):
+        _llm(tabletop, url)
+    monkeypatch.delenv("LGMCTS_LLM_MODEL", raising=False)
+    with pytest.raises(InputError, match="--llm-model"):
+        parse(tabletop, "line up the blocks", parser="llm", llm_base_url=url)
