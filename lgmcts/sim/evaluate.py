@@ -49,10 +49,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--method", default="lgmcts")
     ap.add_argument("--observe", action="store_true", help="also observe each scene, plan on it and execute")
     ap.add_argument("--no-example", action="store_true", help="leave out examples/tabletop.json")
+    ap.add_argument("--suite", default=None, help="use the first --n tasks of a benchmark suite (elgr, structformer) with their ground-truth goals instead of random cases")
+    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --suite)")
     ap.add_argument("--case-timeout", type=float, default=20.0, help="skip a seed whose case takes longer to build (s)")
     args = ap.parse_args(argv)
 
     cases = []
+    if args.suite is not None:
+        from ..bench.suites import generate
+
+        for t in generate(args.suite, n=args.n, seed=0):
+            cases.append((f"{t.id} ({t.category})", t.scene_spec(), t.goal_spec()))
+        args.no_example, args.seeds = True, ""
     if not args.no_example:
         from pathlib import Path
 
@@ -60,7 +68,7 @@ def main(argv: list[str] | None = None) -> int:
         cases.append(("example", load_scene(root / "examples/tabletop.json"), load_goals(root / "examples/goals.json")))
     skipped = []
     signal.signal(signal.SIGALRM, _alarm)
-    for s in _seeds(args.seeds):
+    for s in _seeds(args.seeds) if args.seeds else []:
         signal.setitimer(signal.ITIMER_REAL, args.case_timeout)
         try:
             c = random_case(s)
