@@ -22,9 +22,9 @@ import os
 import time
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
-from typing import Any, Awaitable, Callable
+from typing import Annotated, Any, Awaitable, Callable
 
-from fastapi import FastAPI, Request
+from fastapi import Body, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse, Response
 
@@ -34,7 +34,7 @@ from ..formats import GoalSpec
 from . import jobs
 from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
-from .viewer import page
+from .viewer import EXAMPLE_GOALS, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE, page
 
 __all__ = ["ServiceOptions", "create_app", "options_from_env", "validation_message", "BodyLimit", "TEST_HOOKS_ENV"]
 
@@ -198,6 +198,24 @@ _ERRORS = {
 }
 
 
+_PLAN_EXAMPLES = {
+    "goals": {
+        "summary": "Goals given as JSON",
+        "value": {"scene": EXAMPLE_SCENE, "goals": EXAMPLE_GOALS, "options": {"method": "lgmcts", "seed": 0}},
+    },
+    "instruction": {
+        "summary": "A plain-language instruction",
+        "value": {"scene": EXAMPLE_SCENE, "instruction": EXAMPLE_INSTRUCTION},
+    },
+}
+_PARSE_EXAMPLES = {
+    "rules": {
+        "summary": "The offline parser",
+        "value": {"scene": EXAMPLE_SCENE, "instruction": EXAMPLE_INSTRUCTION, "parser": "rules"},
+    },
+}
+
+
 def create_app(options: ServiceOptions | None = None) -> FastAPI:
     """Build the ASGI application (start it with uvicorn; see :mod:`lgmcts.service.cli`).
 
@@ -288,7 +306,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         }
 
     @app.post("/parse", response_model=None, responses={200: {"description": "Goal JSON."}, **_ERRORS}, tags=["planning"])
-    async def parse(req: ParseRequest) -> Any:
+    async def parse(req: Annotated[ParseRequest, Body(openapi_examples=_PARSE_EXAMPLES)]) -> Any:
         """Turn an instruction into goal JSON (``{"goals": [...]}``) for the scene."""
         try:
             deadline = deadline_of(req.timeout)
@@ -298,7 +316,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         return await run(jobs.run_parse, job, deadline, "parsing", on=language)
 
     @app.post("/plan", response_model=None, responses={200: {"description": "Plan JSON."}, **_ERRORS}, tags=["planning"])
-    async def plan(req: PlanRequest) -> Any:
+    async def plan(req: Annotated[PlanRequest, Body(openapi_examples=_PLAN_EXAMPLES)]) -> Any:
         """Plan actions for the scene towards ``goals`` or an ``instruction``.
 
         The answer is the plan JSON of ``lgmcts plan``: ``solved``, ``actions``,

@@ -14,7 +14,7 @@ import json
 import re
 from pathlib import Path
 
-__all__ = ["page", "viewer_script", "EXAMPLE_SCENE", "EXAMPLE_INSTRUCTION"]
+__all__ = ["page", "viewer_script", "EXAMPLE_SCENE", "EXAMPLE_GOALS", "EXAMPLE_INSTRUCTION"]
 
 VIEWER_JS = Path(__file__).resolve().parent.parent / "viz" / "assets" / "viewer.js"
 
