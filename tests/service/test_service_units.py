@@ -74,3 +74,28 @@ def test_example_scene_is_valid():
 def test_service_options_reject_bad_limits(kwargs, message):
     with pytest.raises(InputError, match=message):
         ServiceOptions(**kwargs)
+
+
+def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
+    import json
+    from pathlib import Path
+
+    from fastapi.testclient import TestClient
+
+    from lgmcts.service.app import TEST_HOOKS_ENV, create_app, options_from_env
+
+    monkeypatch.delenv(TEST_HOOKS_ENV, raising=False)
+    assert options_from_env().test_hooks is False
+    monkeypatch.setenv(TEST_HOOKS_ENV, "1")
+    assert options_from_env().test_hooks is True
+    root = Path(__file__).resolve().parents[2]
+    body = {
+        "scene": json.loads((root / "examples" / "tabletop.json").read_text()),
+        "goals": json.loads((root / "examples" / "goals.json").read_text()),
+        "options": {"method": "_crash"},
+    }
+    # No lifespan, so no worker starts: the method is refused before any would be needed.
+    client = TestClient(create_app(ServiceOptions(test_hooks=False)))
+    r = client.post("/plan", json=body)
+    assert r.status_code == 422
+    assert r.json() == {"detail": "unknown method '_crash' (known: lgmcts, greedy, pmcts)"}
