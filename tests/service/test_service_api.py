@@ -224,7 +224,7 @@ def test_timeout_is_504_and_a_hung_worker_is_replaced(client):
     elapsed = time.monotonic() - t0
     assert r.status_code == 504
     assert r.json() == {"detail": "planning did not finish within its wall-clock timeout"}
-    assert elapsed < 3.0
+    assert elapsed < 5.0  # 0.5 s asked; generous for a busy machine
     # The sleeper ignores its deadline; after the 1 s grace its pool goes.
     _wait_for_restart(client, before)
     assert _plan(client).status_code == 200
@@ -237,13 +237,13 @@ def test_real_planning_past_a_tiny_timeout_is_504(client):
 
 def test_slow_request_does_not_block_others(server):
     with httpx.Client(base_url=server.url, timeout=30.0) as slow_client, ThreadPoolExecutor(1) as ex:
-        slow = ex.submit(_plan, slow_client, method="_sleep", time_limit=2.0)
+        slow = ex.submit(_plan, slow_client, method="_sleep", time_limit=3.0)
         time.sleep(0.3)
         with httpx.Client(base_url=server.url, timeout=30.0) as c:
-            t0 = time.monotonic()
             assert c.get("/healthz").status_code == 200
             assert _plan(c).status_code == 200
-            assert time.monotonic() - t0 < 1.5
+            # Answered while the slow request still runs.
+            assert not slow.done()
         r = slow.result()
         assert r.status_code == 200 and r.json()["solved"]
 
