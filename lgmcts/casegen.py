@@ -215,10 +215,9 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
             spose[o] = p
     if kind == "blockers":
         for o in free_others[:2]:
-            base = int(rng.choice(targets))
-            while base in son.values():
-                base = int(rng.choice(targets))
-            if scene.radii[o] > 1.3 * scene.radii[base]:
+            bases = [t for t in targets if t not in son.values()]
+            base = int(rng.choice(bases)) if bases else -1
+            if base < 0 or scene.radii[o] > 1.3 * scene.radii[base]:
                 p = start.random(o, rng)
                 if p is None:
                     return None
@@ -227,6 +226,8 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
             spose[o] = np.array([*spose[base][:2], spose[base][2]])
             son[o] = base
             blockers += 1
+    if kind == "blockers" and not blockers:
+        return None  # a blockers case must really bury a goal object
     objs_out = []
     for k, ob in enumerate(objects):
         objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})

@@ -117,6 +117,8 @@ def plan(
         raise InputError(f"unknown method '{method}' (known: {', '.join(METHODS)})")
     if max_iter < 1:
         raise InputError("max_iter must be at least 1")
+    if seed < 0:
+        raise InputError("seed must be a non-negative integer")
     if time_limit is not None and time_limit <= 0:
         raise InputError("time_limit must be positive")
     spec = scene if isinstance(scene, SceneSpec) else load_scene(scene if isinstance(scene, dict) else Path(scene))

@@ -234,6 +234,14 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
                         break
         _backprop(child, value)
     elapsed = time.perf_counter() - t0
+    if log.isEnabledFor(logging.INFO):
+        shown = best if best is not None else best_partial[2].path()
+        log.info(
+            "mcts: %d iterations, %d nodes, %d rollout steps, best partial depth %d (reward %.2f), %s with %d actions "
+            "(%d relocations, %d unstacks), %.3f s",
+            it, nodes, rollout_steps, best_partial[2].depth, best_partial[0], "solved" if best is not None else "unsolved",
+            len(shown), sum(a.purpose == "relocate" for a in shown), sum(a.purpose == "unstack" for a in shown), elapsed,
+        )
     if best is not None:
         return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions)
     reason = "search space exhausted" if root.dead else (
