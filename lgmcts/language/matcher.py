@@ -46,6 +46,7 @@ __all__ = [
 STOPWORDS = frozenset(
     """a an the of to in into on onto at by with from for and or but as so that this these those it its them they
     their there here is are be been being was were do does please me my i you your we us our can could would will
+    i'd i'm we'd let's you'd that's it's
     shall should let lets let's just then also up all each every some any one ones way kindly neatly nicely carefully
     together side""".split()
 )
@@ -54,7 +55,7 @@ STOPWORDS = frozenset(
 _FILLER_WORDS = """put place move arrange set position make form get bring organize organise lay rearrange sort order
     reorder create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
     want need like would table workspace tabletop please group go goes going should must end ends stand stands sit
-    sits located placed positioned moved put arranged""".split()
+    sits located placed positioned moved put arranged use using like""".split()
 
 
 @dataclass(frozen=True)
@@ -78,7 +79,7 @@ class MatcherOptions:
 
     accept: float = 0.86
     floor: float = 0.55
-    lexical_weight: float = 0.15
+    lexical_weight: float = 0.25
 
 
 @dataclass(frozen=True)
@@ -110,7 +111,7 @@ class Match:
         return self.pattern is not None
 
 
-_TOKEN = re.compile(r"[a-z0-9]+")
+_TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
 
 def _stem(word: str) -> str:
@@ -119,6 +120,18 @@ def _stem(word: str) -> str:
     if len(word) > 3 and word.endswith("s") and not word.endswith("ss"):
         return word[:-1]
     return word
+
+
+def _forms(word: str) -> tuple[str, ...]:
+    """``word`` and the bases it may be inflected from ("lined", "putting", "stacked")."""
+    out = [word, _stem(word)]
+    for suffix in ("ing", "ed"):
+        if len(word) > len(suffix) + 2 and word.endswith(suffix):
+            base = word[: -len(suffix)]
+            out += [base, base + "e"]
+            if len(base) > 2 and base[-1] == base[-2]:
+                out.append(base[:-1])
+    return tuple(out)
 
 
 FILLERS = frozenset(w for x in _FILLER_WORDS for w in (x, _stem(x)))
@@ -174,10 +187,13 @@ class Encoder:
 
     Thread-safe; the model is loaded on the first :meth:`encode` call (or by
     :meth:`load`), on the CPU, with Hugging Face network access switched off.
+    ``threads`` torch threads are used while encoding (1 by default: one
+    short phrase is fastest on one thread, above all on a busy machine).
     """
 
-    def __init__(self, path: Path | None = None, *, cache_size: int = 4096) -> None:
+    def __init__(self, path: Path | None = None, *, cache_size: int = 4096, threads: int = 1) -> None:
         self._path = path
+        self._threads = threads
         self._model: Any = None
         self._lock = threading.Lock()
         self._cache: dict[str, np.ndarray] = {}
@@ -220,9 +236,16 @@ class Encoder:
             import torch
 
             with self._lock, torch.inference_mode():
-                vecs = self._model.encode(
-                    missing, normalize_embeddings=True, convert_to_numpy=True, show_progress_bar=False
-                )
+                # One short phrase gains nothing from several threads, and on a
+                # shared machine extra threads only wait for each other.
+                before = torch.get_num_threads()
+                torch.set_num_threads(self._threads)
+                try:
+                    vecs = self._model.encode(
+                        missing, normalize_embeddings=True, convert_to_numpy=True, show_progress_bar=False
+                    )
+                finally:
+                    torch.set_num_threads(before)
             if len(self._cache) + len(missing) > self._cache_size:
                 self._cache.clear()
             for t, v in zip(missing, vecs):
@@ -296,8 +319,10 @@ class PatternMatcher:
         self._refresh()
         text = " ".join(phrase.lower().split())
         words = content_words(text)
-        unexplained = tuple(w for w in words if w not in self._vocab and w not in FILLERS and not w.isdigit())
-        meaningful = [w for w in words if w not in FILLERS]
+        unexplained = tuple(
+            w for w in words if not w.isdigit() and not any(f in self._vocab or f in FILLERS for f in _forms(w))
+        )
+        meaningful = [w for w in words if not any(f in FILLERS for f in _forms(w))]
         if not meaningful:
             return Match(None, 0.0, reason="no arrangement is named")
         names = [n for n, _ in self._keys]
