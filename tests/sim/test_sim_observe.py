@@ -101,3 +101,18 @@ def test_video_is_written(render_ok, all_shapes, tmp_path):
     # One frame per 1/25 s of simulated time.
     assert abs(len(frames) - round(result.sim_time * 25)) <= 2
     assert frames[0].shape == (480, 640, 3)
+
+
+def test_observe_rejects_an_unknown_camera(render_ok, example_scene):
+    from lgmcts.errors import InputError
+
+    with pytest.raises(InputError, match="unknown camera 'ceiling'"):
+        observe(example_scene, options=CameraOptions(cameras=("ceiling",), width=64, height=48))
+
+
+def test_plan_scene_must_hold_the_same_objects(observed_example, example_scene, example_goals):
+    from lgmcts.errors import InputError
+
+    fewer = parse_scene({"workspace": observed_example.workspace.model_dump(), "objects": [o.model_dump() for o in observed_example.objects[:3]]})
+    with pytest.raises(InputError, match="same object ids"):
+        execute_plan(example_scene, {"solved": True, "actions": []}, example_goals, plan_scene=fewer)
