@@ -21,7 +21,7 @@ import json
 import os
 import sys
 import time
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+import signal
 from dataclasses import asdict, dataclass
 from multiprocessing import get_context
 from pathlib import Path
@@ -377,6 +377,7 @@ def run_suite(
         show_progress = sys.stderr.isatty()
     from tqdm import tqdm
 
+    _interrupt_on_sigterm()
     bar = tqdm(total=len(tasks), initial=len(tasks) - len(todo), desc=f"{options.method}", unit="task",
                disable=not show_progress, file=sys.stderr, dynamic_ncols=True)
     n_ok = sum(bool(r.get("sr_p")) for r in done.values())
@@ -403,6 +404,20 @@ def run_suite(
     return sorted((r for r in done.values() if r["id"] in order), key=lambda r: order[r["id"]])
 
 
+def _interrupt_on_sigterm() -> None:
+    """Turn SIGTERM into KeyboardInterrupt so a killed run still stops its workers."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    if signal.getsignal(signal.SIGTERM) in (signal.SIG_DFL, None):
+
+        def _raise(signum: int, frame: Any) -> None:
+            raise KeyboardInterrupt
+
+        signal.signal(signal.SIGTERM, _raise)
+
+
 def _worker_init() -> None:
     # One math thread per worker: the workers already use every core, and
     # oversubscribed BLAS/torch threads make each parse many times slower.
@@ -412,26 +427,20 @@ def _worker_init() -> None:
 
 def _pool_map(tasks: list[Task], options: RunOptions, workers: int) -> Iterator[dict[str, Any]]:
     # Spawned workers: no torch or MuJoCo state is inherited through fork.
+    # Tasks go out one at a time, so an interrupted run loses at most the
+    # tasks in flight; on any exit the workers are terminated, not awaited.
     ctx = get_context("spawn")
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init) as pool:
-        pending = set()
-        it = iter(tasks)
-        # Keep a bounded queue so an interrupted run loses little work.
-        for t in it:
-            pending.add(pool.submit(_safe, t.to_dict(), options))
-            if len(pending) >= 2 * workers:
-                break
-        try:
-            while pending:
-                finished, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for f in finished:
-                    yield f.result()
-                    nxt = next(it, None)
-                    if nxt is not None:
-                        pending.add(pool.submit(_safe, nxt.to_dict(), options))
-        finally:
-            for f in pending:
-                f.cancel()
+    pool = ctx.Pool(workers, initializer=_worker_init)
+    try:
+        yield from pool.imap_unordered(_safe_star, [(t.to_dict(), options) for t in tasks], chunksize=1)
+        pool.close()
+    finally:
+        pool.terminate()
+        pool.join()
+
+
+def _safe_star(args: tuple[dict, RunOptions]) -> dict[str, Any]:
+    return _safe(*args)
 
 
 def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int | None) -> Iterator[dict[str, Any]]:
