@@ -44,6 +44,7 @@ def eval_parse_cmd(
     as_json: bool = typer.Option(False, "--json", help="Print the report as JSON."),
     min_accuracy: Optional[float] = typer.Option(None, "--min-accuracy", help="Exit 1 when accuracy is below this."),
     show: int = typer.Option(50, "--show", help="How many failures to list."),
+    cold: bool = typer.Option(False, "--cold", help="Forget cached phrase embeddings before each case (timing)."),
 ) -> None:
     """Exact-goal accuracy of a parser on CASES, per category, with failures and parse speed."""
     from . import parse
@@ -60,9 +61,14 @@ def eval_parse_cmd(
             m.encoder.load()
             m.key_embeddings()
             load_s = time.perf_counter() - t0
-        report = evaluate(
-            loaded, lambda s, t: parse(s, t, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
-        )
+        def run(s, t):
+            if cold and parser == "rules":
+                from .matcher import default_matcher
+
+                default_matcher().encoder.clear_cache()
+            return parse(s, t, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
+
+        report = evaluate(loaded, run)
         report.load_time_s = load_s
     except InputError as exc:
         fail(str(exc))

@@ -228,6 +228,11 @@ class Encoder:
                 self.load_time_s = time.perf_counter() - t0
         return self
 
+    def clear_cache(self) -> None:
+        """Forget cached phrase embeddings (the pattern keys are kept by the matcher)."""
+        with self._lock:
+            self._cache.clear()
+
     def encode(self, texts: list[str] | tuple[str, ...]) -> np.ndarray:
         """Unit-normalised embeddings, shape ``(len(texts), 384)``."""
         missing = [t for t in dict.fromkeys(texts) if t not in self._cache]

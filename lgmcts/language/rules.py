@@ -418,6 +418,8 @@ class _Parser:
 
     # ------------------------------------------------------------ the command
     def command(self, text: str) -> GoalSpec:
+        # The order along a line ("from left to right") is not part of any goal.
+        text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         words = tuple(t.text for t in tokenize(text))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
