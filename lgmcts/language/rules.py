@@ -518,9 +518,6 @@ class _Parser:
                         f"{a['pattern'].replace('_', ' and ')} and {b['pattern'].replace('_', ' and ')} of object "
                         f"{describe(self.vocab, [a['anchor']])}"
                     )
-        for g in goals:
-            if g["pattern"] in RELATIONS:
-                continue
         pos: dict[int, tuple[float, float, float]] = {}
         for g in goals:
             if "pose" in g:
