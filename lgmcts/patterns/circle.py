@@ -2,8 +2,13 @@
 
 kappa is the centre c, the radius R and the angle a0 of the first object
 about c; object slots sit at gamma(s / n) = c + R (cos, sin)(a0 + 2 pi s / n).
-The radius adapts to the objects' sizes (neighbouring slots must not
-collide) and the circle is placed so that it fits in the workspace.
+As in the paper, kappa is a function of the first two placements p0, p1:
+the second object goes at a chord's length from the first, d = 2 R sin(k pi / n)
+for some slot offset k, and (p0, p1, k) then fix the circle. The radius range
+adapts to the objects' sizes (neighbouring slots must not collide) and a
+circle is only proposed where it fits in the workspace. Because the second
+object may be anywhere at an admissible distance from the first, two objects
+that already stand at such a distance can both stay where they are.
 """
 
 from __future__ import annotations
@@ -21,18 +26,43 @@ SLOT_SPREAD = 0.3
 
 
 def radius_range(ctx: Context) -> tuple[float, float]:
-    """Smallest radius at which neighbours clear each other, and the largest that fits (m)."""
+    """Smallest radius at which neighbours clear each other, and the largest proposed (m)."""
     n, rmax = ctx.n, ctx.max_radius
     xmin, xmax, ymin, ymax = ctx.scene.bounds
     lo = max(0.06, (2 * rmax + 2 * CLEARANCE + 2 * BAND) / (2 * math.sin(math.pi / n)))
     hi = min(xmax - xmin, ymax - ymin) / 2 - rmax - 0.002
+    hi = min(hi, 1.5 * lo + 0.05)
     return lo, max(lo, hi)
 
 
-def _fits(ctx: Context, c: np.ndarray, r: float) -> bool:
+def _fits(ctx: Context, c: np.ndarray, r: np.ndarray | float) -> np.ndarray:
+    """Whether circles of centres ``c`` (``(m, 2)``) and radii ``r`` fit in the workspace."""
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    m = r + ctx.max_radius + BAND
-    return xmin + m <= c[0] <= xmax - m and ymin + m <= c[1] <= ymax - m
+    m = np.asarray(r) + ctx.max_radius + BAND
+    c = np.asarray(c).reshape(-1, 2)
+    return (xmin + m <= c[:, 0]) & (c[:, 0] <= xmax - m) & (ymin + m <= c[:, 1]) & (c[:, 1] <= ymax - m)
+
+
+def _centres(p0: np.ndarray, p1: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The two centres of circles of radii ``r`` through ``p0`` and ``p1`` (rows)."""
+    p1 = np.asarray(p1).reshape(-1, 2)
+    v = p1 - p0
+    d = np.hypot(v[:, 0], v[:, 1])
+    mid = (p0 + p1) / 2
+    h = np.sqrt(np.maximum(r**2 - (d / 2) ** 2, 0.0))
+    nrm = np.stack([-v[:, 1], v[:, 0]], axis=1) / np.maximum(d, 1e-12)[:, None]
+    return mid + h[:, None] * nrm, mid - h[:, None] * nrm
+
+
+def _chord_ks(ctx: Context, d: float, lo: float, hi: float) -> list[tuple[int, float]]:
+    """Slot offsets k (and radii) for which a chord of length ``d`` spans k slots."""
+    n = ctx.n
+    out = []
+    for k in range(1, n // 2 + 1):
+        r = d / (2 * math.sin(k * math.pi / n))
+        if lo - EDGE_EPS <= r <= hi + EDGE_EPS:
+            out.append((k, r))
+    return out
 
 
 @dataclass(frozen=True)
@@ -51,9 +81,29 @@ class Circle(BasePattern):
         free = np.array([s for s in range(int(n)) if s not in used], dtype=int)
         return free, a0 + 2 * math.pi * free / n
 
+    def _second(self, ctx: Context, rng: np.random.Generator, n: int) -> np.ndarray:
+        """Poses for the second object: a chord away from the first, on a circle that fits."""
+        p0 = ctx.state.poses[ctx.progress.placed[0], :2]
+        lo, hi = radius_range(ctx)
+        m = 4 * n
+        k = rng.integers(1, ctx.n // 2 + 1, m)
+        r = rng.uniform(lo, hi, m)
+        beta = rng.uniform(-math.pi, math.pi, m)
+        d = 2 * r * np.sin(k * math.pi / ctx.n)
+        p1 = p0 + d[:, None] * np.stack([np.cos(beta), np.sin(beta)], axis=1)
+        c1, c2 = _centres(p0, p1, r)
+        ok1, ok2 = _fits(ctx, c1, r), _fits(ctx, c2, r)
+        keep = ok1 | ok2
+        c = np.where(ok1[:, None], c1, c2)
+        p1, c = p1[keep][:n], c[keep][:n]
+        theta = np.arctan2(p1[:, 1] - c[:, 1], p1[:, 0] - c[:, 0]) + math.pi / 2
+        return np.column_stack([p1, theta])
+
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
-        if ctx.progress.params is None:
+        if not ctx.progress.placed:
             return uniform_poses(ctx.scene, obj, rng, n)
+        if ctx.progress.params is None:
+            return self._second(ctx, rng, n)
         cx, cy, r, a0, k = ctx.progress.params
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
@@ -65,8 +115,21 @@ class Circle(BasePattern):
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.progress.params is None:
+        if not ctx.progress.placed:
             return np.ones(len(poses))
+        if ctx.progress.params is None:
+            p0 = ctx.state.poses[ctx.progress.placed[0], :2]
+            lo, hi = radius_range(ctx)
+            d = np.hypot(*(poses[:, :2] - p0).T)
+            ok = np.zeros(len(poses), dtype=bool)
+            for k in range(1, ctx.n // 2 + 1):
+                s = 2 * math.sin(k * math.pi / ctx.n)
+                r = d / s
+                inside = (r >= lo - EDGE_EPS) & (r <= hi + EDGE_EPS)
+                if inside.any():
+                    c1, c2 = _centres(p0, poses[:, :2], r)
+                    ok |= inside & (_fits(ctx, c1, r) | _fits(ctx, c2, r))
+            return ok.astype(float)
         cx, cy, r, a0, k = ctx.progress.params
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
@@ -80,23 +143,29 @@ class Circle(BasePattern):
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress
+        if not prog.placed:
+            return prog.add(obj, slot=0)
         if prog.params is None:
+            first = prog.placed[0]
+            p0 = ctx.state.poses[first, :2]
+            p1 = np.asarray(pose[:2], dtype=float)
             lo, hi = radius_range(ctx)
-            hi = min(hi, 1.5 * lo + 0.03)
-            p = np.asarray(pose[:2], dtype=float)
-            best = None
-            # Prefer a centre beside the object so that its heading is tangent.
-            for attempt in range(32):
-                r = rng.uniform(lo, max(lo, hi))
-                side = rng.choice([-1.0, 1.0])
-                beta = pose[2] + side * math.pi / 2 if attempt < 8 else rng.uniform(-math.pi, math.pi)
-                c = p + r * np.array([math.cos(beta), math.sin(beta)])
-                best = (c, r, beta)
-                if _fits(ctx, c, r):
-                    break
-            c, r, beta = best  # type: ignore[misc]
-            a0 = math.atan2(p[1] - c[1], p[0] - c[0])
-            return prog.add(obj, slot=0, params=(float(c[0]), float(c[1]), float(r), float(a0), float(ctx.n)))
+            d = float(np.hypot(*(p1 - p0)))
+            choices = []
+            for k, r in _chord_ks(ctx, d, lo, hi):
+                for c in _centres(p0, p1[None], np.array([r])):
+                    choices.append((bool(_fits(ctx, c, r)[0]), k, r, c[0]))
+            if not choices:  # outside the prior's support: the nearest admissible radius
+                k = 1
+                r = max(d / (2 * math.sin(math.pi / ctx.n)), lo)
+                choices = [(False, k, r, c[0]) for c in _centres(p0, p1[None], np.array([r]))]
+            fitting = [ch for ch in choices if ch[0]] or choices
+            _, k, r, c = fitting[int(rng.integers(len(fitting)))]
+            a0 = math.atan2(p0[1] - c[1], p0[0] - c[0])
+            a1 = math.atan2(p1[1] - c[1], p1[0] - c[0])
+            step = round(((a1 - a0) % (2 * math.pi)) / (2 * math.pi / ctx.n)) % ctx.n
+            params = (float(c[0]), float(c[1]), float(r), float(a0), float(ctx.n))
+            return GoalProgress((first, obj), (0, int(step)), params)
         free, angles = self._slot_angles(ctx)
         cx, cy = prog.params[0], prog.params[1]
         a = math.atan2(pose[1] - cy, pose[0] - cx)
