@@ -294,6 +294,20 @@ def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Gene
     return relocate(problem, ss, b, rng, opts, purpose)
 
 
+def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
+    """When no pose of ``o``'s prior lies in the workspace, move an anchor that
+    no goal places (it stands near an edge, say) to a free pose."""
+    if opts.obstacles != "all":
+        return None
+    free = [g.anchor for k in problem.member[o] if (g := problem.goals[k]).anchor is not None and g.anchor not in problem.member]
+    if not free:
+        return None
+    a = free[int(rng.integers(len(free)))]
+    if not ss.world.clear(a):
+        return _move_blocker(problem, ss, _clear_top(ss.world, a, rng), rng, opts, "unstack", 1)
+    return relocate(problem, ss, a, rng, opts, "relocate")
+
+
 def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0) -> Transition | None:
     """One simulation step for goal object ``o`` (paper, Algorithm 1).
 
@@ -308,7 +322,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         return None
     cand = _sample(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
-        return None
+        return _move_anchor(problem, ss, o, rng, opts)
     if support != TABLE:
         if any(k != o for k in world.holding[support]):
             return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", _depth)
@@ -330,7 +344,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     # Every candidate collides: clear the way for one of them (fewest blockers first).
     blocked = [k for k in np.flatnonzero(inside) if hits[k]]
     if not blocked:
-        return None
+        return _move_anchor(problem, ss, o, rng, opts)
     fewest = min(len(hits[k]) for k in blocked)
     pick = [k for k in blocked if len(hits[k]) == fewest]
     chosen = hits[int(pick[int(rng.integers(len(pick)))])]
