@@ -1,11 +1,15 @@
 """Rectangle: objects' centres on the perimeter of a rectangle.
 
-kappa is the rectangle (centre, width w, height h, heading phi), fixed when
-the first object is placed: that object marks one corner. The next objects
-fill the other three corners exactly (so the minimum-area rectangle around
-the centres is this one) and any further objects go along the sides, pulled
-inwards by at most :data:`BAND` so they never widen it. Sides adapt to the
-object sizes so that the perimeter holds every object.
+kappa is the rectangle (centre, width w, height h, heading phi), a function
+of the first two placements as in the paper: the first object marks one
+corner, the second the adjacent corner at a side's length from it (so two
+objects standing at such a distance can both stay), and the other side's
+length and the rectangle's side of that edge are drawn so that it fits in
+the workspace. The next objects fill the other two corners exactly (so the
+minimum-area rectangle around the centres is this one) and any further
+objects go along the sides, pulled inwards by at most :data:`BAND` so they
+never widen it. Sides adapt to the object sizes so that the perimeter holds
+every object.
 """
 
 from __future__ import annotations
@@ -49,11 +53,28 @@ class Rectangle(BasePattern):
         extras_left = (ctx.n - 4) - sum(1 for s in ctx.progress.slots if s >= 4)
         return free_corners, extras_left
 
+    def _sizes(self, ctx: Context) -> tuple[float, float, float]:
+        """Shortest side, longest first side and least perimeter (m) for the goal's objects."""
+        pitch = 2 * ctx.max_radius + CLEARANCE + 2 * BAND + 0.004
+        side_min = max(0.06, pitch)
+        per_min = ctx.n * pitch
+        xmin, xmax, ymin, ymax = ctx.scene.bounds
+        room = max(xmax - xmin, ymax - ymin) - 2 * ctx.max_radius
+        side_max = min(max(1.5 * side_min + 0.05, per_min / 2 - side_min), room)
+        return side_min, max(side_min, side_max), per_min
+
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
-        if ctx.progress.params is None:
+        if not ctx.progress.placed:
             out = uniform_poses(ctx.scene, obj, rng, n)
             out[rng.random(n) < 0.5, 2] = 0.0
             return out
+        if ctx.progress.params is None:
+            first = ctx.state.poses[ctx.progress.placed[0]]
+            lo, hi, _ = self._sizes(ctx)
+            d = rng.uniform(lo, hi, n)
+            a = np.where(rng.random(n) < 0.5, first[2] + rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
+            xy = first[:2] + d[:, None] * np.stack([np.cos(a), np.sin(a)], axis=1)
+            return np.column_stack([xy, a])
         cx, cy, w, h, phi = ctx.progress.params
         free, extras = self._state(ctx)
         rows = []
@@ -87,8 +108,12 @@ class Rectangle(BasePattern):
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.progress.params is None:
+        if not ctx.progress.placed:
             return np.ones(len(poses))
+        if ctx.progress.params is None:
+            lo, hi, _ = self._sizes(ctx)
+            d = np.hypot(*(poses[:, :2] - ctx.state.poses[ctx.progress.placed[0], :2]).T)
+            return ((d >= lo - EDGE_EPS) & (d <= hi + EDGE_EPS)).astype(float)
         cx, cy, w, h, phi = ctx.progress.params
         free, extras = self._state(ctx)
         out = np.zeros(len(poses))
@@ -104,31 +129,33 @@ class Rectangle(BasePattern):
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress
+        if not prog.placed:
+            return prog.add(obj, slot=-1)
         if prog.params is None:
-            n, rmax = ctx.n, ctx.max_radius
-            pitch = 2 * rmax + CLEARANCE + 2 * BAND + 0.004
-            side_min = max(0.06, pitch)
-            per_min = n * pitch
+            first = prog.placed[0]
+            p0 = ctx.state.poses[first, :2]
+            p1 = np.asarray(pose[:2], dtype=float)
+            lo, hi, per_min = self._sizes(ctx)
+            w = float(np.clip(np.hypot(*(p1 - p0)), lo, hi))
+            u = (p1 - p0) / max(float(np.hypot(*(p1 - p0))), 1e-12)
+            phi = math.atan2(u[1], u[0])
+            h_lo = max(lo, per_min / 2 - w)
             xmin, xmax, ymin, ymax = ctx.scene.bounds
-            p = np.asarray(pose[:2], dtype=float)
+            m = ctx.max_radius + 0.001
             best = None
-            for _ in range(32):
-                w = rng.uniform(side_min, side_min * 1.5 + 0.05)
-                h = rng.uniform(side_min, side_min * 1.5 + 0.05)
-                if 2 * (w + h) < per_min:
-                    scale = per_min / (2 * (w + h))
-                    w, h = w * scale, h * scale
-                phi = float(pose[2]) % (math.pi / 2)
-                corner = int(rng.integers(4))
-                c = p - _rot(phi) @ (_CORNERS[corner] * [w / 2, h / 2])
+            for attempt in range(24):
+                h = rng.uniform(h_lo, h_lo + 0.05) if attempt < 16 else h_lo
+                side = 1.0 if rng.random() < 0.5 else -1.0
+                v = side * np.array([-u[1], u[0]])
+                c = p0 + (w / 2) * u + (h / 2) * v
                 params = (float(c[0]), float(c[1]), float(w), float(h), float(phi))
                 cs = corners(params)
-                m = rmax + 0.001
-                best = (params, corner)
+                slots = (0, 1) if side > 0 else (3, 2)
+                best = (params, slots)
                 if ((cs[:, 0] >= xmin + m) & (cs[:, 0] <= xmax - m) & (cs[:, 1] >= ymin + m) & (cs[:, 1] <= ymax - m)).all():
                     break
-            params, corner = best  # type: ignore[misc]
-            return prog.add(obj, slot=corner, params=params)
+            params, slots = best  # type: ignore[misc]
+            return GoalProgress((first, obj), slots, params)
         free, extras = self._state(ctx)
         cs = corners(prog.params)
         for s in free:
