@@ -75,6 +75,17 @@ class SearchResult:
     solutions: int = 0
 
 
+def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions):
+    """One default-policy step: commit an object where it stands if one can
+    (a free step), else try to place a random ready object."""
+    order = [ready[k] for k in rng.permutation(len(ready))]
+    for o in order:
+        tr = stay(problem, ss, o, rng)
+        if tr is not None:
+            return tr
+    return attempt(problem, ss, order[0], rng, opts.step)
+
+
 def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions, depth: int) -> tuple[float, list[Action] | None, int]:
     """Random sequential placements from ``ss``: (reward, actions if solved, steps)."""
     actions: list[Action] = []
@@ -85,9 +96,8 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
         ready = ss.ready(problem)
         if not ready:
             break
-        o = ready[int(rng.integers(len(ready)))]
         steps += 1
-        tr = stay(problem, ss, o, rng) or attempt(problem, ss, o, rng, opts.step)
+        tr = _step(problem, ss, ready, rng, opts)
         if tr is None:
             break
         ss = tr.state
@@ -273,9 +283,8 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
             ready = ss.ready(problem)
             if not ready or it >= opts.max_iter:
                 break
-            o = ready[int(rng.integers(len(ready)))]
             it += 1
-            tr = stay(problem, ss, o, rng) or attempt(problem, ss, o, rng, opts.step)
+            tr = _step(problem, ss, ready, rng, opts)
             if tr is None:
                 break
             ss = tr.state
