@@ -235,39 +235,96 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec))
 
 
-def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
-    """Fewest actions any plan needs: goal objects whose goals do not hold yet,
-    plus objects resting on goal objects that must move.
+def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
+    """Whether centres ``xy`` could all stay for a line or circle goal.
 
-    A goal that already holds costs nothing. For one that does not, every
-    target object not already meeting it counts; shape patterns may keep two
-    objects where they stand (two points lie on some line, circle and
-    rectangle) and a tower its base.
+    Deliberately generous (twice the acceptance tolerance, no radius or gap
+    rule) so that the bound below never exceeds the true optimum.
     """
+    from .validate import TOL, fit_circle, line_residuals
+
+    if len(xy) <= 2:
+        return True
+    if pattern == "line":
+        return bool(line_residuals(xy).max() <= 2 * TOL)
+    if pattern == "circle":
+        # The rest of the circle's objects must spread over more than half of
+        # it, so the circle cannot be much larger than the table.
+        c, r = fit_circle(xy)
+        return bool(np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL)
+    return False
+
+
+def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
+    """Sets of a goal's objects that some plan might leave where they are."""
+    from itertools import combinations
+
+    idx = [sc.index[i] for i in g.objects]
+    on_table = [i for i in idx if st.on[i] == TABLE]
+    xmin, xmax, ymin, ymax = sc.bounds
+    diag = float(np.hypot(xmax - xmin, ymax - ymin))
+    if g.pattern in ("line", "circle", "rectangle"):
+        best: list[frozenset[int]] = [frozenset(c) for c in combinations(on_table, min(2, len(on_table)))]
+        if g.pattern != "rectangle":
+            for k in range(3, len(on_table) + 1):
+                more = [frozenset(c) for c in combinations(on_table, k) if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)]
+                if not more:
+                    break
+                best = more
+        return best or [frozenset()]
+    if g.pattern == "tower":
+        keep: list[int] = []
+        if st.on[idx[0]] == TABLE:
+            keep.append(idx[0])
+            for a, b in zip(idx, idx[1:]):
+                if st.on[b] != a:
+                    break
+                keep.append(b)
+        return [frozenset(keep)]
+    if g.pattern in RELATIONS:
+        ok = frozenset(i for i in idx if goal_satisfied(g.model_copy(update={"objects": [sc.ids[i]]}), sc, st.poses, st.on) is None)
+        return [ok]
+    return [frozenset()]
+
+
+def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
+    """Fewest actions any plan needs, counted generously so it is a true bound.
+
+    A goal that already holds costs nothing. Otherwise each goal object must
+    move unless a plan could leave it where it stands: for a line or circle
+    the largest set of its objects that already fit one (at least two, since
+    two points lie on some line and some circle), for a rectangle any two,
+    for a tower the part already stacked correctly from the base. Every
+    object resting, directly or not, on an object that must move adds one
+    action. Keep sets are chosen jointly over the goals to minimise the sum.
+    A relation whose anchor no goal places counts one action (moving the
+    anchor may satisfy all its objects at once).
+    """
+    from itertools import product
+
     sc = Scene.from_spec(scene)
     st = sc.initial
-    must_move: set[int] = set()
-    for g in goals.goals:
-        if goal_satisfied(g, sc, st.poses, st.on) is None:
-            continue
-        idx = [sc.index[i] for i in g.objects]
-        if g.pattern in ("line", "circle", "rectangle"):
-            on_table = [i for i in idx if st.on[i] == TABLE]
-            keep = set(on_table[:2])
-            must_move.update(i for i in idx if i not in keep)
-        elif g.pattern == "tower":
-            must_move.update(idx[1:])
-            if st.on[idx[0]] != TABLE:
-                must_move.add(idx[0])
-        elif g.pattern in RELATIONS:
-            for i in idx:
-                sub = g.model_copy(update={"objects": [sc.ids[i]]})
-                if goal_satisfied(sub, sc, st.poses, st.on) is not None:
-                    must_move.add(i)
-        else:
-            must_move.update(idx)
-    blockers = {k for k, s in enumerate(st.on) if s in must_move and k not in must_move}
-    return len(must_move) + len(blockers)
+    targets = {sc.index[i] for g in goals.goals for i in g.objects}
+    open_goals = [g for g in goals.goals if goal_satisfied(g, sc, st.poses, st.on) is not None]
+    options = [_keep_options(g, sc, st) for g in open_goals]
+    best = None
+    for choice in product(*options):
+        must: set[int] = set()
+        loose: list[list[int]] = []
+        for g, keep in zip(open_goals, choice):
+            idx = [sc.index[i] for i in g.objects]
+            moving = [i for i in idx if i not in keep]
+            if g.pattern in RELATIONS and moving and sc.index[g.anchor] not in targets:  # type: ignore[index]
+                loose.append(moving)
+                continue
+            must.update(moving)
+        above = {k for i in must for k in st.above(i)} - must
+        # A relation with a free anchor needs one more action unless one of its
+        # objects moves anyway; several such relations may share one anchor move.
+        extra = 1 if any(not (set(m) & must) for m in loose) else 0
+        cost = len(must) + len(above) + extra
+        best = cost if best is None else min(best, cost)
+    return best or 0
 
 
 def labbe_case(n: int, seed: int) -> Case:
