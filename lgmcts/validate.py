@@ -216,14 +216,18 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
         if act.on is None:
             if shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
-            for k, s in enumerate(on):
-                if k == i or s != TABLE:
-                    continue
-                area = shapely.area(shapely.intersection(poly, polys[k]))
-                if area > OVERLAP_AREA:
-                    reasons.append(
-                        f"action {step}: object {act.object} overlaps object {sc.ids[k]} by {area * 1e4:.2f} cm^2"
-                    )
+            others = [k for k, s in enumerate(on) if k != i and s == TABLE]
+            if others:
+                arr = np.empty(len(others), dtype=object)
+                arr[:] = [polys[k] for k in others]
+                touching = np.flatnonzero(shapely.intersects(poly, arr))
+                areas = shapely.area(shapely.intersection(poly, arr[touching])) if len(touching) else []
+                for t, area in zip(touching, areas):
+                    if area > OVERLAP_AREA:
+                        k = others[int(t)]
+                        reasons.append(
+                            f"action {step}: object {act.object} overlaps object {sc.ids[k]} by {area * 1e4:.2f} cm^2"
+                        )
             new_on = TABLE
         else:
             if act.on not in sc.index:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import shapely
@@ -12,6 +13,12 @@ from .base import BasePattern, Context, GoalProgress, register
 #: How close to the target the planner's placement must be (m, rad); the
 #: acceptance rule allows 0.015 m and 0.1 rad.
 XY_TOL, YAW_TOL = 0.003, 0.03
+
+
+@lru_cache(maxsize=4096)
+def _disc(x: float, y: float, r: float):
+    """The target's disc; goals ask for it at every relocation, so it is built once."""
+    return shapely.Point(x, y).buffer(r)
 
 
 @dataclass(frozen=True)
@@ -37,7 +44,7 @@ class Pose(BasePattern):
         if ctx.goal.objects[0] in ctx.progress.placed:
             return None
         x, y, _ = ctx.goal.pose  # type: ignore[misc]
-        return shapely.Point(x, y).buffer(ctx.max_radius)
+        return _disc(float(x), float(y), ctx.max_radius)
 
 
 register(Pose())

@@ -215,33 +215,30 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     return np.empty((0, 3))
 
 
-def _obstacles(problem: Problem, ss: SearchState, moving: int, opts: StepOptions) -> np.ndarray:
-    world = ss.world
-    lv = world.table_level
-    lv = lv[lv != moving]
-    if opts.obstacles == "placed":
-        lv = np.asarray([k for k in lv if ss.committed(problem, k)], dtype=int)
-    return lv
-
-
 def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
-    """Inside-workspace mask and, per candidate, the colliding table-level objects."""
-    scene = problem.scene
+    """Inside-workspace mask and, per candidate, the colliding table-level objects.
+
+    Uses the state's cached R-tree over every table-level footprint and drops
+    the hits that do not count (the moving object itself; with
+    ``obstacles="placed"``, objects not yet committed to a goal).
+    """
+    scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
-    obs = _obstacles(problem, ss, o, opts)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
-    if len(obs):
-        cands = shapely.polygons(verts)
-        tree = shapely.STRtree([ss.world.polys[k] for k in obs])
-        ci, oi = geo.colliding(tree, cands, opts.clearance)
-        for a, b in zip(ci.tolist(), oi.tolist()):
-            hits[a].append(int(obs[b]))
+    if len(world.table_level):
+        ci, oi = geo.colliding(world.tree, shapely.polygons(verts), opts.clearance)
+        level = world.table_level
+        placed_only = opts.obstacles == "placed"
+        for a, b in zip(ci.tolist(), level[oi].tolist()):
+            if b == o or (placed_only and not ss.committed(problem, b)):
+                continue
+            hits[a].append(int(b))
     return inside, hits
 
 
-def _goal_region(problem: Problem, ss: SearchState):
-    """Union of the regions where remaining goal objects will go (or None)."""
+def _goal_regions(problem: Problem, ss: SearchState) -> np.ndarray:
+    """Regions where the remaining goal objects will go, as a shapely array (may be empty)."""
     parts = []
     for k, g in enumerate(problem.goals):
         if len(ss.progress[k].placed) == len(g.objects):
@@ -249,7 +246,9 @@ def _goal_region(problem: Problem, ss: SearchState):
         reg = problem.patterns[k].region(ss.ctx(problem, k))
         if reg is not None:
             parts.append(reg)
-    return shapely.union_all(parts) if parts else None
+    out = np.empty(len(parts), dtype=object)
+    out[:] = parts
+    return out
 
 
 def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
@@ -267,10 +266,10 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     if not free.any():
         return None
     idx = np.flatnonzero(free)
-    region = _goal_region(problem, ss)
-    if region is not None:
+    regions = _goal_regions(problem, ss)
+    if len(regions):
         polys = shapely.polygons(scene.footprint(b, poses[idx]))
-        outside = ~shapely.intersects(polys, region)
+        outside = ~shapely.intersects(polys[:, None], regions[None, :]).any(axis=1)
         if outside.any():
             idx = idx[outside]
     pose = poses[idx[0]]
