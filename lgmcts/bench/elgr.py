@@ -179,7 +179,6 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             objs.append(make(None))
             anchor = len(objs) - 1
         spec["target"], spec["anchor"] = target, anchor
-    n_goal_objs = len(objs)
     for _ in range(int(rng.integers(2, 5))):
         objs.append(make(None))
     n = len(objs)

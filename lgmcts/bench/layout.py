@@ -24,11 +24,9 @@ def scene_of(workspace: dict, objects: list[dict]) -> Scene:
 
     Only its footprints and radii are used, never its poses.
     """
-    objs = [{**o, "pose": [0.0, 0.0, 0.0], "on": None} for o in objects]
     cx = (workspace["x"][0] + workspace["x"][1]) / 2
     cy = (workspace["y"][0] + workspace["y"][1]) / 2
-    for o in objs:
-        o["pose"] = [cx, cy, 0.0]
+    objs = [{**o, "pose": [cx, cy, 0.0], "on": None} for o in objects]
     return Scene.from_spec(parse_scene({"workspace": workspace, "objects": objs}))
 
 
@@ -51,7 +49,7 @@ class Layout:
         """Footprint of object index ``i`` at ``pose``."""
         return shapely.Polygon(self.scene.footprint(i, np.asarray(pose, dtype=float)))
 
-    def fits(self, i: int, pose: np.ndarray, *, ignore: frozenset[int] = frozenset()) -> bool:
+    def fits(self, i: int, pose: np.ndarray) -> bool:
         """Whether object ``i`` at ``pose`` stays inside and clear of every placed footprint."""
         v = self.scene.footprint(i, np.asarray(pose, dtype=float))
         xmin, xmax, ymin, ymax = self.scene.bounds
@@ -59,7 +57,7 @@ class Layout:
         if v[:, 0].min() < xmin + m or v[:, 0].max() > xmax - m or v[:, 1].min() < ymin + m or v[:, 1].max() > ymax - m:
             return False
         p = shapely.Polygon(v)
-        return all(p.distance(q) > self.gap for k, q in self.polys.items() if k != i and k not in ignore)
+        return all(p.distance(q) > self.gap for k, q in self.polys.items() if k != i)
 
     def put(self, i: int, pose: np.ndarray) -> None:
         pose = np.asarray(pose, dtype=float)
