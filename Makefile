@@ -30,13 +30,16 @@ demo: install system-deps
 	    "Move all blocks into a circle; while put the white bottle behind one block" \
 	    --seed 0 -o out/demo/plan.json --viz out/demo
 	@cat out/demo/plan.json
-	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/plan.gif, out/demo/before_after.png"
+	$(PY) -m lgmcts execute examples/tabletop.json out/demo/plan.json
+	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/before_after.png, out/demo/plan.gif, out/demo/heatmaps_step_01.png"
 
 test: install system-deps
 	$(PY) -m pytest tests
 
 bench: install
-	$(PY) benchmarks/planner.py --n 300
+	$(PY) benchmarks/planner.py random --n 300
+	$(PY) benchmarks/planner.py labbe --per-n 100
+	$(PY) benchmarks/planner.py memory --objects 40
 
 clean:
 	rm -rf out .pytest_cache

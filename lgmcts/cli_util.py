@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import NoReturn
 
 import typer
@@ -21,6 +22,7 @@ def write_text(text: str, path: str | None) -> None:
         sys.stdout.flush()
         return
     try:
+        Path(path).parent.mkdir(parents=True, exist_ok=True)  # type: ignore[arg-type]
         with open(path, "w") as fh:  # type: ignore[arg-type]
             fh.write(text + "\n")
     except OSError as exc:
