@@ -46,6 +46,8 @@ class SearchOptions:
         for one with fewer actions.
     polish : drop the moves a found plan does not need (see
         :mod:`lgmcts.planner.polish`); applied by every method.
+    direct_tries : in rollouts, how many random ready objects are tried for a
+        placement that needs no obstacle moved before one clears its way.
     step : options of the simulation step.
     """
 
@@ -58,6 +60,7 @@ class SearchOptions:
     max_depth: int | None = None
     anytime: bool = False
     polish: bool = True
+    direct_tries: int = 4
     step: StepOptions = field(default_factory=StepOptions)
 
 
@@ -77,10 +80,16 @@ class SearchResult:
 
 def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions):
     """One default-policy step: commit an object where it stands if one can
-    (a free step), else try to place a random ready object."""
+    (a free step); else place one of a few random ready objects whose prior
+    has a free pose (no obstacle to move); else place a random ready object,
+    clearing the way as the simulation step does."""
     order = [ready[k] for k in rng.permutation(len(ready))]
     for o in order:
         tr = stay(problem, ss, o, rng)
+        if tr is not None:
+            return tr
+    for o in order[: opts.direct_tries]:
+        tr = attempt(problem, ss, o, rng, opts.step, direct=True)
         if tr is not None:
             return tr
     return attempt(problem, ss, order[0], rng, opts.step)

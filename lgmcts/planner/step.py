@@ -307,14 +307,18 @@ def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Gener
     return relocate(problem, ss, a, rng, opts, "relocate")
 
 
-def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0) -> Transition | None:
+def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0,
+            *, direct: bool = False) -> Transition | None:
     """One simulation step for goal object ``o`` (paper, Algorithm 1).
 
     Returns ``None`` when no action could be found (no pose in the prior, no
-    free pose for a blocker).
+    free pose for a blocker). With ``direct`` only a placement of ``o``
+    itself is tried: no unstacking and no relocation.
     """
     scene, world = problem.scene, ss.world
     if not world.clear(o):
+        if direct:
+            return None
         return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", _depth)
     support = _required_support(problem, ss, o)
     if support is None:
@@ -324,6 +328,8 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         return _move_anchor(problem, ss, o, rng, opts)
     if support != TABLE:
         if any(k != o for k in world.holding[support]):
+            if direct:
+                return None
             return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", _depth)
         pose = cand[0]
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
@@ -338,7 +344,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         new_world = world.moved(o, pose, TABLE)
         act = Action(object=scene.ids[o], to=tuple(float(v) for v in pose), on=None, purpose="goal")  # type: ignore[arg-type]
         return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
-    if opts.obstacles != "all":
+    if opts.obstacles != "all" or direct:
         return None
     # Every candidate collides: clear the way for one of them (fewest blockers first).
     blocked = [k for k in np.flatnonzero(inside) if hits[k]]
