@@ -60,7 +60,7 @@ class SearchOptions:
     max_depth: int | None = None
     anytime: bool = False
     polish: bool = True
-    direct_tries: int = 4
+    direct_tries: int = 64
     step: StepOptions = field(default_factory=StepOptions)
 
 
