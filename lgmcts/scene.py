@@ -229,9 +229,9 @@ class State:
         return np.asarray([k for k, s in enumerate(self.on) if s == TABLE], dtype=int)
 
     @cached_property
-    def tree(self) -> STRtree:
-        """R-tree over the table-level footprints (indices follow :attr:`table_level`)."""
-        return STRtree([self._polys[k] for k in self.table_level])
+    def tree_all(self) -> STRtree:
+        """R-tree over every footprint, stacked objects included (indices are object indices)."""
+        return STRtree(list(self._polys))
 
     def key(self) -> tuple:
         """Hashable summary of the state (poses rounded to 0.1 mm)."""

@@ -218,19 +218,21 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
 def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
     """Inside-workspace mask and, per candidate, the colliding table-level objects.
 
-    Uses the state's cached R-tree over every table-level footprint and drops
-    the hits that do not count (the moving object itself; with
-    ``obstacles="placed"``, objects not yet committed to a goal).
+    Uses the state's cached R-tree over every footprint and drops the hits
+    that do not count (the moving object itself; with ``obstacles="placed"``,
+    objects not yet committed to a goal). Stacked objects count too, although
+    the acceptance rules only compare table-level footprints: an object put
+    under the overhang of a wide object resting on a narrow one would strike
+    it when lowered.
     """
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
-    if len(world.table_level):
-        ci, oi = geo.colliding(world.tree, shapely.polygons(verts), opts.clearance)
-        level = world.table_level
+    if scene.n > 1:
+        ci, oi = geo.colliding(world.tree_all, shapely.polygons(verts), opts.clearance)
         placed_only = opts.obstacles == "placed"
-        for a, b in zip(ci.tolist(), level[oi].tolist()):
+        for a, b in zip(ci.tolist(), oi.tolist()):
             if b == o or (placed_only and not ss.committed(problem, b)):
                 continue
             hits[a].append(int(b))
