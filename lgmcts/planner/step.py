@@ -151,6 +151,16 @@ class Transition:
     state: SearchState
 
 
+def _wrapped(pose: np.ndarray) -> np.ndarray:
+    """The pose with its yaw in [-pi, pi)."""
+    return np.array([pose[0], pose[1], geo.wrap_angle(float(pose[2]))])
+
+
+def _action(scene: Scene, i: int, pose: np.ndarray, on: int | None, purpose: str) -> Action:
+    return Action(object=scene.ids[i], to=(float(pose[0]), float(pose[1]), float(pose[2])),
+                  on=None if on is None else scene.ids[on], purpose=purpose)  # type: ignore[arg-type]
+
+
 def _required_support(problem: Problem, ss: SearchState, o: int) -> int | None:
     sup = {problem.patterns[k].support(ss.ctx(problem, k), o) for k in problem.member[o]}
     return sup.pop() if len(sup) == 1 else None
@@ -274,9 +284,9 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         outside = ~shapely.intersects(polys[:, None], regions[None, :]).any(axis=1)
         if outside.any():
             idx = idx[outside]
-    pose = poses[idx[0]]
+    pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
-    act = Action(object=scene.ids[b], to=tuple(float(v) for v in pose), on=None, purpose=purpose)  # type: ignore[arg-type]
+    act = _action(scene, b, pose, None, purpose)
     return Transition(act, SearchState(new_world, _uncommit(problem, ss.progress, b)))
 
 
@@ -333,18 +343,18 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
             if direct:
                 return None
             return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", _depth)
-        pose = cand[0]
+        pose = _wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
             return None
         new_world = world.moved(o, pose, support)
-        act = Action(object=scene.ids[o], to=tuple(float(v) for v in pose), on=scene.ids[support], purpose="goal")  # type: ignore[arg-type]
+        act = _action(scene, o, pose, support, "goal")
         return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
     inside, hits = _collisions(problem, ss, o, cand, opts)
     ok = inside & np.array([not h for h in hits])
     if ok.any():
-        pose = cand[int(np.flatnonzero(ok)[0])]
+        pose = _wrapped(cand[int(np.flatnonzero(ok)[0])])
         new_world = world.moved(o, pose, TABLE)
-        act = Action(object=scene.ids[o], to=tuple(float(v) for v in pose), on=None, purpose="goal")  # type: ignore[arg-type]
+        act = _action(scene, o, pose, None, "goal")
         return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
     if opts.obstacles != "all" or direct:
         return None
