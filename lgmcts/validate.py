@@ -31,7 +31,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
-from scipy.optimize import least_squares
 
 from .errors import InputError
 from .formats import RELATIONS, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_plan, load_scene
@@ -88,6 +87,8 @@ def fit_circle(xy: np.ndarray) -> tuple[np.ndarray, float]:
     sol, *_ = np.linalg.lstsq(a, b, rcond=None)
     c0 = sol[:2]
     r0 = math.sqrt(max(sol[2] + c0 @ c0, 1e-12))
+
+    from scipy.optimize import least_squares  # imported on first use: it costs 0.6 s at start-up
 
     def resid(p: np.ndarray) -> np.ndarray:
         return np.hypot(x - p[0], y - p[1]) - p[2]
