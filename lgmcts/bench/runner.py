@@ -443,6 +443,25 @@ def _safe_star(args: tuple[dict, RunOptions]) -> dict[str, Any]:
     return _safe(*args)
 
 
+def _reachable(address: str, timeout: float = 5.0) -> None:
+    """Fail fast with one line when a ``host:port`` Ray address does not answer.
+
+    Ray itself retries an unreachable cluster for minutes before giving up.
+    """
+    import socket
+
+    if address in ("local", "auto"):
+        return
+    hostport = address.split("://", 1)[-1]
+    host, _, port = hostport.rpartition(":")
+    if not host or not port.isdigit():
+        return
+    try:
+        socket.create_connection((host, int(port)), timeout=timeout).close()
+    except OSError as exc:
+        raise InputError(f"cannot reach Ray at {address}: {exc.strerror or exc}") from None
+
+
 def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int | None) -> Iterator[dict[str, Any]]:
     try:
         import ray
@@ -450,6 +469,7 @@ def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int 
         raise InputError("--ray needs Ray: pip install 'lgmcts[ray]'") from None
     started = False
     if not ray.is_initialized():
+        _reachable(address)
         try:
             if address == "local":
                 ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)

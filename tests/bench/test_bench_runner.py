@@ -133,6 +133,9 @@ def test_ray_runs_the_same_task_function(tmp_path, tasks):
     assert [r["id"] for r in recs] == [t.id for t in tasks[:2]]
     # Same seed, same plan, wherever the task ran.
     assert [r["plan"]["actions"] for r in recs] == [r["plan"]["actions"] for r in local]
+    # A cluster address nobody answers on is bad input, reported at once.
+    with pytest.raises(InputError, match="cannot reach Ray"):
+        run_suite(tasks[:1], tmp_path / "ray2", options=PLAN_ONLY, ray_address="127.0.0.1:1", source="r")
 
 
 def test_bench_cli_writes_results_and_summaries(tmp_path):
