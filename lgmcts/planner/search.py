@@ -13,7 +13,7 @@ import numpy as np
 from ..formats import Action, PlanSpec
 from ..validate import check
 from .selection import select_child
-from .step import Problem, SearchState, StepOptions, attempt, stay
+from .step import Problem, SearchState, StepOptions, Transition, attempt, stay
 from .tree import Node
 
 __all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
@@ -78,7 +78,7 @@ class SearchResult:
     solutions: int = 0
 
 
-def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions):
+def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions) -> tuple[int, Transition | None]:
     """One default-policy step: commit an object where it stands if one can
     (a free step); else place one of a few random ready objects whose prior
     has a free pose (no obstacle to move); else place a random ready object,
@@ -87,12 +87,12 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
     for o in order:
         tr = stay(problem, ss, o, rng)
         if tr is not None:
-            return tr
+            return o, tr
     for o in order[: opts.direct_tries]:
         tr = attempt(problem, ss, o, rng, opts.step, direct=True)
         if tr is not None:
-            return tr
-    return attempt(problem, ss, order[0], rng, opts.step)
+            return o, tr
+    return order[0], attempt(problem, ss, order[0], rng, opts.step)
 
 
 def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions, depth: int) -> tuple[float, list[Action] | None, int]:
@@ -106,7 +106,7 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
         if not ready:
             break
         steps += 1
-        tr = _step(problem, ss, ready, rng, opts)
+        _, tr = _step(problem, ss, ready, rng, opts)
         if tr is None:
             break
         ss = tr.state
@@ -128,14 +128,20 @@ def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: Search
     open_ = [o for o in ready if node.attempts.get(o, 0) < opts.branching]
     if not open_:
         return None
-    fewest = min(node.attempts.get(o, 0) for o in open_)
-    pool = [o for o in open_ if node.attempts.get(o, 0) == fewest]
-    o = pool[int(rng.integers(len(pool)))]
-    first = node.attempts.get(o, 0) == 0
-    node.attempts[o] = node.attempts.get(o, 0) + 1
-    tr = stay(problem, node.state, o, rng) if first else None
-    if tr is None:
-        tr = attempt(problem, node.state, o, rng, opts.step)
+    if not node.attempts:
+        # The first child follows the default policy (a free or direct move when
+        # there is one), so the tree's first path is as good as a rollout's.
+        o, tr = _step(problem, node.state, open_, rng, opts)
+        node.attempts[o] = 1
+    else:
+        fewest = min(node.attempts.get(o, 0) for o in open_)
+        pool = [o for o in open_ if node.attempts.get(o, 0) == fewest]
+        o = pool[int(rng.integers(len(pool)))]
+        first = node.attempts.get(o, 0) == 0
+        node.attempts[o] = node.attempts.get(o, 0) + 1
+        tr = stay(problem, node.state, o, rng) if first else None
+        if tr is None:
+            tr = attempt(problem, node.state, o, rng, opts.step)
     if tr is None:
         return None
     child = Node(
@@ -188,12 +194,18 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
     root.reward = root.state.reward(problem)
     best: list[Action] | None = None
     best_partial: tuple[float, int, Node] = (root.reward, 0, root)
-    nodes, rejected, solutions, it, rollout_steps = 1, 0, 0, 0, 0
+    nodes, rejected, solutions, it, rollout_steps, restarts = 1, 0, 0, 0, 0, 0
     if root.state.done(problem) and _valid(problem, []):
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
-    while it < opts.max_iter and not root.dead:
+    while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
             break
+        if root.dead:
+            # Every branch tried so far is a dead end, but poses are sampled:
+            # open the root again for fresh samples while budget remains.
+            root.dead = False
+            root.attempts.clear()
+            restarts += 1
         node = root
         # Selection: descend through fully expanded nodes by UCB.
         while not node.dead and _descend(problem, node, opts):
@@ -256,16 +268,14 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
     if log.isEnabledFor(logging.INFO):
         shown = best if best is not None else best_partial[2].path()
         log.info(
-            "mcts: %d iterations, %d nodes, %d rollout steps, best partial depth %d (reward %.2f), %s with %d actions "
-            "(%d relocations, %d unstacks), %.3f s",
-            it, nodes, rollout_steps, best_partial[2].depth, best_partial[0], "solved" if best is not None else "unsolved",
+            "mcts: %d iterations, %d nodes, %d rollout steps, %d root restarts, best partial depth %d (reward %.2f), "
+            "%s with %d actions (%d relocations, %d unstacks), %.3f s",
+            it, nodes, rollout_steps, restarts, best_partial[2].depth, best_partial[0], "solved" if best is not None else "unsolved",
             len(shown), sum(a.purpose == "relocate" for a in shown), sum(a.purpose == "unstack" for a in shown), elapsed,
         )
     if best is not None:
         return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions)
-    reason = "search space exhausted" if root.dead else (
-        "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
-    )
+    reason = "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
     return SearchResult(False, tuple(best_partial[2].path()), it, nodes, elapsed, reason=reason, rejected=rejected)
 
 
@@ -293,7 +303,7 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
             if not ready or it >= opts.max_iter:
                 break
             it += 1
-            tr = _step(problem, ss, ready, rng, opts)
+            _, tr = _step(problem, ss, ready, rng, opts)
             if tr is None:
                 break
             ss = tr.state
