@@ -266,24 +266,28 @@ def _goal_regions(problem: Problem, ss: SearchState) -> np.ndarray:
 def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
     """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible."""
     scene, world = problem.scene, ss.world
-    n = 2 * opts.samples
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
-    poses = np.empty((n, 3))
-    poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
-    poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
-    poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
-    inside, hits = _collisions(problem, ss, b, poses, StepOptions(opts.samples, opts.clearance, "all"))
-    free = inside & np.array([not h for h in hits])
-    if not free.any():
+    # A crowded table has little free space: draw a larger batch if the first finds none.
+    for n in (2 * opts.samples, 16 * opts.samples):
+        poses = np.empty((n, 3))
+        poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
+        poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
+        poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
+        inside, hits = _collisions(problem, ss, b, poses, StepOptions(opts.samples, opts.clearance, "all"))
+        free = inside & np.array([not h for h in hits])
+        if free.any():
+            break
+    else:
         return None
     idx = np.flatnonzero(free)
     regions = _goal_regions(problem, ss)
     if len(regions):
+        # The free pose that overlaps the fewest regions still to be filled
+        # (none, when there is one), so the obstacle is not in the way again.
         polys = shapely.polygons(scene.footprint(b, poses[idx]))
-        outside = ~shapely.intersects(polys[:, None], regions[None, :]).any(axis=1)
-        if outside.any():
-            idx = idx[outside]
+        overlaps = shapely.intersects(polys[:, None], regions[None, :]).sum(axis=1)
+        idx = idx[overlaps == overlaps.min()]
     pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
     act = _action(scene, b, pose, None, purpose)
