@@ -8,7 +8,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo test bench clean
+.PHONY: install system-deps demo test bench bench-suites clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -40,6 +40,9 @@ bench: install
 	$(PY) benchmarks/planner.py random --n 300
 	$(PY) benchmarks/planner.py labbe --per-n 100
 	$(PY) benchmarks/planner.py memory --objects 40
+
+bench-suites: install system-deps
+	$(PY) benchmarks/suite_figures.py
 
 clean:
 	rm -rf out .pytest_cache
