@@ -13,20 +13,52 @@ the whole plan:
   again) is removed.
 
 Both passes are linear in the number of actions, each candidate costing one
-replay of the plan.
+replay of the plan. A rewrite must also keep the search's clearance around
+every table placement (the acceptance rules alone would allow objects to
+touch).
 """
 
 from __future__ import annotations
 
+import numpy as np
+import shapely
+
 from ..formats import Action, PlanSpec
+from ..patterns import CLEARANCE
+from ..scene import TABLE
 from ..validate import check
 from .step import Problem
 
 __all__ = ["polish"]
 
 
+def _clear_enough(problem: Problem, actions: list[Action], clearance: float) -> bool:
+    """Whether every table placement keeps ``clearance`` from every other footprint.
+
+    The acceptance rules only forbid overlap, but the search keeps a gap (and
+    keeps clear of stacked objects' overhangs) so that a real gripper's
+    placement error does not land an object on its neighbour; a rewrite
+    must not take that margin away.
+    """
+    scene = problem.scene
+    world = scene.initial
+    for a in actions:
+        i = scene.index[a.object]
+        on = TABLE if a.on is None else scene.index[a.on]
+        world = world.moved(i, np.asarray(a.to, dtype=float), on)
+        if on != TABLE:
+            continue
+        others = [k for k in range(scene.n) if k != i]
+        arr = np.empty(len(others), dtype=object)
+        arr[:] = [world.polys[k] for k in others]
+        if shapely.dwithin(world.polys[i], arr, clearance * 0.99).any():
+            return False
+    return True
+
+
 def _valid(problem: Problem, actions: list[Action]) -> bool:
-    return check(problem.scene, problem.spec, PlanSpec(solved=True, actions=actions, goals=problem.spec)).valid
+    ok = check(problem.scene, problem.spec, PlanSpec(solved=True, actions=actions, goals=problem.spec)).valid
+    return ok and _clear_enough(problem, actions, CLEARANCE)
 
 
 def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
