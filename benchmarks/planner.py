@@ -13,8 +13,9 @@ built from; every case is solvable by construction) and plans each with
 every method. ``labbe`` follows Labbé et al. (RA-L 2020): N discs of radius
 3.75 cm in a 0.5 m x 0.5 m workspace, random collision-free start and goal
 configurations, a ``pose`` goal for every disc. ``memory`` runs one planning
-process to the full iteration budget on a crowded scene whose goal cannot be
-met, and reports its peak resident memory.
+process to the full iteration budget on a 40-object scene whose goals cannot
+all be met (a line of 20 objects, and one object both left and right of
+another), and reports its peak resident memory and the tree size.
 """
 
 from __future__ import annotations
@@ -114,8 +115,12 @@ for i in range(n):
     objs.append({"id": i + 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
                  "pose": [x, y, 0.0], "on": None})
 scene = {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": objs}
-# A circle of every object cannot fit this table: the search runs its whole budget.
-goals = {"goals": [{"pattern": "circle", "objects": [o["id"] for o in objs]}]}
+# Object n-1 must end both left and right of object n: impossible, so the search
+# runs its whole budget, while a line of the first half of the objects lets it
+# grow a deep, wide tree.
+goals = {"goals": [{"pattern": "line", "objects": [o["id"] for o in objs[:6]]},
+                   {"pattern": "left", "objects": [n - 1], "anchor": n},
+                   {"pattern": "right", "objects": [n - 1], "anchor": n}]}
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t = time.perf_counter()
 p = plan(scene, goals, seed=0, max_iter=max_iter)

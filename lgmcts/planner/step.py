@@ -341,7 +341,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         return None
     cand = _sample(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
-        return _move_anchor(problem, ss, o, rng, opts)
+        return None  # the priors exclude each other here: moving an anchor would not help
     if support != TABLE:
         if any(k != o for k in world.holding[support]):
             if direct:
