@@ -14,13 +14,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import combinations, product
 
 import numpy as np
 import shapely
 
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
-from .validate import goal_satisfied
+from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
 __all__ = ["Case", "random_case", "labbe_case", "lower_bound"]
 
@@ -241,8 +242,6 @@ def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
     Deliberately generous (twice the acceptance tolerance, no radius or gap
     rule) so that the bound below never exceeds the true optimum.
     """
-    from .validate import TOL, fit_circle, line_residuals
-
     if len(xy) <= 2:
         return True
     if pattern == "line":
@@ -257,8 +256,6 @@ def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
 
 def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
     """Sets of a goal's objects that some plan might leave where they are."""
-    from itertools import combinations
-
     idx = [sc.index[i] for i in g.objects]
     on_table = [i for i in idx if st.on[i] == TABLE]
     xmin, xmax, ymin, ymax = sc.bounds
@@ -300,8 +297,6 @@ def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
     A relation whose anchor no goal places counts one action (moving the
     anchor may satisfy all its objects at once).
     """
-    from itertools import product
-
     sc = Scene.from_spec(scene)
     st = sc.initial
     targets = {sc.index[i] for g in goals.goals for i in g.objects}

@@ -23,10 +23,10 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ..formats import Action, PlanSpec
+from ..formats import Action
 from ..patterns import CLEARANCE
 from ..scene import TABLE
-from ..validate import check
+from .search import valid_plan
 from .step import Problem
 
 __all__ = ["polish"]
@@ -57,8 +57,7 @@ def _clear_enough(problem: Problem, actions: list[Action], clearance: float) -> 
 
 
 def _valid(problem: Problem, actions: list[Action]) -> bool:
-    ok = check(problem.scene, problem.spec, PlanSpec(solved=True, actions=actions, goals=problem.spec)).valid
-    return ok and _clear_enough(problem, actions, CLEARANCE)
+    return valid_plan(problem, actions) and _clear_enough(problem, actions, CLEARANCE)
 
 
 def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
@@ -70,7 +69,7 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
             j = later[-1]
             last = actions[j]
             trial = list(actions)
-            trial[i] = last.model_copy(update={"purpose": last.purpose})
+            trial[i] = last
             for k in reversed(later):
                 del trial[k]
             if _valid(problem, trial):

@@ -16,7 +16,7 @@ from .selection import select_child
 from .step import Problem, SearchState, StepOptions, Transition, attempt, stay
 from .tree import Node
 
-__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
+__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan"]
 
 log = logging.getLogger("lgmcts.planner")
 
@@ -117,7 +117,8 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
     return ss.reward(problem), None, steps
 
 
-def _valid(problem: Problem, actions: list[Action]) -> bool:
+def valid_plan(problem: Problem, actions: list[Action]) -> bool:
+    """Whether ``actions`` meet the acceptance rules for ``problem`` (a replay by the validator)."""
     plan = PlanSpec(solved=True, actions=actions, goals=problem.spec)
     return check(problem.scene, problem.spec, plan).valid
 
@@ -195,7 +196,7 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
     best: list[Action] | None = None
     best_partial: tuple[float, int, Node] = (root.reward, 0, root)
     nodes, rejected, solutions, it, rollout_steps, restarts = 1, 0, 0, 0, 0, 0
-    if root.state.done(problem) and _valid(problem, []):
+    if root.state.done(problem) and valid_plan(problem, []):
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
@@ -237,7 +238,7 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
         if child.state.done(problem):
             actions = child.path()
             child.dead = True
-            if _valid(problem, actions):
+            if valid_plan(problem, actions):
                 solutions += 1
                 if best is None or len(actions) < len(best):
                     best = actions
@@ -257,7 +258,7 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             rollout_steps += steps
             if tail is not None:
                 actions = child.path() + tail
-                if (best is None or len(actions) < len(best)) and _valid(problem, actions):
+                if (best is None or len(actions) < len(best)) and valid_plan(problem, actions):
                     solutions += 1
                     best = actions
                     log.info("rollout solution with %d actions after %d iterations", len(actions), it)
@@ -312,6 +313,6 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
         r = ss.reward(problem)
         if r > best_partial[0]:
             best_partial = (r, actions)
-        if ss.done(problem) and _valid(problem, actions):
+        if ss.done(problem) and valid_plan(problem, actions):
             return SearchResult(True, tuple(actions), it, rollouts, time.perf_counter() - t0, solutions=1)
     return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason="iteration budget exhausted")

@@ -226,7 +226,7 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
 
 
 def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
-    """Inside-workspace mask and, per candidate, the colliding table-level objects.
+    """Inside-workspace mask and, per candidate, the objects its footprint comes too close to.
 
     Uses the state's cached R-tree over every footprint and drops the hits
     that do not count (the moving object itself; with ``obstacles="placed"``,
