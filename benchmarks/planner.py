@@ -41,7 +41,7 @@ def _row(c, method: str, seed: int, max_iter: int) -> dict:
     wall = time.perf_counter() - t
     ok = bool(p.solved and check(c.scene, c.goals, p).valid)
     return {"solved": ok, "time_s": wall, "iterations": p.stats["iterations"], "actions": len(p.actions),
-            "lower_bound": c.lower_bound, "objects": len(c.scene.objects), "kind": c.kind}
+            "lower_bound": c.lower_bound, "reference": c.reference, "objects": len(c.scene.objects), "kind": c.kind}
 
 
 def _summary(rows: list[dict]) -> dict:
@@ -58,6 +58,9 @@ def _summary(rows: list[dict]) -> dict:
         "lower_bound_mean": float(np.mean([r["lower_bound"] for r in ok])) if ok else float("nan"),
         "actions_over_bound": (float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["lower_bound"] for r in ok])))
                                if ok else float("nan")),
+        "reference_mean": float(np.mean([r["reference"] for r in ok])) if ok else float("nan"),
+        "actions_over_reference": (float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["reference"] for r in ok])))
+                                   if ok else float("nan")),
     }
 
 
@@ -79,11 +82,13 @@ def cmd_random(a: argparse.Namespace) -> dict:
         s["time_median_by_objects"] = {n: float(np.median(v)) for n, v in sorted(by_n.items())}
         s["by_kind"] = {k: _summary([r for r in rows if r["kind"] == k]) for k in ("blockers", "clutter")}
         out[m] = s
-    print("| method | cases | success | median time (s) | p95 time (s) | max time (s) | mean iterations | mean actions | mean lower bound | actions / bound |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| method | cases | success | median time (s) | p95 time (s) | max time (s) | mean iterations | mean actions "
+          "| mean reference | actions / reference | mean lower bound | actions / bound |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for m, s in out.items():
         print(f"| {m} | {s['cases']} | {100 * s['success']:.1f}% | {s['time_median_s']:.3f} | {s['time_p95_s']:.3f} | "
-              f"{s['time_max_s']:.2f} | {s['iterations_mean']:.1f} | {s['actions_mean']:.2f} | {s['lower_bound_mean']:.2f} | "
+              f"{s['time_max_s']:.2f} | {s['iterations_mean']:.1f} | {s['actions_mean']:.2f} | "
+              f"{s['reference_mean']:.2f} | {s['actions_over_reference']:.3f} | {s['lower_bound_mean']:.2f} | "
               f"{s['actions_over_bound']:.3f} |")
     return out
 

@@ -23,7 +23,7 @@ from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "labbe_case", "lower_bound"]
+__all__ = ["Case", "random_case", "labbe_case", "lower_bound", "reference_count"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -31,12 +31,13 @@ _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink"
 
 @dataclass(frozen=True)
 class Case:
-    """One planning case: scene, goals, kind and the action lower bound."""
+    """One planning case: scene, goals, kind, action lower bound and reference count."""
 
     scene: SceneSpec
     goals: GoalSpec
     kind: str
     lower_bound: int
+    reference: int = 0
 
 
 def _shape(rng: np.random.Generator) -> tuple[str, dict]:
@@ -233,11 +234,11 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
     for k, ob in enumerate(objects):
         objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})
     sspec = parse_scene({"workspace": WORKSPACE, "objects": objs_out})
-    return Case(sspec, gspec, kind, lower_bound(sspec, gspec))
+    return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
 
 
 def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
-    """Whether centres ``xy`` could all stay for a line or circle goal.
+    """Whether centres ``xy`` could all stay for a line, circle or rectangle goal.
 
     Deliberately generous (twice the acceptance tolerance, no radius or gap
     rule) so that the bound below never exceeds the true optimum.
@@ -251,6 +252,12 @@ def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
         # it, so the circle cannot be much larger than the table.
         c, r = fit_circle(xy)
         return bool(np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL)
+    if pattern == "rectangle":
+        # Kept centres lie inside the final rectangle, so one deeper than the
+        # tolerance inside their own convex hull is off its perimeter.
+        hull = shapely.convex_hull(shapely.MultiPoint(xy))
+        edge = hull.exterior if isinstance(hull, shapely.Polygon) else hull
+        return bool(shapely.distance(edge, shapely.points(xy)).max() <= 2 * TOL)
     return False
 
 
@@ -262,12 +269,11 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
     diag = float(np.hypot(xmax - xmin, ymax - ymin))
     if g.pattern in ("line", "circle", "rectangle"):
         best: list[frozenset[int]] = [frozenset(c) for c in combinations(on_table, min(2, len(on_table)))]
-        if g.pattern != "rectangle":
-            for k in range(3, len(on_table) + 1):
-                more = [frozenset(c) for c in combinations(on_table, k) if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)]
-                if not more:
-                    break
-                best = more
+        for k in range(3, len(on_table) + 1):
+            more = [frozenset(c) for c in combinations(on_table, k) if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)]
+            if not more:
+                break
+            best = more
         return best or [frozenset()]
     if g.pattern == "tower":
         keep: list[int] = []
@@ -284,39 +290,73 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
     return [frozenset()]
 
 
+def reference_count(scene: SceneSpec, goals: GoalSpec) -> int:
+    """The plan-length reference of the planner benchmark's specification.
+
+    Goal objects not already satisfied plus the objects that must be
+    unstacked to reach them: every object of an open line, circle or
+    rectangle goal; the objects of a relation that do not yet stand in it;
+    the objects of a tower above its correctly stacked base part; and every
+    object resting, directly or not, on one of those. Unlike
+    :func:`lower_bound` this is not a bound: a plan may leave some objects of
+    an open goal where they stand.
+    """
+    sc = Scene.from_spec(scene)
+    st = sc.initial
+    moving: set[int] = set()
+    for g in goals.goals:
+        if goal_satisfied(g, sc, st.poses, st.on) is None:
+            continue
+        idx = [sc.index[i] for i in g.objects]
+        if g.pattern in RELATIONS or g.pattern == "tower":
+            keep = _keep_options(g, sc, st)[0]
+            moving.update(i for i in idx if i not in keep)
+        else:
+            moving.update(idx)
+    above = {k for i in moving for k in st.above(i)} - moving
+    return len(moving) + len(above)
+
+
 def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
     """Fewest actions any plan needs, counted generously so it is a true bound.
 
     A goal that already holds costs nothing. Otherwise each goal object must
     move unless a plan could leave it where it stands: for a line or circle
-    the largest set of its objects that already fit one (at least two, since
-    two points lie on some line and some circle), for a rectangle any two,
-    for a tower the part already stacked correctly from the base. Every
+    or rectangle the largest set of its objects that could already lie on
+    one (at least two, since two points lie on some line and some circle;
+    for a rectangle, any set whose centres all lie on their convex hull's
+    boundary), for a tower the part already stacked correctly from the base. Every
     object resting, directly or not, on an object that must move adds one
     action. Keep sets are chosen jointly over the goals to minimise the sum.
-    A relation whose anchor no goal places counts one action (moving the
-    anchor may satisfy all its objects at once).
+    A relation's objects standing on the table may all stay if its anchor moves:
+    such a relation costs nothing when the anchor must move anyway, and at
+    least one action otherwise (the anchor or one of its objects). All such
+    relations together count at most one action, since one anchor move may
+    serve several of them.
     """
     sc = Scene.from_spec(scene)
     st = sc.initial
-    targets = {sc.index[i] for g in goals.goals for i in g.objects}
     open_goals = [g for g in goals.goals if goal_satisfied(g, sc, st.poses, st.on) is not None]
     options = [_keep_options(g, sc, st) for g in open_goals]
     best = None
     for choice in product(*options):
         must: set[int] = set()
-        loose: list[list[int]] = []
+        loose: list[tuple[int, list[int]]] = []
         for g, keep in zip(open_goals, choice):
             idx = [sc.index[i] for i in g.objects]
             moving = [i for i in idx if i not in keep]
-            if g.pattern in RELATIONS and moving and sc.index[g.anchor] not in targets:  # type: ignore[index]
-                loose.append(moving)
+            if g.pattern in RELATIONS and moving:
+                # Objects off the table must move; the rest might stay put.
+                must.update(i for i in moving if st.on[i] != TABLE)
+                standing = [i for i in moving if st.on[i] == TABLE]
+                if standing:
+                    loose.append((sc.index[g.anchor], standing))  # type: ignore[index]
                 continue
             must.update(moving)
         above = {k for i in must for k in st.above(i)} - must
-        # A relation with a free anchor needs one more action unless one of its
-        # objects moves anyway; several such relations may share one anchor move.
-        extra = 1 if any(not (set(m) & must) for m in loose) else 0
+        # A loose relation is served for free when its anchor or one of its
+        # objects moves anyway; otherwise something must still move for it.
+        extra = 1 if any(a not in must and not (set(m) & must) for a, m in loose) else 0
         cost = len(must) + len(above) + extra
         best = cost if best is None else min(best, cost)
     return best or 0
@@ -360,4 +400,4 @@ def labbe_case(n: int, seed: int) -> Case:
     goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
     sspec = parse_scene({"workspace": ws, "objects": objs})
     gspec = parse_goals({"goals": goals})
-    return Case(sspec, gspec, "labbe", lower_bound(sspec, gspec))
+    return Case(sspec, gspec, "labbe", lower_bound(sspec, gspec), reference_count(sspec, gspec))

@@ -32,17 +32,30 @@ from .step import Problem
 __all__ = ["polish"]
 
 
-def _clear_enough(problem: Problem, actions: list[Action], clearance: float) -> bool:
-    """Whether every table placement keeps ``clearance`` from every other footprint.
-
-    The acceptance rules only forbid overlap, but the search keeps a gap (and
-    keeps clear of stacked objects' overhangs) so that a real gripper's
-    placement error does not land an object on its neighbour; a rewrite
-    must not take that margin away.
-    """
+def _worlds(problem: Problem, actions: list[Action]) -> list:
+    """States of the planner's world before each action and after the last."""
     scene = problem.scene
     world = scene.initial
+    out = [world]
     for a in actions:
+        on = TABLE if a.on is None else scene.index[a.on]
+        world = world.moved(scene.index[a.object], np.asarray(a.to, dtype=float), on)
+        out.append(world)
+    return out
+
+
+def _clear_enough(problem: Problem, actions: list[Action], clearance: float, start: int = 0, world=None) -> bool:
+    """Whether every table placement from ``actions[start]`` on keeps ``clearance`` from every other footprint.
+
+    ``world`` is the state before ``actions[start]`` (the initial state when
+    omitted). The acceptance rules only forbid overlap, but the search keeps
+    a gap (and keeps clear of stacked objects' overhangs) so that a real
+    gripper's placement error does not land an object on its neighbour; a
+    rewrite must not take that margin away.
+    """
+    scene = problem.scene
+    world = scene.initial if world is None else world
+    for a in actions[start:]:
         i = scene.index[a.object]
         on = TABLE if a.on is None else scene.index[a.on]
         world = world.moved(i, np.asarray(a.to, dtype=float), on)
@@ -56,11 +69,18 @@ def _clear_enough(problem: Problem, actions: list[Action], clearance: float) -> 
     return True
 
 
-def _valid(problem: Problem, actions: list[Action]) -> bool:
-    return valid_plan(problem, actions) and _clear_enough(problem, actions, CLEARANCE)
+def _valid(problem: Problem, actions: list[Action], start: int = 0, world=None) -> bool:
+    """Whether a rewrite that leaves ``actions[:start]`` unchanged is still a valid plan.
+
+    The clearance replay runs first, from the unchanged prefix's state and
+    stopping at the first conflict, so that most rejected rewrites never
+    reach the validator's full replay.
+    """
+    return _clear_enough(problem, actions, CLEARANCE, start, world) and valid_plan(problem, actions)
 
 
 def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
+    worlds = _worlds(problem, actions)
     i = 0
     while i < len(actions):
         a = actions[i]
@@ -72,8 +92,9 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
             trial[i] = last
             for k in reversed(later):
                 del trial[k]
-            if _valid(problem, trial):
+            if _valid(problem, trial, i, worlds[i]):
                 actions = trial
+                worlds = _worlds(problem, actions)
                 continue
         i += 1
     return actions
@@ -83,14 +104,16 @@ def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
     moves: dict[int, int] = {}
     for a in actions:
         moves[a.object] = moves.get(a.object, 0) + 1
+    worlds = _worlds(problem, actions)
     i = 0
     while i < len(actions):
         a = actions[i]
         if a.purpose != "goal" or moves[a.object] > 1:
             trial = actions[:i] + actions[i + 1 :]
-            if _valid(problem, trial):
+            if _valid(problem, trial, i, worlds[i]):
                 moves[a.object] -= 1
                 actions = trial
+                worlds = _worlds(problem, actions)
                 continue
         i += 1
     return actions
