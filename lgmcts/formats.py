@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
@@ -33,6 +34,10 @@ __all__ = [
     "PlanSpec",
     "RELATIONS",
     "PATTERN_NAMES",
+    "PatternFormat",
+    "declare_pattern",
+    "pattern_format",
+    "pattern_names",
     "load_scene",
     "load_goals",
     "load_plan",
@@ -55,10 +60,64 @@ RELATIONS: dict[str, tuple[float, float]] = {
     "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
 }
 
-#: Every pattern name the goal format accepts.
+#: The built-in pattern names (:func:`pattern_names` adds declared ones).
 PATTERN_NAMES: tuple[str, ...] = ("line", "circle", "rectangle", "tower", *RELATIONS, "pose")
 
-_MIN_OBJECTS = {"line": 2, "circle": 3, "rectangle": 4, "tower": 2, "pose": 1}
+
+@dataclass(frozen=True)
+class PatternFormat:
+    """What the goal format asks of one pattern's goals.
+
+    Attributes
+    ----------
+    name : the ``pattern`` value.
+    min_objects : fewest objects a goal may list.
+    anchor : the goal needs an ``anchor`` (and must not list it as an object).
+    pose : the goal needs a ``pose`` and exactly one object.
+    on_table : the goal's objects must end on the table (not stacked).
+    """
+
+    name: str
+    min_objects: int = 1
+    anchor: bool = False
+    pose: bool = False
+    on_table: bool = True
+
+
+_FORMATS: dict[str, PatternFormat] = {}
+
+
+def declare_pattern(fmt: PatternFormat) -> PatternFormat:
+    """Make ``fmt.name`` a pattern the goal format accepts.
+
+    A module adding a pattern calls this once, with
+    :func:`lgmcts.validate.register_rule` for its acceptance rule and
+    :func:`lgmcts.patterns.register` for its prior. Declaring a name again
+    with the same format is a no-op; with another format it is an error.
+    """
+    old = _FORMATS.get(fmt.name)
+    if old is not None and old != fmt:
+        raise ValueError(f"pattern '{fmt.name}' is already declared differently")
+    _FORMATS[fmt.name] = fmt
+    return fmt
+
+
+def pattern_format(name: str) -> PatternFormat | None:
+    """The declared format of pattern ``name``, or ``None`` when unknown."""
+    return _FORMATS.get(name)
+
+
+def pattern_names() -> tuple[str, ...]:
+    """Every pattern name the goal format accepts now, built-ins first."""
+    return tuple(_FORMATS)
+
+
+for _name, _need in (("line", 2), ("circle", 3), ("rectangle", 4)):
+    declare_pattern(PatternFormat(_name, min_objects=_need))
+declare_pattern(PatternFormat("tower", min_objects=2, on_table=False))
+for _name in RELATIONS:
+    declare_pattern(PatternFormat(_name, anchor=True))
+declare_pattern(PatternFormat("pose", pose=True, on_table=False))
 
 
 class _Model(BaseModel):
@@ -231,12 +290,13 @@ class Goal(_Model):
     @model_validator(mode="after")
     def _shape(self) -> "Goal":
         p = self.pattern
-        if p not in PATTERN_NAMES:
-            raise ValueError(f"unknown pattern '{p}' (known: {', '.join(PATTERN_NAMES)})")
+        fmt = _FORMATS.get(p)
+        if fmt is None:
+            raise ValueError(f"unknown pattern '{p}' (known: {', '.join(pattern_names())})")
         if len(set(self.objects)) != len(self.objects):
             raise ValueError(f"{p} goal lists an object twice")
         n = len(self.objects)
-        if p in RELATIONS:
+        if fmt.anchor:
             if self.anchor is None:
                 raise ValueError(f"{p} goal needs an 'anchor'")
             if n < 1:
@@ -245,13 +305,13 @@ class Goal(_Model):
                 raise ValueError(f"{p} goal: anchor {self.anchor} is also one of its objects")
         elif self.anchor is not None:
             raise ValueError(f"{p} goal takes no 'anchor'")
-        if p == "pose":
+        if fmt.pose:
             if self.pose is None or n != 1:
-                raise ValueError("pose goal needs exactly one object and a 'pose'")
+                raise ValueError(f"{p} goal needs exactly one object and a 'pose'")
             _finite(self.pose, "goal pose")
         elif self.pose is not None:
             raise ValueError(f"{p} goal takes no 'pose'")
-        need = _MIN_OBJECTS.get(p, 1)
+        need = fmt.min_objects
         if n < need:
             noun = "object" if n == 1 else "objects"
             raise ValueError(f"a {p} needs at least {need} objects, got {n} {noun}")
@@ -320,9 +380,8 @@ class GoalSpec(_Model):
         for o in sorted(dep):
             if _cyclic(o):
                 raise InputError(f"spatial relations form a cycle through object {o}")
-        on_table_patterns = {"line", "circle", "rectangle", *RELATIONS}
         for g in self.goals:
-            if g.pattern in on_table_patterns:
+            if _FORMATS[g.pattern].on_table:
                 for o in g.objects:
                     if o in below:
                         raise InputError(

@@ -22,21 +22,36 @@ Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
   direction and 0 < length ≤ 0.30 m;
 * pose: within TOL and 0.1 rad;
 * objects of line, circle, rectangle and spatial goals end on the table.
+
+A pattern added outside this module brings its own rule
+(:func:`register_rule`), written apart from its sampler.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
 
 from .errors import InputError
-from .formats import RELATIONS, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_plan, load_scene
+from .formats import (
+    PATTERN_NAMES,
+    RELATIONS,
+    Goal,
+    GoalSpec,
+    PlanSpec,
+    SceneSpec,
+    load_goals,
+    load_plan,
+    load_scene,
+    pattern_format,
+)
 from .scene import TABLE, Scene
 
-__all__ = ["Verdict", "check", "goal_satisfied", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
+__all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
 
 TOL = 0.015
 OVERLAP_AREA = 1e-6
@@ -47,6 +62,26 @@ POSE_ANGLE_TOL = 0.1
 MIN_CIRCLE_RADIUS = 0.05
 MIN_RECT_SIDE = 0.05
 ON_TABLE_PATTERNS = frozenset({"line", "circle", "rectangle", *RELATIONS})
+
+#: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
+Rule = Callable[[Goal, Scene, np.ndarray, tuple[int, ...]], "str | None"]
+_RULES: dict[str, Rule] = {}
+
+
+def register_rule(name: str, rule: Rule) -> Rule:
+    """Give declared pattern ``name`` its acceptance rule.
+
+    The pattern must first be declared with
+    :func:`lgmcts.formats.declare_pattern`; the built-in rules cannot be
+    replaced. The on-table requirement of the pattern's format is checked
+    before ``rule`` is called.
+    """
+    if pattern_format(name) is None:
+        raise ValueError(f"declare pattern '{name}' (lgmcts.formats.declare_pattern) before its rule")
+    if name in PATTERN_NAMES:
+        raise ValueError(f"'{name}' is a built-in pattern; its rule cannot be replaced")
+    _RULES[name] = rule
+    return rule
 
 
 @dataclass(frozen=True)
@@ -139,7 +174,8 @@ def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, .
     idx = [scene.index[i] for i in goal.objects]
     xy = poses[idx, :2]
     p = goal.pattern
-    if p in ON_TABLE_PATTERNS:
+    fmt = pattern_format(p)
+    if fmt is not None and fmt.on_table:
         for i in idx:
             if on[i] != TABLE:
                 return f"object {scene.ids[i]} is not on the table"
@@ -182,7 +218,10 @@ def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, .
         if abs(dth) > POSE_ANGLE_TOL:
             return f"object {goal.objects[0]} is {abs(dth):.2f} rad off its goal yaw"
         return None
-    raise InputError(f"unknown pattern '{p}'")  # pragma: no cover - formats reject it
+    rule = _RULES.get(p)
+    if rule is not None:
+        return rule(goal, scene, poses, on)
+    raise InputError(f"pattern '{p}' has no acceptance rule (lgmcts.validate.register_rule)")
 
 
 # ---------------------------------------------------------------- replay

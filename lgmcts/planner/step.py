@@ -17,6 +17,7 @@ import numpy as np
 import shapely
 
 from .. import geometry as geo
+from ..errors import InputError
 from ..formats import Action, GoalSpec
 from ..patterns import BAND, CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
 from ..scene import TABLE, Scene, State
@@ -60,6 +61,8 @@ class Problem:
             idx = tuple(scene.index[i] for i in g.objects)
             anchor = None if g.anchor is None else scene.index[g.anchor]
             goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose)))
+            if g.pattern not in reg:
+                raise InputError(f"pattern '{g.pattern}' has no prior (lgmcts.patterns.register)")
             patterns.append(reg[g.pattern])
         return cls(scene, spec, tuple(goals), tuple(patterns))
 

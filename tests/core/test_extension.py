@@ -1,0 +1,83 @@
+"""A pattern added in one module (examples/plugins/column.py) reaches the
+goal format, the validator and the planner without touching the package."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+
+import pytest
+
+from lgmcts import check, plan
+from lgmcts.errors import InputError
+from lgmcts.formats import PATTERN_NAMES, PatternFormat, declare_pattern, parse_goals, pattern_names
+
+
+@pytest.fixture
+def column(root):
+    from lgmcts import formats, validate
+    from lgmcts.patterns import base
+
+    spec = importlib.util.spec_from_file_location("column_plugin", root / "examples" / "plugins" / "column.py")
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["column_plugin"] = mod
+    spec.loader.exec_module(mod)
+    try:
+        yield mod
+    finally:
+        sys.modules.pop("column_plugin", None)
+        base._REGISTRY.pop("column", None)
+        validate._RULES.pop("column", None)
+        formats._FORMATS.pop("column", None)
+
+
+def _scene(n: int = 4) -> dict:
+    objs = [{"id": i + 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+             "pose": [-0.3 + 0.15 * i, -0.2 + 0.1 * (i % 2), 0.0], "on": None} for i in range(n)]
+    return {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": objs}
+
+
+def test_unknown_until_the_module_is_imported():
+    assert "column" not in pattern_names()
+    with pytest.raises(InputError, match="unknown pattern 'column'"):
+        parse_goals({"goals": [{"pattern": "column", "objects": [1, 2]}]})
+
+
+def test_a_plugin_pattern_is_planned_and_checked(column):
+    assert "column" in pattern_names() and "column" not in PATTERN_NAMES
+    goals = {"goals": [{"pattern": "column", "objects": [1, 2, 3, 4]}]}
+    for seed in range(3):
+        p = plan(_scene(), goals, seed=seed)
+        assert p.solved
+        v = check(_scene(), goals, p)
+        assert v.valid, v.reasons
+        xs = [a.to[0] for a in p.actions]
+        assert max(xs) - min(xs) <= 0.03
+    # The plugin's own rule judges: the start state is no column.
+    v = check(_scene(), goals, {"solved": True, "actions": [], "goals": goals})
+    assert not v.valid and "off the column" in v.reasons[0]
+    # Its format is enforced like a built-in one.
+    with pytest.raises(InputError, match="at least 2 objects"):
+        parse_goals({"goals": [{"pattern": "column", "objects": [1]}]})
+
+
+def test_declarations_cannot_clash_or_replace_built_ins():
+    from lgmcts.validate import register_rule
+
+    with pytest.raises(ValueError, match="declared differently"):
+        declare_pattern(PatternFormat("line", min_objects=5))
+    with pytest.raises(ValueError, match="built-in"):
+        register_rule("line", lambda *a: None)
+    with pytest.raises(ValueError, match="declare pattern"):
+        register_rule("never_declared", lambda *a: None)
+
+
+def test_a_declared_pattern_without_a_prior_is_a_clear_error():
+    from lgmcts import formats
+
+    declare_pattern(PatternFormat("prior_less", min_objects=2))
+    try:
+        with pytest.raises(InputError, match="has no prior"):
+            plan(_scene(), {"goals": [{"pattern": "prior_less", "objects": [1, 2]}]})
+    finally:
+        formats._FORMATS.pop("prior_less", None)
