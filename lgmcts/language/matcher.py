@@ -144,12 +144,16 @@ def content_words(text: str) -> tuple[str, ...]:
 
 def pattern_infos() -> dict[str, PatternInfo]:
     """Describe every registered pattern (read from the registry each call)."""
+    from ..formats import pattern_format
     from ..patterns import registry
 
     out = {}
     for name, p in registry().items():
-        anchored = bool(getattr(p, "anchored", name in RELATIONS))
-        needs_pose = bool(getattr(p, "needs_pose", name == "pose"))
+        # The goal format says whether a pattern takes an anchor or a pose;
+        # a pattern not declared there may still say so itself.
+        fmt = pattern_format(name)
+        anchored = bool(getattr(p, "anchored", fmt.anchor if fmt else name in RELATIONS))
+        needs_pose = bool(getattr(p, "needs_pose", fmt.pose if fmt else name == "pose"))
         out[name] = PatternInfo(
             name=name,
             keys=tuple(p.keys),
