@@ -252,9 +252,14 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             top = [sc.ids[k] for k, s in enumerate(on) if s == i]
             reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
-        poly = shapely.polygons(sc.footprint(i, new_pose))
+        verts = sc.footprint(i, new_pose)
+        poly = shapely.polygons(verts)
         if act.on is None:
-            if shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
+            # Every vertex in the box means the convex footprint is inside;
+            # otherwise measure how much of it lies outside.
+            x, y = verts[:, 0], verts[:, 1]
+            inside = bool((x >= xmin).all() and (x <= xmax).all() and (y >= ymin).all() and (y <= ymax).all())
+            if not inside and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
             others = [k for k, s in enumerate(on) if k != i and s == TABLE]
             if others:
