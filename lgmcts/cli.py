@@ -21,6 +21,31 @@ app = typer.Typer(
     help="Plan tabletop rearrangements from goals or plain-language commands.",
 )
 
+@app.callback()
+def _root(
+    pattern_module: list[str] = typer.Option(
+        [],
+        "--pattern-module",
+        metavar="MODULE",
+        help="Import a pattern module (a module name or a .py file) before the command; repeatable. "
+        "Also read from LGMCTS_PATTERN_MODULES (':'-separated).",
+    ),
+) -> None:
+    import os
+
+    from .patterns import MODULES_ENV, load_pattern_modules
+
+    try:
+        load_pattern_modules(None)
+        load_pattern_modules(pattern_module)
+    except InputError as exc:
+        fail(str(exc))
+    if pattern_module:
+        # Worker processes (the service's pools) load them from the environment.
+        given = [str(Path(m).resolve()) if m.endswith(".py") else m for m in pattern_module]
+        os.environ[MODULES_ENV] = os.pathsep.join([v for v in [os.environ.get(MODULES_ENV, "")] if v] + given)
+
+
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 

@@ -1,5 +1,29 @@
 """Pattern priors: one module per pattern behind the protocol in :mod:`.base`."""
 
-from .base import BAND, CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, get, register, registry
+from .base import (
+    BAND,
+    CLEARANCE,
+    MODULES_ENV,
+    CompiledGoal,
+    Context,
+    GoalProgress,
+    Pattern,
+    get,
+    load_pattern_modules,
+    register,
+    registry,
+)
 
-__all__ = ["BAND", "CLEARANCE", "CompiledGoal", "Context", "GoalProgress", "Pattern", "get", "register", "registry"]
+__all__ = [
+    "BAND",
+    "CLEARANCE",
+    "MODULES_ENV",
+    "CompiledGoal",
+    "Context",
+    "GoalProgress",
+    "Pattern",
+    "get",
+    "load_pattern_modules",
+    "register",
+    "registry",
+]

@@ -20,6 +20,8 @@ from ..scene import TABLE, Scene, State
 
 __all__ = [
     "Pattern",
+    "load_pattern_modules",
+    "MODULES_ENV",
     "GoalProgress",
     "CompiledGoal",
     "Context",
@@ -154,6 +156,61 @@ def registry() -> dict[str, Pattern]:
     from . import circle, line, pose, rectangle, spatial, tower  # noqa: F401  (registration side effect)
 
     return dict(_REGISTRY)
+
+
+#: Environment variable naming pattern modules to import (separated by the
+#: platform's path separator, ``:`` on Linux): module names or ``.py`` files.
+MODULES_ENV = "LGMCTS_PATTERN_MODULES"
+
+
+def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None) -> list[str]:
+    """Import pattern modules that live outside the package.
+
+    Each entry is an importable module name (``mylab.patterns.zigzag``) or
+    the path of a ``.py`` file; with ``specs=None`` the entries come from
+    :data:`MODULES_ENV`. Importing a module is what registers its pattern.
+    Returns the module names loaded; a module that cannot be found or fails
+    to import is an :class:`~lgmcts.errors.InputError` with one line.
+    """
+    import importlib
+    import importlib.util
+    import os
+    import sys
+    from pathlib import Path
+
+    from ..errors import InputError
+
+    if specs is None:
+        specs = os.environ.get(MODULES_ENV, "")
+    if isinstance(specs, str):
+        specs = [s for s in specs.split(os.pathsep) if s.strip()]
+    loaded = []
+    for spec in specs:
+        spec = spec.strip()
+        try:
+            if spec.endswith(".py") or os.sep in spec:
+                path = Path(spec)
+                if not path.is_file():
+                    raise InputError(f"pattern module {spec}: no such file")
+                name = f"lgmcts_pattern_{path.stem}"
+                if name not in sys.modules:
+                    mspec = importlib.util.spec_from_file_location(name, path)
+                    mod = importlib.util.module_from_spec(mspec)  # type: ignore[arg-type]
+                    sys.modules[name] = mod
+                    try:
+                        mspec.loader.exec_module(mod)  # type: ignore[union-attr]
+                    except BaseException:
+                        sys.modules.pop(name, None)
+                        raise
+            else:
+                name = spec
+                importlib.import_module(spec)
+        except InputError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - any failure is the module's, reported in one line
+            raise InputError(f"pattern module {spec} failed to load: {type(exc).__name__}: {exc}") from None
+        loaded.append(name)
+    return loaded
 
 
 def get(name: str) -> Pattern:

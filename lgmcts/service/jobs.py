@@ -113,6 +113,9 @@ def worker_init(slots: Any = None, counter: Any = None) -> None:
     """
     global _slot
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from ..patterns import load_pattern_modules
+
+    load_pattern_modules(None)  # the patterns the server process loaded (LGMCTS_PATTERN_MODULES)
     if slots is not None and counter is not None:
         with counter.get_lock():
             index = counter.value

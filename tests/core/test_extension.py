@@ -81,3 +81,30 @@ def test_a_declared_pattern_without_a_prior_is_a_clear_error():
             plan(_scene(), {"goals": [{"pattern": "prior_less", "objects": [1, 2]}]})
     finally:
         formats._FORMATS.pop("prior_less", None)
+
+
+def _cli(*args: str, env: dict | None = None):
+    import os
+    import subprocess
+
+    e = {k: v for k, v in os.environ.items() if k != "LGMCTS_PATTERN_MODULES"}
+    e.update(env or {})
+    return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300, env=e)
+
+
+def test_cli_loads_pattern_modules(root, tmp_path):
+    import json
+
+    plugin = str(root / "examples" / "plugins" / "column.py")
+    scene = str(root / "examples" / "tabletop.json")
+    goals = tmp_path / "g.json"
+    goals.write_text(json.dumps({"goals": [{"pattern": "column", "objects": [1, 2, 3]}]}))
+    out = tmp_path / "p.json"
+    r = _cli("plan", scene, "--goal", str(goals))
+    assert r.returncode == 2 and "unknown pattern 'column'" in r.stderr
+    r = _cli("--pattern-module", plugin, "plan", scene, "--goal", str(goals), "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    r = _cli("check", scene, str(goals), str(out), env={"LGMCTS_PATTERN_MODULES": plugin})
+    assert r.returncode == 0 and r.stdout.startswith("valid"), r.stdout + r.stderr
+    r = _cli("--pattern-module", "no_such_module_xyz", "check", scene, str(goals), str(out))
+    assert r.returncode == 2 and r.stderr.strip().count("\n") == 0 and "no_such_module_xyz" in r.stderr
