@@ -227,6 +227,10 @@ class Mention:
     count: int | None = None
     same_color_as: "Mention | None" = None
     excluding: tuple["Mention", ...] = ()
+    #: ``"elided"``: colours with the noun left out ("the red" in "the red and
+    #: the blue blocks"); ``"one"``: "the red one". Both take the category of
+    #: a coordinated neighbour (see :func:`find_mentions`).
+    head: str = ""
 
 
 @dataclass(frozen=True)
@@ -396,6 +400,7 @@ def _mention_at(
         everything, det, end = "other", "other", j + 2
     elif det == "" and j < n and words[j] in ("everything", "anything"):
         everything, det, end = "all", "all", j + 1
+    head = ""
     cols = None if everything else _colors(vocab, words, j)
     colors, color_order = None, ()
     if cols is not None:
@@ -415,6 +420,8 @@ def _mention_at(
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None
         names, plural, end = None, words[j].endswith("s"), j + 1
+        if words[j] in ("one", "ones") and colors is not None:
+            head = "one"
     elif colors is not None and det in ("all", "other"):
         names, plural, end = None, True, j
     elif colors is not None:
@@ -424,6 +431,12 @@ def _mention_at(
             if words[k] in ("to", "in", "into", "on", "of", "at", "behind", "and"):
                 break
             k += 1
+        coordinated = (j < n and words[j] in _COORD) or (i > 0 and words[i - 1] in _COORD)
+        if k == j and coordinated and det in ("the", "all", "both", "other", "") and not nested:
+            # "the red and the blue blocks", "the red block and the blue": the
+            # noun is shared with a coordinated neighbour (resolved in find_mentions).
+            return Mention(i, j, " ".join(words[i:j]), det or "the", False, None, colors, color_order,
+                           head="elided")
         phrase = " ".join(words[i:k])
         raise InputError(f"'{phrase}' names nothing in the scene")
     else:
@@ -434,7 +447,7 @@ def _mention_at(
         det = "all" if plural else "the"
     if det == "count" and count == 1:
         det = "one"
-    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count)
+    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head)
     # Qualifiers.
     while end < n:
         q = next((s for s in _SAME_COLOR if _starts(words, end, s)), None)
@@ -488,6 +501,51 @@ def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: froz
             i = m.end
         else:
             i += 1
+    return _share_heads(words, out)
+
+
+def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
+    between = words[a.end : b.start]
+    return bool(between) and all(w in _COORD for w in between)
+
+
+def _share_heads(words: tuple[str, ...], mentions: list[Mention]) -> list[Mention]:
+    """Give elided and "one" mentions the category of a coordinated neighbour.
+
+    An elided mention ("the red" in "the red and the blue blocks") takes the
+    noun of the next mention of its list that has one, else of the previous
+    one ("the red block and the blue"); "the green one" looks back first
+    ("the red block and the green one"), then ahead ("the red one and the
+    green block"). A plural noun makes "the red" plural ("the red and the
+    blue blocks": every red block and every blue block). An elided mention
+    with no noun in its list names nothing.
+    """
+    groups: list[list[int]] = []
+    for k, m in enumerate(mentions):
+        if groups and _coordinated(words, mentions[groups[-1][-1]], m):
+            groups[-1].append(k)
+        else:
+            groups.append([k])
+    out = list(mentions)
+    for g in groups:
+        for pos, k in enumerate(g):
+            m = mentions[k]
+            if not m.head:
+                continue
+            later = [mentions[x] for x in g[pos + 1 :] if not mentions[x].head and mentions[x].names is not None]
+            earlier = [mentions[x] for x in reversed(g[:pos]) if not mentions[x].head and mentions[x].names is not None]
+            order = later + earlier if m.head == "elided" else earlier + later
+            if not order:
+                if m.head == "elided":
+                    raise InputError(f"'{m.text}' names nothing in the scene")
+                continue
+            src = order[0]
+            plural = m.plural or (m.head == "elided" and src.plural)
+            det = m.det
+            if plural and det == "the":
+                det = "all"
+            out[k] = Mention(m.start, m.end, m.text, det, plural, src.names, m.colors, m.color_order,
+                             count=m.count, same_color_as=m.same_color_as, excluding=m.excluding, head=m.head)
     return out
 
 

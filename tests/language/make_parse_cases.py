@@ -365,6 +365,18 @@ HAND: list[tuple[str, str, str, object]] = [
     ("refusal", "vima_b", "put objects whose color is the same as the unicorn in a line", "unicorn"),
     ("refusal", "vima_b", "Put all blocks in a circle", "needs at least 3"),
     ("refusal", "vima_b", "put the heart on the left of the bowl and on the right of the bowl", "right"),
+    # Known gaps closed after the sets above were settled (appended so that the
+    # ids of the earlier cases stay the same).
+    # Elided heads: the noun is shared with a coordinated neighbour.
+    ("grounding", "tabletop", "Put the red and the blue blocks in a line", [_g("line", [1, 2])]),
+    ("grounding", "tabletop", "Put the red, the blue and the green blocks in a circle", [_g("circle", [1, 2, 3])]),
+    ("grounding", "blocks8", "Put the red and the blue blocks in a rectangle", [_g("rectangle", [1, 2, 3, 4])]),
+    ("grounding", "kitchen", "Stack the yellow and the blue blocks", [_g("tower", [12, 11])]),
+    ("grounding", "kitchen", "put the red and the blue mugs behind the plate", [_g("behind", [1, 2], 13)]),
+    ("grounding", "kitchen", "put the red block and the green one in a line", [_g("line", [9, 10])]),
+    ("grounding", "kitchen", "put the red one and the green block in a line", [_g("line", [9, 10])]),
+    ("grounding", "kitchen", "line up the red block and the blue", [_g("line", [9, 11])]),
+    ("refusal", "kitchen", "put the red in a line", "names nothing"),
 ]
 
 

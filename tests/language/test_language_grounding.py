@@ -107,3 +107,40 @@ def test_pattern_nouns_are_not_objects(scenes):
         assert all(n is None or not ({"square", "ring", "star"} & set(n)) for n in names), text
     words = tuple(t.text for t in tokenize("put the square left of the ring"))
     assert len(find_mentions(vocab, words, key_vocabulary())) == 2
+
+
+def _resolve_all(scene, text):
+    vocab = Vocabulary.from_scene(scene)
+    words = tuple(t.text for t in tokenize(text))
+    return [select(vocab, m) for m in find_mentions(vocab, words, key_vocabulary())]
+
+
+@pytest.mark.parametrize(
+    "text, ids",
+    [
+        ("the red and the blue blocks", [[1], [2]]),
+        ("the red, the blue and the green blocks", [[1], [2], [3]]),
+        ("the red block and the blue", [[1], [2]]),
+    ],
+)
+def test_elided_heads_take_the_noun_of_their_list(tabletop, text, ids):
+    assert _resolve_all(tabletop, text) == ids
+
+
+def test_elided_heads_with_a_plural_noun_select_every_match(scenes):
+    # blocks8 has two red and two blue blocks: "the red and the blue blocks" means all four.
+    assert _resolve_all(scenes["blocks8"], "the red and the blue blocks") == [[1, 2], [3, 4]]
+
+
+def test_the_red_one_takes_the_category_of_its_neighbour(scenes):
+    # The kitchen has a red mug and a red block, a green bowl and a green block.
+    assert _resolve_all(scenes["kitchen"], "the red block and the green one") == [[9], [10]]
+    assert _resolve_all(scenes["kitchen"], "the red one and the green block") == [[9], [10]]
+    # Without a neighbour "the green one" is still any green object, hence ambiguous.
+    with pytest.raises(InputError, match="ambiguous"):
+        _resolve_all(scenes["kitchen"], "the green one")
+
+
+def test_an_elided_head_without_a_noun_names_nothing(scenes):
+    with pytest.raises(InputError, match="'the red' names nothing"):
+        _resolve_all(scenes["kitchen"], "the red and the blue")

@@ -144,3 +144,11 @@ def test_key_embeddings_are_computed_once(matcher):
     m.match("put them in a wobbly row")
     n_keys = sum(len(i.keys) for i in m.infos().values())
     assert calls.count(n_keys) == 1
+
+
+def test_elided_heads_in_a_command(tabletop, scenes, matcher):
+    assert _goals(tabletop, "Put the red and the blue blocks in a line") == [{"pattern": "line", "objects": [1, 2]}]
+    assert _goals(scenes["kitchen"], "Stack the yellow and the blue blocks") == [{"pattern": "tower", "objects": [12, 11]}]
+    assert _goals(scenes["kitchen"], "put the red one and the green block in a line") == [
+        {"pattern": "line", "objects": [9, 10]}
+    ]
