@@ -46,6 +46,12 @@ _LEADING = frozenset(
      "you", "would", "will", "whereas", "while", "afterwards"}
 )
 _COORD = frozenset({"and", ",", "&", "plus"})
+#: Verbs that start a new command after "and" or a comma ("stack the blocks
+#: and put the bowls in a line"); a list of objects never continues with one.
+_COMMAND_VERBS = frozenset(
+    {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
+     "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep"}
+)
 _ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
 #: Words never counted as naming an arrangement when deciding where to split.
 _NOT_PATTERN = frozenset({"other", "top", "exactly", "position", "coordinate", "shape", "pose", "this", "single"})
@@ -87,7 +93,7 @@ class _State:
 
 
 def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
-    """Split at sentence ends, ";" and connectives; drop leading connectors."""
+    """Split at sentence ends, ";", connectives and "and"/"," before a verb; drop leading connectors."""
     parts: list[list[str]] = [[]]
     i = 0
     while i < len(words):
@@ -98,6 +104,11 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             i += len(seq)
             continue
         if w in _PUNCT_END or w in _STRONG_WORDS:
+            parts.append([])
+            i += 1
+            continue
+        if w in (",", "and") and i + 1 < len(words) and words[i + 1] in _COMMAND_VERBS and parts[-1]:
+            # "stack the blocks and put the bowls in a line": two commands.
             parts.append([])
             i += 1
             continue

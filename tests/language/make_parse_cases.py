@@ -377,6 +377,17 @@ HAND: list[tuple[str, str, str, object]] = [
     ("grounding", "kitchen", "put the red one and the green block in a line", [_g("line", [9, 10])]),
     ("grounding", "kitchen", "line up the red block and the blue", [_g("line", [9, 11])]),
     ("refusal", "kitchen", "put the red in a line", "names nothing"),
+    # A list "A, B, C and D" stays in one command; "and" before a verb starts a new one.
+    ("free", "tabletop", "Stack the red block, the blue block, the green block and the yellow block into a tower",
+     [_g("tower", [1, 2, 3, 4])]),
+    ("free", "vima_b", "Stack the purple square, the red pentagon, the green ring and the yellow block into a tower",
+     [_g("tower", [2, 1, 10, 4])]),
+    ("free", "kitchen", "put the bowls in a line and stack the blocks", [_g("line", [3, 4]), _g("tower", [9, 10, 11, 12])]),
+    ("free", "kitchen", "stack the blocks and put the bowls in a line", [_g("tower", [9, 10, 11, 12]), _g("line", [3, 4])]),
+    ("free", "kitchen", "Stack the red block, the blue block and the green block and put the mugs in a line",
+     [_g("tower", [9, 11, 10]), _g("line", [1, 2])]),
+    ("free", "kitchen", "put the mugs in a row, place the phone behind the plate",
+     [_g("line", [1, 2]), _g("behind", [7], 13)]),
 ]
 
 

@@ -144,3 +144,12 @@ def test_the_red_one_takes_the_category_of_its_neighbour(scenes):
 def test_an_elided_head_without_a_noun_names_nothing(scenes):
     with pytest.raises(InputError, match="'the red' names nothing"):
         _resolve_all(scenes["kitchen"], "the red and the blue")
+
+
+def test_clauses_split_before_a_verb_but_not_inside_a_list():
+    from lgmcts.language.rules import split_clauses
+
+    words = tuple(t.text for t in tokenize("stack the blocks and put the bowls in a line"))
+    assert split_clauses(words) == [("stack", "the", "blocks"), ("put", "the", "bowls", "in", "a", "line")]
+    words = tuple(t.text for t in tokenize("stack the red block, the blue block and the green block"))
+    assert split_clauses(words) == [words]

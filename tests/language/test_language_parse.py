@@ -152,3 +152,23 @@ def test_elided_heads_in_a_command(tabletop, scenes, matcher):
     assert _goals(scenes["kitchen"], "put the red one and the green block in a line") == [
         {"pattern": "line", "objects": [9, 10]}
     ]
+
+
+def test_a_list_with_a_final_and_stays_one_instruction(tabletop, scenes, matcher):
+    assert _goals(tabletop, "Stack the red block, the blue block, the green block and the yellow block into a tower") == [
+        {"pattern": "tower", "objects": [1, 2, 3, 4]}
+    ]
+    assert _goals(scenes["kitchen"], "Stack the red block, the blue block and the green block and put the mugs in a line") == [
+        {"pattern": "tower", "objects": [9, 11, 10]}, {"pattern": "line", "objects": [1, 2]}
+    ]
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["put the bowls in a line and stack the blocks", "stack the blocks and put the bowls in a line"],
+)
+def test_and_before_a_verb_joins_two_commands(scenes, matcher, text):
+    g = _goals(scenes["kitchen"], text)
+    assert sorted(g, key=lambda x: x["pattern"]) == [
+        {"pattern": "line", "objects": [3, 4]}, {"pattern": "tower", "objects": [9, 10, 11, 12]}
+    ]
