@@ -48,6 +48,10 @@ _LEADING = frozenset(
 _COORD = frozenset({"and", ",", "&", "plus"})
 #: Verbs that start a new command after "and" or a comma ("stack the blocks
 #: and put the bowls in a line"); a list of objects never continues with one.
+_FRONTED = frozenset(
+    {"to", "on", "in", "at", "behind", "left", "right", "front", "back", "beside", "into", "onto", "with", "using",
+     "from", "for", "out"}
+)
 _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep"}
@@ -107,7 +111,8 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
-        if w in (",", "and") and i + 1 < len(words) and words[i + 1] in _COMMAND_VERBS and parts[-1]:
+        if (w in (",", "and") and i + 1 < len(words) and words[i + 1] in _COMMAND_VERBS and parts[-1]
+                and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
             parts.append([])
             i += 1
@@ -123,6 +128,14 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
         if p:
             out.append(tuple(p))
     return out
+
+
+def _fronted(part: list[str]) -> bool:
+    """Whether ``part`` is a phrase put before its verb ("to the left of the bowl, line up ...")."""
+    k = 0
+    while k < len(part) and part[k] in _LEADING:
+        k += 1
+    return k < len(part) and part[k] in _FRONTED and not any(w in _COMMAND_VERBS for w in part[k:])
 
 
 def _gaps(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[int, int]]:
@@ -178,7 +191,8 @@ def _weak_split(
     with X and a circle with Y"). A pattern phrase that fills its gap alone
     ("line up X, Y and Z to the left of W", "stack X, Y and Z into a
     tower") is not cut, except after the anchor of a relation ("X left of
-    Y and the Zs in a circle").
+    Y and the Zs in a circle"). A relation put first ("to the left of the
+    bowl, line up X and Y") is not cut from the phrase after its anchor.
     """
     gaps = _gaps(words, mentions)
     pat = _regions(words, gaps, vocab, rel_words)
@@ -186,6 +200,8 @@ def _weak_split(
         return [words]
     cuts: list[int] = []
     for (p, ppos), (q, qpos) in zip(pat, pat[1:]):
+        if p == 0 and q == 1 and any(words[k] in rel_words for k in ppos):
+            continue  # "to the left of the bowl, line up A and B": a fronted relation, its targets follow
         cut = None
         _, hi = gaps[p]
         after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _COORD]

@@ -388,6 +388,17 @@ HAND: list[tuple[str, str, str, object]] = [
      [_g("tower", [9, 11, 10]), _g("line", [1, 2])]),
     ("free", "kitchen", "put the mugs in a row, place the phone behind the plate",
      [_g("line", [1, 2]), _g("behind", [7], 13)]),
+    # A line and a relation over the same objects in one clause.
+    ("free", "tabletop", "Line up the red block and the blue block to the left of the bowl",
+     [_g("line", [1, 2]), _g("left", [1, 2], 6)]),
+    ("free", "tabletop", "Line up the red and the blue blocks to the left of the bowl",
+     [_g("line", [1, 2]), _g("left", [1, 2], 6)]),
+    ("free", "kitchen", "Line up the red block and the blue block behind the white plate",
+     [_g("line", [9, 11]), _g("behind", [9, 11], 13)]),
+    ("free", "tabletop", "To the left of the bowl, line up the red block and the blue block",
+     [_g("line", [1, 2]), _g("left", [1, 2], 6)]),
+    ("free", "tabletop", "To the left of the bowl, line up the red block and the blue block, and put the mug behind the phone",
+     [_g("line", [1, 2]), _g("left", [1, 2], 6), _g("behind", [7], 9)]),
 ]
 
 

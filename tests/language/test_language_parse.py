@@ -172,3 +172,18 @@ def test_and_before_a_verb_joins_two_commands(scenes, matcher, text):
     assert sorted(g, key=lambda x: x["pattern"]) == [
         {"pattern": "line", "objects": [3, 4]}, {"pattern": "tower", "objects": [9, 10, 11, 12]}
     ]
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "Line up the red block and the blue block to the left of the bowl",
+        "Put the red block and the blue block in a line left of the bowl",
+        "To the left of the bowl, line up the red block and the blue block",
+    ],
+)
+def test_line_with_a_relation_gives_both_goals_over_the_same_objects(tabletop, matcher, text):
+    g = _goals(tabletop, text)
+    assert sorted(g, key=lambda x: x["pattern"]) == [
+        {"pattern": "left", "objects": [1, 2], "anchor": 6}, {"pattern": "line", "objects": [1, 2]}
+    ]
