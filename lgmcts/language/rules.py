@@ -94,6 +94,8 @@ class _Pending:
 class _State:
     named: set[int] = field(default_factory=set)
     last: list[int | Choice] = field(default_factory=list)
+    #: The previous clause built a tower: "it" then means its top object.
+    last_tower: bool = False
 
 
 def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
@@ -224,6 +226,24 @@ def _weak_split(
     for c in cuts:
         out.append(words[prev:c])
         prev = c + 1
+    out.append(words[prev:])
+    return [tuple(x) for x in out if x]
+
+
+def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[str, ...]]:
+    """Cut "A on B and C on D" into "A on B" and "C on D" (two stacking steps)."""
+    cuts = []
+    for k in range(1, len(mentions) - 2):
+        a, b, c, d = mentions[k - 1], mentions[k], mentions[k + 1], mentions[k + 2]
+        if (words[a.end : b.start] in _ON_WORDS and words[c.end : d.start] in _ON_WORDS
+                and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
+            cuts.append((b.end, c.start))
+    if not cuts:
+        return [words]
+    out, prev = [], 0
+    for lo, hi in cuts:
+        out.append(words[prev:lo])
+        prev = hi
     out.append(words[prev:])
     return [tuple(x) for x in out if x]
 
@@ -372,6 +392,7 @@ class _Parser:
         if not targets:
             raise InputError(f"'{text}': an object cannot be {words_rel} of itself")
         self.state.last = targets
+        self.state.last_tower = False
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words) -> _Pending:
@@ -401,6 +422,7 @@ class _Parser:
             yaw = nums[2] if len(nums) > 2 else float(cur[2] if cur else 0.0)
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
+        self.state.last_tower = pattern == "tower"
         return _Pending(pattern, objs, None, pose, text)
 
     def _select(self, m: Mention) -> list[int] | Choice:
@@ -408,6 +430,8 @@ class _Parser:
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last
+            if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
+                return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
             if len(last) == 1 and isinstance(last[0], Choice):
                 return last[0]
             if any(isinstance(x, Choice) for x in last):
@@ -453,11 +477,13 @@ class _Parser:
         pending: list[_Pending] = []
         for clause in split_clauses(words):
             mentions = find_mentions(self.vocab, clause, self.key_vocab)
-            for sub in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
-                while sub and sub[0] in _LEADING:
-                    sub = sub[1:]
-                if sub:
-                    pending.extend(self.clause(sub))
+            for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
+                part_mentions = find_mentions(self.vocab, part, self.key_vocab)
+                for sub in _on_pairs_split(part, part_mentions):
+                    while sub and sub[0] in _LEADING:
+                        sub = sub[1:]
+                    if sub:
+                        pending.extend(self.clause(sub))
         if not pending:
             raise InputError("the instruction names nothing to arrange")
         return self._finish(pending)
@@ -520,6 +546,7 @@ class _Parser:
                 g["pose"] = list(p.pose)
             if g not in goals:
                 goals.append(g)
+        goals = _chain_towers(goals)
         self._contradictions(goals)
         spec = parse_goals({"goals": goals})
         try:
@@ -545,6 +572,23 @@ class _Parser:
                         f"{a['pattern'].replace('_', ' and ')} and {b['pattern'].replace('_', ' and ')} of object "
                         f"{describe(self.vocab, [a['anchor']])}"
                     )
+        above: dict[int, int] = {}
+        below: dict[int, int] = {}
+        for g in goals:
+            if g["pattern"] != "tower":
+                continue
+            for lo, hi in zip(g["objects"], g["objects"][1:]):
+                if above.get(lo, hi) != hi:
+                    raise InputError(
+                        f"contradiction: object {describe(self.vocab, [lo])} cannot carry both "
+                        f"{describe(self.vocab, [above[lo]])} and {describe(self.vocab, [hi])}"
+                    )
+                if below.get(hi, lo) != lo:
+                    raise InputError(
+                        f"contradiction: object {describe(self.vocab, [hi])} cannot stand on both "
+                        f"{describe(self.vocab, [below[hi]])} and {describe(self.vocab, [lo])}"
+                    )
+                above[lo], below[hi] = hi, lo
         pos: dict[int, tuple[float, float, float]] = {}
         for g in goals:
             if "pose" in g:
@@ -552,6 +596,41 @@ class _Parser:
                 if o in pos and tuple(pos[o]) != tuple(g["pose"]):
                     raise InputError(f"contradiction: object {o} is given two different poses")
                 pos[o] = g["pose"]
+
+
+def _chain_towers(goals: list[dict]) -> list[dict]:
+    """Join towers where the top of one is the bottom of another.
+
+    "Put the red block on the blue block, then put the green block on the red
+    block" gives [blue, red] and [red, green]: one tower [blue, red, green]
+    (bottom first). Towers that share any other object are left as they are
+    (the consistency checks refuse them).
+    """
+    goals = [dict(g) for g in goals]
+    merged = True
+    while merged:
+        merged = False
+        towers = [k for k, g in enumerate(goals) if g["pattern"] == "tower"]
+        for a in towers:
+            for b in towers:
+                if a == b:
+                    continue
+                lo, hi = goals[a]["objects"], goals[b]["objects"]
+                if lo[-1] == hi[0] and set(lo) & set(hi) == {lo[-1]}:
+                    goals[a] = {**goals[a], "objects": lo + hi[1:]}
+                    del goals[b]
+                    merged = True
+                    break
+            if merged:
+                break
+    towers = [g["objects"] for g in goals if g["pattern"] == "tower"]
+
+    def inside(small: list[int]) -> bool:
+        n = len(small)
+        return any(big is not small and len(big) > n and any(big[i : i + n] == small for i in range(len(big) - n + 1))
+                   for big in towers)
+
+    return [g for g in goals if g["pattern"] != "tower" or not inside(g["objects"])]
 
 
 def _is_number(w: str) -> bool:

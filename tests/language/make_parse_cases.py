@@ -399,6 +399,18 @@ HAND: list[tuple[str, str, str, object]] = [
      [_g("line", [1, 2]), _g("left", [1, 2], 6)]),
     ("free", "tabletop", "To the left of the bowl, line up the red block and the blue block, and put the mug behind the phone",
      [_g("line", [1, 2]), _g("left", [1, 2], 6), _g("behind", [7], 9)]),
+    # Stacking step by step: chained "A on B" commands make one tower, bottom first.
+    ("free", "tabletop", "Put the red block on the blue block, then put the green block on the red block",
+     [_g("tower", [2, 1, 3])]),
+    ("free", "tabletop", "Put the green block on the red block, then put the red block on the blue block",
+     [_g("tower", [2, 1, 3])]),
+    ("free", "tabletop", "Stack the red block on the blue block and the green block on the red block",
+     [_g("tower", [2, 1, 3])]),
+    ("free", "tabletop", "Put the red block on the blue block. Put the green block on the red block. Put the yellow block on the green block.",
+     [_g("tower", [2, 1, 3, 4])]),
+    ("free", "tabletop", "Put the red block on the blue block, then put the green block on top of it", [_g("tower", [2, 1, 3])]),
+    ("free", "kitchen", "Stack the white bowl on the white plate, then put the red mug on the white bowl", [_g("tower", [13, 3, 1])]),
+    ("refusal", "kitchen", "put the red block on the blue block and the green block on the blue block", "contradiction"),
 ]
 
 

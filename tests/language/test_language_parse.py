@@ -187,3 +187,21 @@ def test_line_with_a_relation_gives_both_goals_over_the_same_objects(tabletop, m
     assert sorted(g, key=lambda x: x["pattern"]) == [
         {"pattern": "left", "objects": [1, 2], "anchor": 6}, {"pattern": "line", "objects": [1, 2]}
     ]
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "Put the red block on the blue block, then put the green block on the red block",
+        "Put the green block on the red block, then put the red block on the blue block",
+        "Stack the red block on the blue block and the green block on the red block",
+        "Put the red block on the blue block, then put the green block on top of it",
+    ],
+)
+def test_chained_stacking_steps_make_one_tower(tabletop, matcher, text):
+    assert _goals(tabletop, text) == [{"pattern": "tower", "objects": [2, 1, 3]}]
+
+
+def test_two_objects_on_one_base_is_a_contradiction(scenes, matcher):
+    with pytest.raises(InputError, match="contradiction: object 11 .* cannot carry both"):
+        parse(scenes["kitchen"], "put the red block on the blue block and the green block on the blue block")
