@@ -368,17 +368,32 @@ def labbe_case(n: int, seed: int) -> Case:
     r = 0.0375
     ws = {"x": [0.0, 0.5], "y": [0.0, 0.5]}
 
+    lo, hi, gap = r + 0.002, 0.5 - r - 0.002, 2 * r * 1.0087 + 0.004
+
     def config() -> np.ndarray:
-        # Random sequential addition; dense counts start from a jittered hex lattice.
+        # Random sequential addition; near saturation, darts go only where
+        # there is still room; beyond what that reaches, a jittered hex lattice.
         if n <= 24:
             for _ in range(100):
                 pts: list[np.ndarray] = []
                 for _ in range(3000):
-                    p = rng.uniform(r + 0.002, 0.5 - r - 0.002, 2)
-                    if all(np.hypot(*(p - q)) > 2 * r * 1.0087 + 0.004 for q in pts):
+                    p = rng.uniform(lo, hi, 2)
+                    if all(np.hypot(*(p - q)) > gap for q in pts):
                         pts.append(p)
                         if len(pts) == n:
                             return np.array(pts)
+        if n <= 27:
+            g = np.arange(lo, hi, 0.002)
+            grid_pts = np.stack(np.meshgrid(g, g), axis=-1).reshape(-1, 2)
+            for _ in range(500):
+                free = np.ones(len(grid_pts), dtype=bool)
+                pts = []
+                while free.any() and len(pts) < n:
+                    p = np.clip(grid_pts[rng.choice(np.flatnonzero(free))] + rng.uniform(-0.001, 0.001, 2), lo, hi)
+                    pts.append(p)
+                    free &= np.hypot(*(grid_pts - p).T) > gap + 0.003
+                if len(pts) == n:
+                    return np.array(pts)
         cols, rows = 6, 7
         grid = []
         for j in range(rows):

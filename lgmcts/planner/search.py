@@ -13,7 +13,7 @@ import numpy as np
 from ..formats import Action, PlanSpec
 from ..validate import check
 from .selection import select_child
-from .step import Problem, SearchState, StepOptions, Transition, attempt, stay
+from .step import Problem, SearchState, StepOptions, Transition, attempt, clear_way, probe, stay
 from .tree import Node
 
 __all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan"]
@@ -88,11 +88,46 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
         tr = stay(problem, ss, o, rng)
         if tr is not None:
             return o, tr
+    blocks: dict[int, tuple[int, ...]] = {}
     for o in order[: opts.direct_tries]:
-        tr = attempt(problem, ss, o, rng, opts.step, direct=True)
+        tr, blockers = probe(problem, ss, o, rng, opts.step)
+        if tr is not None:
+            return o, tr
+        if blockers:
+            blocks[o] = blockers
+    pick = _most_blocking(problem, ss, blocks, rng)
+    if pick is not None:
+        o, b = pick
+        tr = clear_way(problem, ss, b, rng, opts.step)
         if tr is not None:
             return o, tr
     return order[0], attempt(problem, ss, order[0], rng, opts.step)
+
+
+def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],
+                   rng: np.random.Generator) -> tuple[int, int] | None:
+    """The obstacle whose move frees the most goal placements: (an object it
+    blocks, the obstacle), or ``None``.
+
+    Scored by the objects it alone blocks, then by all it blocks; objects a
+    goal has already placed are left alone, and ties are broken at random.
+    """
+    sole: dict[int, int] = {}
+    total: dict[int, int] = {}
+    first: dict[int, int] = {}
+    for o, bs in blocks.items():
+        for b in bs:
+            if b == o or ss.committed(problem, b):
+                continue
+            total[b] = total.get(b, 0) + 1
+            sole[b] = sole.get(b, 0) + (len(bs) == 1)
+            first.setdefault(b, o)
+    if not total:
+        return None
+    best = max((sole[b], total[b]) for b in total)
+    ties = sorted(b for b in total if (sole[b], total[b]) == best)
+    b = ties[int(rng.integers(len(ties)))]
+    return first[b], b
 
 
 def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions, depth: int) -> tuple[float, list[Action] | None, int]:

@@ -286,18 +286,16 @@ def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) 
     gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
     gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
     free = np.ones((len(gy), len(gx)), dtype=bool)
-    for k in range(scene.n):
-        if k == b:
-            continue
-        (cx, cy), reach = world.poses[k, :2], scene.radii[k] + scene.radii[b] + clearance
-        # Only the grid window around object k can be within its reach.
-        i0, i1 = np.searchsorted(gx, [cx - reach, cx + reach])
-        j0, j1 = np.searchsorted(gy, [cy - reach, cy + reach])
-        if i0 >= i1 or j0 >= j1:
-            continue
-        dx2 = (gx[i0:i1] - cx) ** 2
-        dy2 = (gy[j0:j1] - cy) ** 2
-        free[j0:j1, i0:i1] &= dy2[:, None] + dx2[None, :] > reach**2
+    others = np.flatnonzero(np.arange(scene.n) != b)
+    cx, cy = world.poses[others, 0], world.poses[others, 1]
+    reach = scene.radii[others] + scene.radii[b] + clearance
+    # Only the grid window around each object can be within its reach.
+    i0, i1 = np.searchsorted(gx, cx - reach), np.searchsorted(gx, cx + reach)
+    j0, j1 = np.searchsorted(gy, cy - reach), np.searchsorted(gy, cy + reach)
+    for k in np.flatnonzero((i0 < i1) & (j0 < j1)).tolist():
+        dx2 = (gx[i0[k] : i1[k]] - cx[k]) ** 2
+        dy2 = (gy[j0[k] : j1[k]] - cy[k]) ** 2
+        free[j0[k] : j1[k], i0[k] : i1[k]] &= dy2[:, None] + dx2[None, :] > reach[k] ** 2
     jj, ii = np.nonzero(free)
     return np.stack([gx[ii], gy[jj]], axis=1)
 
@@ -354,8 +352,8 @@ def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Gene
     """Clear blocker ``b``: straight to its own goal when it is a goal object
     that may be placed now (saving the second move), else to a free pose."""
     if depth < 2 and b in problem.member and not ss.committed(problem, b) and b in ss.ready(problem):
-        tr = attempt(problem, ss, b, rng, opts, _depth=depth + 1)
-        if tr is not None and tr.action is not None and tr.action.object == problem.scene.ids[b]:
+        tr = attempt(problem, ss, b, rng, opts, _depth=depth + 1, direct=True)
+        if tr is not None:
             return tr
     return relocate(problem, ss, b, rng, opts, purpose)
 
@@ -372,6 +370,44 @@ def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Gener
     if not ss.world.clear(a):
         return _move_blocker(problem, ss, _clear_top(ss.world, a, rng), rng, opts, "unstack", 1)
     return relocate(problem, ss, a, rng, opts, "relocate")
+
+
+def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: np.random.Generator,
+              opts: StepOptions) -> tuple[Transition | None, np.ndarray, list[list[int]]]:
+    """Place ``o`` at the first free candidate; also the inside mask and each candidate's obstacles."""
+    inside, hits = _collisions(problem, ss, o, cand, opts)
+    ok = inside & np.array([not h for h in hits])
+    if not ok.any():
+        return None, inside, hits
+    pose = _wrapped(cand[int(np.flatnonzero(ok)[0])])
+    new_world = ss.world.moved(o, pose, TABLE)
+    act = _action(problem.scene, o, pose, None, "goal")
+    return Transition(act, _commit(problem, ss, new_world, o, pose, rng)), inside, hits
+
+
+def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
+          opts: StepOptions) -> tuple[Transition | None, tuple[int, ...]]:
+    """A direct placement of ``o`` (as ``attempt(direct=True)``) or, when every
+    table candidate collides, the obstacles of its least obstructed one."""
+    if not ss.world.clear(o) or _required_support(problem, ss, o) != TABLE:
+        return attempt(problem, ss, o, rng, opts, direct=True), ()
+    cand = _sample(problem, ss, o, rng, opts.samples)
+    if len(cand) == 0:
+        return None, ()
+    tr, inside, hits = _to_table(problem, ss, o, cand, rng, opts)
+    if tr is not None:
+        return tr, ()
+    blocked = [hits[k] for k in np.flatnonzero(inside) if hits[k]]
+    if not blocked:
+        return None, ()
+    return None, tuple(min(blocked, key=len))
+
+
+def clear_way(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
+    """Move obstacle ``b`` out of the way (the top of its stack first)."""
+    if not ss.world.clear(b):
+        return _move_blocker(problem, ss, _clear_top(ss.world, b, rng), rng, opts, "unstack", 0)
+    return _move_blocker(problem, ss, b, rng, opts, "relocate", 0)
 
 
 def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0,
@@ -404,13 +440,9 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         new_world = world.moved(o, pose, support)
         act = _action(scene, o, pose, support, "goal")
         return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
-    inside, hits = _collisions(problem, ss, o, cand, opts)
-    ok = inside & np.array([not h for h in hits])
-    if ok.any():
-        pose = _wrapped(cand[int(np.flatnonzero(ok)[0])])
-        new_world = world.moved(o, pose, TABLE)
-        act = _action(scene, o, pose, None, "goal")
-        return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
+    tr, inside, hits = _to_table(problem, ss, o, cand, rng, opts)
+    if tr is not None:
+        return tr
     if opts.obstacles != "all" or direct:
         return None
     # Every candidate collides: clear the way for one of them (fewest blockers first).
