@@ -21,7 +21,10 @@ Resolution rules (documented in ``docs/language.md``):
 * a number k ("three blocks"): any k matches, chosen later;
 * "the other X"/"the remaining X"/"the rest": matches not named earlier;
 * colours match the scene's colour text exactly (case-insensitive): "red"
-  does not select a "red swirl" object.
+  does not select a "red swirl" object while some object is plain red;
+  only when no object has the exact colour, the colour words given are
+  matched as part of the object's colour ("the swirl flower" selects the
+  red swirl flower; all given words must be in it).
 """
 
 from __future__ import annotations
@@ -113,6 +116,15 @@ def tokenize(text: str) -> tuple[Token, ...]:
     return tuple(Token(m.group(0), m.start()) for m in _TOKEN_RE.finditer(low))
 
 
+_COLOUR_FORMS = {"striped": "stripe", "stripes": "stripe", "dots": "dot", "dotted": "dot", "swirls": "swirl",
+                 "swirled": "swirl", "gray": "grey"}
+
+
+def colour_words(color: str) -> tuple[str, ...]:
+    """The words of a colour, normalised ("striped" -> "stripe", "gray" -> "grey"), without "and"/"or"."""
+    return tuple(_COLOUR_FORMS.get(w, w) for w in _words(color) if w.isalpha() and w not in ("and", "or"))
+
+
 def _plural(word: str) -> str:
     if word.endswith(("s", "x", "z", "ch", "sh")):
         return word + "es"
@@ -141,6 +153,9 @@ class Vocabulary:
     categories: dict[tuple[str, ...], tuple[frozenset[str], bool]]
     colors: dict[tuple[str, ...], str]
     objects: tuple[tuple[int, str, str], ...]  # (id, name, color), lower-cased
+    #: Single words of the scene's colours ("swirl", "polka", "dot"), normalised
+    #: by :func:`colour_words`, for colours given in part ("the swirl flower").
+    color_words: frozenset[str] = frozenset()
 
     @classmethod
     def from_scene(cls, scene: SceneSpec) -> "Vocabulary":
@@ -188,7 +203,9 @@ class Vocabulary:
             for v in variants:
                 colors.setdefault(v, c)
         frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
-        return cls(frozen, colors, objs)
+        heads = {k[0] for k in frozen}
+        cwords = frozenset(w for _, _, c in objs for w in colour_words(c) if w not in heads)
+        return cls(frozen, colors, objs, cwords)
 
     def longest(self, table: dict, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
         """Longest key of ``table`` starting at ``words[i]``; returns (key, end)."""
@@ -339,12 +356,30 @@ def _ids(words: tuple[str, ...], i: int) -> tuple[tuple[int, ...], int] | None:
     return (tuple(ids), j) if ids else None
 
 
+def _one_colour(vocab: Vocabulary, words: tuple[str, ...], i: int) -> tuple[str, int] | None:
+    """One colour at ``i``: a scene colour, or words of one ("swirl", "polka dot").
+
+    The scene's colours are matched longest first; a longer run of words that
+    all occur in the scene's colours ("blue stripe" for "green and blue
+    stripe") is kept as a partial colour, resolved in :func:`candidates`.
+    """
+    got = vocab.longest(vocab.colors, words, i)
+    j = i
+    while j < len(words) and _COLOUR_FORMS.get(words[j], words[j]) in vocab.color_words:
+        j += 1
+    if got is not None and got[1] >= j:
+        return vocab.colors[got[0]], got[1]
+    if j > i:
+        return " ".join(_COLOUR_FORMS.get(w, w) for w in words[i:j]), j
+    return None
+
+
 def _colors(vocab: Vocabulary, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
     """A colour or a list of colours ("red, blue and green") starting at ``i``."""
-    got = vocab.longest(vocab.colors, words, i)
+    got = _one_colour(vocab, words, i)
     if got is None:
         return None
-    out = [vocab.colors[got[0]]]
+    out = [got[0]]
     j = got[1]
     while True:
         k = j
@@ -352,10 +387,10 @@ def _colors(vocab: Vocabulary, words: tuple[str, ...], i: int) -> tuple[tuple[st
             k += 1
         if k == j:
             break
-        nxt = vocab.longest(vocab.colors, words, k)
+        nxt = _one_colour(vocab, words, k)
         if nxt is None:
             break
-        out.append(vocab.colors[nxt[0]])
+        out.append(nxt[0])
         j = nxt[1]
     if j < len(words) and words[j] in ("colored", "coloured", "color", "colour"):
         j += 1
@@ -567,6 +602,15 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         i for i, n, c in vocab.objects
         if (names is None or n in names) and (m.colors is None or c in m.colors)
     ]
+    if not out and m.colors is not None:
+        # No exact colour: the colour words given may be part of the object's
+        # colour ("the swirl flower" for a red swirl flower; every word given
+        # must be in it).
+        wanted = [set(colour_words(c)) for c in m.colors]
+        out = [
+            i for i, n, c in vocab.objects
+            if (names is None or n in names) and any(w <= set(colour_words(c)) for w in wanted)
+        ]
     if m.same_color_as is not None:
         ref = select(vocab, m.same_color_as, named=named)
         if isinstance(ref, Choice):

@@ -219,7 +219,7 @@ HAND: list[tuple[str, str, str, object]] = [
     ("free", "vima_a", "arrange all blocks except the red one and the blue one in a line", [_g("line", [3, 15])]),
     ("free", "vima_a", "put the blocks but not the green and blue stripe block in a ring", [_g("circle", [1, 2, 15])]),
     ("free", "vima_a", "Place the green and blue striped block to the right of the tiger pan", [_g("right", [3], 11)]),
-    ("free", "vima_a", "Put the polka dot letter A behind the star", "nothing"),
+    ("free", "vima_a", "Put the polka dot letter A behind the star", [_g("behind", [5], 10)]),
     ("free", "vima_a", "arrange the blocks in a square", [_g("rectangle", [1, 2, 3, 15])]),
     ("free", "vima_b", "arrange the red objects in a ring and put the square to the left of the ring",
      [_g("circle", [1, 3, 11]), _g("left", [2], 10)]),
@@ -411,6 +411,15 @@ HAND: list[tuple[str, str, str, object]] = [
     ("free", "tabletop", "Put the red block on the blue block, then put the green block on top of it", [_g("tower", [2, 1, 3])]),
     ("free", "kitchen", "Stack the white bowl on the white plate, then put the red mug on the white bowl", [_g("tower", [13, 3, 1])]),
     ("refusal", "kitchen", "put the red block on the blue block and the green block on the blue block", "contradiction"),
+    # Colours given in part: every word given must be in the object's colour.
+    ("grounding", "vima_a", "put the swirl flower behind the star", [_g("behind", [4], 10)]),
+    ("grounding", "vima_a", "Put the red flower to the left of the tiger pan", [_g("left", [4], 11)]),
+    ("grounding", "vima_a", "put the blue stripe block in front of the heart", [_g("front", [3], 7)]),
+    ("grounding", "vima_a", "Put the striped block right of the swirl flower", [_g("right", [3], 4)]),
+    ("grounding", "vima_b", "put the swirl block and the yellow block in a line", [_g("line", [5, 4])]),
+    ("grounding", "vima_b", "put the red objects in a circle", [_g("circle", [1, 3, 11])]),
+    ("refusal", "vima_b", "put the swirl star left of the bowl", "nothing in the scene matches"),
+    ("refusal", "vima_a", "put the swirl heart behind the star", "nothing in the scene matches"),
 ]
 
 

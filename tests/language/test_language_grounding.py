@@ -48,7 +48,7 @@ def test_colour_list_keeps_the_order_it_was_named_in(tabletop):
 def test_same_colour_reference_excludes_the_reference_object(scenes):
     # vima_b: the triangle is red; the red pentagon and red hexagon share its colour.
     assert _resolve(scenes["vima_b"], "objects whose color is the same as the triangle") == [1, 11]
-    # "red" does not select "red swirl": colours match exactly.
+    # "red" does not select "red swirl" while some object is plain red.
     assert 5 not in _resolve(scenes["vima_b"], "all red objects")
 
 
@@ -153,3 +153,29 @@ def test_clauses_split_before_a_verb_but_not_inside_a_list():
     assert split_clauses(words) == [("stack", "the", "blocks"), ("put", "the", "bowls", "in", "a", "line")]
     words = tuple(t.text for t in tokenize("stack the red block, the blue block and the green block"))
     assert split_clauses(words) == [words]
+
+
+def test_colour_words_given_in_part_select_the_one_object_that_has_them(scenes):
+    vima_a = scenes["vima_a"]
+    assert _resolve(vima_a, "the swirl flower") == [4]
+    assert _resolve(vima_a, "the red flower") == [4]  # no plain red flower
+    assert _resolve(vima_a, "the polka dot letter A") == [5]
+    assert _resolve(vima_a, "the blue stripe block") == [3]
+    assert _resolve(vima_a, "the red block") == [1]  # an exact colour wins
+    with pytest.raises(InputError, match="nothing in the scene matches 'the swirl heart'"):
+        _resolve(vima_a, "the swirl heart")
+
+
+def test_colour_words_given_in_part_that_fit_two_objects_are_ambiguous():
+    from lgmcts.formats import parse_scene
+
+    box = {"type": "box", "size": [0.04, 0.04, 0.04]}
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": 1, "name": "flower", "color": "red swirl", "shape": box, "pose": [0.0, 0.0, 0.0]},
+        {"id": 2, "name": "flower", "color": "blue swirl", "shape": box, "pose": [0.1, 0.0, 0.0]},
+        {"id": 3, "name": "block", "color": "red", "shape": box, "pose": [0.2, 0.0, 0.0]},
+    ]})
+    with pytest.raises(InputError, match=r"'the swirl flower' is ambiguous: it matches objects 1 \(red swirl flower\), 2"):
+        _resolve(scene, "the swirl flower")
+    assert _resolve(scene, "the red swirl flower") == [1]
+    assert _resolve(scene, "all swirl flowers") == [1, 2]
