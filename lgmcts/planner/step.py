@@ -348,11 +348,11 @@ def _clear_top(world: State, i: int, rng: np.random.Generator, exclude: int = -2
     return int(tops[int(rng.integers(len(tops)))])
 
 
-def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str, depth: int) -> Transition | None:
+def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
     """Clear blocker ``b``: straight to its own goal when it is a goal object
     that may be placed now (saving the second move), else to a free pose."""
-    if depth < 2 and b in problem.member and not ss.committed(problem, b) and b in ss.ready(problem):
-        tr = attempt(problem, ss, b, rng, opts, _depth=depth + 1, direct=True)
+    if b in problem.member and not ss.committed(problem, b) and b in ss.ready(problem):
+        tr = attempt(problem, ss, b, rng, opts, direct=True)
         if tr is not None:
             return tr
     return relocate(problem, ss, b, rng, opts, purpose)
@@ -367,9 +367,7 @@ def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Gener
     if not free:
         return None
     a = free[int(rng.integers(len(free)))]
-    if not ss.world.clear(a):
-        return _move_blocker(problem, ss, _clear_top(ss.world, a, rng), rng, opts, "unstack", 1)
-    return relocate(problem, ss, a, rng, opts, "relocate")
+    return clear_way(problem, ss, a, rng, opts)
 
 
 def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: np.random.Generator,
@@ -406,11 +404,11 @@ def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
 def clear_way(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
     """Move obstacle ``b`` out of the way (the top of its stack first)."""
     if not ss.world.clear(b):
-        return _move_blocker(problem, ss, _clear_top(ss.world, b, rng), rng, opts, "unstack", 0)
-    return _move_blocker(problem, ss, b, rng, opts, "relocate", 0)
+        return _move_blocker(problem, ss, _clear_top(ss.world, b, rng), rng, opts, "unstack")
+    return _move_blocker(problem, ss, b, rng, opts, "relocate")
 
 
-def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions, _depth: int = 0,
+def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions,
             *, direct: bool = False) -> Transition | None:
     """One simulation step for goal object ``o`` (paper, Algorithm 1).
 
@@ -422,7 +420,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     if not world.clear(o):
         if direct:
             return None
-        return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", _depth)
+        return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack")
     support = _required_support(problem, ss, o)
     if support is None:
         return None
@@ -433,7 +431,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         if any(k != o for k in world.holding[support]):
             if direct:
                 return None
-            return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", _depth)
+            return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack")
         pose = _wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
             return None
@@ -455,6 +453,4 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     b = int(chosen[int(rng.integers(len(chosen)))])
     if b == o:
         return None
-    if not world.clear(b):
-        return _move_blocker(problem, ss, _clear_top(world, b, rng), rng, opts, "unstack", _depth)
-    return _move_blocker(problem, ss, b, rng, opts, "relocate", _depth)
+    return clear_way(problem, ss, b, rng, opts)
