@@ -30,7 +30,7 @@ Resolution rules (documented in ``docs/language.md``):
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import InputError
 from ..formats import SceneSpec
@@ -536,7 +536,7 @@ def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: froz
             i = m.end
         else:
             i += 1
-    return _share_heads(words, out)
+    return _share_heads(vocab, words, out)
 
 
 def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
@@ -544,7 +544,7 @@ def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
     return bool(between) and all(w in _COORD for w in between)
 
 
-def _share_heads(words: tuple[str, ...], mentions: list[Mention]) -> list[Mention]:
+def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Mention]) -> list[Mention]:
     """Give elided and "one" mentions the category of a coordinated neighbour.
 
     An elided mention ("the red" in "the red and the blue blocks") takes the
@@ -552,8 +552,11 @@ def _share_heads(words: tuple[str, ...], mentions: list[Mention]) -> list[Mentio
     one ("the red block and the blue"); "the green one" looks back first
     ("the red block and the green one"), then ahead ("the red one and the
     green block"). A plural noun makes "the red" plural ("the red and the
-    blue blocks": every red block and every blue block). An elided mention
-    with no noun in its list names nothing.
+    blue blocks": every red block and every blue block). A neighbour whose
+    noun selects nothing with these colours is passed over ("the red one and
+    the blue one and the green bowl": the red one is not a bowl); "the red
+    one" with no such neighbour keeps any category. An elided mention with
+    no noun in its list names nothing.
     """
     groups: list[list[int]] = []
     for k, m in enumerate(mentions):
@@ -572,16 +575,29 @@ def _share_heads(words: tuple[str, ...], mentions: list[Mention]) -> list[Mentio
             order = later + earlier if m.head == "elided" else earlier + later
             if not order:
                 if m.head == "elided":
-                    raise InputError(f"'{m.text}' names nothing in the scene")
+                    raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")
                 continue
-            src = order[0]
-            plural = m.plural or (m.head == "elided" and src.plural)
-            det = m.det
-            if plural and det == "the":
-                det = "all"
-            out[k] = Mention(m.start, m.end, m.text, det, plural, src.names, m.colors, m.color_order,
-                             count=m.count, same_color_as=m.same_color_as, excluding=m.excluding, head=m.head)
+            options = []
+            for src in order:
+                plural = m.plural or (m.head == "elided" and src.plural)
+                det = "all" if plural and m.det == "the" else m.det
+                options.append(Mention(m.start, m.end, m.text, det, plural, src.names, m.colors, m.color_order,
+                                       count=m.count, same_color_as=m.same_color_as, excluding=m.excluding,
+                                       head=m.head))
+            fits = [o for o in options if _any_match(vocab, o)]
+            if fits:
+                out[k] = fits[0]
+            elif m.head == "elided":
+                out[k] = options[0]  # refused later: "nothing in the scene matches 'the red'"
     return out
+
+
+def _any_match(vocab: Vocabulary, m: Mention) -> bool:
+    """Whether some object has the mention's category and colours (exactly or in part)."""
+    try:
+        return bool(candidates(vocab, replace(m, same_color_as=None, excluding=(), det="all")))
+    except InputError:
+        return False
 
 
 def describe(vocab: Vocabulary, ids: list[int] | tuple[int, ...]) -> str:

@@ -420,6 +420,8 @@ HAND: list[tuple[str, str, str, object]] = [
     ("grounding", "vima_b", "put the red objects in a circle", [_g("circle", [1, 3, 11])]),
     ("refusal", "vima_b", "put the swirl star left of the bowl", "nothing in the scene matches"),
     ("refusal", "vima_a", "put the swirl heart behind the star", "nothing in the scene matches"),
+    ("grounding", "tabletop", "put the red one and the blue one and the green bowl in a circle", [_g("circle", [1, 2, 6])]),
+    ("grounding", "tabletop", "put the green bowl, the red and the blue blocks in a circle", [_g("circle", [6, 1, 2])]),
 ]
 
 

@@ -179,3 +179,10 @@ def test_colour_words_given_in_part_that_fit_two_objects_are_ambiguous():
         _resolve(scene, "the swirl flower")
     assert _resolve(scene, "the red swirl flower") == [1]
     assert _resolve(scene, "all swirl flowers") == [1, 2]
+
+
+def test_a_neighbour_whose_noun_fits_nothing_is_passed_over(tabletop):
+    # "the red one" is not a bowl (there is no red bowl): it stays any red object.
+    assert _resolve_all(tabletop, "the red one and the blue one and the green bowl") == [[1], [2], [6]]
+    # An elided head takes the noun that follows it, not the one before.
+    assert _resolve_all(tabletop, "the green bowl, the red and the blue blocks") == [[6], [1], [2]]
