@@ -114,6 +114,9 @@ class Pattern(Protocol):
     ordered : whether objects must be placed in list order (tower) or after
         an anchor (relations).
     on_table : whether the goal's objects must end on the table.
+    deterministic : whether ``sample`` returns the same poses whatever the
+        branch and the random generator (a fixed target); the planner may
+        then remember what blocks such an object.
     """
 
     name: str
@@ -252,6 +255,7 @@ class BasePattern:
     min_objects: ClassVar[int] = 1
     ordered: ClassVar[bool] = False
     on_table: ClassVar[bool] = True
+    deterministic: ClassVar[bool] = False
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
         return True

@@ -27,6 +27,7 @@ class Pose(BasePattern):
     keys = ("at the pose", "at exactly this position", "move to the coordinates", "place at position")
     description = "one object at a given pose [x, y, theta]"
     min_objects = 1
+    deterministic = True
 
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
         return np.asarray(ctx.goal.pose, dtype=float).reshape(1, 3)

@@ -78,7 +78,45 @@ class SearchResult:
     solutions: int = 0
 
 
-def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions) -> tuple[int, Transition | None]:
+class _BlockMemo:
+    """Within one rollout, what blocks each object with a fixed target.
+
+    An entry holds until an object moves into reach of that target or away
+    from among its obstacles, so a crowded scene does not test every goal
+    pose against the R-tree at every step. Skipping a test does not change
+    the random stream: fixed targets are drawn without it.
+    """
+
+    def __init__(self, problem: Problem, clearance: float) -> None:
+        self.problem = problem
+        self.clearance = clearance
+        self.known: dict[int, tuple[int, ...]] = {}
+
+    def get(self, o: int) -> tuple[int, ...] | None:
+        return self.known.get(o)
+
+    def put(self, o: int, blockers: tuple[int, ...]) -> None:
+        if o in self.problem.fixed:
+            self.known[o] = blockers
+
+    def moved(self, action: Action | None) -> None:
+        if action is None or not self.known:
+            return
+        sc = self.problem.scene
+        m = sc.index[action.object]
+        self.known.pop(m, None)
+        if action.on is not None:
+            self.known.pop(sc.index[action.on], None)
+        x, y = action.to[0], action.to[1]
+        for o in list(self.known):
+            t = self.problem.fixed[o]
+            near = math.hypot(t[0] - x, t[1] - y) <= sc.radii[o] + sc.radii[m] + self.clearance + 1e-9
+            if near or m in self.known[o]:
+                del self.known[o]
+
+
+def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions,
+          memo: _BlockMemo | None = None) -> tuple[int, Transition | None]:
     """One default-policy step: commit an object where it stands if one can
     (a free step); else place one of a few random ready objects whose prior
     has a free pose (no obstacle to move); else place a random ready object,
@@ -90,11 +128,17 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
             return o, tr
     blocks: dict[int, tuple[int, ...]] = {}
     for o in order[: opts.direct_tries]:
+        known = memo.get(o) if memo is not None else None
+        if known is not None:
+            blocks[o] = known
+            continue
         tr, blockers = probe(problem, ss, o, rng, opts.step)
         if tr is not None:
             return o, tr
         if blockers:
             blocks[o] = blockers
+            if memo is not None:
+                memo.put(o, blockers)
     pick = _most_blocking(problem, ss, blocks, rng)
     if pick is not None:
         o, b = pick
@@ -134,6 +178,7 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
     """Random sequential placements from ``ss``: (reward, actions if solved, steps)."""
     actions: list[Action] = []
     steps = 0
+    memo = _BlockMemo(problem, opts.step.clearance) if opts.step.obstacles == "all" else None
     for _ in range(depth):
         if ss.done(problem):
             return 1.0, actions, steps
@@ -141,9 +186,11 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
         if not ready:
             break
         steps += 1
-        _, tr = _step(problem, ss, ready, rng, opts)
+        _, tr = _step(problem, ss, ready, rng, opts, memo)
         if tr is None:
             break
+        if memo is not None:
+            memo.moved(tr.action)
         ss = tr.state
         if tr.action is not None:
             actions.append(tr.action)

@@ -85,6 +85,21 @@ class Problem:
         return {o: tuple(v) for o, v in out.items()}
 
     @cached_property
+    def fixed(self) -> dict[int, np.ndarray]:
+        """Objects whose one goal has a deterministic prior, with their target pose.
+
+        Such an object's candidates never change, so what blocks it changes
+        only when something moves near its target.
+        """
+        out = {}
+        for o, ks in self.member.items():
+            if len(ks) == 1 and getattr(self.patterns[ks[0]], "deterministic", False):
+                g = self.goals[ks[0]]
+                ctx = Context(self.scene, self.scene.initial, g, GoalProgress())
+                out[o] = np.asarray(self.patterns[ks[0]].sample(ctx, o, np.random.default_rng(0), 1)[0], dtype=float)
+        return out
+
+    @cached_property
     def targets(self) -> tuple[int, ...]:
         return tuple(sorted(self.member))
 
