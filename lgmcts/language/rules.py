@@ -2,8 +2,11 @@
 
 Pipeline for one command:
 
-1. **Split** into clauses at sentence ends, ";", and the connectives
-   "then", "while", "also", "after that", "meanwhile"; then split a clause
+1. **Split** into clauses at sentence ends, ";", the connectives
+   "then", "while", "also", "after that", "meanwhile", and an "and" or ","
+   right before a command verb ("stack the blocks and put the bowls in a
+   line"), never inside a list "A, B and C"; split "A on B and C on D"
+   into two stacking steps (chained into one tower later); then split a clause
    that names two arrangements at the "and" (or ",") between them
    ("put all blocks in a circle and the white bottle behind one block").
 2. **Ground** the object references of each clause (:mod:`.grounding`).
@@ -16,7 +19,8 @@ Pipeline for one command:
    named right after it as anchor ("X left of Y"); other patterns take every
    object the clause names. Towers keep the order of naming (first named at
    the bottom) except after "on"/"onto" ("stack A on B": B is below A), and
-   "from top to bottom" reverses it.
+   "from top to bottom" reverses it; towers where the top of one is the
+   bottom of another are joined ("put A on B, then put C on A": [B, A, C]).
 5. **Resolve choices**: "one X" as a target prefers objects no other goal
    uses; as an anchor it prefers an object of another goal of the same
    command (the paper's "behind one block" next to "all blocks in a circle").
@@ -54,7 +58,8 @@ _FRONTED = frozenset(
 )
 _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
-     "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep"}
+     "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
+     "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand"}
 )
 _ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
 #: Words never counted as naming an arrangement when deciding where to split.

@@ -386,6 +386,7 @@ HAND: list[tuple[str, str, str, object]] = [
     ("free", "kitchen", "stack the blocks and put the bowls in a line", [_g("tower", [9, 10, 11, 12]), _g("line", [3, 4])]),
     ("free", "kitchen", "Stack the red block, the blue block and the green block and put the mugs in a line",
      [_g("tower", [9, 11, 10]), _g("line", [1, 2])]),
+    ("free", "kitchen", "stack the blocks and get the bowls in a line", [_g("tower", [9, 10, 11, 12]), _g("line", [3, 4])]),
     ("free", "kitchen", "put the mugs in a row, place the phone behind the plate",
      [_g("line", [1, 2]), _g("behind", [7], 13)]),
     # A line and a relation over the same objects in one clause.
