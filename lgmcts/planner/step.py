@@ -267,11 +267,15 @@ def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, op
     return inside, hits
 
 
-def _goal_regions(problem: Problem, ss: SearchState) -> np.ndarray:
-    """Regions where the remaining goal objects will go, as a shapely array (may be empty)."""
+def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1) -> np.ndarray:
+    """Regions where the remaining goal objects will go, as a shapely array (may be empty).
+
+    A goal of ``mover`` alone is left out: parked over its own target, an
+    object is in nobody's way but its own, and it is the next to move there.
+    """
     parts = []
     for k, g in enumerate(problem.goals):
-        if len(ss.progress[k].placed) == len(g.objects):
+        if len(ss.progress[k].placed) == len(g.objects) or g.objects == (mover,):
             continue
         reg = problem.patterns[k].region(ss.ctx(problem, k))
         if reg is not None:
@@ -345,7 +349,7 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     else:
         return None
     idx = np.flatnonzero(free)
-    regions = _goal_regions(problem, ss)
+    regions = _goal_regions(problem, ss, b)
     if len(regions):
         # The free pose that overlaps the fewest regions still to be filled
         # (none, when there is one), so the obstacle is not in the way again.
