@@ -91,6 +91,7 @@ class _BlockMemo:
         self.problem = problem
         self.clearance = clearance
         self.known: dict[int, tuple[int, ...]] = {}
+        self.last = -1
 
     def get(self, o: int) -> tuple[int, ...] | None:
         return self.known.get(o)
@@ -100,10 +101,12 @@ class _BlockMemo:
             self.known[o] = blockers
 
     def moved(self, action: Action | None) -> None:
-        if action is None or not self.known:
+        if action is None:
             return
         sc = self.problem.scene
-        m = sc.index[action.object]
+        m = self.last = sc.index[action.object]
+        if not self.known:
+            return
         self.known.pop(m, None)
         if action.on is not None:
             self.known.pop(sc.index[action.on], None)
@@ -139,17 +142,17 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
             blocks[o] = blockers
             if memo is not None:
                 memo.put(o, blockers)
-    pick = _most_blocking(problem, ss, blocks, rng)
+    pick = _most_blocking(problem, ss, blocks, rng, memo.last if memo is not None else -1)
     if pick is not None:
         o, b = pick
-        tr = clear_way(problem, ss, b, rng, opts.step)
+        tr = clear_way(problem, ss, b, rng, opts.step, o)
         if tr is not None:
             return o, tr
     return order[0], attempt(problem, ss, order[0], rng, opts.step)
 
 
 def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],
-                   rng: np.random.Generator) -> tuple[int, int] | None:
+                   rng: np.random.Generator, last: int = -1) -> tuple[int, int] | None:
     """The obstacle whose move frees the most goal placements: (an object it
     blocks, the obstacle), or ``None``.
 
@@ -168,6 +171,9 @@ def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[in
             first.setdefault(b, o)
     if not total:
         return None
+    if len(total) > 1:
+        # The object just moved is not moved straight back out of the way.
+        total.pop(last, None)
     best = max((sole[b], total[b]) for b in total)
     ties = sorted(b for b in total if (sole[b], total[b]) == best)
     b = ties[int(rng.integers(len(ties)))]

@@ -267,22 +267,24 @@ def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, op
     return inside, hits
 
 
-def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1) -> np.ndarray:
-    """Regions where the remaining goal objects will go, as a shapely array (may be empty).
+def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int = -1) -> tuple[np.ndarray, np.ndarray]:
+    """Regions where the remaining goal objects will go, as a shapely array
+    (may be empty), and which of them belong to a goal of ``avoid``.
 
     A goal of ``mover`` alone is left out: parked over its own target, an
     object is in nobody's way but its own, and it is the next to move there.
     """
-    parts = []
+    parts, theirs = [], []
     for k, g in enumerate(problem.goals):
         if len(ss.progress[k].placed) == len(g.objects) or g.objects == (mover,):
             continue
         reg = problem.patterns[k].region(ss.ctx(problem, k))
         if reg is not None:
             parts.append(reg)
+            theirs.append(avoid in g.objects)
     out = np.empty(len(parts), dtype=object)
     out[:] = parts
-    return out
+    return out, np.asarray(theirs, dtype=bool)
 
 
 #: Spacing of the grid on which :func:`_clear_centres` looks for room (m).
@@ -319,8 +321,13 @@ def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) 
     return np.stack([gx[ii], gy[jj]], axis=1)
 
 
-def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
-    """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible."""
+def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str,
+             avoid: int = -1) -> Transition | None:
+    """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible.
+
+    ``avoid`` is the object ``b`` is moved for: a pose in the way of its
+    goals is taken only when there is no other.
+    """
     scene, world = problem.scene, ss.world
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
@@ -349,13 +356,15 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     else:
         return None
     idx = np.flatnonzero(free)
-    regions = _goal_regions(problem, ss, b)
+    regions, theirs = _goal_regions(problem, ss, b, avoid)
     if len(regions):
         # The free pose that overlaps the fewest regions still to be filled
-        # (none, when there is one), so the obstacle is not in the way again.
+        # (none, when there is one), so the obstacle is not in the way again;
+        # above all not in the way of the object it makes room for.
         polys = shapely.polygons(scene.footprint(b, poses[idx]))
-        overlaps = shapely.intersects(polys[:, None], regions[None, :]).sum(axis=1)
-        idx = idx[overlaps == overlaps.min()]
+        hit = shapely.intersects(polys[:, None], regions[None, :])
+        score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
+        idx = idx[score == score.min()]
     pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
     act = _action(scene, b, pose, None, purpose)
@@ -367,14 +376,15 @@ def _clear_top(world: State, i: int, rng: np.random.Generator, exclude: int = -2
     return int(tops[int(rng.integers(len(tops)))])
 
 
-def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str) -> Transition | None:
+def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str,
+                  avoid: int = -1) -> Transition | None:
     """Clear blocker ``b``: straight to its own goal when it is a goal object
     that may be placed now (saving the second move), else to a free pose."""
     if b in problem.member and not ss.committed(problem, b) and b in ss.ready(problem):
         tr = attempt(problem, ss, b, rng, opts, direct=True)
         if tr is not None:
             return tr
-    return relocate(problem, ss, b, rng, opts, purpose)
+    return relocate(problem, ss, b, rng, opts, purpose, avoid)
 
 
 def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
@@ -420,11 +430,12 @@ def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     return None, tuple(min(blocked, key=len))
 
 
-def clear_way(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
-    """Move obstacle ``b`` out of the way (the top of its stack first)."""
+def clear_way(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions,
+              avoid: int = -1) -> Transition | None:
+    """Move obstacle ``b`` out of the way of object ``avoid`` (the top of its stack first)."""
     if not ss.world.clear(b):
-        return _move_blocker(problem, ss, _clear_top(ss.world, b, rng), rng, opts, "unstack")
-    return _move_blocker(problem, ss, b, rng, opts, "relocate")
+        return _move_blocker(problem, ss, _clear_top(ss.world, b, rng), rng, opts, "unstack", avoid)
+    return _move_blocker(problem, ss, b, rng, opts, "relocate", avoid)
 
 
 def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions,
@@ -439,7 +450,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     if not world.clear(o):
         if direct:
             return None
-        return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack")
+        return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", o)
     support = _required_support(problem, ss, o)
     if support is None:
         return None
@@ -450,7 +461,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         if any(k != o for k in world.holding[support]):
             if direct:
                 return None
-            return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack")
+            return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", o)
         pose = _wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
             return None
@@ -472,4 +483,4 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     b = int(chosen[int(rng.integers(len(chosen)))])
     if b == o:
         return None
-    return clear_way(problem, ss, b, rng, opts)
+    return clear_way(problem, ss, b, rng, opts, o)
