@@ -3,19 +3,22 @@
 Search returns the first plan that reaches every goal, and its random
 relocations are often more than the scene requires: an obstacle moved out of
 a region that the pattern ended up not using, or a buried goal object parked
-on the table before its final move. Two rewrites fix most of that, each kept
-only when the acceptance rules (:func:`lgmcts.validate.check`) still hold for
-the whole plan:
+on the table before its final move. Two rewrites fix most of that:
 
 * **merge** — an object moved more than once goes straight to its last pose
   at its first move, and the later move is dropped;
 * **drop** — a relocation (or any earlier move of an object that moves
   again) is removed.
 
-Both passes are linear in the number of actions, each candidate costing one
-replay of the plan. A rewrite must also keep the search's clearance around
-every table placement (the acceptance rules alone would allow objects to
-touch).
+Both passes are linear in the number of actions. Each candidate rewrite is
+replayed on the planner's own states from the first action it changes: every
+pick of a clear object, every table placement inside the workspace and
+keeping the search's clearance from every other footprint (the acceptance
+rules alone would allow objects to touch), every stacking onto a clear
+support over its footprint, and every goal met at the end. The polished
+plan is then checked once by the independent validator
+(:func:`lgmcts.validate.check`); should it fail there, the plan is returned
+as the search found it.
 """
 
 from __future__ import annotations
@@ -26,16 +29,18 @@ import shapely
 from ..formats import Action
 from ..patterns import CLEARANCE
 from ..scene import TABLE
+from ..validate import goal_satisfied
 from .search import valid_plan
 from .step import Problem
 
 __all__ = ["polish"]
 
 
-def _worlds(problem: Problem, actions: list[Action]) -> list:
-    """States of the planner's world before each action and after the last."""
+def _worlds(problem: Problem, actions: list[Action], world=None) -> list:
+    """States of the planner's world before each action and after the last,
+    starting from ``world`` (the initial state when omitted)."""
     scene = problem.scene
-    world = scene.initial
+    world = scene.initial if world is None else world
     out = [world]
     for a in actions:
         on = TABLE if a.on is None else scene.index[a.on]
@@ -44,39 +49,30 @@ def _worlds(problem: Problem, actions: list[Action]) -> list:
     return out
 
 
-def _clear_enough(problem: Problem, actions: list[Action], clearance: float, start: int = 0, world=None) -> bool:
-    """Whether every table placement from ``actions[start]`` on keeps ``clearance`` from every other footprint.
-
-    ``world`` is the state before ``actions[start]`` (the initial state when
-    omitted). The acceptance rules only forbid overlap, but the search keeps
-    a gap (and keeps clear of stacked objects' overhangs) so that a real
-    gripper's placement error does not land an object on its neighbour; a
-    rewrite must not take that margin away.
-    """
+def _feasible(problem: Problem, actions: list[Action], start: int, world) -> bool:
+    """Whether ``actions[start:]``, replayed from ``world``, are legal and end with every goal met."""
     scene = problem.scene
-    world = scene.initial if world is None else world
+    xmin, xmax, ymin, ymax = scene.bounds
     for a in actions[start:]:
         i = scene.index[a.object]
-        on = TABLE if a.on is None else scene.index[a.on]
-        world = world.moved(i, np.asarray(a.to, dtype=float), on)
-        if on != TABLE:
-            continue
-        others = [k for k in range(scene.n) if k != i]
-        arr = np.empty(len(others), dtype=object)
-        arr[:] = [world.polys[k] for k in others]
-        if shapely.dwithin(world.polys[i], arr, clearance * 0.99).any():
+        if not world.clear(i):
             return False
-    return True
-
-
-def _valid(problem: Problem, actions: list[Action], start: int = 0, world=None) -> bool:
-    """Whether a rewrite that leaves ``actions[:start]`` unchanged is still a valid plan.
-
-    The clearance replay runs first, from the unchanged prefix's state and
-    stopping at the first conflict, so that most rejected rewrites never
-    reach the validator's full replay.
-    """
-    return _clear_enough(problem, actions, CLEARANCE, start, world) and valid_plan(problem, actions)
+        pose = np.asarray(a.to, dtype=float)
+        if a.on is None:
+            verts = scene.footprint(i, pose)
+            if verts[:, 0].min() < xmin or verts[:, 0].max() > xmax or verts[:, 1].min() < ymin or verts[:, 1].max() > ymax:
+                return False
+            world = world.moved(i, pose, TABLE)
+            others = np.empty(scene.n - 1, dtype=object)
+            others[:] = [world.polys[k] for k in range(scene.n) if k != i]
+            if shapely.dwithin(world.polys[i], others, CLEARANCE * 0.99).any():
+                return False
+        else:
+            j = scene.index[a.on]
+            if any(k != i for k in world.holding[j]) or not shapely.contains_xy(world.polys[j], pose[0], pose[1]):
+                return False
+            world = world.moved(i, pose, j)
+    return all(goal_satisfied(g, scene, world.poses, world.on) is None for g in problem.spec.goals)
 
 
 def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
@@ -92,9 +88,9 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
             trial[i] = last
             for k in reversed(later):
                 del trial[k]
-            if _valid(problem, trial, i, worlds[i]):
+            if _feasible(problem, trial, i, worlds[i]):
                 actions = trial
-                worlds = _worlds(problem, actions)
+                worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
                 continue
         i += 1
     return actions
@@ -110,10 +106,10 @@ def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
         a = actions[i]
         if a.purpose != "goal" or moves[a.object] > 1:
             trial = actions[:i] + actions[i + 1 :]
-            if _valid(problem, trial, i, worlds[i]):
+            if _feasible(problem, trial, i, worlds[i]):
                 moves[a.object] -= 1
                 actions = trial
-                worlds = _worlds(problem, actions)
+                worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
                 continue
         i += 1
     return actions
@@ -122,8 +118,10 @@ def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
 def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list[Action]:
     """A plan no longer than ``actions`` that still meets every goal.
 
-    ``actions`` must be a valid plan for ``problem``; the result is valid too
-    (each rewrite is checked by replaying it).
+    ``actions`` must be a valid plan for ``problem``; so is the result: a
+    rewritten plan is returned only if the validator accepts it.
     """
-    out = _merge(problem, list(actions))
-    return _drop(problem, out)
+    out = _drop(problem, _merge(problem, list(actions)))
+    if len(out) < len(actions) and not valid_plan(problem, out):
+        return list(actions)  # pragma: no cover - the replay above checks the same rules
+    return out
