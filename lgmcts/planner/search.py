@@ -79,18 +79,22 @@ class SearchResult:
 
 
 class _BlockMemo:
-    """Within one rollout, what blocks each object with a fixed target.
+    """Within one rollout, what blocks each object with a fixed target, and
+    which of them do not stand on their target.
 
-    An entry holds until an object moves into reach of that target or away
-    from among its obstacles, so a crowded scene does not test every goal
-    pose against the R-tree at every step. Skipping a test does not change
-    the random stream: fixed targets are drawn without it.
+    A blockers entry holds until an object moves into reach of that target
+    or away from among its obstacles, so a crowded scene does not test every
+    goal pose against the R-tree at every step; "not on its target" holds
+    until the object itself moves. Skipping a test does not change the
+    random stream: fixed targets are drawn without it.
     """
 
     def __init__(self, problem: Problem, clearance: float) -> None:
         self.problem = problem
         self.clearance = clearance
         self.known: dict[int, tuple[int, ...]] = {}
+        #: Objects with a fixed target that do not stand on it (until they move).
+        self.unmet: set[int] = set()
         self.last = -1
 
     def get(self, o: int) -> tuple[int, ...] | None:
@@ -105,6 +109,7 @@ class _BlockMemo:
             return
         sc = self.problem.scene
         m = self.last = sc.index[action.object]
+        self.unmet.discard(m)
         if not self.known:
             return
         self.known.pop(m, None)
@@ -126,9 +131,13 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
     clearing the way as the simulation step does."""
     order = [ready[k] for k in rng.permutation(len(ready))]
     for o in order:
+        if memo is not None and o in memo.unmet:
+            continue
         tr = stay(problem, ss, o, rng)
         if tr is not None:
             return o, tr
+        if memo is not None and o in problem.fixed:
+            memo.unmet.add(o)
     blocks: dict[int, tuple[int, ...]] = {}
     for o in order[: opts.direct_tries]:
         known = memo.get(o) if memo is not None else None
