@@ -75,6 +75,21 @@ def _feasible(problem: Problem, actions: list[Action], start: int, world) -> boo
     return all(goal_satisfied(g, scene, world.poses, world.on) is None for g in problem.spec.goals)
 
 
+def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int, j: int) -> bool:
+    """Whether a table placement of another object among ``actions[i + 1 : j]``
+    comes within the clearance of ``poly``: with ``actions[i]``'s object
+    standing there meanwhile that placement would fail, so a rewrite that
+    leaves it there need not be replayed."""
+    sc = problem.scene
+    obj = actions[i].object
+    ks = [k for k in range(i + 1, min(j, len(actions))) if actions[k].on is None and actions[k].object != obj]
+    if not ks:
+        return False
+    placed = np.empty(len(ks), dtype=object)
+    placed[:] = [worlds[k + 1].polys[sc.index[actions[k].object]] for k in ks]
+    return bool(shapely.dwithin(poly, placed, CLEARANCE * 0.99).any())
+
+
 def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
     worlds = _worlds(problem, actions)
     i = 0
@@ -88,7 +103,8 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
             trial[i] = last
             for k in reversed(later):
                 del trial[k]
-            if _feasible(problem, trial, i, worlds[i]):
+            final = worlds[j + 1].polys[problem.scene.index[a.object]]
+            if not _crowds(problem, actions, worlds, final, i, j) and _feasible(problem, trial, i, worlds[i]):
                 actions = trial
                 worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
                 continue
@@ -106,7 +122,9 @@ def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
         a = actions[i]
         if a.purpose != "goal" or moves[a.object] > 1:
             trial = actions[:i] + actions[i + 1 :]
-            if _feasible(problem, trial, i, worlds[i]):
+            nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
+            stays = worlds[i].polys[problem.scene.index[a.object]]
+            if not _crowds(problem, actions, worlds, stays, i, nxt) and _feasible(problem, trial, i, worlds[i]):
                 moves[a.object] -= 1
                 actions = trial
                 worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
