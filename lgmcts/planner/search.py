@@ -126,9 +126,11 @@ class _BlockMemo:
 def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions,
           memo: _BlockMemo | None = None) -> tuple[int, Transition | None]:
     """One default-policy step: commit an object where it stands if one can
-    (a free step); else place one of a few random ready objects whose prior
-    has a free pose (no obstacle to move); else place a random ready object,
-    clearing the way as the simulation step does."""
+    (a free step); else place one of the ready objects (in random order)
+    whose prior has a free pose; else move the obstacle that blocks the most
+    of their placements (:func:`_most_blocking`); else clear the way for a
+    random ready object as the simulation step does. ``memo`` carries what
+    earlier steps of the same rollout learnt (:class:`_BlockMemo`)."""
     order = [ready[k] for k in rng.permutation(len(ready))]
     for o in order:
         if memo is not None and o in memo.unmet:
