@@ -294,10 +294,11 @@ GRID_STEP = 0.01
 def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) -> np.ndarray:
     """Grid points where ``b`` fits at any yaw, judged by circumscribed circles.
 
-    Conservative (a point is kept only when ``b``'s circumscribed circle
-    clears every other object's by ``clearance``), so nearly every point
-    passes the exact test; on a crowded table this finds room that uniform
-    sampling over the workspace rarely hits.
+    Conservative: a point is kept only when ``b``'s circumscribed circle
+    clears every other object's by ``clearance`` (and the workspace edge by
+    half of it), so the footprints there are free without an exact test. On
+    a crowded table this finds room that uniform sampling over the workspace
+    rarely hits.
     """
     scene, world = problem.scene, ss.world
     xmin, xmax, ymin, ymax = scene.bounds
@@ -309,7 +310,7 @@ def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) 
     free = np.ones((len(gy), len(gx)), dtype=bool)
     others = np.flatnonzero(np.arange(scene.n) != b)
     cx, cy = world.poses[others, 0], world.poses[others, 1]
-    reach = scene.radii[others] + scene.radii[b] + clearance
+    reach = scene.radii[others] + scene.radii[b] + clearance + 1e-9
     # Only the grid window around each object can be within its reach.
     i0, i1 = np.searchsorted(gx, cx - reach), np.searchsorted(gx, cx + reach)
     j0, j1 = np.searchsorted(gy, cy - reach), np.searchsorted(gy, cy + reach)
@@ -339,7 +340,8 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     if len(room):
         batches.insert(0, -1)
     for n in batches:
-        if n < 0:
+        grid = n < 0
+        if grid:
             pick = room[rng.choice(len(room), size=min(len(room), 2 * opts.samples), replace=False)]
             poses = np.empty((len(pick), 3))
             poses[:, :2] = pick
@@ -349,6 +351,10 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
             poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
             poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
         poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
+        if grid:
+            # Circumscribed circles apart by the clearance: free at any yaw.
+            free = np.ones(n, dtype=bool)
+            break
         inside, hits = _collisions(problem, ss, b, poses, check)
         free = inside & np.array([not h for h in hits])
         if free.any():
