@@ -66,7 +66,11 @@ def transform(local: np.ndarray, poses: np.ndarray) -> np.ndarray:
     (k, 2) or (m, k, 2) vertices in the table frame.
     """
     poses = np.asarray(poses, dtype=float)
-    single = poses.ndim == 1
+    if poses.ndim == 1:
+        # One pose (the common case when a state moves an object): a 2x2 product.
+        c, s = math.cos(poses[2]), math.sin(poses[2])
+        return local @ np.array([[c, s], [-s, c]]) + poses[:2]
+    single = False
     p = poses.reshape(-1, 3)
     c, s = np.cos(p[:, 2]), np.sin(p[:, 2])
     x = c[:, None] * local[None, :, 0] - s[:, None] * local[None, :, 1] + p[:, 0:1]

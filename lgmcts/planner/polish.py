@@ -15,8 +15,9 @@ replayed on the planner's own states from the first action it changes: every
 pick of a clear object, every table placement inside the workspace and
 keeping the search's clearance from every other footprint (the acceptance
 rules alone would allow objects to touch), every stacking onto a clear
-support over its footprint, and every goal met at the end, firmly: still
-met when every centre moves by up to 2 mm. The polished
+support over its footprint, and every goal met at the end (firmly, still
+met when every centre moves by up to 2 mm, for a goal whose objects no
+longer end where the search put them). The polished
 plan is then checked once by the independent validator
 (:func:`lgmcts.validate.check`); should it fail there, the plan is returned
 as the search found it.
@@ -50,8 +51,9 @@ def _worlds(problem: Problem, actions: list[Action], world=None) -> list:
     return out
 
 
-def _feasible(problem: Problem, actions: list[Action], start: int, world) -> bool:
-    """Whether ``actions[start:]``, replayed from ``world``, are legal and end with every goal met."""
+def _feasible(problem: Problem, actions: list[Action], start: int, world, ref: np.ndarray) -> bool:
+    """Whether ``actions[start:]``, replayed from ``world``, are legal and end
+    with every goal met (firmly where an object ends elsewhere than in ``ref``)."""
     scene = problem.scene
     xmin, xmax, ymin, ymax = scene.bounds
     for a in actions[start:]:
@@ -73,7 +75,7 @@ def _feasible(problem: Problem, actions: list[Action], start: int, world) -> boo
             if any(k != i for k in world.holding[j]) or not shapely.contains_xy(world.polys[j], pose[0], pose[1]):
                 return False
             world = world.moved(i, pose, j)
-    return _goals_hold_firmly(problem, world)
+    return _goals_hold_firmly(problem, world, ref)
 
 
 #: Rewritten plans must still meet every goal with each centre moved by up to
@@ -85,10 +87,16 @@ FIRM_JITTER = 0.002
 FIRM_TRIALS = 8
 
 
-def _goals_hold_firmly(problem: Problem, world) -> bool:
+def _goals_hold_firmly(problem: Problem, world, ref: np.ndarray) -> bool:
+    """Every goal holds, and those with an object (or anchor) ending elsewhere
+    than in the final poses ``ref`` of the search's plan hold firmly."""
     scene, goals = problem.scene, problem.spec.goals
     if any(goal_satisfied(g, scene, world.poses, world.on) is not None for g in goals):
         return False
+    moved = {scene.ids[i] for i in np.flatnonzero(np.any(world.poses != ref, axis=1))}
+    goals = [g for g in goals if moved.intersection(g.objects) or g.anchor in moved]
+    if not goals:
+        return True
     rng = np.random.default_rng(0)
     for _ in range(FIRM_TRIALS):
         poses = np.array(world.poses, dtype=float)
@@ -113,7 +121,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
     return bool(shapely.dwithin(poly, placed, CLEARANCE * 0.99).any())
 
 
-def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
+def _merge(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Action]:
     worlds = _worlds(problem, actions)
     i = 0
     while i < len(actions):
@@ -127,7 +135,7 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
             for k in reversed(later):
                 del trial[k]
             final = worlds[j + 1].polys[problem.scene.index[a.object]]
-            if not _crowds(problem, actions, worlds, final, i, j) and _feasible(problem, trial, i, worlds[i]):
+            if not _crowds(problem, actions, worlds, final, i, j) and _feasible(problem, trial, i, worlds[i], ref):
                 actions = trial
                 worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
                 continue
@@ -135,7 +143,7 @@ def _merge(problem: Problem, actions: list[Action]) -> list[Action]:
     return actions
 
 
-def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
+def _drop(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Action]:
     moves: dict[int, int] = {}
     for a in actions:
         moves[a.object] = moves.get(a.object, 0) + 1
@@ -147,7 +155,7 @@ def _drop(problem: Problem, actions: list[Action]) -> list[Action]:
             trial = actions[:i] + actions[i + 1 :]
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
             stays = worlds[i].polys[problem.scene.index[a.object]]
-            if not _crowds(problem, actions, worlds, stays, i, nxt) and _feasible(problem, trial, i, worlds[i]):
+            if not _crowds(problem, actions, worlds, stays, i, nxt) and _feasible(problem, trial, i, worlds[i], ref):
                 moves[a.object] -= 1
                 actions = trial
                 worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
@@ -162,7 +170,8 @@ def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list
     ``actions`` must be a valid plan for ``problem``; so is the result: a
     rewritten plan is returned only if the validator accepts it.
     """
-    out = _drop(problem, _merge(problem, list(actions)))
+    ref = np.array(_worlds(problem, list(actions))[-1].poses)
+    out = _drop(problem, _merge(problem, list(actions), ref), ref)
     if len(out) < len(actions) and not valid_plan(problem, out):
         return list(actions)  # pragma: no cover - the replay above checks the same rules
     return out
