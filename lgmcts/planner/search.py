@@ -13,7 +13,7 @@ import numpy as np
 from ..formats import Action, PlanSpec
 from ..validate import check
 from .selection import select_child
-from .step import Problem, SearchState, StepOptions, Transition, attempt, clear_way, probe, stay
+from .step import Problem, SearchState, StepOptions, Transition, attempt, clear_way, fixed_obstacles, probe, stay
 from .tree import Node
 
 __all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan"]
@@ -141,10 +141,18 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
         if memo is not None and o in problem.fixed:
             memo.unmet.add(o)
     blocks: dict[int, tuple[int, ...]] = {}
-    for o in order[: opts.direct_tries]:
+    tries = order[: opts.direct_tries]
+    # Fixed targets not yet known to be blocked: one R-tree query for all.
+    fresh = fixed_obstacles(problem, ss, [o for o in tries if memo is None or memo.get(o) is None], opts.step)
+    for o in tries:
         known = memo.get(o) if memo is not None else None
         if known is not None:
             blocks[o] = known
+            continue
+        if fresh.get(o):
+            blocks[o] = fresh[o]
+            if memo is not None:
+                memo.put(o, fresh[o])
             continue
         tr, blockers = probe(problem, ss, o, rng, opts.step)
         if tr is not None:

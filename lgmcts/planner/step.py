@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 from functools import cached_property
 
 import numpy as np
@@ -97,6 +98,17 @@ class Problem:
                 g = self.goals[ks[0]]
                 ctx = Context(self.scene, self.scene.initial, g, GoalProgress())
                 out[o] = np.asarray(self.patterns[ks[0]].sample(ctx, o, np.random.default_rng(0), 1)[0], dtype=float)
+        return out
+
+    @cached_property
+    def fixed_footprints(self) -> dict[int, Any]:
+        """Footprint polygon of each :attr:`fixed` object at its target, for
+        those whose target lies inside the workspace (with half the clearance)."""
+        out = {}
+        for o, pose in self.fixed.items():
+            verts = self.scene.footprint(o, pose)
+            if geo.inside_workspace(verts[None], self.scene.bounds, margin=CLEARANCE / 2)[0]:
+                out[o] = shapely.polygons(verts)
         return out
 
     @cached_property
@@ -416,6 +428,27 @@ def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: 
     new_world = ss.world.moved(o, pose, TABLE)
     act = _action(problem.scene, o, pose, None, "goal")
     return Transition(act, _commit(problem, ss, new_world, o, pose, rng)), inside, hits
+
+
+def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: StepOptions) -> dict[int, tuple[int, ...]]:
+    """For the clear, table-bound :attr:`Problem.fixed` objects among ``objs``,
+    the obstacles at their target (empty when it is free), in one R-tree query.
+
+    Objects whose target lies outside the workspace are left out, as are
+    the others; :func:`probe` answers for them.
+    """
+    world = ss.world
+    feet = problem.fixed_footprints
+    objs = [o for o in objs if o in feet and world.clear(o) and _required_support(problem, ss, o) == TABLE]
+    out: dict[int, list[int]] = {o: [] for o in objs}
+    if objs and problem.scene.n > 1:
+        polys = np.empty(len(objs), dtype=object)
+        polys[:] = [feet[o] for o in objs]
+        ci, oi = geo.colliding(world.tree_all, polys, opts.clearance)
+        for a, b in zip(ci.tolist(), oi.tolist()):
+            if b != objs[a]:
+                out[objs[a]].append(int(b))
+    return {o: tuple(v) for o, v in out.items()}
 
 
 def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
