@@ -38,11 +38,10 @@ from .step import Problem
 __all__ = ["polish"]
 
 
-def _worlds(problem: Problem, actions: list[Action], world=None) -> list:
-    """States of the planner's world before each action and after the last,
-    starting from ``world`` (the initial state when omitted)."""
+def _worlds(problem: Problem, actions: list[Action]) -> list:
+    """States of the planner's world before each action and after the last."""
     scene = problem.scene
-    world = scene.initial if world is None else world
+    world = scene.initial
     out = [world]
     for a in actions:
         on = TABLE if a.on is None else scene.index[a.on]
@@ -51,31 +50,34 @@ def _worlds(problem: Problem, actions: list[Action], world=None) -> list:
     return out
 
 
-def _feasible(problem: Problem, actions: list[Action], start: int, world, ref: np.ndarray) -> bool:
-    """Whether ``actions[start:]``, replayed from ``world``, are legal and end
-    with every goal met (firmly where an object ends elsewhere than in ``ref``)."""
+def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.ndarray) -> list | None:
+    """Replay ``actions[start:]`` from ``world``: the states before each of
+    them and after the last when every move is legal and every goal ends met
+    (firmly where an object ends elsewhere than in ``ref``), else ``None``."""
     scene = problem.scene
     xmin, xmax, ymin, ymax = scene.bounds
+    states = [world]
     for a in actions[start:]:
         i = scene.index[a.object]
         if not world.clear(i):
-            return False
+            return None
         pose = np.asarray(a.to, dtype=float)
         if a.on is None:
             verts = scene.footprint(i, pose)
             if verts[:, 0].min() < xmin or verts[:, 0].max() > xmax or verts[:, 1].min() < ymin or verts[:, 1].max() > ymax:
-                return False
+                return None
             world = world.moved(i, pose, TABLE)
             others = np.empty(scene.n - 1, dtype=object)
             others[:] = [world.polys[k] for k in range(scene.n) if k != i]
             if shapely.dwithin(world.polys[i], others, CLEARANCE * 0.99).any():
-                return False
+                return None
         else:
             j = scene.index[a.on]
             if any(k != i for k in world.holding[j]) or not shapely.contains_xy(world.polys[j], pose[0], pose[1]):
-                return False
+                return None
             world = world.moved(i, pose, j)
-    return _goals_hold_firmly(problem, world, ref)
+        states.append(world)
+    return states if _goals_hold_firmly(problem, world, ref) else None
 
 
 #: Rewritten plans must still meet every goal with each centre moved by up to
@@ -121,8 +123,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
     return bool(shapely.dwithin(poly, placed, CLEARANCE * 0.99).any())
 
 
-def _merge(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Action]:
-    worlds = _worlds(problem, actions)
+def _merge(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray) -> tuple[list[Action], list]:
     i = 0
     while i < len(actions):
         a = actions[i]
@@ -135,19 +136,19 @@ def _merge(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Act
             for k in reversed(later):
                 del trial[k]
             final = worlds[j + 1].polys[problem.scene.index[a.object]]
-            if not _crowds(problem, actions, worlds, final, i, j) and _feasible(problem, trial, i, worlds[i], ref):
+            after = None if _crowds(problem, actions, worlds, final, i, j) else _replay(problem, trial, i, worlds[i], ref)
+            if after is not None:
                 actions = trial
-                worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
+                worlds = worlds[:i] + after
                 continue
         i += 1
-    return actions
+    return actions, worlds
 
 
-def _drop(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Action]:
+def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray) -> list[Action]:
     moves: dict[int, int] = {}
     for a in actions:
         moves[a.object] = moves.get(a.object, 0) + 1
-    worlds = _worlds(problem, actions)
     i = 0
     while i < len(actions):
         a = actions[i]
@@ -155,10 +156,11 @@ def _drop(problem: Problem, actions: list[Action], ref: np.ndarray) -> list[Acti
             trial = actions[:i] + actions[i + 1 :]
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
             stays = worlds[i].polys[problem.scene.index[a.object]]
-            if not _crowds(problem, actions, worlds, stays, i, nxt) and _feasible(problem, trial, i, worlds[i], ref):
+            after = None if _crowds(problem, actions, worlds, stays, i, nxt) else _replay(problem, trial, i, worlds[i], ref)
+            if after is not None:
                 moves[a.object] -= 1
                 actions = trial
-                worlds = worlds[: i + 1] + _worlds(problem, actions[i:], worlds[i])[1:]
+                worlds = worlds[:i] + after
                 continue
         i += 1
     return actions
@@ -170,8 +172,10 @@ def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list
     ``actions`` must be a valid plan for ``problem``; so is the result: a
     rewritten plan is returned only if the validator accepts it.
     """
-    ref = np.array(_worlds(problem, list(actions))[-1].poses)
-    out = _drop(problem, _merge(problem, list(actions), ref), ref)
+    worlds = _worlds(problem, list(actions))
+    ref = np.array(worlds[-1].poses)
+    merged, worlds = _merge(problem, list(actions), worlds, ref)
+    out = _drop(problem, merged, worlds, ref)
     if len(out) < len(actions) and not valid_plan(problem, out):
         return list(actions)  # pragma: no cover - the replay above checks the same rules
     return out
