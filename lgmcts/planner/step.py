@@ -129,15 +129,25 @@ class SearchState:
     def ctx(self, problem: Problem, k: int) -> Context:
         return Context(problem.scene, self.world, problem.goals[k], self.progress[k])
 
+    def _committed(self, problem: Problem) -> frozenset[int]:
+        # Computed once per state (a state only ever serves one problem).
+        c = self.__dict__.get("_committed_set")
+        if c is None:
+            c = frozenset(o for o, ks in problem.member.items() if o in self.progress[ks[0]].placed)
+            self.__dict__["_committed_set"] = c
+        return c
+
     def committed(self, problem: Problem, o: int) -> bool:
-        goals = problem.member.get(o, ())
-        return bool(goals) and o in self.progress[goals[0]].placed
+        """Whether goal object ``o`` has been placed for its goals in this branch."""
+        return o in self._committed(problem)
 
     def settled(self, problem: Problem) -> frozenset[int]:
         """Objects that will not move for a goal any more in this branch."""
-        return frozenset(
-            o for o in range(problem.scene.n) if o not in problem.member or self.committed(problem, o)
-        )
+        s = self.__dict__.get("_settled_set")
+        if s is None:
+            free = frozenset(o for o in range(problem.scene.n) if o not in problem.member)
+            s = self.__dict__["_settled_set"] = free | self._committed(problem)
+        return s
 
     def goal_done(self, problem: Problem, k: int, settled: frozenset[int] | None = None) -> bool:
         g = problem.goals[k]
