@@ -61,7 +61,6 @@ RELATION_HALF_ANGLE = math.pi / 4
 POSE_ANGLE_TOL = 0.1
 MIN_CIRCLE_RADIUS = 0.05
 MIN_RECT_SIDE = 0.05
-ON_TABLE_PATTERNS = frozenset({"line", "circle", "rectangle", *RELATIONS})
 
 #: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
 Rule = Callable[[Goal, Scene, np.ndarray, tuple[int, ...]], "str | None"]
