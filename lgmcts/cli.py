@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Optional
@@ -31,8 +32,6 @@ def _root(
         "Also read from LGMCTS_PATTERN_MODULES (':'-separated).",
     ),
 ) -> None:
-    import os
-
     from .patterns import MODULES_ENV, load_pattern_modules
 
     try:

@@ -23,7 +23,7 @@ from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scen
 from ..scene import Scene
 from .polish import polish
 from .search import SearchOptions, SearchResult, greedy, mcts
-from .step import Problem, StepOptions
+from .step import Problem
 
 __all__ = ["plan", "METHODS", "goal_poses"]
 

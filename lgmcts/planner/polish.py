@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from .. import geometry as geo
 from ..formats import Action
 from ..patterns import CLEARANCE
 from ..scene import TABLE
@@ -55,7 +56,6 @@ def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.
     them and after the last when every move is legal and every goal ends met
     (firmly where an object ends elsewhere than in ``ref``), else ``None``."""
     scene = problem.scene
-    xmin, xmax, ymin, ymax = scene.bounds
     states = [world]
     for a in actions[start:]:
         i = scene.index[a.object]
@@ -63,8 +63,7 @@ def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.
             return None
         pose = np.asarray(a.to, dtype=float)
         if a.on is None:
-            verts = scene.footprint(i, pose)
-            if verts[:, 0].min() < xmin or verts[:, 0].max() > xmax or verts[:, 1].min() < ymin or verts[:, 1].max() > ymax:
+            if not geo.inside_workspace(scene.footprint(i, pose)[None], scene.bounds)[0]:
                 return None
             world = world.moved(i, pose, TABLE)
             others = np.empty(scene.n - 1, dtype=object)

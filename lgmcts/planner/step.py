@@ -20,7 +20,7 @@ import shapely
 from .. import geometry as geo
 from ..errors import InputError
 from ..formats import Action, GoalSpec
-from ..patterns import BAND, CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
+from ..patterns import CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
 from ..scene import TABLE, Scene, State
 
 __all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
