@@ -123,3 +123,26 @@ def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[
     else:
         pairs = tree.query(candidates, predicate="intersects")
     return pairs[0], pairs[1]
+
+
+def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
+                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``, as
+    :func:`colliding`, without an R-tree.
+
+    Each shape comes with a bounding circle (centre ``*_xy``, radius
+    ``*_r``); only the pairs whose circles come within ``clearance`` are
+    tested exactly, elementwise. Cheaper than building a tree for a state
+    queried a few times. Pairs are sorted by candidate, then obstacle.
+    """
+    cand_xy = np.asarray(cand_xy, dtype=float).reshape(-1, 2)
+    d2 = (cand_xy[:, None, 0] - obs_xy[None, :, 0]) ** 2 + (cand_xy[:, None, 1] - obs_xy[None, :, 1]) ** 2
+    reach = np.asarray(cand_r, dtype=float).reshape(-1, 1) + obs_r[None, :] + clearance + 1e-9
+    ci, oi = np.nonzero(d2 <= reach**2)
+    if len(ci):
+        if clearance > 0:
+            hit = shapely.dwithin(candidates[ci], obstacles[oi], clearance)
+        else:
+            hit = shapely.intersects(candidates[ci], obstacles[oi])
+        ci, oi = ci[hit], oi[hit]
+    return ci, oi

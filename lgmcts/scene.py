@@ -229,6 +229,13 @@ class State:
         return np.asarray([k for k, s in enumerate(self.on) if s == TABLE], dtype=int)
 
     @cached_property
+    def poly_array(self) -> np.ndarray:
+        """:attr:`polys` as a numpy object array (for vectorised predicates)."""
+        out = np.empty(len(self._polys), dtype=object)
+        out[:] = self._polys
+        return out
+
+    @cached_property
     def tree_all(self) -> STRtree:
         """R-tree over every footprint, stacked objects included (indices are object indices)."""
         return STRtree(list(self._polys))

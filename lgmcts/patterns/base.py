@@ -115,8 +115,9 @@ class Pattern(Protocol):
         an anchor (relations).
     on_table : whether the goal's objects must end on the table.
     deterministic : whether ``sample`` returns the same poses whatever the
-        branch and the random generator (a fixed target); the planner may
-        then remember what blocks such an object.
+        branch and the random generator (a fixed target), and ``region`` the
+        same region for as long as the goal is unfinished; the planner may
+        then remember what blocks such an object, and the region.
     """
 
     name: str

@@ -21,8 +21,8 @@ import numpy as np
 from ..errors import InputError
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..scene import Scene
-from .polish import polish
-from .search import SearchOptions, SearchResult, greedy, mcts
+from .polish import polish, polished
+from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
 from .step import Problem
 
 __all__ = ["plan", "METHODS", "goal_poses"]
@@ -55,23 +55,31 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     return GoalSpec(goals=goals)
 
 
+def _accept(opts: SearchOptions) -> Accept:
+    """Found plans are polished (:mod:`.polish`) as they are validated, unless ``opts.polish`` is off."""
+    return polished if opts.polish else validated
+
+
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    return mcts(problem, rng, opts), {}
+    return mcts(problem, rng, opts, _accept(opts)), {}
 
 
 def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    return greedy(problem, rng, opts), {}
+    return greedy(problem, rng, opts, _accept(opts)), {}
 
 
 def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
     if all(g.pattern in ("pose", "tower") for g in problem.spec.goals):
-        return mcts(problem, rng, opts), {}
+        return mcts(problem, rng, opts, _accept(opts)), {}
     t0 = time.perf_counter()
     poses = goal_poses(problem, rng, opts)
     if poses is None:
         return SearchResult(False, (), 0, 0, time.perf_counter() - t0, reason="no goal arrangement found"), {}
     fixed = Problem.build(problem.scene, poses)
     res = mcts(fixed, rng, opts)
+    if res.solved and opts.polish:
+        # Searched for the fixed poses; polished for the goals themselves.
+        res = replace(res, actions=tuple(polish(problem, res.actions)), found=len(res.actions))
     return replace(res, time_s=time.perf_counter() - t0), {"pose_goals": poses.model_dump(mode="json", exclude_none=True)}
 
 
@@ -132,9 +140,7 @@ def plan(
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
     res, extra = METHODS[method](problem, rng, opts)
-    found = len(res.actions)
-    if res.solved and opts.polish:
-        res = replace(res, actions=tuple(polish(problem, res.actions)))
+    found = res.found or len(res.actions)
     res = replace(res, time_s=time.perf_counter() - t0)
     stats: dict[str, Any] = {
         "method": method,

@@ -36,7 +36,7 @@ from ..validate import goal_satisfied
 from .search import valid_plan
 from .step import Problem
 
-__all__ = ["polish"]
+__all__ = ["polish", "polished"]
 
 
 def _worlds(problem: Problem, actions: list[Action]) -> list:
@@ -51,13 +51,27 @@ def _worlds(problem: Problem, actions: list[Action]) -> list:
     return out
 
 
-def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.ndarray) -> list | None:
+def _same(a, b) -> bool:
+    return a is b or (a.on == b.on and np.array_equal(a.poses, b.poses))
+
+
+def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.ndarray,
+            worlds: list | None = None, sync: int = 0, shift: int = 0) -> list | None:
     """Replay ``actions[start:]`` from ``world``: the states before each of
     them and after the last when every move is legal and every goal ends met
-    (firmly where an object ends elsewhere than in ``ref``), else ``None``."""
+    (firmly where an object ends elsewhere than in ``ref``), else ``None``.
+
+    ``worlds`` are the states of the plan being rewritten, whose action
+    ``t + shift`` is ``actions[t]`` for every ``t >= sync``. Once the replay
+    reaches one of those states before such an action, the rest would repeat
+    a replay already accepted, so its states are taken as they are.
+    """
     scene = problem.scene
     states = [world]
-    for a in actions[start:]:
+    for t in range(start, len(actions)):
+        if worlds is not None and t >= sync and t > start and _same(world, worlds[t + shift]):
+            return states[:-1] + worlds[t + shift :]
+        a = actions[t]
         i = scene.index[a.object]
         if not world.clear(i):
             return None
@@ -135,7 +149,8 @@ def _merge(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarra
             for k in reversed(later):
                 del trial[k]
             final = worlds[j + 1].polys[problem.scene.index[a.object]]
-            after = None if _crowds(problem, actions, worlds, final, i, j) else _replay(problem, trial, i, worlds[i], ref)
+            after = (None if _crowds(problem, actions, worlds, final, i, j)
+                     else _replay(problem, trial, i, worlds[i], ref, worlds, j + 1 - len(later), len(later)))
             if after is not None:
                 actions = trial
                 worlds = worlds[:i] + after
@@ -155,7 +170,8 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
             trial = actions[:i] + actions[i + 1 :]
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
             stays = worlds[i].polys[problem.scene.index[a.object]]
-            after = None if _crowds(problem, actions, worlds, stays, i, nxt) else _replay(problem, trial, i, worlds[i], ref)
+            after = (None if _crowds(problem, actions, worlds, stays, i, nxt)
+                     else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1))
             if after is not None:
                 moves[a.object] -= 1
                 actions = trial
@@ -165,16 +181,34 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
     return actions
 
 
+def _rewrite(problem: Problem, actions: list[Action]) -> list[Action]:
+    worlds = _worlds(problem, actions)
+    ref = np.array(worlds[-1].poses)
+    merged, worlds = _merge(problem, actions, worlds, ref)
+    return _drop(problem, merged, worlds, ref)
+
+
 def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list[Action]:
     """A plan no longer than ``actions`` that still meets every goal.
 
     ``actions`` must be a valid plan for ``problem``; so is the result: a
     rewritten plan is returned only if the validator accepts it.
     """
-    worlds = _worlds(problem, list(actions))
-    ref = np.array(worlds[-1].poses)
-    merged, worlds = _merge(problem, list(actions), worlds, ref)
-    out = _drop(problem, merged, worlds, ref)
+    out = _rewrite(problem, list(actions))
     if len(out) < len(actions) and not valid_plan(problem, out):
         return list(actions)  # pragma: no cover - the replay above checks the same rules
     return out
+
+
+def polished(problem: Problem, actions: list[Action]) -> list[Action] | None:
+    """The search's acceptance step with polishing (a :data:`~lgmcts.planner.search.Accept`).
+
+    ``actions`` reach every goal in the planner's model but have not been
+    validated. The polished plan is returned when the validator accepts it,
+    else ``actions`` when it accepts those, else ``None``. Usually one
+    validator run, where polishing a validated plan would take two.
+    """
+    out = _rewrite(problem, list(actions))
+    if len(out) < len(actions) and valid_plan(problem, out):
+        return out
+    return list(actions) if valid_plan(problem, actions) else None

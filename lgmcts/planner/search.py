@@ -7,6 +7,7 @@ import logging
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -16,7 +17,7 @@ from .selection import select_child
 from .step import Problem, SearchState, StepOptions, Transition, attempt, clear_way, fixed_obstacles, probe, stay
 from .tree import Node
 
-__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan"]
+__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan", "validated"]
 
 log = logging.getLogger("lgmcts.planner")
 
@@ -76,6 +77,8 @@ class SearchResult:
     reason: str = ""
     rejected: int = 0
     solutions: int = 0
+    #: Actions of the found plan before ``accept`` rewrote it (0 when unsolved).
+    found: int = 0
 
 
 class _BlockMemo:
@@ -230,6 +233,17 @@ def valid_plan(problem: Problem, actions: list[Action]) -> bool:
     return check(problem.scene, problem.spec, plan).valid
 
 
+#: What a search does with a plan that reaches every goal in its own model:
+#: returns the plan to keep (the same, or a rewrite of it) once the validator
+#: accepts it, or ``None`` to reject it and search on.
+Accept = Callable[[Problem, list[Action]], "list[Action] | None"]
+
+
+def validated(problem: Problem, actions: list[Action]) -> list[Action] | None:
+    """The default :data:`Accept`: ``actions`` themselves when the validator accepts them."""
+    return list(actions) if valid_plan(problem, actions) else None
+
+
 def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: SearchOptions) -> Node | None:
     """Try one untried (object, sample) pair at ``node``; return the new child or ``None``."""
     ready = node.state.ready(problem)
@@ -293,17 +307,19 @@ def _mark_dead(node: Node | None) -> None:
         node = node.parent
 
 
-def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult:
-    """Monte-Carlo tree search for a plan reaching every goal."""
+def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
+         accept: Accept = validated) -> SearchResult:
+    """Monte-Carlo tree search for a plan reaching every goal (as ``accept`` returns it)."""
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
     max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
     root = Node(problem.root())
     root.reward = root.state.reward(problem)
     best: list[Action] | None = None
+    found = 0
     best_partial: tuple[float, int, Node] = (root.reward, 0, root)
     nodes, rejected, solutions, it, rollout_steps, restarts = 1, 0, 0, 0, 0, 0
-    if root.state.done(problem) and valid_plan(problem, []):
+    if root.state.done(problem) and accept(problem, []) is not None:
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
@@ -345,11 +361,12 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
         if child.state.done(problem):
             actions = child.path()
             child.dead = True
-            if valid_plan(problem, actions):
+            kept = accept(problem, actions)
+            if kept is not None:
                 solutions += 1
-                if best is None or len(actions) < len(best):
-                    best = actions
-                    log.info("solution with %d actions after %d iterations", len(actions), it)
+                if best is None or len(kept) < len(best):
+                    best, found = kept, len(actions)
+                    log.info("solution with %d actions after %d iterations", len(kept), it)
                 _backprop(child, 1.0)
                 if not opts.anytime:
                     break
@@ -365,10 +382,11 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             rollout_steps += steps
             if tail is not None:
                 actions = child.path() + tail
-                if (best is None or len(actions) < len(best)) and valid_plan(problem, actions):
+                kept = accept(problem, actions)
+                if kept is not None and (best is None or len(kept) < len(best)):
                     solutions += 1
-                    best = actions
-                    log.info("rollout solution with %d actions after %d iterations", len(actions), it)
+                    best, found = kept, len(actions)
+                    log.info("rollout solution with %d actions after %d iterations", len(kept), it)
                     if not opts.anytime:
                         break
         _backprop(child, value)
@@ -382,12 +400,13 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             len(shown), sum(a.purpose == "relocate" for a in shown), sum(a.purpose == "unstack" for a in shown), elapsed,
         )
     if best is not None:
-        return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions)
+        return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions, found=found)
     reason = "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
     return SearchResult(False, tuple(best_partial[2].path()), it, nodes, elapsed, reason=reason, rejected=rejected)
 
 
-def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult:
+def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
+           accept: Accept = validated) -> SearchResult:
     """Sequential sampling with the same step and relocation rules, no tree.
 
     Each rollout places random ready objects one after another; a dead end
@@ -420,6 +439,7 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
         r = ss.reward(problem)
         if r > best_partial[0]:
             best_partial = (r, actions)
-        if ss.done(problem) and valid_plan(problem, actions):
-            return SearchResult(True, tuple(actions), it, rollouts, time.perf_counter() - t0, solutions=1)
+        kept = accept(problem, actions) if ss.done(problem) else None
+        if kept is not None:
+            return SearchResult(True, tuple(kept), it, rollouts, time.perf_counter() - t0, solutions=1, found=len(actions))
     return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason="iteration budget exhausted")

@@ -21,6 +21,7 @@ from .. import geometry as geo
 from ..errors import InputError
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
+from ..patterns.base import BasePattern
 from ..scene import TABLE, Scene, State
 
 __all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
@@ -112,6 +113,24 @@ class Problem:
         return out
 
     @cached_property
+    def gates(self) -> dict[int, tuple[int, ...]]:
+        """Per goal object, its goals whose pattern may hold it back
+        (``ready``) or put it on another object (``support``); the others
+        (a :class:`BasePattern` that keeps the defaults) need not be asked."""
+        def plain(p: Pattern) -> bool:
+            t = type(p)
+            return getattr(t, "ready", None) is BasePattern.ready and getattr(t, "support", None) is BasePattern.support
+        return {o: tuple(k for k in ks if not plain(self.patterns[k])) for o, ks in self.member.items()}
+
+    @cached_property
+    def static_regions(self) -> dict[int, Any]:
+        """Region of each unfinished goal whose pattern is deterministic (the
+        same in every branch), by goal index; ``None`` for no region."""
+        root = self.root()
+        return {k: self.patterns[k].region(root.ctx(self, k)) for k in range(len(self.goals))
+                if getattr(self.patterns[k], "deterministic", False)}
+
+    @cached_property
     def targets(self) -> tuple[int, ...]:
         return tuple(sorted(self.member))
 
@@ -178,7 +197,7 @@ class SearchState:
         for o in problem.targets:
             if self.committed(problem, o):
                 continue
-            if all(problem.patterns[k].ready(self.ctx(problem, k), o, settled) for k in problem.member[o]):
+            if all(problem.patterns[k].ready(self.ctx(problem, k), o, settled) for k in problem.gates[o]):
                 out.append(o)
         return out
 
@@ -202,7 +221,14 @@ def _action(scene: Scene, i: int, pose: np.ndarray, on: int | None, purpose: str
 
 
 def _required_support(problem: Problem, ss: SearchState, o: int) -> int | None:
-    sup = {problem.patterns[k].support(ss.ctx(problem, k), o) for k in problem.member[o]}
+    gates = problem.gates[o]
+    if len(gates) < len(problem.member[o]):
+        sup = {TABLE}  # a pattern with the default support is in
+    elif not gates:
+        return TABLE
+    else:
+        sup = set()
+    sup.update(problem.patterns[k].support(ss.ctx(problem, k), o) for k in gates)
     return sup.pop() if len(sup) == 1 else None
 
 
@@ -280,7 +306,8 @@ def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, op
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
     if scene.n > 1:
-        ci, oi = geo.colliding(world.tree_all, shapely.polygons(verts), opts.clearance)
+        ci, oi = geo.colliding_near(shapely.polygons(verts), poses[:, :2], scene.radii[o], world.poly_array,
+                                    world.poses[:, :2], scene.radii, opts.clearance)
         placed_only = opts.obstacles == "placed"
         for a, b in zip(ci.tolist(), oi.tolist()):
             if b == o or (placed_only and not ss.committed(problem, b)):
@@ -300,7 +327,8 @@ def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int
     for k, g in enumerate(problem.goals):
         if len(ss.progress[k].placed) == len(g.objects) or g.objects == (mover,):
             continue
-        reg = problem.patterns[k].region(ss.ctx(problem, k))
+        static = problem.static_regions
+        reg = static[k] if k in static else problem.patterns[k].region(ss.ctx(problem, k))
         if reg is not None:
             parts.append(reg)
             theirs.append(avoid in g.objects)
@@ -329,17 +357,17 @@ def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) 
         return np.empty((0, 2))
     gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
     gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
-    free = np.ones((len(gy), len(gx)), dtype=bool)
     others = np.flatnonzero(np.arange(scene.n) != b)
     cx, cy = world.poses[others, 0], world.poses[others, 1]
-    reach = scene.radii[others] + scene.radii[b] + clearance + 1e-9
-    # Only the grid window around each object can be within its reach.
-    i0, i1 = np.searchsorted(gx, cx - reach), np.searchsorted(gx, cx + reach)
-    j0, j1 = np.searchsorted(gy, cy - reach), np.searchsorted(gy, cy + reach)
-    for k in np.flatnonzero((i0 < i1) & (j0 < j1)).tolist():
-        dx2 = (gx[i0[k] : i1[k]] - cx[k]) ** 2
-        dy2 = (gy[j0[k] : j1[k]] - cy[k]) ** 2
-        free[j0[k] : j1[k], i0[k] : i1[k]] &= dy2[:, None] + dx2[None, :] > reach[k] ** 2
+    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
+    dx2 = (gx[None, :] - cx[:, None]) ** 2
+    dy2 = (gy[None, :] - cy[:, None]) ** 2
+    free = np.ones((len(gy), len(gx)), dtype=bool)
+    # All objects at once, in chunks that keep the temporary under ~2 MB.
+    step = max(1, 250_000 // max(1, free.size))
+    for k in range(0, len(others), step):
+        s = slice(k, k + step)
+        free &= ((dy2[s, :, None] + dx2[s, None, :]) > reach2[s, None, None]).all(axis=0)
     jj, ii = np.nonzero(free)
     return np.stack([gx[ii], gy[jj]], axis=1)
 
@@ -390,7 +418,13 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         # (none, when there is one), so the obstacle is not in the way again;
         # above all not in the way of the object it makes room for.
         polys = shapely.polygons(scene.footprint(b, poses[idx]))
-        hit = shapely.intersects(polys[:, None], regions[None, :])
+        # Exact tests only where the bounding boxes overlap.
+        pb, rb = shapely.bounds(polys), shapely.bounds(regions)
+        near = ((pb[:, None, 0] <= rb[None, :, 2]) & (rb[None, :, 0] <= pb[:, None, 2])
+                & (pb[:, None, 1] <= rb[None, :, 3]) & (rb[None, :, 1] <= pb[:, None, 3]))
+        hit = np.zeros(near.shape, dtype=bool)
+        pi, ri = np.nonzero(near)
+        hit[pi, ri] = shapely.intersects(polys[pi], regions[ri])
         score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
         idx = idx[score == score.min()]
     pose = _wrapped(poses[idx[0]])
@@ -454,7 +488,9 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
     if objs and problem.scene.n > 1:
         polys = np.empty(len(objs), dtype=object)
         polys[:] = [feet[o] for o in objs]
-        ci, oi = geo.colliding(world.tree_all, polys, opts.clearance)
+        xy = np.array([problem.fixed[o][:2] for o in objs])
+        ci, oi = geo.colliding_near(polys, xy, problem.scene.radii[objs], world.poly_array, world.poses[:, :2],
+                                    problem.scene.radii, opts.clearance)
         for a, b in zip(ci.tolist(), oi.tolist()):
             if b != objs[a]:
                 out[objs[a]].append(int(b))
