@@ -14,7 +14,8 @@ import numpy as np
 from ..formats import Action, PlanSpec
 from ..validate import check
 from .selection import select_child
-from .step import Problem, SearchState, StepOptions, Transition, attempt, clear_way, fixed_obstacles, probe, stay
+from .step import (Problem, SearchState, StepOptions, Transition, attempt, clear_way, fixed_obstacles, place_fixed, probe,
+                   stay)
 from .tree import Node
 
 __all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan", "validated"]
@@ -145,14 +146,19 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
             memo.unmet.add(o)
     blocks: dict[int, tuple[int, ...]] = {}
     tries = order[: opts.direct_tries]
-    # Fixed targets not yet known to be blocked: one R-tree query for all.
-    fresh = fixed_obstacles(problem, ss, [o for o in tries if memo is None or memo.get(o) is None], opts.step)
+    # Fixed targets not yet known to be blocked: one query for all (with
+    # every object an obstacle; "placed" leaves that to the probe).
+    fresh = {}
+    if opts.step.obstacles == "all":
+        fresh = fixed_obstacles(problem, ss, [o for o in tries if memo is None or memo.get(o) is None], opts.step)
     for o in tries:
         known = memo.get(o) if memo is not None else None
         if known is not None:
             blocks[o] = known
             continue
-        if fresh.get(o):
+        if o in fresh:
+            if not fresh[o]:
+                return o, place_fixed(problem, ss, o, rng)
             blocks[o] = fresh[o]
             if memo is not None:
                 memo.put(o, fresh[o])

@@ -392,7 +392,8 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     for n in batches:
         grid = n < 0
         if grid:
-            pick = room[rng.choice(len(room), size=min(len(room), 2 * opts.samples), replace=False)]
+            k = 4 * opts.samples
+            pick = room[rng.choice(len(room), size=min(len(room), k), replace=False)]
             poses = np.empty((len(pick), 3))
             poses[:, :2] = pick
             n = len(pick)
@@ -417,14 +418,15 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         # The free pose that overlaps the fewest regions still to be filled
         # (none, when there is one), so the obstacle is not in the way again;
         # above all not in the way of the object it makes room for.
-        polys = shapely.polygons(scene.footprint(b, poses[idx]))
-        # Exact tests only where the bounding boxes overlap.
-        pb, rb = shapely.bounds(polys), shapely.bounds(regions)
-        near = ((pb[:, None, 0] <= rb[None, :, 2]) & (rb[None, :, 0] <= pb[:, None, 2])
-                & (pb[:, None, 1] <= rb[None, :, 3]) & (rb[None, :, 1] <= pb[:, None, 3]))
+        # Each candidate is judged by its circumscribed circle, whatever its yaw.
+        xy, rr = poses[idx, :2], r + 1e-9
+        rb = shapely.bounds(regions)
+        near = ((xy[:, None, 0] + rr >= rb[None, :, 0]) & (xy[:, None, 0] - rr <= rb[None, :, 2])
+                & (xy[:, None, 1] + rr >= rb[None, :, 1]) & (xy[:, None, 1] - rr <= rb[None, :, 3]))
         hit = np.zeros(near.shape, dtype=bool)
         pi, ri = np.nonzero(near)
-        hit[pi, ri] = shapely.intersects(polys[pi], regions[ri])
+        if len(pi):
+            hit[pi, ri] = shapely.dwithin(regions[ri], shapely.points(xy[pi]), rr)
         score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
         idx = idx[score == score.min()]
     pose = _wrapped(poses[idx[0]])
@@ -495,6 +497,14 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
             if b != objs[a]:
                 out[objs[a]].append(int(b))
     return {o: tuple(v) for o, v in out.items()}
+
+
+def place_fixed(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator) -> Transition:
+    """Put a :attr:`Problem.fixed` object on its target, which
+    :func:`fixed_obstacles` found free."""
+    pose = _wrapped(problem.fixed[o])
+    new_world = ss.world.moved(o, pose, TABLE)
+    return Transition(_action(problem.scene, o, pose, None, "goal"), _commit(problem, ss, new_world, o, pose, rng))
 
 
 def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
