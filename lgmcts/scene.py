@@ -186,7 +186,13 @@ class State:
         sup[i] = on
         polys = list(self._polys)
         polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i]))
-        return State(self.scene, poses, tuple(sup), tuple(polys))
+        out = State(self.scene, poses, tuple(sup), tuple(polys))
+        if on == self.on[i]:
+            # Same supports: what depends on them alone carries over.
+            for key in ("holding", "table_level"):
+                if key in self.__dict__:
+                    out.__dict__[key] = self.__dict__[key]
+        return out
 
     @property
     def polys(self) -> tuple:

@@ -260,7 +260,10 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             inside = bool((x >= xmin).all() and (x <= xmax).all() and (y >= ymin).all() and (y <= ymax).all())
             if not inside and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
-            others = [k for k, s in enumerate(on) if k != i and s == TABLE]
+            # Only footprints whose circumscribed circles meet can overlap.
+            reach = sc.radii[i] + sc.radii + 1e-9
+            close = np.hypot(poses[:, 0] - new_pose[0], poses[:, 1] - new_pose[1]) <= reach
+            others = [k for k, s in enumerate(on) if k != i and s == TABLE and close[k]]
             if others:
                 arr = np.empty(len(others), dtype=object)
                 arr[:] = [polys[k] for k in others]

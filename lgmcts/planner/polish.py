@@ -80,9 +80,9 @@ def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.
             if not geo.inside_workspace(scene.footprint(i, pose)[None], scene.bounds)[0]:
                 return None
             world = world.moved(i, pose, TABLE)
-            others = np.empty(scene.n - 1, dtype=object)
-            others[:] = [world.polys[k] for k in range(scene.n) if k != i]
-            if shapely.dwithin(world.polys[i], others, CLEARANCE * 0.99).any():
+            _, near = geo.colliding_near(world.poly_array[i : i + 1], pose[:2], scene.radii[i], world.poly_array,
+                                         world.poses[:, :2], scene.radii, CLEARANCE * 0.99)
+            if (near != i).any():
                 return None
         else:
             j = scene.index[a.on]
@@ -181,8 +181,9 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
     return actions
 
 
-def _rewrite(problem: Problem, actions: list[Action]) -> list[Action]:
-    worlds = _worlds(problem, actions)
+def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action]:
+    if worlds is None or len(worlds) != len(actions) + 1:
+        worlds = _worlds(problem, actions)
     ref = np.array(worlds[-1].poses)
     merged, worlds = _merge(problem, actions, worlds, ref)
     return _drop(problem, merged, worlds, ref)
@@ -200,15 +201,16 @@ def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list
     return out
 
 
-def polished(problem: Problem, actions: list[Action]) -> list[Action] | None:
+def polished(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:
     """The search's acceptance step with polishing (a :data:`~lgmcts.planner.search.Accept`).
 
     ``actions`` reach every goal in the planner's model but have not been
     validated. The polished plan is returned when the validator accepts it,
     else ``actions`` when it accepts those, else ``None``. Usually one
     validator run, where polishing a validated plan would take two.
+    ``worlds``, the search's states along the plan, saves replaying it.
     """
-    out = _rewrite(problem, list(actions))
+    out = _rewrite(problem, list(actions), worlds)
     if len(out) < len(actions) and valid_plan(problem, out):
         return out
     return list(actions) if valid_plan(problem, actions) else None

@@ -208,14 +208,17 @@ def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[in
     return first[b], b
 
 
-def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions, depth: int) -> tuple[float, list[Action] | None, int]:
-    """Random sequential placements from ``ss``: (reward, actions if solved, steps)."""
+def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions,
+             depth: int) -> tuple[float, list[Action] | None, int, list]:
+    """Random sequential placements from ``ss``: (reward, actions if solved,
+    steps, the world after each action)."""
     actions: list[Action] = []
+    worlds: list = []
     steps = 0
     memo = _BlockMemo(problem, opts.step.clearance) if opts.step.obstacles == "all" else None
     for _ in range(depth):
         if ss.done(problem):
-            return 1.0, actions, steps
+            return 1.0, actions, steps, worlds
         ready = ss.ready(problem)
         if not ready:
             break
@@ -228,9 +231,10 @@ def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: 
         ss = tr.state
         if tr.action is not None:
             actions.append(tr.action)
+            worlds.append(ss.world)
     if ss.done(problem):
-        return 1.0, actions, steps
-    return ss.reward(problem), None, steps
+        return 1.0, actions, steps, worlds
+    return ss.reward(problem), None, steps, worlds
 
 
 def valid_plan(problem: Problem, actions: list[Action]) -> bool:
@@ -241,11 +245,13 @@ def valid_plan(problem: Problem, actions: list[Action]) -> bool:
 
 #: What a search does with a plan that reaches every goal in its own model:
 #: returns the plan to keep (the same, or a rewrite of it) once the validator
-#: accepts it, or ``None`` to reject it and search on.
-Accept = Callable[[Problem, list[Action]], "list[Action] | None"]
+#: accepts it, or ``None`` to reject it and search on. The third argument
+#: holds the search's world states along the plan (the initial one, then the
+#: one after each action), or ``None``.
+Accept = Callable[[Problem, list[Action], "list | None"], "list[Action] | None"]
 
 
-def validated(problem: Problem, actions: list[Action]) -> list[Action] | None:
+def validated(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:
     """The default :data:`Accept`: ``actions`` themselves when the validator accepts them."""
     return list(actions) if valid_plan(problem, actions) else None
 
@@ -325,7 +331,7 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
     found = 0
     best_partial: tuple[float, int, Node] = (root.reward, 0, root)
     nodes, rejected, solutions, it, rollout_steps, restarts = 1, 0, 0, 0, 0, 0
-    if root.state.done(problem) and accept(problem, []) is not None:
+    if root.state.done(problem) and accept(problem, [], None) is not None:
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
@@ -367,7 +373,7 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
         if child.state.done(problem):
             actions = child.path()
             child.dead = True
-            kept = accept(problem, actions)
+            kept = accept(problem, actions, child.worlds())
             if kept is not None:
                 solutions += 1
                 if best is None or len(kept) < len(best):
@@ -384,11 +390,11 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, best_partial[0], best_partial[2].depth)
         value = child.reward
         if opts.rollout:
-            value, tail, steps = _rollout(problem, child.state, rng, opts, max_depth - child.depth)
+            value, tail, steps, tail_worlds = _rollout(problem, child.state, rng, opts, max_depth - child.depth)
             rollout_steps += steps
             if tail is not None:
                 actions = child.path() + tail
-                kept = accept(problem, actions)
+                kept = accept(problem, actions, child.worlds() + tail_worlds)
                 if kept is not None and (best is None or len(kept) < len(best)):
                     solutions += 1
                     best, found = kept, len(actions)
@@ -429,6 +435,7 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
         rollouts += 1
         ss: SearchState = problem.root()
         actions: list[Action] = []
+        worlds = [ss.world]
         for _ in range(max_depth):
             if ss.done(problem):
                 break
@@ -442,10 +449,11 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
             ss = tr.state
             if tr.action is not None:
                 actions.append(tr.action)
+                worlds.append(ss.world)
         r = ss.reward(problem)
         if r > best_partial[0]:
             best_partial = (r, actions)
-        kept = accept(problem, actions) if ss.done(problem) else None
+        kept = accept(problem, actions, worlds) if ss.done(problem) else None
         if kept is not None:
             return SearchResult(True, tuple(kept), it, rollouts, time.perf_counter() - t0, solutions=1, found=len(actions))
     return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason="iteration budget exhausted")

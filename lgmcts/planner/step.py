@@ -178,8 +178,11 @@ class SearchState:
         return True
 
     def solved_goals(self, problem: Problem) -> int:
-        s = self.settled(problem)
-        return sum(self.goal_done(problem, k, s) for k in range(len(problem.goals)))
+        n = self.__dict__.get("_solved")
+        if n is None:
+            s = self.settled(problem)
+            n = self.__dict__["_solved"] = sum(self.goal_done(problem, k, s) for k in range(len(problem.goals)))
+        return n
 
     def done(self, problem: Problem) -> bool:
         return self.solved_goals(problem) == len(problem.goals)

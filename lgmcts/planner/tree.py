@@ -41,3 +41,12 @@ class Node:
                 out.append(node.action)
             node = node.parent
         return out[::-1]
+
+    def worlds(self) -> list:
+        """World states along :meth:`path`: the root's, then the one after each action."""
+        out, node = [], self
+        while node is not None:
+            if node.action is not None or node.parent is None:
+                out.append(node.state.world)
+            node = node.parent
+        return out[::-1]
