@@ -79,6 +79,27 @@ def transform(local: np.ndarray, poses: np.ndarray) -> np.ndarray:
     return out[0] if single else out
 
 
+def place_each(local: Sequence[np.ndarray], poses: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+    """Footprint ``local[k]`` at ``poses[k]`` for every ``k``: the table-frame
+    vertices and the shapely polygons (an object array), built in one
+    vectorised pass per vertex count."""
+    poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+    verts: list[np.ndarray] = [np.empty((0, 2))] * len(local)
+    polys = np.empty(len(local), dtype=object)
+    groups: dict[int, list[int]] = {}
+    for k, lf in enumerate(local):
+        groups.setdefault(len(lf), []).append(k)
+    for ks in groups.values():
+        lf = np.stack([local[k] for k in ks])  # (m, v, 2)
+        p = poses[ks]
+        c, s = np.cos(p[:, 2])[:, None], np.sin(p[:, 2])[:, None]
+        v = np.stack([c * lf[..., 0] - s * lf[..., 1] + p[:, 0:1], s * lf[..., 0] + c * lf[..., 1] + p[:, 1:2]], axis=-1)
+        polys[ks] = shapely.polygons(v)
+        for j, k in enumerate(ks):
+            verts[k] = v[j]
+    return verts, polys
+
+
 def polygons(vertices: np.ndarray) -> np.ndarray:
     """Shapely polygons from ``(m, k, 2)`` vertex arrays (one call)."""
     v = np.asarray(vertices, dtype=float)

@@ -94,11 +94,10 @@ class Scene:
         bounds = (ws.x[0], ws.x[1], ws.y[0], ws.y[1])
         pose_arr = np.asarray(poses, dtype=float)
         on = tuple(TABLE if o.on is None else index[o.on] for o in spec.objects)
+        verts, polys = geo.place_each(local, pose_arr)
         for k, o in enumerate(spec.objects):
-            if on[k] == TABLE:
-                verts = geo.transform(local[k], pose_arr[k])
-                if not geo.inside_workspace(verts[None], bounds, margin=-1e-6)[0]:
-                    raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
+            if on[k] == TABLE and not geo.inside_workspace(verts[k][None], bounds, margin=-1e-6)[0]:
+                raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
         scene = cls(
             spec=spec,
             ids=ids,
@@ -110,7 +109,7 @@ class Scene:
             bounds=bounds,
             initial=None,  # type: ignore[arg-type]
         )
-        object.__setattr__(scene, "initial", State.make(scene, pose_arr, on))
+        object.__setattr__(scene, "initial", State.make(scene, pose_arr, on, polys))
         return scene
 
     @cached_property
@@ -170,12 +169,14 @@ class State:
     _polys: tuple = field(repr=False, default=())
 
     @classmethod
-    def make(cls, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> "State":
+    def make(cls, scene: Scene, poses: np.ndarray, on: tuple[int, ...], polys: np.ndarray | None = None) -> "State":
+        """The state with ``poses`` and supports ``on`` (``polys``: the
+        footprint polygons at those poses, when already built)."""
         poses = np.array(poses, dtype=float)
         poses.setflags(write=False)
-        verts = [geo.transform(scene.local[k], poses[k]) for k in range(len(on))]
-        polys = tuple(shapely.polygons(np.asarray(v)) for v in verts)
-        return cls(scene, poses, tuple(on), polys)
+        if polys is None:
+            polys = geo.place_each(scene.local, poses)[1]
+        return cls(scene, poses, tuple(on), tuple(polys))
 
     def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE) -> "State":
         """A new state with object ``i`` at ``pose`` resting on ``on``."""

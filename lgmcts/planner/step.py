@@ -94,23 +94,24 @@ class Problem:
         only when something moves near its target.
         """
         out = {}
+        rng = np.random.default_rng(0)  # unused by a deterministic prior
         for o, ks in self.member.items():
             if len(ks) == 1 and getattr(self.patterns[ks[0]], "deterministic", False):
                 g = self.goals[ks[0]]
                 ctx = Context(self.scene, self.scene.initial, g, GoalProgress())
-                out[o] = np.asarray(self.patterns[ks[0]].sample(ctx, o, np.random.default_rng(0), 1)[0], dtype=float)
+                out[o] = np.asarray(self.patterns[ks[0]].sample(ctx, o, rng, 1)[0], dtype=float)
         return out
 
     @cached_property
     def fixed_footprints(self) -> dict[int, Any]:
         """Footprint polygon of each :attr:`fixed` object at its target, for
         those whose target lies inside the workspace (with half the clearance)."""
-        out = {}
-        for o, pose in self.fixed.items():
-            verts = self.scene.footprint(o, pose)
-            if geo.inside_workspace(verts[None], self.scene.bounds, margin=CLEARANCE / 2)[0]:
-                out[o] = shapely.polygons(verts)
-        return out
+        objs = list(self.fixed)
+        if not objs:
+            return {}
+        verts, polys = geo.place_each([self.scene.local[o] for o in objs], np.array([self.fixed[o] for o in objs]))
+        return {o: polys[j] for j, o in enumerate(objs)
+                if geo.inside_workspace(verts[j][None], self.scene.bounds, margin=CLEARANCE / 2)[0]}
 
     @cached_property
     def gates(self) -> dict[int, tuple[int, ...]]:
