@@ -11,16 +11,18 @@ on the table before its final move. Two rewrites fix most of that:
   again) is removed.
 
 Both passes are linear in the number of actions. Each candidate rewrite is
-replayed on the planner's own states from the first action it changes: every
+replayed on the planner's own states from the first action it changes,
+until it rejoins a state of the plan being rewritten with the same actions
+still to come (the rest is unchanged). The replay checks every
 pick of a clear object, every table placement inside the workspace and
 keeping the search's clearance from every other footprint (the acceptance
 rules alone would allow objects to touch), every stacking onto a clear
 support over its footprint, and every goal met at the end (firmly, still
 met when every centre moves by up to 2 mm, for a goal whose objects no
 longer end where the search put them). The polished
-plan is then checked once by the independent validator
-(:func:`lgmcts.validate.check`); should it fail there, the plan is returned
-as the search found it.
+plan is then checked by the independent validator
+(:func:`lgmcts.validate.check`); should it fail there, the plan as the
+search found it is validated and returned instead.
 """
 
 from __future__ import annotations
