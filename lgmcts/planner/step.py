@@ -328,10 +328,10 @@ def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int
     object is in nobody's way but its own, and it is the next to move there.
     """
     parts, theirs = [], []
+    static = problem.static_regions
     for k, g in enumerate(problem.goals):
         if len(ss.progress[k].placed) == len(g.objects) or g.objects == (mover,):
             continue
-        static = problem.static_regions
         reg = static[k] if k in static else problem.patterns[k].region(ss.ctx(problem, k))
         if reg is not None:
             parts.append(reg)
