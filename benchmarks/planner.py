@@ -35,10 +35,15 @@ from lgmcts import check, plan
 from lgmcts.casegen import labbe_case, random_case
 
 
-def _row(c, method: str, seed: int, max_iter: int) -> dict:
-    t = time.perf_counter()
-    p = plan(c.scene, c.goals, method=method, seed=seed, max_iter=max_iter)
-    wall = time.perf_counter() - t
+def _row(c, method: str, seed: int, max_iter: int, repeat: int = 1) -> dict:
+    # With repeat > 1 the same (deterministic) plan is computed again and the
+    # fastest run counts: on a shared VM that filters out time stolen by
+    # other tenants, not work.
+    wall = float("inf")
+    for _ in range(max(1, repeat)):
+        t = time.perf_counter()
+        p = plan(c.scene, c.goals, method=method, seed=seed, max_iter=max_iter)
+        wall = min(wall, time.perf_counter() - t)
     ok = bool(p.solved and check(c.scene, c.goals, p).valid)
     return {"solved": ok, "time_s": wall, "iterations": p.stats["iterations"], "actions": len(p.actions),
             "lower_bound": c.lower_bound, "reference": c.reference, "objects": len(c.scene.objects), "kind": c.kind}
@@ -99,7 +104,8 @@ def cmd_labbe(a: argparse.Namespace) -> dict:
     print("|---|---|---|---|---|---|")
     for n in [int(x) for x in a.ns.split(",")]:
         for m in a.methods.split(","):
-            rows = [_row(labbe_case(n, seed=1000 * n + k), m, seed=k, max_iter=a.max_iter) for k in range(a.per_n)]
+            rows = [_row(labbe_case(n, seed=1000 * n + k), m, seed=k, max_iter=a.max_iter, repeat=a.repeat)
+                    for k in range(a.per_n)]
             s = _summary(rows)
             ok = [r for r in rows if r["solved"]]
             s["actions_per_object"] = float(np.mean([r["actions"] / n for r in ok])) if ok else float("nan")
@@ -155,6 +161,7 @@ def main() -> None:
     lb.add_argument("--ns", default="1,4,8,12,16,20,25,30,37")
     lb.add_argument("--per-n", type=int, default=100)
     lb.add_argument("--methods", default="lgmcts")
+    lb.add_argument("--repeat", type=int, default=1, help="plan each case this many times and keep the fastest time")
     mem = sub.add_parser("memory")
     mem.add_argument("--objects", type=int, default=40)
     for p in (r, lb, mem):
