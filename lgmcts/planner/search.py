@@ -88,7 +88,7 @@ class _BlockMemo:
 
     A blockers entry holds until an object moves into reach of that target
     or away from among its obstacles, so a crowded scene does not test every
-    goal pose against the R-tree at every step; "not on its target" holds
+    goal pose against every footprint at every step; "not on its target" holds
     until the object itself moves. Skipping a test does not change the
     random stream: fixed targets are drawn without it.
     """

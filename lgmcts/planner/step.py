@@ -298,7 +298,7 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
 def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
     """Inside-workspace mask and, per candidate, the objects its footprint comes too close to.
 
-    Uses the state's cached R-tree over every footprint and drops the hits
+    Tests every footprint (bounding circles first, then exactly) and drops the hits
     that do not count (the moving object itself; with ``obstacles="placed"``,
     objects not yet committed to a goal). Stacked objects count too, although
     the acceptance rules only compare table-level footprints: an object put
@@ -482,7 +482,7 @@ def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: 
 
 def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: StepOptions) -> dict[int, tuple[int, ...]]:
     """For the clear, table-bound :attr:`Problem.fixed` objects among ``objs``,
-    the obstacles at their target (empty when it is free), in one R-tree query.
+    the obstacles at their target (empty when it is free), in one query.
 
     Objects whose target lies outside the workspace are left out, as are
     the others; :func:`probe` answers for them.
