@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import InputError
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..scene import Scene
-from .polish import polish, polished
+from .polish import polished
 from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
 from .step import Problem
 
@@ -32,7 +32,9 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     """Fix a pose for every goal object by sampling the priors among goal objects only.
 
     Tower goals above their base stay tower goals (their pose follows the
-    base). Returns ``None`` when no arrangement was found within the budget.
+    base). An anchor that no goal moves gets a pose goal too, where the
+    arrangement left it, so the move search cannot carry it away as an
+    obstacle. Returns ``None`` when no arrangement was found within the budget.
     """
     blind = replace(opts, step=replace(opts.step, obstacles="placed"), max_iter=max(opts.max_iter // 10, 200))
     res = greedy(problem, rng, blind)
@@ -46,7 +48,7 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
         if g.pattern == "tower":
             goals.append(g)
             fixed.update(g.objects[1:])
-    for o in problem.targets:
+    for o in [*problem.targets, *sorted(problem.standing_anchors)]:
         oid = scene.ids[o]
         if oid in fixed:
             continue
@@ -76,10 +78,9 @@ def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     if poses is None:
         return SearchResult(False, (), 0, 0, time.perf_counter() - t0, reason="no goal arrangement found"), {}
     fixed = Problem.build(problem.scene, poses)
-    res = mcts(fixed, rng, opts)
-    if res.solved and opts.polish:
-        # Searched for the fixed poses; polished for the goals themselves.
-        res = replace(res, actions=tuple(polish(problem, res.actions)), found=len(res.actions))
+    accept = _accept(opts)
+    # Searched for the fixed poses; accepted (and polished) for the goals themselves.
+    res = mcts(fixed, rng, opts, lambda _fixed, actions, worlds: accept(problem, actions, worlds))
     return replace(res, time_s=time.perf_counter() - t0), {"pose_goals": poses.model_dump(mode="json", exclude_none=True)}
 
 

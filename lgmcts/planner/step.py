@@ -36,8 +36,8 @@ class StepOptions:
     samples : candidate poses drawn from a prior per attempt.
     clearance : gap kept between footprints and to the workspace edge (m).
     obstacles : ``"all"`` (every table-level object is an obstacle) or
-        ``"placed"`` (only objects committed to goals; used to sample goal
-        arrangements for the PMCTS baseline).
+        ``"placed"`` (only objects committed to goals, and anchors that no
+        goal moves; used to sample goal arrangements for the PMCTS baseline).
     """
 
     samples: int = 24
@@ -122,6 +122,11 @@ class Problem:
             t = type(p)
             return getattr(t, "ready", None) is BasePattern.ready and getattr(t, "support", None) is BasePattern.support
         return {o: tuple(k for k in ks if not plain(self.patterns[k])) for o, ks in self.member.items()}
+
+    @cached_property
+    def standing_anchors(self) -> frozenset[int]:
+        """Anchors that no goal moves: they stay where they stand."""
+        return frozenset(self.anchored) - frozenset(self.member)
 
     @cached_property
     def static_regions(self) -> dict[int, Any]:
@@ -314,7 +319,7 @@ def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, op
                                     world.poses[:, :2], scene.radii, opts.clearance)
         placed_only = opts.obstacles == "placed"
         for a, b in zip(ci.tolist(), oi.tolist()):
-            if b == o or (placed_only and not ss.committed(problem, b)):
+            if b == o or (placed_only and not ss.committed(problem, b) and b not in problem.standing_anchors):
                 continue
             hits[a].append(int(b))
     return inside, hits
@@ -433,6 +438,16 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
             hit[pi, ri] = shapely.dwithin(regions[ri], shapely.points(xy[pi]), rr)
         score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
         idx = idx[score == score.min()]
+    if len(idx) > 1:
+        # Of the best, the snuggest: nearest to a neighbour or the workspace
+        # edge, so the free space left stays in one piece (two objects on
+        # each other's targets then find room to pass).
+        others = np.flatnonzero(np.arange(scene.n) != b)
+        px, py = poses[idx, 0], poses[idx, 1]
+        gap = np.hypot(px[:, None] - world.poses[others, 0][None, :], py[:, None] - world.poses[others, 1][None, :])
+        slack = (gap - scene.radii[others][None, :]).min(axis=1, initial=np.inf)
+        slack = np.minimum.reduce([slack, px - xmin, xmax - px, py - ymin, ymax - py])
+        idx = idx[[int(np.argmin(slack))]]
     pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
     act = _action(scene, b, pose, None, purpose)
