@@ -126,3 +126,14 @@ def test_bad_options(kw, needle, example_scene, example_goals):
 def test_options_dataclass_is_frozen():
     with pytest.raises(Exception):
         SearchOptions().max_iter = 3  # type: ignore[misc]
+
+
+def test_pmcts_keeps_a_relation_anchor_in_place():
+    # The arrangement once put a circle object where the 'front' anchor stood,
+    # and the move search then carried the anchor away as an obstacle.
+    c = random_case(9336)
+    p = plan(c.scene, c.goals, method="pmcts", seed=9336, max_iter=3000)
+    assert p.solved, p.stats
+    assert check(c.scene, c.goals, p).valid
+    anchor = next(g.anchor for g in c.goals.goals if g.anchor is not None)
+    assert all(a.object != anchor for a in p.actions)
