@@ -471,11 +471,14 @@ def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Gene
 
 
 def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
-    """When no pose of ``o``'s prior lies in the workspace, move an anchor that
-    no goal places (it stands near an edge, say) to a free pose."""
+    """When no pose of ``o``'s prior lies in the workspace, move one of its
+    anchors (it stands near an edge, say): preferably one that no goal
+    places, to a free pose; else one a goal places, which sends that goal
+    back to the remaining ones (a plate that is a tower's base, say)."""
     if opts.obstacles != "all":
         return None
-    free = [g.anchor for k in problem.member[o] if (g := problem.goals[k]).anchor is not None and g.anchor not in problem.member]
+    anchors = [g.anchor for k in problem.member[o] if (g := problem.goals[k]).anchor is not None and g.anchor != o]
+    free = [a for a in anchors if a not in problem.member] or anchors
     if not free:
         return None
     a = free[int(rng.integers(len(free)))]
