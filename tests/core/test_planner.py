@@ -137,3 +137,17 @@ def test_pmcts_keeps_a_relation_anchor_in_place():
     assert check(c.scene, c.goals, p).valid
     anchor = next(g.anchor for g in c.goals.goals if g.anchor is not None)
     assert all(a.object != anchor for a in p.actions)
+
+
+def test_anchor_that_a_goal_places_can_move():
+    # The plate is a tower's base and the anchor of "utensils in a line left
+    # of the plate", but stands too near the left edge for the line: the
+    # search must move the plate (its tower goal goes back to the remaining
+    # ones) instead of committing it where it stands.
+    from lgmcts.bench.structformer import generate_task
+
+    t = generate_task("dinner", 1171)
+    p = plan(t.scene, t.goals, seed=1171, max_iter=300)
+    assert p.solved, p.stats
+    assert check(t.scene, t.goals, p).valid
+    assert any(a.object == 7 for a in p.actions)  # the plate moved
