@@ -93,7 +93,10 @@ class Line(BasePattern):
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress
-        if len(prog.placed) == 1 and prog.params is None:
+        # The second object fixes kappa, also when an earlier kappa is left
+        # from objects that have moved off the line since (one object alone
+        # lies on every line through it).
+        if len(prog.placed) == 1:
             p0 = ctx.state.poses[prog.placed[0], :2]
             v = np.asarray(pose[:2]) - p0
             norm = float(np.hypot(*v)) or 1.0

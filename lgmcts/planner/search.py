@@ -176,7 +176,7 @@ def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Ge
         tr = clear_way(problem, ss, b, rng, opts.step, o)
         if tr is not None:
             return o, tr
-    return order[0], attempt(problem, ss, order[0], rng, opts.step)
+    return order[0], attempt(problem, ss, order[0], rng, opts.step, placed_anchors=False)
 
 
 def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],

@@ -255,7 +255,13 @@ def _uncommit(problem: Problem, progress: tuple[GoalProgress, ...], o: int) -> t
     for k in problem.member.get(o, ()):
         prog[k] = prog[k].without(o)
     for k in problem.anchored.get(o, ()):
-        # The anchor moved: every object placed relative to it must be re-placed.
+        # The anchor moved: every object placed relative to it must be
+        # re-placed, so it leaves its other goals too (an object must not
+        # stay committed to a line while its relation waits for it).
+        for p in prog[k].placed:
+            for k2 in problem.member.get(p, ()):
+                if k2 != k:
+                    prog[k2] = prog[k2].without(p)
         prog[k] = GoalProgress()
     return tuple(prog)
 
@@ -470,15 +476,22 @@ def _move_blocker(problem: Problem, ss: SearchState, b: int, rng: np.random.Gene
     return relocate(problem, ss, b, rng, opts, purpose, avoid)
 
 
-def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions) -> Transition | None:
+def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions,
+                 placed: bool = True) -> Transition | None:
     """When no pose of ``o``'s prior lies in the workspace, move one of its
     anchors (it stands near an edge, say): preferably one that no goal
-    places, to a free pose; else one a goal places, which sends that goal
-    back to the remaining ones (a plate that is a tower's base, say)."""
+    places, to a free pose; else, with ``placed``, one a goal places, which
+    sends that goal back to the remaining ones (a plate that is a tower's
+    base, say)."""
     if opts.obstacles != "all":
         return None
     anchors = [g.anchor for k in problem.member[o] if (g := problem.goals[k]).anchor is not None and g.anchor != o]
-    free = [a for a in anchors if a not in problem.member] or anchors
+    free = [a for a in anchors if a not in problem.member]
+    if not free and placed:
+        # An anchor that a goal places moves this way once at most (while it
+        # still stands where it started), so a branch cannot keep carrying it.
+        start = problem.scene.initial
+        free = [a for a in anchors if ss.world.on[a] == start.on[a] and np.array_equal(ss.world.poses[a], start.poses[a])]
     if not free:
         return None
     a = free[int(rng.integers(len(free)))]
@@ -556,12 +569,14 @@ def clear_way(problem: Problem, ss: SearchState, b: int, rng: np.random.Generato
 
 
 def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator, opts: StepOptions,
-            *, direct: bool = False) -> Transition | None:
+            *, direct: bool = False, placed_anchors: bool = True) -> Transition | None:
     """One simulation step for goal object ``o`` (paper, Algorithm 1).
 
     Returns ``None`` when no action could be found (no pose in the prior, no
     free pose for a blocker). With ``direct`` only a placement of ``o``
-    itself is tried: no unstacking and no relocation.
+    itself is tried: no unstacking and no relocation. ``placed_anchors``
+    lets it move an anchor that a goal places when ``o``'s relation has no
+    room at all (rollouts leave that to the tree: such a move is a gamble).
     """
     scene, world = problem.scene, ss.world
     if not world.clear(o):
@@ -593,7 +608,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     # Every candidate collides: clear the way for one of them (fewest blockers first).
     blocked = [k for k in np.flatnonzero(inside) if hits[k]]
     if not blocked:
-        return _move_anchor(problem, ss, o, rng, opts)
+        return _move_anchor(problem, ss, o, rng, opts, placed_anchors)
     fewest = min(len(hits[k]) for k in blocked)
     pick = [k for k in blocked if len(hits[k]) == fewest]
     chosen = hits[int(pick[int(rng.integers(len(pick)))])]

@@ -86,3 +86,23 @@ def test_tower_prior_is_centred_on_support():
     cand = pat.sample(ctx, 1, np.random.default_rng(0), 4)
     assert np.allclose(cand[:, :2], [0.1, 0.1])
     assert pat.support(ctx, 0) == TABLE
+
+
+def test_line_takes_a_new_direction_when_its_second_object_is_replaced():
+    # A line whose kappa came from objects that have since moved off it, with
+    # one object left: the next object placed fixes kappa afresh, so the
+    # objects placed after it line up with both (a stale kappa put them on
+    # another line and the plan failed validation).
+    objs = [can(i + 1, -0.5 + 0.1 * i, -0.4) for i in range(4)]
+    sc = Scene.from_spec(parse_scene(scene(*objs, x=(-0.6, 0.6), y=(-0.5, 0.5))))
+    gs = parse_goals(goals({"pattern": "line", "objects": [1, 2, 3, 4]}))
+    problem = Problem.build(sc, gs)
+    pat, cg = problem.patterns[0], problem.goals[0]
+    rng = np.random.default_rng(0)
+    world = sc.initial.moved(0, np.array([0.0, 0.0, 0.0])).moved(1, np.array([0.2, 0.0, 0.0]))
+    prog = GoalProgress().add(0).add(1, params=(0.0, 0.0, 1.0, 0.0))  # a line along +x
+    prog = prog.without(1)  # object 1 moved away; object 0 still on the line
+    world = world.moved(2, np.array([0.0, 0.2, 0.0]))  # object 2 goes straight behind object 0
+    prog = pat.commit(Context(sc, world, cg, prog), 2, world.poses[2], rng)
+    cand = pat.sample(Context(sc, world, cg, prog), 3, rng, 32)
+    assert len(cand) and np.allclose(cand[:, 0], 0.0, atol=0.03)  # on the line x = 0, not y = 0
