@@ -58,7 +58,8 @@ def transform(local: np.ndarray, poses: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    local : (k, 2) vertices in the object frame.
+    local : (k, 2) vertices in the object frame; with ``(m, 3)`` poses also
+        ``(m, k, 2)``, one footprint per pose.
     poses : (3,) or (m, 3) poses ``(x, y, theta)``.
 
     Returns
@@ -70,13 +71,10 @@ def transform(local: np.ndarray, poses: np.ndarray) -> np.ndarray:
         # One pose (the common case when a state moves an object): a 2x2 product.
         c, s = math.cos(poses[2]), math.sin(poses[2])
         return local @ np.array([[c, s], [-s, c]]) + poses[:2]
-    single = False
     p = poses.reshape(-1, 3)
-    c, s = np.cos(p[:, 2]), np.sin(p[:, 2])
-    x = c[:, None] * local[None, :, 0] - s[:, None] * local[None, :, 1] + p[:, 0:1]
-    y = s[:, None] * local[None, :, 0] + c[:, None] * local[None, :, 1] + p[:, 1:2]
-    out = np.stack([x, y], axis=-1)
-    return out[0] if single else out
+    c, s = np.cos(p[:, 2])[:, None], np.sin(p[:, 2])[:, None]
+    lx, ly = local[..., 0], local[..., 1]
+    return np.stack([c * lx - s * ly + p[:, 0:1], s * lx + c * ly + p[:, 1:2]], axis=-1)
 
 
 def place_each(local: Sequence[np.ndarray], poses: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
@@ -90,10 +88,7 @@ def place_each(local: Sequence[np.ndarray], poses: np.ndarray) -> tuple[list[np.
     for k, lf in enumerate(local):
         groups.setdefault(len(lf), []).append(k)
     for ks in groups.values():
-        lf = np.stack([local[k] for k in ks])  # (m, v, 2)
-        p = poses[ks]
-        c, s = np.cos(p[:, 2])[:, None], np.sin(p[:, 2])[:, None]
-        v = np.stack([c * lf[..., 0] - s * lf[..., 1] + p[:, 0:1], s * lf[..., 0] + c * lf[..., 1] + p[:, 1:2]], axis=-1)
+        v = transform(np.stack([local[k] for k in ks]), poses[ks])  # (m, v, 2)
         polys[ks] = shapely.polygons(v)
         for j, k in enumerate(ks):
             verts[k] = v[j]

@@ -14,7 +14,6 @@ from functools import cached_property
 
 import numpy as np
 import shapely
-from shapely import STRtree
 
 from . import geometry as geo
 from .errors import InputError
@@ -241,11 +240,6 @@ class State:
         out = np.empty(len(self._polys), dtype=object)
         out[:] = self._polys
         return out
-
-    @cached_property
-    def tree_all(self) -> STRtree:
-        """R-tree over every footprint, stacked objects included (indices are object indices)."""
-        return STRtree(list(self._polys))
 
     def key(self) -> tuple:
         """Hashable summary of the state (poses rounded to 0.1 mm)."""

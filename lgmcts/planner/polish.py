@@ -38,7 +38,7 @@ from ..validate import goal_satisfied
 from .search import valid_plan
 from .step import Problem
 
-__all__ = ["polish", "polished"]
+__all__ = ["polished"]
 
 
 def _worlds(problem: Problem, actions: list[Action]) -> list:
@@ -189,18 +189,6 @@ def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None
     ref = np.array(worlds[-1].poses)
     merged, worlds = _merge(problem, actions, worlds, ref)
     return _drop(problem, merged, worlds, ref)
-
-
-def polish(problem: Problem, actions: list[Action] | tuple[Action, ...]) -> list[Action]:
-    """A plan no longer than ``actions`` that still meets every goal.
-
-    ``actions`` must be a valid plan for ``problem``; so is the result: a
-    rewritten plan is returned only if the validator accepts it.
-    """
-    out = _rewrite(problem, list(actions))
-    if len(out) < len(actions) and not valid_plan(problem, out):
-        return list(actions)  # pragma: no cover - the replay above checks the same rules
-    return out
 
 
 def polished(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:

@@ -231,14 +231,17 @@ def _action(scene: Scene, i: int, pose: np.ndarray, on: int | None, purpose: str
 
 def _required_support(problem: Problem, ss: SearchState, o: int) -> int | None:
     gates = problem.gates[o]
+    sup = {problem.patterns[k].support(ss.ctx(problem, k), o) for k in gates}
     if len(gates) < len(problem.member[o]):
-        sup = {TABLE}  # a pattern with the default support is in
-    elif not gates:
-        return TABLE
-    else:
-        sup = set()
-    sup.update(problem.patterns[k].support(ss.ctx(problem, k), o) for k in gates)
+        sup.add(TABLE)  # a pattern with the default support is in
     return sup.pop() if len(sup) == 1 else None
+
+
+def _place(problem: Problem, ss: SearchState, o: int, pose: np.ndarray, support: int, rng: np.random.Generator) -> Transition:
+    """Goal object ``o`` put at ``pose`` (wrapped) on ``support``, and committed to its goals."""
+    world = ss.world.moved(o, pose, support)
+    act = _action(problem.scene, o, pose, None if support == TABLE else support, "goal")
+    return Transition(act, _commit(problem, ss, world, o, pose, rng))
 
 
 def _commit(problem: Problem, ss: SearchState, world: State, o: int, pose: np.ndarray, rng: np.random.Generator) -> SearchState:
@@ -505,10 +508,7 @@ def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: 
     ok = inside & np.array([not h for h in hits])
     if not ok.any():
         return None, inside, hits
-    pose = _wrapped(cand[int(np.flatnonzero(ok)[0])])
-    new_world = ss.world.moved(o, pose, TABLE)
-    act = _action(problem.scene, o, pose, None, "goal")
-    return Transition(act, _commit(problem, ss, new_world, o, pose, rng)), inside, hits
+    return _place(problem, ss, o, _wrapped(cand[int(np.flatnonzero(ok)[0])]), TABLE, rng), inside, hits
 
 
 def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: StepOptions) -> dict[int, tuple[int, ...]]:
@@ -537,9 +537,7 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
 def place_fixed(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator) -> Transition:
     """Put a :attr:`Problem.fixed` object on its target, which
     :func:`fixed_obstacles` found free."""
-    pose = _wrapped(problem.fixed[o])
-    new_world = ss.world.moved(o, pose, TABLE)
-    return Transition(_action(problem.scene, o, pose, None, "goal"), _commit(problem, ss, new_world, o, pose, rng))
+    return _place(problem, ss, o, _wrapped(problem.fixed[o]), TABLE, rng)
 
 
 def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
@@ -578,7 +576,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     lets it move an anchor that a goal places when ``o``'s relation has no
     room at all (rollouts leave that to the tree: such a move is a gamble).
     """
-    scene, world = problem.scene, ss.world
+    world = ss.world
     if not world.clear(o):
         if direct:
             return None
@@ -597,9 +595,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
         pose = _wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
             return None
-        new_world = world.moved(o, pose, support)
-        act = _action(scene, o, pose, support, "goal")
-        return Transition(act, _commit(problem, ss, new_world, o, pose, rng))
+        return _place(problem, ss, o, pose, support, rng)
     tr, inside, hits = _to_table(problem, ss, o, cand, rng, opts)
     if tr is not None:
         return tr
