@@ -283,3 +283,43 @@ def test_plans_with_params_pass_check(example_scene, goal):
     assert p.solved
     v = check(example_scene, {"goals": [goal]}, p)
     assert v.valid, v.reasons
+
+
+# ---------------------------------------------------------------- command line
+
+
+def _cli(*args: str):
+    import subprocess
+    import sys
+
+    return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300)
+
+
+def test_cli_plans_and_checks_goals_with_params(example_scene, tmp_path):
+    goals_file = tmp_path / "goals.json"
+    spec = {"goals": [
+        {"pattern": "circle", "objects": [1, 2, 3, 4], "region": "top right", "size": "small", "facing": "south"},
+        {"pattern": "line", "objects": [5, 6, 7], "region": "bottom", "facing": "north"},
+    ]}
+    goals_file.write_text(json.dumps(spec))
+    out = tmp_path / "plan.json"
+    r = _cli("plan", str(example_scene), "--goal", str(goals_file), "--seed", "1", "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    data = json.loads(out.read_text())
+    assert data["solved"] is True
+    assert data["goals"] == spec  # the parameters travel with the plan unchanged
+    r = _cli("check", str(example_scene), str(goals_file), str(out))
+    assert r.returncode == 0 and r.stdout.startswith("valid"), r.stdout + r.stderr
+    # The same plan judged against the opposite corner fails, naming the region.
+    other = tmp_path / "other.json"
+    other.write_text(json.dumps({"goals": [{**spec["goals"][0], "region": "bottom left"}, spec["goals"][1]]}))
+    r = _cli("check", str(example_scene), str(other), str(out))
+    assert r.returncode == 1 and "outside region 'bottom left'" in r.stdout
+
+
+def test_cli_bad_param_exits_2(example_scene, tmp_path):
+    goals_file = tmp_path / "goals.json"
+    goals_file.write_text(json.dumps({"goals": [{"pattern": "line", "objects": [1, 2], "region": "upstairs"}]}))
+    r = _cli("plan", str(example_scene), "--goal", str(goals_file))
+    assert r.returncode == 2
+    assert "unknown region 'upstairs'" in r.stderr and r.stderr.count("\n") <= 1
