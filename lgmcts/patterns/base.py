@@ -61,9 +61,20 @@ class CompiledGoal:
     params: GoalParams = GoalParams()
 
 
+#: How far the priors let centres go outside a goal's region box (m), a
+#: third of the validator's 0.015 m tolerance: small regions hold more.
+REGION_SLACK = 0.005
+
+
 def compile_params(goal: Any, scene: Scene) -> GoalParams:
-    """A format goal's region, size and facing resolved for ``scene``."""
-    return resolve_params(goal, scene.bounds, scene.radii[[scene.index[i] for i in goal.objects]])
+    """A format goal's region, size and facing resolved for ``scene``, as the
+    priors use them (the region box grown by :data:`REGION_SLACK`)."""
+    gp = resolve_params(goal, scene.bounds, scene.radii[[scene.index[i] for i in goal.objects]])
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        e = REGION_SLACK
+        gp = replace(gp, box=(x0 - e, x1 + e, y0 - e, y1 + e))
+    return gp
 
 
 @dataclass(frozen=True)

@@ -44,6 +44,18 @@ SLOT_SPREAD = 0.3
 SIZE_MARGIN = 0.004
 
 
+def _band(ctx: Context) -> float:
+    """Radial noise of the slots (m): :data:`BAND`, a quarter of it in a region
+    (small regions then hold more objects)."""
+    return BAND if ctx.goal.params.box is None else BAND / 4
+
+
+def _spread(ctx: Context, r: float, k: float) -> float:
+    """Angular noise of the slots (rad); in a region at most 2 band widths along the circle."""
+    spread = SLOT_SPREAD * math.pi / k
+    return spread if ctx.goal.params.box is None else min(spread, 2 * _band(ctx) / max(r, 1e-9))
+
+
 def radius_range(ctx: Context) -> tuple[float, float]:
     """Smallest radius at which neighbours clear each other, and the largest proposed (m).
 
@@ -52,12 +64,12 @@ def radius_range(ctx: Context) -> tuple[float, float]:
     """
     n, rmax = ctx.n, ctx.max_radius
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    lo = max(0.06, (2 * rmax + 2 * CLEARANCE + 2 * BAND) / (2 * math.sin(math.pi / n)))
+    lo = max(0.06, (2 * rmax + 2 * CLEARANCE + 2 * _band(ctx)) / (2 * math.sin(math.pi / n)))
     top = min(xmax - xmin, ymax - ymin) / 2 - rmax - 0.002
     gp = ctx.goal.params
     if gp.box is not None:
         x0, x1, y0, y1 = gp.box
-        top = min(top, min(x1 - x0, y1 - y0) / 2 - BAND - 0.001)
+        top = min(top, min(x1 - x0, y1 - y0) / 2 - _band(ctx) - 0.001)
     if gp.size is None:
         hi = min(top, 1.5 * lo + 0.05)
         return lo, max(lo, hi)
@@ -73,12 +85,12 @@ def _fits(ctx: Context, c: np.ndarray, r: np.ndarray | float) -> np.ndarray:
     """Whether circles of centres ``c`` (``(m, 2)``) and radii ``r`` fit in the workspace
     (and their centres, with the band around them, in the goal's region)."""
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    m = np.asarray(r) + ctx.max_radius + BAND
+    m = np.asarray(r) + ctx.max_radius + _band(ctx)
     c = np.asarray(c).reshape(-1, 2)
     ok = (xmin + m <= c[:, 0]) & (c[:, 0] <= xmax - m) & (ymin + m <= c[:, 1]) & (c[:, 1] <= ymax - m)
     box = ctx.goal.params.box
     if box is not None:
-        e = np.asarray(r) + BAND
+        e = np.asarray(r) + _band(ctx)
         ok &= (box[0] + e <= c[:, 0]) & (c[:, 0] <= box[1] - e) & (box[2] + e <= c[:, 1]) & (c[:, 1] <= box[3] - e)
     return ok
 
@@ -89,11 +101,11 @@ def _first(ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarr
     lo, hi = radius_range(ctx)
     r = rng.uniform(lo, hi, n)
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    m = r + ctx.max_radius + BAND
+    m = r + ctx.max_radius + _band(ctx)
     x0, x1, y0, y1 = xmin + m, xmax - m, ymin + m, ymax - m
     box = ctx.goal.params.box
     if box is not None:
-        e = r + BAND
+        e = r + _band(ctx)
         x0, x1 = np.maximum(x0, box[0] + e), np.minimum(x1, box[1] - e)
         y0, y1 = np.maximum(y0, box[2] + e), np.minimum(y1, box[3] - e)
     ok = (x0 <= x1) & (y0 <= y1)
@@ -173,9 +185,9 @@ class Circle(BasePattern):
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.empty((0, 3))
-        spread = SLOT_SPREAD * math.pi / k
+        spread, band = _spread(ctx, r, k), _band(ctx)
         a = rng.choice(angles, n) + np.clip(rng.normal(0, spread / 2, n), -spread, spread)
-        rr = r + np.clip(rng.normal(0, BAND / 2, n), -BAND, BAND)
+        rr = r + np.clip(rng.normal(0, band / 2, n), -band, band)
         return with_heading(ctx, np.column_stack([cx + rr * np.cos(a), cy + rr * np.sin(a), a + math.pi / 2]))
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
@@ -207,9 +219,9 @@ class Circle(BasePattern):
         d = np.hypot(poses[:, 0] - cx, poses[:, 1] - cy) - r
         a = np.arctan2(poses[:, 1] - cy, poses[:, 0] - cx)
         da = np.abs((a[:, None] - angles[None, :] + math.pi) % (2 * math.pi) - math.pi).min(axis=1)
-        spread = SLOT_SPREAD * math.pi / k
-        ok = (np.abs(d) <= BAND + EDGE_EPS) & (da <= spread + EDGE_EPS)
-        return np.where(ok, np.exp(-0.5 * (d / (BAND / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
+        spread, band = _spread(ctx, r, k), _band(ctx)
+        ok = (np.abs(d) <= band + EDGE_EPS) & (da <= spread + EDGE_EPS)
+        return np.where(ok, np.exp(-0.5 * (d / (band / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress
