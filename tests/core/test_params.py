@@ -277,12 +277,24 @@ def test_prior_sizes_differ():
     {"pattern": "line", "objects": [1, 2, 3, 4], "region": "bottom", "size": "large", "facing": "north"},
     {"pattern": "rectangle", "objects": [1, 2, 3, 4], "region": "right", "facing": "east", "size": "medium"},
     {"pattern": "tower", "objects": [2, 3, 4], "region": "bottom right", "facing": "west"},
+    {"pattern": "right", "objects": [1, 4], "anchor": 7, "region": "top", "facing": 0.5},
 ])
-def test_plans_with_params_pass_check(example_scene, goal):
-    p = plan(example_scene, {"goals": [goal]}, seed=0, max_iter=3000)
+@pytest.mark.parametrize("method", ["lgmcts", "greedy"])
+def test_plans_with_params_pass_check(example_scene, goal, method):
+    p = plan(example_scene, {"goals": [goal]}, seed=0, max_iter=3000, method=method)
     assert p.solved
     v = check(example_scene, {"goals": [goal]}, p)
     assert v.valid, v.reasons
+    # The same plan judged without the parameters holds too; with others it need not.
+    plain = {k: v for k, v in goal.items() if k not in ("region", "size", "facing")}
+    assert check(example_scene, {"goals": [plain]}, p).valid
+
+
+def test_goals_without_params_plan_as_before(example_scene, example_goals):
+    """Compiled goals without parameters carry empty ones, and priors ignore them."""
+    sc = Scene.from_spec(parse_scene(json.loads(example_scene.read_text())))
+    problem = Problem.build(sc, load_goals(example_goals))
+    assert all(g.params.empty for g in problem.goals)
 
 
 # ---------------------------------------------------------------- command line
