@@ -70,6 +70,7 @@ __all__ = [
     "heading_of",
     "size_range",
     "resolve",
+    "turn_relation",
 ]
 
 #: Rows bottom to top and columns left to right, each a third of the workspace.
@@ -266,3 +267,22 @@ def resolve(goal: Any, bounds: Sequence[float], radii: Sequence[float]) -> GoalP
     if size is not None and pattern in SIZED:
         band = size_range(pattern, len(objects), rmax, room, size, heading)
     return GoalParams(box, room, band, heading, tol)
+
+
+def turn_relation(relation: str, facing: str | float) -> str:
+    """A relation said from the point of view of someone facing ``facing``,
+    as the table-frame relation it means (the nearest of the eight).
+
+    The viewer stands at the front edge facing north, so for ``"north"`` a
+    relation is unchanged; facing south, "left" is the table's ``"right"``
+    and "front" its ``"behind"``. A composite setting that faces a way (a
+    dinner setting's cutlery "left of the plate") turns its relations so.
+    """
+    from .formats import RELATIONS
+
+    if relation not in RELATIONS:
+        raise ValueError(f"unknown relation '{relation}'")
+    h, _ = heading_of(facing)
+    a = math.atan2(RELATIONS[relation][1], RELATIONS[relation][0]) + h - math.pi / 2
+    best = min(RELATIONS, key=lambda r: abs(math.remainder(math.atan2(RELATIONS[r][1], RELATIONS[r][0]) - a, 2 * math.pi)))
+    return best

@@ -335,3 +335,17 @@ def test_cli_bad_param_exits_2(example_scene, tmp_path):
     r = _cli("plan", str(example_scene), "--goal", str(goals_file))
     assert r.returncode == 2
     assert "unknown region 'upstairs'" in r.stderr and r.stderr.count("\n") <= 1
+
+
+def test_turn_relation():
+    from lgmcts.params import turn_relation
+
+    assert turn_relation("left", "north") == "left"
+    assert turn_relation("left", "south") == "right"
+    assert turn_relation("front", "south") == "behind"
+    assert turn_relation("left", "east") == "behind"  # facing east, one's left is north
+    assert turn_relation("right", "west") == "behind"
+    assert turn_relation("left_front", "east") == "left_behind"
+    assert turn_relation("right", math.pi / 2 + 0.1) == "right"
+    with pytest.raises(ValueError):
+        turn_relation("above", "north")
