@@ -280,12 +280,55 @@ class SceneSpec(_Model):
 
 
 class Goal(_Model):
-    """One pattern goal over a set of objects."""
+    """One pattern goal over a set of objects.
+
+    ``region``, ``size`` and ``facing`` are optional parameters (where the
+    objects go, how big the arrangement is, which way it faces); their
+    meaning and tolerances are defined in :mod:`lgmcts.params`.
+    """
 
     pattern: str
     objects: list[int]
     anchor: int | None = None
     pose: tuple[float, float, float] | None = None
+    region: str | tuple[float, float, float, float] | None = None
+    size: str | float | None = None
+    facing: str | float | None = None
+
+    @field_validator("region", "size", "facing", mode="before")
+    @classmethod
+    def _param_value(cls, v: Any, info: Any) -> Any:
+        if isinstance(v, bool):
+            raise ValueError(f"'{info.field_name}' must be a name or a number, not true/false")
+        if isinstance(v, str):
+            return " ".join(v.lower().split())
+        if info.field_name == "region" and v is not None:
+            if not isinstance(v, (list, tuple)) or len(v) != 4 or not all(
+                    isinstance(c, (int, float)) and not isinstance(c, bool) for c in v):
+                raise ValueError("a region is a name such as 'top left' or a box [xmin, xmax, ymin, ymax]")
+        elif v is not None and not isinstance(v, (int, float)):
+            raise ValueError(f"'{info.field_name}' must be a name or a number")
+        return v
+
+    def _check_params(self, fmt: "PatternFormat") -> None:
+        from . import params as gp
+
+        p = self.pattern
+        given = [k for k in ("region", "size", "facing") if getattr(self, k) is not None]
+        if given and fmt.pose:
+            raise ValueError(f"a {p} goal takes no '{given[0]}' (its pose says where)")
+        if self.region is not None:
+            gp.region_box(self.region, (0.0, 1.0, 0.0, 1.0))
+        if self.size is not None:
+            if p not in gp.SIZED and p != "tower":
+                raise ValueError(f"a {p} goal takes no 'size'")
+            if isinstance(self.size, str):
+                if self.size not in gp.SIZES:
+                    raise ValueError(f"unknown size '{self.size}' (small|medium|large or a length in metres)")
+            elif not (math.isfinite(self.size) and self.size > 0):
+                raise ValueError("a size in metres must be a positive number")
+        if self.facing is not None:
+            gp.heading_of(self.facing)
 
     @model_validator(mode="after")
     def _shape(self) -> "Goal":
@@ -311,6 +354,7 @@ class Goal(_Model):
             _finite(self.pose, "goal pose")
         elif self.pose is not None:
             raise ValueError(f"{p} goal takes no 'pose'")
+        self._check_params(fmt)
         need = fmt.min_objects
         if n < need:
             noun = "object" if n == 1 else "objects"
@@ -332,6 +376,11 @@ class GoalSpec(_Model):
             for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]:
                 if i not in ids:
                     raise InputError(f"goal {k} ({g.pattern}) names unknown object id {i}")
+            if isinstance(g.region, tuple):
+                ws = scene.workspace
+                x0, x1, y0, y1 = g.region
+                if x1 <= ws.x[0] or x0 >= ws.x[1] or y1 <= ws.y[0] or y0 >= ws.y[1]:
+                    raise InputError(f"goal {k} ({g.pattern}): region box {list(g.region)} lies outside the workspace")
         # A pose goal and another fixed pose for the same object contradict.
         fixed: dict[int, tuple[float, float, float]] = {}
         for g in self.goals:

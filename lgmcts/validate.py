@@ -21,7 +21,12 @@ Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 * spatial relations: the anchor-to-object vector within 45° of the relation's
   direction and 0 < length ≤ 0.30 m;
 * pose: within TOL and 0.1 rad;
-* objects of line, circle, rectangle and spatial goals end on the table.
+* objects of line, circle, rectangle and spatial goals end on the table;
+* a goal's optional ``region``, ``size`` and ``facing`` hold as
+  :mod:`lgmcts.params` defines them (centres within 0.015 m of the region,
+  the characteristic length within 0.015 m of its band, every yaw and a
+  line's or rectangle's direction within pi/8 of a named facing or 0.1 rad
+  of an angle).
 
 A pattern added outside this module brings its own rule
 (:func:`register_rule`), written apart from its sampler.
@@ -49,6 +54,8 @@ from .formats import (
     load_scene,
     pattern_format,
 )
+from .params import REGION_TOL, SIZE_TOL
+from .params import resolve as resolve_params
 from .scene import TABLE, Scene
 
 __all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
@@ -168,8 +175,79 @@ def _rectangle_ok(xy: np.ndarray) -> str | None:
     return None
 
 
+def _line_direction(xy: np.ndarray) -> np.ndarray:
+    """Unit direction of the total-least-squares line through ``xy``."""
+    c = xy - xy.mean(axis=0)
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    return vt[0]
+
+
+def _off(a: float, b: float, period: float) -> float:
+    """Distance between angles ``a`` and ``b`` modulo ``period`` (rad)."""
+    d = (a - b) % period
+    return min(d, period - d)
+
+
+def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> str | None:
+    """Why ``goal``'s region, size or facing does not hold, or ``None`` (rules in :mod:`lgmcts.params`)."""
+    if goal.region is None and goal.size is None and goal.facing is None:
+        return None
+    gp = resolve_params(goal, scene.bounds, scene.radii[idx])
+    xy = poses[idx, :2]
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        out = np.maximum.reduce([x0 - xy[:, 0], xy[:, 0] - x1, y0 - xy[:, 1], xy[:, 1] - y1, np.zeros(len(xy))])
+        k = int(np.argmax(out))
+        if out[k] > REGION_TOL:
+            where = f"'{goal.region}'" if isinstance(goal.region, str) else f"box {list(goal.region)}"
+            return f"object {scene.ids[idx[k]]} is {out[k]:.3f} m outside region {where}"
+    p = goal.pattern
+    if gp.heading is not None:
+        h, tol = gp.heading, gp.heading_tol
+        for i in idx:
+            d = _off(float(poses[i, 2]), h, 2 * math.pi)
+            if d > tol + 1e-9:
+                return f"object {scene.ids[i]} faces {math.degrees(d):.0f} deg off facing '{goal.facing}'"
+        if p == "line" and len(xy) >= 2:
+            u = _line_direction(xy)
+            d = _off(math.atan2(u[1], u[0]), h + math.pi / 2, math.pi)
+            if d > tol + 1e-9:
+                return f"the line runs {math.degrees(d):.0f} deg off across facing '{goal.facing}'"
+        if p == "rectangle":
+            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
+            if rect.geom_type == "Polygon":
+                cs = np.asarray(rect.exterior.coords)[:2]
+                e = cs[1] - cs[0]
+                d = _off(math.atan2(e[1], e[0]), h, math.pi / 2)
+                if d > tol + 1e-9:
+                    return f"the rectangle's sides are {math.degrees(d):.0f} deg off facing '{goal.facing}'"
+    if gp.size is not None:
+        if p == "circle":
+            length = fit_circle(xy)[1]
+        elif p == "line":
+            t = (xy - xy.mean(axis=0)) @ _line_direction(xy)
+            length = float(t.max() - t.min())
+        else:
+            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
+            cs = np.asarray(rect.exterior.coords)[:4] if rect.geom_type == "Polygon" else xy[:1]
+            length = float(np.linalg.norm(np.roll(cs, -1, axis=0) - cs, axis=1).max(initial=0.0))
+        lo, hi = gp.size
+        if not lo - SIZE_TOL <= length <= hi + SIZE_TOL:
+            what = {"circle": "radius", "line": "length", "rectangle": "longer side"}[p]
+            want = f"{lo:.3f}..{hi:.3f}" if hi < math.inf else f">= {lo:.3f}"
+            return f"{what} {length:.3f} m is not {goal.size!r} ({want} m, tolerance {SIZE_TOL} m)"
+    return None
+
+
 def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
     """``None`` when ``goal`` holds for ``poses``/``on``, else why it does not."""
+    why = _shape_satisfied(goal, scene, poses, on)
+    if why is not None:
+        return why
+    return _params_ok(goal, scene, poses, [scene.index[i] for i in goal.objects])
+
+
+def _shape_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
     idx = [scene.index[i] for i in goal.objects]
     xy = poses[idx, :2]
     p = goal.pattern

@@ -21,7 +21,7 @@ from .. import geometry as geo
 from ..errors import InputError
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
-from ..patterns.base import BasePattern
+from ..patterns.base import BasePattern, compile_params
 from ..scene import TABLE, Scene, State
 
 __all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
@@ -62,7 +62,8 @@ class Problem:
         for k, g in enumerate(spec.goals):
             idx = tuple(scene.index[i] for i in g.objects)
             anchor = None if g.anchor is None else scene.index[g.anchor]
-            goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose)))
+            goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose),
+                                      compile_params(g, scene)))
             if g.pattern not in reg:
                 raise InputError(f"pattern '{g.pattern}' has no prior (lgmcts.patterns.register)")
             patterns.append(reg[g.pattern])

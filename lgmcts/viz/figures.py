@@ -330,7 +330,7 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
 
 
 def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: bool = False, only_met: bool = False) -> None:
-    from matplotlib.patches import Circle, FancyArrowPatch, Polygon
+    from matplotlib.patches import Circle, FancyArrowPatch, Polygon, Rectangle
 
     for s in shapes:
         if only_met and not s.met:
@@ -339,6 +339,15 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
         alpha = 0.55 if faint else 0.95
         style = dict(edgecolor=_rgba(col, alpha), facecolor="none", lw=1.6 if faint else 2.2, ls=(0, (5, 3)), zorder=1.5)
         g = s.geometry
+        if "region" in g:
+            x0, x1, y0, y1 = g["region"]
+            ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, edgecolor=_rgba(col, 0.5 * alpha), facecolor=_rgba(col, 0.06),
+                                   lw=1.0, ls=(0, (1, 2)), zorder=0.6))
+        if "heading" in g:
+            c, h = np.asarray(g["anchor_point"], dtype=float), g["heading"]
+            tip = c + 0.06 * np.array([math.cos(h), math.sin(h)])
+            ax.add_patch(FancyArrowPatch(tuple(c), tuple(tip), arrowstyle="-|>", mutation_scale=12, color=_rgba(col, alpha),
+                                         lw=1.6, zorder=4.4))
         if s.kind == "line":
             p = g["points"]
             d = p[1] - p[0]

@@ -302,6 +302,17 @@
   }
 
   function describeGoal(g) {
+    var text = describeShape(g);
+    if (typeof g.size === "string") text = g.size + " " + text;
+    else if (typeof g.size === "number") text += ", size " + fmt(g.size) + " m";
+    if (typeof g.region === "string") text += " in " + g.region;
+    else if (g.region) text += " in [" + g.region.map(fmt).join(", ") + "]";
+    if (typeof g.facing === "string") text += ", facing " + g.facing;
+    else if (typeof g.facing === "number") text += ", facing " + fmt(g.facing) + " rad";
+    return text;
+  }
+
+  function describeShape(g) {
     var objs = g.objects.join(", ");
     if (RELATIONS[g.pattern]) return objs + " " + (g.pattern === "behind" ? "behind" : g.pattern.replace("_", "-") + " of") + " " + g.anchor;
     if (g.pattern === "tower") return "tower " + g.objects.join(" < ");
@@ -547,6 +558,16 @@
         // Relation arrows go above the objects so their heads stay visible.
         var layer = s.kind === "relation" ? gRel : gGoals;
         var g = el(doc, "g", { class: "lgv-goal lgv-goal-" + s.index, opacity: op, fill: "none", stroke: col, "stroke-width": fs * 0.22, "stroke-dasharray": fs * 0.7 + " " + fs * 0.45 }, layer);
+        if (s.region) {
+          var rb = s.region;
+          el(doc, "rect", { x: X(rb[0]), y: Y(rb[3]), width: (rb[1] - rb[0]) * MM, height: (rb[3] - rb[2]) * MM,
+            fill: col, "fill-opacity": 0.06, "stroke-opacity": 0.5, "stroke-dasharray": fs * 0.15 + " " + fs * 0.3, class: "lgv-region" }, g);
+        }
+        if (s.heading !== undefined && s.anchor_point) {
+          var hc = s.anchor_point, hl = 0.06, hx = hc[0] + hl * Math.cos(s.heading), hy = hc[1] + hl * Math.sin(s.heading);
+          el(doc, "line", { x1: X(hc[0]), y1: Y(hc[1]), x2: X(hx), y2: Y(hy), "stroke-dasharray": "none", class: "lgv-heading",
+            "marker-end": "url(#" + uid + "-garrow-" + (s.index % GOAL_COLORS.length) + ")" }, g);
+        }
         if (s.kind === "line") {
           var p = s.points, d = [p[1][0] - p[0][0], p[1][1] - p[0][1]], L = Math.hypot(d[0], d[1]) || 1, e = 0.03;
           el(doc, "line", { x1: X(p[0][0] - d[0] / L * e), y1: Y(p[0][1] - d[1] / L * e), x2: X(p[1][0] + d[0] / L * e), y2: Y(p[1][1] + d[1] / L * e) }, g);
