@@ -17,6 +17,9 @@ wording and semantics (not from this project's parser):
   X" (the reference X itself is in the set), the negated comparisons (every
   object of another colour), the older "Objects with/of/has the
   same/similar/different color/shape as X" and "Objects same as color X",
+  the older size comparisons "objects whose size is smaller than / is
+  bigger than / is taller than ... X" (bounding-box volume, in scenes where
+  height and width order the objects the same way),
   the pattern sentences "{verb} {objects} {prep} a {pattern} pattern",
   "{verb} a {pattern} pattern using {objects}", "Select {objects}, and
   {verb} them {prep} a {pattern} pattern", pair sentences "{verb} {texture}
@@ -245,6 +248,21 @@ class Builder:
         return True
 
 
+SMALLER_WORDS = ("is smaller than", "is less than", "is shorter than", "is narrower than", "is smaller in size than")
+BIGGER_WORDS = ("is bigger than", "is larger than", "is greater than", "is taller than", "is wider than",
+                "is bigger in size than")
+
+
+def bbox(shape: dict) -> tuple[float, float, float]:
+    """Extents (x, y, z) of a shape's bounding box."""
+    if shape["type"] == "box":
+        return tuple(shape["size"])
+    if shape["type"] == "cylinder":
+        return (2 * shape["radius"], 2 * shape["radius"], shape["height"])
+    xs, ys = [p[0] for p in shape["points"]], [p[1] for p in shape["points"]]
+    return (max(xs) - min(xs), max(ys) - min(ys), shape["height"])
+
+
 # ---------------------------------------------------------------- LGMCTS-D families
 def _two_colour_scene(rng: random.Random, n_a: int, n_b: int, *, unique_anchor: bool = True, extra: int = 0):
     """Group A (n_a objects of colour ca, the first one the anchor with a unique name), group B (colour cb)."""
@@ -347,6 +365,41 @@ def fam_objects_compare_attr(b: Builder, rng: random.Random, n: int) -> None:
             return text, {"goals": [goal(pattern, sel)]}, ()
 
         made += b.add(rng, "lgmcts-objects-compare-color", items, make)
+
+
+def fam_whose_size(b: Builder, rng: random.Random, n: int) -> None:
+    """Older LGMCTS-D size selector: "objects whose size is smaller than / is bigger than ... X".
+
+    The peers compare the volume of the objects' bounding boxes; the scenes here are drawn so that
+    height, width and volume all order every object the same way against X (no reading of "taller" or
+    "narrower" gives another set), with at least 15 % between any object and X."""
+    made = 0
+    while made < n:
+        bigger = rng.random() < 0.5
+        pattern = pick(rng, ("line", "circle"))
+        names = rng.sample(VIMA_NAMES, rng.randint(6, 8))
+        items = [(nm, pick(rng, VIMA_TEXTURES), round(rng.uniform(0.7, 1.4), 3)) for nm in names]
+        boxes = [bbox(shape_of(nm, sc)) for nm, _, sc in items]
+        ax, ay, az = boxes[0]
+        ok, sel_k = True, []
+        for k, (x, y, z) in enumerate(boxes[1:], 1):
+            w, aw = max(x, y), max(ax, ay)
+            signs = {(z > az * 1.15) - (z < az / 1.15), (w > aw * 1.15) - (w < aw / 1.15),
+                     (x * y * z > ax * ay * az * 1.15) - (x * y * z < ax * ay * az / 1.15)}
+            if len(signs) != 1 or 0 in signs:
+                ok = False
+                break
+            if signs == {1 if bigger else -1}:
+                sel_k.append(k)
+        if not ok or len(sel_k) < MIN_OBJECTS[pattern] or len(sel_k) == len(items) - 1:
+            continue  # X at neither end: the set is not simply "everything else"
+
+        def make(ids, scene, items=items, bigger=bigger, pattern=pattern, sel_k=sel_k):
+            word = pick(rng, BIGGER_WORDS if bigger else SMALLER_WORDS)
+            text = pattern_sentence(rng, f"{_obj_word(rng, 'objects')} whose size {word} {items[0][0]}", pattern)
+            return text, {"goals": [goal(pattern, [ids[k] for k in sel_k])]}, ()
+
+        made += b.add(rng, "lgmcts-whose-size", items, make)
 
 
 def _pair_items(rng: random.Random, k: int) -> list[tuple[str, str, float]]:
@@ -633,6 +686,7 @@ def build() -> list[dict]:
     fam_sf_compare(b, rng, 34)
     fam_sf_same_color(b, rng, 18)
     fam_sf_dinner(b, rng, 12)
+    fam_whose_size(b, rng, 14)
     assign_splits(b.cases)
     return b.lines
 

@@ -73,7 +73,7 @@ def test_peer_set_covers_every_template_family():
         "lgmcts-whose-equal", "lgmcts-whose-different", "lgmcts-with-same-different", "lgmcts-objects-compare-color",
         "lgmcts-pair", "lgmcts-pair-vertical", "lgmcts-composite", "lgmcts-two-patterns",
         "structformer-select-color", "structformer-select-class", "structformer-compare", "structformer-same-color",
-        "structformer-dinner",
+        "structformer-dinner", "lgmcts-whose-size",
     } <= fams
 
 
