@@ -7,7 +7,8 @@ A suite file holds one task per line::
      "goals": {"goals": [...]},            # ground truth
      "final": {"3": [x, y, theta], ...},   # the arrangement the task was built from
      "final_on": {"5": 4, ...},            # supports in that arrangement (towers)
-     "start": {"blockers": [[top, base]], "clutter": [[object, target]]}}
+     "start": {"blockers": [[top, base]], "clutter": [[object, target]]},
+     "instructions": "peer"}                # only when phrased in the peers' templates
 
 Seeds: task ``k`` of a suite generated with seed ``S`` is built from the
 integer ``S * 1_000_000 + k`` alone, so any task can be rebuilt from its
@@ -56,6 +57,8 @@ class Task:
     final: dict = field(default_factory=dict)
     final_on: dict = field(default_factory=dict)
     start: dict = field(default_factory=dict)
+    #: Who wrote the instruction's template: "ours" or "peer" (``lgmcts.bench.peer_language``).
+    instructions: str = "ours"
 
     def scene_spec(self) -> SceneSpec:
         """The start scene as a validated model."""
@@ -66,6 +69,7 @@ class Task:
         return parse_goals(self.goals)
 
     def to_dict(self) -> dict[str, Any]:
+        extra = {} if self.instructions == "ours" else {"instructions": self.instructions}
         return {
             "id": self.id,
             "seed": self.seed,
@@ -77,6 +81,7 @@ class Task:
             "final": self.final,
             "final_on": self.final_on,
             "start": self.start,
+            **extra,
         }
 
     @classmethod
@@ -99,6 +104,7 @@ class Task:
             final=dict(data.get("final") or {}),
             final_on=dict(data.get("final_on") or {}),
             start=dict(data.get("start") or {}),
+            instructions=str(data.get("instructions", "ours")),
         )
         try:
             scene = task.scene_spec()
