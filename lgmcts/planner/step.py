@@ -23,6 +23,7 @@ from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
 from ..patterns.base import BasePattern
 from ..scene import TABLE, Scene, State
+from .relocate import clear_centres, region_scores, snuggest
 
 __all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
 
@@ -355,41 +356,6 @@ def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int
     return out, np.asarray(theirs, dtype=bool)
 
 
-#: Spacing of the grid on which :func:`_clear_centres` looks for room (m).
-GRID_STEP = 0.01
-
-
-def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) -> np.ndarray:
-    """Grid points where ``b`` fits at any yaw, judged by circumscribed circles.
-
-    Conservative: a point is kept only when ``b``'s circumscribed circle
-    clears every other object's by ``clearance`` (and the workspace edge by
-    half of it), so the footprints there are free without an exact test. On
-    a crowded table this finds room that uniform sampling over the workspace
-    rarely hits.
-    """
-    scene, world = problem.scene, ss.world
-    xmin, xmax, ymin, ymax = scene.bounds
-    r = float(scene.radii[b]) + clearance / 2
-    if xmax - xmin < 2 * r or ymax - ymin < 2 * r:
-        return np.empty((0, 2))
-    gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
-    gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
-    others = np.flatnonzero(np.arange(scene.n) != b)
-    cx, cy = world.poses[others, 0], world.poses[others, 1]
-    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
-    dx2 = (gx[None, :] - cx[:, None]) ** 2
-    dy2 = (gy[None, :] - cy[:, None]) ** 2
-    free = np.ones((len(gy), len(gx)), dtype=bool)
-    # All objects at once, in chunks that keep the temporary under ~2 MB.
-    step = max(1, 250_000 // max(1, free.size))
-    for k in range(0, len(others), step):
-        s = slice(k, k + step)
-        free &= ((dy2[s, :, None] + dx2[s, None, :]) > reach2[s, None, None]).all(axis=0)
-    jj, ii = np.nonzero(free)
-    return np.stack([gx[ii], gy[jj]], axis=1)
-
-
 def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str,
              avoid: int = -1) -> Transition | None:
     """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible.
@@ -403,7 +369,7 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     check = StepOptions(opts.samples, opts.clearance, "all")
     # Candidates from the grid of clear centres first, then, if it has none
     # (elongated neighbours make it pessimistic), larger uniform batches.
-    room = _clear_centres(problem, ss, b, opts.clearance)
+    room = clear_centres(scene, world, b, opts.clearance)
     batches = [2 * opts.samples, 16 * opts.samples]
     if len(room):
         batches.insert(0, -1)
@@ -436,27 +402,11 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         # The free pose that overlaps the fewest regions still to be filled
         # (none, when there is one), so the obstacle is not in the way again;
         # above all not in the way of the object it makes room for.
-        # Each candidate is judged by its circumscribed circle, whatever its yaw.
-        xy, rr = poses[idx, :2], r + 1e-9
-        rb = shapely.bounds(regions)
-        near = ((xy[:, None, 0] + rr >= rb[None, :, 0]) & (xy[:, None, 0] - rr <= rb[None, :, 2])
-                & (xy[:, None, 1] + rr >= rb[None, :, 1]) & (xy[:, None, 1] - rr <= rb[None, :, 3]))
-        hit = np.zeros(near.shape, dtype=bool)
-        pi, ri = np.nonzero(near)
-        if len(pi):
-            hit[pi, ri] = shapely.dwithin(regions[ri], shapely.points(xy[pi]), rr)
-        score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
+        score = region_scores(regions, theirs, poses[idx, :2], r)
         idx = idx[score == score.min()]
     if len(idx) > 1:
-        # Of the best, the snuggest: nearest to a neighbour or the workspace
-        # edge, so the free space left stays in one piece (two objects on
-        # each other's targets then find room to pass).
-        others = np.flatnonzero(np.arange(scene.n) != b)
-        px, py = poses[idx, 0], poses[idx, 1]
-        gap = np.hypot(px[:, None] - world.poses[others, 0][None, :], py[:, None] - world.poses[others, 1][None, :])
-        slack = (gap - scene.radii[others][None, :]).min(axis=1, initial=np.inf)
-        slack = np.minimum.reduce([slack, px - xmin, xmax - px, py - ymin, ymax - py])
-        idx = idx[[int(np.argmin(slack))]]
+        # Of the best, the snuggest (see :func:`.relocate.snuggest`).
+        idx = idx[[snuggest(scene, world, b, poses[idx, :2])]]
     pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
     act = _action(scene, b, pose, None, purpose)
