@@ -6,8 +6,11 @@ meets every goal (checked with the acceptance rules), then a start state
 with the goal objects scattered, and either blockers stacked on goal objects
 or clutter standing where goal objects must go.
 
-Also the protocol of Labbé et al. (RA-L 2020): N discs of radius 3.75 cm in a
-0.5 m x 0.5 m workspace with random collision-free start and goal poses.
+Also the protocol of Labbé et al. (RA-L 2020): N discs of radius 3.75 cm
+with random collision-free start and goal positions in a 0.5 m x 0.5 m
+square, sampled as their public evaluator samples it
+(:func:`labbe_protocol_case`), and this project's earlier, more spaced
+variant of it (:func:`labbe_case`).
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "labbe_case", "lower_bound", "reference_count"]
+__all__ = ["Case", "random_case", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -362,8 +365,104 @@ def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
     return best or 0
 
 
-def labbe_case(n: int, seed: int) -> Case:
+#: The Labbé et al. protocol's disc radius (m) and the square its evaluator
+#: samples disc centres in, ``((xmin, ymin), (xmax, ymax))`` (m).
+LABBE_RADIUS = 0.0375
+LABBE_SQUARE = ((0.25, -0.25), (0.75, 0.25))
+#: Darts one random sequential addition may throw before it starts afresh,
+#: and how many fresh starts are allowed (the evaluator's 2 s timeout and 50
+#: retries, as a count so that a seed gives the same case on any machine).
+LABBE_DARTS, LABBE_RESTARTS = 200_000, 50
+
+
+def _rsa(n: int, rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, dist: float) -> np.ndarray:
+    """Random sequential addition: ``n`` centres ``(n, 2)``, uniform in the box
+    ``lo``-``hi``, each kept when at least ``dist`` from every centre kept before.
+
+    Darts are drawn in batches and the first acceptable one of a batch is
+    kept (the rest are thrown away unused), which is the same process as
+    drawing them one at a time.
+    """
+    batch = 1024
+    for _ in range(LABBE_RESTARTS + 1):
+        pts = np.empty((0, 2))
+        darts = 0
+        while len(pts) < n and darts < LABBE_DARTS:
+            d = rng.uniform(lo, hi, (batch, 2))
+            if len(pts):
+                ok = ((d[:, None, :] - pts[None, :, :]) ** 2).sum(axis=-1).min(axis=1) >= dist * dist
+                k = np.flatnonzero(ok)
+            else:
+                k = np.zeros(1, dtype=int)
+            if not len(k):
+                darts += batch
+                continue
+            darts += int(k[0]) + 1
+            pts = np.vstack([pts, d[k[0]]])
+        if len(pts) == n:
+            return pts
+    raise RuntimeError(f"random sequential addition could not place {n} discs")  # pragma: no cover
+
+
+def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str) -> Case:
+    n = len(start)
+    objs = [
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
+        for i in range(n)
+    ]
+    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    sspec = parse_scene({"workspace": ws, "objects": objs})
+    gspec = parse_goals({"goals": goals})
+    return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
+
+
+def labbe_protocol_case(n: int, seed: int) -> Case:
+    """The Labbé et al. (RA-L 2020) protocol as its public evaluator samples it.
+
+    Task: N discs of radius 3.75 cm, a ``pose`` goal for each (yaw 0).
+    Randomisations: start and goal are independent random sequential
+    additions of N centres, uniform in the evaluator's 0.5 m x 0.5 m square
+    ``LABBE_SQUARE``, each accepted when its distance to every centre already
+    placed is at least 2R (discs may touch); an addition that jams starts
+    afresh (:data:`LABBE_DARTS`, :data:`LABBE_RESTARTS`). Works up to N = 37.
+    Success: every disc at its goal with no overlap on the way.
+
+    Deviations, and why: the evaluator bounds disc *centres* by the square,
+    while an lgmcts workspace bounds *footprints*; the workspace here is the
+    square grown by the footprint's circumradius (R / cos(pi / 32), the
+    32-gon that stands for a disc), so a centre is legal exactly where the
+    evaluator allows it. The evaluator seeds numpy's global generator and
+    caps an addition by time; here a ``np.random.Generator`` seeded with
+    ``seed`` and a dart count, so a seed gives the same case anywhere (the
+    instances differ from the evaluator's, the distribution does not).
+    The evaluator counts a disc placed within 1 mm of its target; the
+    validator's pose rule allows 15 mm, and the planner places discs on
+    their targets exactly.
+    """
+    rng = np.random.default_rng(seed)
+    r = LABBE_RADIUS
+    lo, hi = np.asarray(LABBE_SQUARE[0], dtype=float), np.asarray(LABBE_SQUARE[1], dtype=float)
+    grow = r / math.cos(math.pi / 32)
+    ws = {"x": [float(lo[0] - grow), float(hi[0] + grow)], "y": [float(lo[1] - grow), float(hi[1] + grow)]}
+    start = _rsa(n, rng, lo, hi, 2 * r)
+    goal = _rsa(n, rng, lo, hi, 2 * r)
+    return _disc_case(start, goal, r, ws, "labbe")
+
+
+#: Generators of Labbé-style cases by name: ``protocol`` as the authors
+#: sample it, ``spaced`` this project's earlier variant (see :func:`labbe_case`).
+LABBE_VARIANTS = ("protocol", "spaced")
+
+
+def labbe_case(n: int, seed: int, *, variant: str = "spaced") -> Case:
     """N discs (r = 3.75 cm) in 0.5 m x 0.5 m with random start and goal poses.
+
+    ``variant="protocol"`` is :func:`labbe_protocol_case`. The default,
+    ``"spaced"``, is an easier variant kept for comparison with earlier
+    figures (and the golden plans): every pair of discs at least
+    2R x 1.0087 + 4 mm apart (about 4.7 mm of clearance), centres at least
+    R + 2 mm from the edge of a 0.5 m square workspace.
 
     Start and goal are each a random sequential addition of N discs: uniform
     darts for N <= 24; for N = 25-26, darts drawn among the grid points that
@@ -371,6 +470,10 @@ def labbe_case(n: int, seed: int) -> Case:
     discs here, so N > 26 uses a jittered hexagonal lattice of 37 sites
     (random sites, an easier problem: start and goal share the sites).
     """
+    if variant == "protocol":
+        return labbe_protocol_case(n, seed)
+    if variant != "spaced":
+        raise ValueError(f"unknown Labbé variant '{variant}' (known: {', '.join(LABBE_VARIANTS)})")
     rng = np.random.default_rng(seed)
     r = 0.0375
     ws = {"x": [0.0, 0.5], "y": [0.0, 0.5]}
@@ -414,12 +517,4 @@ def labbe_case(n: int, seed: int) -> Case:
         return grid[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
 
     start, goal = config(), config()
-    objs = [
-        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
-         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
-        for i in range(n)
-    ]
-    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
-    sspec = parse_scene({"workspace": ws, "objects": objs})
-    gspec = parse_goals({"goals": goals})
-    return Case(sspec, gspec, "labbe", lower_bound(sspec, gspec), reference_count(sspec, gspec))
+    return _disc_case(start, goal, r, ws, "labbe")

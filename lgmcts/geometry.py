@@ -24,6 +24,7 @@ __all__ = [
     "transform",
     "polygons",
     "inside_workspace",
+    "overlapping",
     "radius_of",
     "wrap_angle",
 ]
@@ -162,3 +163,27 @@ def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarr
             hit = shapely.intersects(candidates[ci], obstacles[oi])
         ci, oi = ci[hit], oi[hit]
     return ci, oi
+
+
+def overlapping(a_polys: np.ndarray, a_xy: np.ndarray, a_disc: np.ndarray, b_polys: np.ndarray, b_xy: np.ndarray,
+                b_disc: np.ndarray, max_area: float) -> np.ndarray:
+    """Elementwise, whether shape pairs overlap by more than legal contact.
+
+    Pairs of discs (both ``*_disc`` radii > 0, m) overlap when their true
+    circles do (centre distance below the sum of radii, less 1e-9 m); other
+    pairs when their polygons' intersection is larger than ``max_area`` (m²).
+    Touching shapes do not overlap. Arrays are ``(k,)`` (polygons, radii) and
+    ``(k, 2)`` (centres).
+    """
+    a_xy, b_xy = np.asarray(a_xy, dtype=float).reshape(-1, 2), np.asarray(b_xy, dtype=float).reshape(-1, 2)
+    a_disc, b_disc = np.asarray(a_disc, dtype=float), np.asarray(b_disc, dtype=float)
+    out = np.zeros(len(a_xy), dtype=bool)
+    discs = (a_disc > 0) & (b_disc > 0)
+    if discs.any():
+        d = np.hypot(*(a_xy[discs] - b_xy[discs]).T)
+        out[discs] = d < a_disc[discs] + b_disc[discs] - 1e-9
+    poly = np.flatnonzero(~discs)
+    if len(poly):
+        out[poly] = shapely.area(shapely.intersection(a_polys[poly], b_polys[poly])) > max_area
+    return out
+

@@ -120,6 +120,16 @@ class Scene:
     def n(self) -> int:
         return len(self.ids)
 
+    @cached_property
+    def discs(self) -> np.ndarray:
+        """``(n,)`` radius of each cylinder's true circle (m), 0 for other shapes.
+
+        Footprints are polygons circumscribing the circle; two cylinders that
+        touch overlap as polygons by a sliver, so contact between cylinders is
+        judged on the circles.
+        """
+        return np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in self.spec.objects], dtype=float)
+
     @property
     def workspace_area(self) -> float:
         xmin, xmax, ymin, ymax = self.bounds

@@ -8,7 +8,8 @@ Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
 * every pick is of a clear object (nothing rests on it);
 * a table placement keeps the footprint inside the workspace and overlaps no
-  other table-level footprint by more than ``1e-6`` m²;
+  other table-level footprint by more than ``1e-6`` m² (between two
+  cylinders, the overlap of their true circles, so cylinders may touch);
 * a placement ``on`` another object needs that object clear and the centre
   over its footprint;
 * line: every centre within TOL of the total-least-squares line;
@@ -108,6 +109,18 @@ class Verdict:
 
 
 # ---------------------------------------------------------------- shape fits
+
+
+def _lens_area(r1: float, r2: float, d: float) -> float:
+    """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart."""
+    if d >= r1 + r2:
+        return 0.0
+    if d <= abs(r1 - r2):
+        return math.pi * min(r1, r2) ** 2
+    a1 = r1 * r1 * math.acos(max(-1.0, min(1.0, (d * d + r1 * r1 - r2 * r2) / (2 * d * r1))))
+    a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
+    k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
+    return a1 + a2 - k
 
 
 def line_residuals(xy: np.ndarray) -> np.ndarray:
@@ -347,6 +360,14 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
                 arr[:] = [polys[k] for k in others]
                 touching = np.flatnonzero(shapely.intersects(poly, arr))
                 areas = shapely.area(shapely.intersection(poly, arr[touching])) if len(touching) else []
+                if len(touching) and sc.discs[i] > 0:
+                    # Cylinder against cylinder: the circles' lens, not the polygons'.
+                    areas = np.asarray(areas, dtype=float)
+                    for t_k, t in enumerate(touching):
+                        k = others[int(t)]
+                        if sc.discs[k] > 0:
+                            d = math.hypot(*(poses[k, :2] - new_pose[:2]))
+                            areas[t_k] = _lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
                 for t, area in zip(touching, areas):
                     if area > OVERLAP_AREA:
                         k = others[int(t)]

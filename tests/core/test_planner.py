@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from core_helpers import box, can, goals, scene
@@ -151,3 +153,23 @@ def test_anchor_that_a_goal_places_can_move():
     assert p.solved, p.stats
     assert check(t.scene, t.goals, p).valid
     assert any(a.object == 7 for a in p.actions)  # the plate moved
+
+
+def test_pose_targets_in_contact_are_reached():
+    # Three discs whose targets touch in a row (closer than the planner's
+    # 2 mm clearance), and a fourth standing against the last target. The
+    # targets leave no other choice, so the planner places them in contact.
+    r = 0.0375
+    sc = scene(can(1, -0.3, 0.2, r=r), can(2, -0.3, 0.0, r=r), can(3, -0.3, -0.2, r=r), can(4, 0.2 + 2 * r, 0.0, r=r))
+    gs = goals(*[{"pattern": "pose", "objects": [i + 1], "pose": [x, 0.0, 0.0]} for i, x in enumerate([0.2 - 4 * r, 0.2 - 2 * r, 0.2])])
+    for seed in range(3):
+        p = _solved(sc, gs, seed=seed)
+        assert len(p.actions) == 3  # contact needs no relocation
+
+
+def test_pose_target_touching_the_workspace_edge():
+    r = 0.02
+    sc = scene(can(1, 0.0, 0.0, r=r), x=(-0.2, 0.2), y=(-0.2, 0.2))
+    edge = 0.2 - r / math.cos(math.pi / 32)  # the footprint's vertices on the edge
+    p = _solved(sc, goals({"pattern": "pose", "objects": [1], "pose": [edge, 0.0, 0.0]}), seed=0)
+    assert len(p.actions) == 1

@@ -1,0 +1,72 @@
+"""Case generators: the Labbé protocol as its authors sample it, and the dense random cases."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from lgmcts import check, plan
+from lgmcts.casegen import LABBE_RADIUS, LABBE_SQUARE, labbe_case, labbe_protocol_case
+from lgmcts.scene import Scene
+
+
+def _centres(case):
+    start = np.array([o.pose[:2] for o in case.scene.objects])
+    goal = np.array([g.pose[:2] for g in case.goals.goals])
+    return start, goal
+
+
+@pytest.mark.parametrize("n", [1, 2, 12, 25, 37])
+def test_protocol_sampling_rules(n):
+    c = labbe_protocol_case(n, 7 * n)
+    (x0, y0), (x1, y1) = LABBE_SQUARE
+    for pts in _centres(c):
+        assert pts.shape == (n, 2)
+        assert ((pts[:, 0] >= x0) & (pts[:, 0] <= x1) & (pts[:, 1] >= y0) & (pts[:, 1] <= y1)).all()
+        if n > 1:
+            d = np.hypot(*(pts[:, None] - pts[None]).transpose(2, 0, 1))
+            d[np.diag_indices(n)] = np.inf
+            assert d.min() >= 2 * LABBE_RADIUS  # touching allowed, no margin required
+    # Every footprint lies in the workspace (Scene.from_spec would refuse it otherwise),
+    # and the goal configuration is itself legal for the validator.
+    sc = Scene.from_spec(c.scene)
+    assert sc.n == n
+    _, goal = _centres(c)
+    actions = [{"object": i + 1, "to": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    far = c.scene.model_copy(update={"objects": [o.model_copy(update={"pose": (10.0 + i, 0.0, 0.0)}) for i, o in enumerate(c.scene.objects)],
+                                     "workspace": c.scene.workspace.model_copy(update={"x": (c.scene.workspace.x[0], 100.0)})})
+    assert check(far, c.goals, {"solved": True, "actions": actions}).valid
+
+
+def test_protocol_is_denser_than_the_spaced_variant():
+    # The protocol lets discs touch: over a few cases some pair is closer than
+    # the spaced variant's 2R x 1.0087 + 4 mm.
+    close = min(_min_gap(labbe_protocol_case(25, s)) for s in range(5))
+    assert close < 2 * LABBE_RADIUS * 1.0087 + 0.004
+    assert min(_min_gap(labbe_case(25, s)) for s in range(3)) >= 2 * LABBE_RADIUS * 1.0087 + 0.004 - 1e-9
+
+
+def _min_gap(case):
+    out = math.inf
+    for pts in _centres(case):
+        d = np.hypot(*(pts[:, None] - pts[None]).transpose(2, 0, 1))
+        d[np.diag_indices(len(pts))] = np.inf
+        out = min(out, float(d.min()))
+    return out
+
+
+def test_protocol_is_deterministic_by_seed_and_variant_names():
+    assert labbe_protocol_case(20, 3) == labbe_protocol_case(20, 3)
+    assert labbe_case(20, 3, variant="protocol") == labbe_protocol_case(20, 3)
+    assert labbe_case(20, 3) == labbe_case(20, 3, variant="spaced")
+    with pytest.raises(ValueError):
+        labbe_case(5, 0, variant="nope")
+
+
+@pytest.mark.parametrize("n,seed", [(10, 0), (25, 1), (33, 2)])
+def test_planner_solves_protocol_cases(n, seed):
+    c = labbe_protocol_case(n, 1000 * n + seed)
+    p = plan(c.scene, c.goals, seed=seed, max_iter=2000)
+    assert p.solved and check(c.scene, c.goals, p).valid
