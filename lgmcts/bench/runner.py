@@ -157,6 +157,7 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
         "category": t.category,
         "seed": t.seed,
         "instruction": t.instruction,
+        "instructions": t.instructions,
         "method": options.method,
         "parser": options.parser,
     }
