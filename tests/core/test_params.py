@@ -10,7 +10,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from core_helpers import box, can, goals, scene
+from core_helpers import box, can, scene
 from lgmcts import check, plan
 from lgmcts.errors import InputError
 from lgmcts.formats import load_goals, parse_goals, parse_scene, save_json, to_dict
@@ -27,7 +27,7 @@ from lgmcts.params import (
     resolve,
     size_range,
 )
-from lgmcts.patterns import Context, GoalProgress, registry
+from lgmcts.patterns import Context, GoalProgress
 from lgmcts.planner.step import Problem
 from lgmcts.scene import Scene
 from lgmcts.validate import fit_circle, goal_satisfied
