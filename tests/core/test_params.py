@@ -371,3 +371,27 @@ def test_every_goal_file_in_the_repository_loads_unchanged(root):
         spec = parse_goals(doc)
         assert all(g.region is None and g.size is None and g.facing is None for g in spec.goals)
         assert to_dict(spec) == {"goals": [{k: v for k, v in g.items() if v is not None} for g in doc["goals"]]}
+
+
+@settings(max_examples=60, deadline=None)
+@given(cell=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
+       other=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
+       facing=st.sampled_from(list(HEADINGS)), other_facing=st.sampled_from(list(HEADINGS)),
+       t=st.floats(0.05, 0.95))
+def test_validator_property_region_and_facing(cell, other, facing, other_facing, t):
+    """A tight line inside one cell, every object facing one way: accepted for that
+    cell and heading, rejected for any other cell and any other compass heading."""
+    x0, x1, y0, y1 = region_box(cell, BOUNDS)
+    m = 0.035  # centres well inside the cell
+    c = np.array([x0 + m + t * (x1 - x0 - 2 * m), y0 + m + (1 - t) * (y1 - y0 - 2 * m)])
+    u = np.array([-math.sin(HEADINGS[facing]), math.cos(HEADINGS[facing])])  # across the heading
+    pts = [c + k * 0.03 * u for k in (-1, 0, 1)]
+    objs = [can(i + 1, float(p[0]), float(p[1]), r=0.01) for i, p in enumerate(pts)]
+    for o in objs:
+        o["pose"][2] = HEADINGS[facing]
+    line = {"pattern": "line", "objects": [1, 2, 3]}
+    assert _judge(objs, {**line, "region": cell, "facing": facing}) is None
+    if other != cell:
+        assert "outside region" in _judge(objs, {**line, "region": other})
+    if other_facing != facing:
+        assert "faces" in _judge(objs, {**line, "facing": other_facing})
