@@ -15,10 +15,11 @@ Region
     The workspace is cut into a 3 x 3 grid of equal cells. Rows are
     ``bottom`` (front, nearest the viewer, smallest y), ``middle``, ``top``;
     columns ``left`` (smallest x), ``center``, ``right``. ``"<row> <col>"``
-    names one cell; a row word alone names the whole row (three cells), a
-    column word alone the whole column, and ``"center"`` or ``"middle"``
-    alone the centre cell (``"middle center"``), as "the middle of the table"
-    reads in English. A box ``[xmin, xmax, ymin, ymax]`` (m) may be given
+    names one cell; a row word alone (or ``"<row> row"``) names the whole row
+    (three cells), a column word alone (or ``"<col> column"``) the whole
+    column, and ``"center"`` or ``"middle"`` alone the centre cell (``"middle
+    center"``), as "the middle of the table" reads in English; the middle
+    row and the centre column are ``"middle row"`` and ``"center column"``. A box ``[xmin, xmax, ymin, ymax]`` (m) may be given
     instead of a name. The goal holds when every one of its objects' centres
     lies in the box, up to :data:`REGION_TOL` outside it (a relation's anchor
     is not one of its objects).
@@ -82,6 +83,7 @@ HEADINGS: dict[str, float] = {"east": 0.0, "north": math.pi / 2, "west": math.pi
 #: Every region name the format accepts.
 REGION_NAMES: tuple[str, ...] = (
     *(f"{r} {c}" for r in ROWS for c in COLUMNS), *ROWS, *COLUMNS,
+    *(f"{r} row" for r in ROWS), *(f"{c} column" for c in COLUMNS),
 )
 
 #: How far outside its region an object's centre may end (m).
@@ -118,6 +120,10 @@ def region_box(region: str | Sequence[float], bounds: Sequence[float]) -> tuple[
     words = _norm(region).split()
     if words in (["center"], ["middle"]):
         words = ["middle", "center"]
+    elif len(words) == 2 and words[1] == "row" and words[0] in ROWS:
+        words = words[:1]  # "middle row": the band, as a row word alone
+    elif len(words) == 2 and words[1] == "column" and words[0] in COLUMNS:
+        words = words[:1]
     row = col = None
     if len(words) == 2:
         row, col = words

@@ -58,6 +58,15 @@ def test_region_words():
     assert region_box("middle", BOUNDS) == region_box("middle center", BOUNDS)
     assert region_box("top", BOUNDS) == pytest.approx((-0.4, 0.4, 0.1, 0.3))
     assert region_box("left", BOUNDS) == pytest.approx((-0.4, -0.4 + 0.8 / 3, -0.3, 0.3))
+    assert region_box("top row", BOUNDS) == region_box("top", BOUNDS)
+    assert region_box("middle row", BOUNDS) == pytest.approx((-0.4, 0.4, -0.1, 0.1))
+    assert region_box("center column", BOUNDS) == pytest.approx((-0.4 + 0.8 / 3, 0.4 - 0.8 / 3, -0.3, 0.3))
+    with pytest.raises(ValueError):
+        region_box("left row", BOUNDS)
+    from lgmcts.params import REGION_NAMES
+
+    for name in REGION_NAMES:
+        region_box(name, BOUNDS)
     # Regions follow the scene's workspace, not a fixed table.
     assert region_box("top right", (0.0, 0.9, 0.0, 0.3)) == pytest.approx((0.6, 0.9, 0.2, 0.3))
     assert region_box([0.0, 0.1, 0.0, 0.2], BOUNDS) == (0.0, 0.1, 0.0, 0.2)
