@@ -321,13 +321,10 @@ def _cli(*args: str):
     return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300)
 
 
-def test_cli_plans_and_checks_goals_with_params(example_scene, tmp_path):
-    goals_file = tmp_path / "goals.json"
-    spec = {"goals": [
-        {"pattern": "circle", "objects": [1, 2, 3, 4], "region": "top right", "size": "small", "facing": "south"},
-        {"pattern": "line", "objects": [5, 6, 7], "region": "bottom", "facing": "north"},
-    ]}
-    goals_file.write_text(json.dumps(spec))
+def test_cli_plans_and_checks_goals_with_params(example_scene, root, tmp_path):
+    goals_file = root / "examples" / "goals_params.json"
+    spec = json.loads(goals_file.read_text())
+    assert {"region", "size", "facing"} <= {k for g in spec["goals"] for k in g}
     out = tmp_path / "plan.json"
     r = _cli("plan", str(example_scene), "--goal", str(goals_file), "--seed", "1", "-o", str(out))
     assert r.returncode == 0, r.stderr
