@@ -72,6 +72,7 @@ __all__ = [
     "size_range",
     "resolve",
     "turn_relation",
+    "conflict",
 ]
 
 #: Rows bottom to top and columns left to right, each a third of the workspace.
@@ -292,3 +293,32 @@ def turn_relation(relation: str, facing: str | float) -> str:
     a = math.atan2(RELATIONS[relation][1], RELATIONS[relation][0]) + h - math.pi / 2
     best = min(RELATIONS, key=lambda r: abs(math.remainder(math.atan2(RELATIONS[r][1], RELATIONS[r][0]) - a, 2 * math.pi)))
     return best
+
+
+def conflict(goals: Sequence[Any], bounds: Sequence[float]) -> str | None:
+    """Why no arrangement can meet ``goals``' parameters together, or ``None``.
+
+    An object in two goals cannot face two headings further apart than both
+    tolerances, nor lie in two regions that do not meet (each grown by
+    :data:`REGION_TOL`). Only these direct contradictions are found.
+    """
+    seen: dict[int, list[tuple[int, Any]]] = {}
+    for k, g in enumerate(goals):
+        for o in _raw(g, "objects") or ():
+            seen.setdefault(o, []).append((k, g))
+    for o, gs in sorted(seen.items()):
+        for i in range(len(gs)):
+            for j in range(i + 1, len(gs)):
+                (ka, a), (kb, b) = gs[i], gs[j]
+                fa, fb = _raw(a, "facing"), _raw(b, "facing")
+                if fa is not None and fb is not None:
+                    (ha, ta), (hb, tb) = heading_of(fa), heading_of(fb)
+                    if abs(math.remainder(ha - hb, 2 * math.pi)) > ta + tb:
+                        return f"object {o} must face both {fa!r} (goal {ka}) and {fb!r} (goal {kb})"
+                ra, rb = _raw(a, "region"), _raw(b, "region")
+                if ra is not None and rb is not None:
+                    xa, xb = region_box(ra, bounds), region_box(rb, bounds)
+                    e = 2 * REGION_TOL
+                    if xa[0] > xb[1] + e or xb[0] > xa[1] + e or xa[2] > xb[3] + e or xb[2] > xa[3] + e:
+                        return f"object {o} must lie both in {ra!r} (goal {ka}) and in {rb!r} (goal {kb})"
+    return None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -125,6 +126,27 @@ def test_bad_params_are_one_line_errors(goal, words):
     with pytest.raises(InputError) as err:
         parse_goals([goal])
     assert words in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("a, b, words", [
+    ({"facing": "north"}, {"facing": "east"}, "must face both 'north' (goal 0) and 'east' (goal 1)"),
+    ({"region": "top left"}, {"region": "bottom right"}, "must lie both in 'top left' (goal 0) and in 'bottom right' (goal 1)"),
+    ({"region": "top left"}, {"region": [0.2, 0.4, -0.3, 0.0]}, "must lie both"),
+])
+def test_contradicting_params_are_refused(a, b, words):
+    sc = parse_scene(scene(box(1, 0, 0), box(2, 0.1, 0), box(3, 0.2, 0), box(4, -0.2, 0.1)))
+    spec = parse_goals([{"pattern": "line", "objects": [1, 2], **a}, {"pattern": "right", "objects": [1], "anchor": 4, **b}])
+    with pytest.raises(InputError, match="object 1 " + re.escape(words)):
+        spec.check_against(sc)
+
+
+def test_compatible_params_are_kept():
+    sc = parse_scene(scene(box(1, 0, 0), box(2, 0.1, 0), box(3, 0.2, 0), box(4, -0.2, 0.1)))
+    # Adjacent cells meet, a heading and an angle within tolerance agree, a band contains its cell.
+    parse_goals([{"pattern": "line", "objects": [1, 2], "region": "top left", "facing": "north"},
+                 {"pattern": "right", "objects": [1], "anchor": 4, "region": "top center", "facing": 1.7}]).check_against(sc)
+    parse_goals([{"pattern": "line", "objects": [1, 2], "region": "top"},
+                 {"pattern": "line", "objects": [1, 3], "region": "top right"}]).check_against(sc)
 
 
 def test_region_box_off_the_workspace_is_refused():
