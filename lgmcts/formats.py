@@ -381,6 +381,11 @@ class GoalSpec(_Model):
                 x0, x1, y0, y1 = g.region
                 if x1 <= ws.x[0] or x0 >= ws.x[1] or y1 <= ws.y[0] or y0 >= ws.y[1]:
                     raise InputError(f"goal {k} ({g.pattern}): region box {list(g.region)} lies outside the workspace")
+        from .params import conflict
+
+        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
+        if why is not None:
+            raise InputError(why)
         # A pose goal and another fixed pose for the same object contradict.
         fixed: dict[int, tuple[float, float, float]] = {}
         for g in self.goals:

@@ -15,10 +15,11 @@ Region
     The workspace is cut into a 3 x 3 grid of equal cells. Rows are
     ``bottom`` (front, nearest the viewer, smallest y), ``middle``, ``top``;
     columns ``left`` (smallest x), ``center``, ``right``. ``"<row> <col>"``
-    names one cell; a row word alone names the whole row (three cells), a
-    column word alone the whole column, and ``"center"`` or ``"middle"``
-    alone the centre cell (``"middle center"``), as "the middle of the table"
-    reads in English. A box ``[xmin, xmax, ymin, ymax]`` (m) may be given
+    names one cell; a row word alone (or ``"<row> row"``) names the whole row
+    (three cells), a column word alone (or ``"<col> column"``) the whole
+    column, and ``"center"`` or ``"middle"`` alone the centre cell (``"middle
+    center"``), as "the middle of the table" reads in English; the middle
+    row and the centre column are ``"middle row"`` and ``"center column"``. A box ``[xmin, xmax, ymin, ymax]`` (m) may be given
     instead of a name. The goal holds when every one of its objects' centres
     lies in the box, up to :data:`REGION_TOL` outside it (a relation's anchor
     is not one of its objects).
@@ -71,6 +72,7 @@ __all__ = [
     "size_range",
     "resolve",
     "turn_relation",
+    "conflict",
 ]
 
 #: Rows bottom to top and columns left to right, each a third of the workspace.
@@ -82,6 +84,7 @@ HEADINGS: dict[str, float] = {"east": 0.0, "north": math.pi / 2, "west": math.pi
 #: Every region name the format accepts.
 REGION_NAMES: tuple[str, ...] = (
     *(f"{r} {c}" for r in ROWS for c in COLUMNS), *ROWS, *COLUMNS,
+    *(f"{r} row" for r in ROWS), *(f"{c} column" for c in COLUMNS),
 )
 
 #: How far outside its region an object's centre may end (m).
@@ -118,6 +121,10 @@ def region_box(region: str | Sequence[float], bounds: Sequence[float]) -> tuple[
     words = _norm(region).split()
     if words in (["center"], ["middle"]):
         words = ["middle", "center"]
+    elif len(words) == 2 and words[1] == "row" and words[0] in ROWS:
+        words = words[:1]  # "middle row": the band, as a row word alone
+    elif len(words) == 2 and words[1] == "column" and words[0] in COLUMNS:
+        words = words[:1]
     row = col = None
     if len(words) == 2:
         row, col = words
@@ -286,3 +293,32 @@ def turn_relation(relation: str, facing: str | float) -> str:
     a = math.atan2(RELATIONS[relation][1], RELATIONS[relation][0]) + h - math.pi / 2
     best = min(RELATIONS, key=lambda r: abs(math.remainder(math.atan2(RELATIONS[r][1], RELATIONS[r][0]) - a, 2 * math.pi)))
     return best
+
+
+def conflict(goals: Sequence[Any], bounds: Sequence[float]) -> str | None:
+    """Why no arrangement can meet ``goals``' parameters together, or ``None``.
+
+    An object in two goals cannot face two headings further apart than both
+    tolerances, nor lie in two regions that do not meet (each grown by
+    :data:`REGION_TOL`). Only these direct contradictions are found.
+    """
+    seen: dict[int, list[tuple[int, Any]]] = {}
+    for k, g in enumerate(goals):
+        for o in _raw(g, "objects") or ():
+            seen.setdefault(o, []).append((k, g))
+    for o, gs in sorted(seen.items()):
+        for i in range(len(gs)):
+            for j in range(i + 1, len(gs)):
+                (ka, a), (kb, b) = gs[i], gs[j]
+                fa, fb = _raw(a, "facing"), _raw(b, "facing")
+                if fa is not None and fb is not None:
+                    (ha, ta), (hb, tb) = heading_of(fa), heading_of(fb)
+                    if abs(math.remainder(ha - hb, 2 * math.pi)) > ta + tb:
+                        return f"object {o} must face both {fa!r} (goal {ka}) and {fb!r} (goal {kb})"
+                ra, rb = _raw(a, "region"), _raw(b, "region")
+                if ra is not None and rb is not None:
+                    xa, xb = region_box(ra, bounds), region_box(rb, bounds)
+                    e = 2 * REGION_TOL
+                    if xa[0] > xb[1] + e or xb[0] > xa[1] + e or xa[2] > xb[3] + e or xb[2] > xa[3] + e:
+                        return f"object {o} must lie both in {ra!r} (goal {ka}) and in {rb!r} (goal {kb})"
+    return None

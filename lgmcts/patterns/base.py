@@ -263,9 +263,9 @@ def uniform_poses(scene: Scene, obj: int, rng: np.random.Generator, n: int, marg
     return out
 
 
-#: How far from a goal's facing heading the priors let an object's yaw be
-#: when it already stands there (rad); new placements take the heading exactly.
-YAW_EPS = 0.02
+#: Share of a facing's tolerance within which the priors let an object that
+#: already stands there keep its yaw; new placements take the heading exactly.
+YAW_SHARE = 0.5
 
 
 def room(ctx: "Context", obj: int, margin: float = 0.0) -> tuple[float, float, float, float]:
@@ -306,7 +306,8 @@ def with_heading(ctx: "Context", poses: np.ndarray) -> np.ndarray:
 
 def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
     """Whether each of ``(m, 3)`` poses keeps ``obj`` in the goal's region
-    (centre in the box) and facing its heading (yaw within :data:`YAW_EPS`)."""
+    (centre in the box) and facing its heading (yaw within :data:`YAW_SHARE`
+    of the facing's tolerance: pi/16 for a named facing, 0.05 rad for an angle)."""
     poses = np.asarray(poses, dtype=float).reshape(-1, 3)
     gp = ctx.goal.params
     ok = np.ones(len(poses), dtype=bool)
@@ -316,7 +317,7 @@ def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
         ok &= (poses[:, 0] >= x0 - e) & (poses[:, 0] <= x1 + e) & (poses[:, 1] >= y0 - e) & (poses[:, 1] <= y1 + e)
     if gp.heading is not None:
         d = np.abs((poses[:, 2] - gp.heading + np.pi) % (2 * np.pi) - np.pi)
-        ok &= d <= YAW_EPS
+        ok &= d <= YAW_SHARE * gp.heading_tol
     return ok
 
 

@@ -79,3 +79,36 @@ def test_viewer_draws_regions_and_headings(solved, tmp_path):
         assert page.locator(".lgv-heading").count() == 2
         b.close()
     assert not errors
+
+
+def test_viewer_given_only_scene_and_plan_draws_regions_too(solved):
+    """The page the service serves renders from the scene and plan alone: it
+    computes the regions itself, the same boxes as lgmcts.params."""
+    import shutil
+
+    from lgmcts.viz import viewer_js
+
+    sync_api = pytest.importorskip("playwright.sync_api", reason="the playwright package is not installed")
+    chromium = shutil.which("chromium") or ("/usr/bin/chromium" if Path("/usr/bin/chromium").exists() else None)
+    if chromium is None:
+        pytest.skip("chromium is not installed (run scripts/system-deps.sh)")
+    scene = json.loads(EXAMPLE.read_text())
+    plan = json.loads(solved.model_dump_json())
+    plan["goals"]["goals"][1]["region"] = "middle row"
+    sc = Scene.from_spec(load_scene(EXAMPLE))
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=chromium, args=["--headless", "--no-sandbox", "--disable-gpu"])
+        page = b.new_page()
+        errors: list[str] = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.set_content(f"<html><body><div id='v'></div><script>{viewer_js()}</script></body></html>")
+        page.evaluate("d => { window.v = LGMCTSViewer.render(document.getElementById('v'), d); }",
+                      {"scene": scene, "plan": plan, "instruction": None})
+        rects = page.eval_on_selector_all(".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])")
+        assert page.locator(".lgv-heading").count() == 2
+        b.close()
+    assert not errors
+    boxes = [region_box("top right", sc.bounds), region_box("middle row", sc.bounds)]
+    assert len(rects) == 2
+    for (w, h), bx in zip(rects, boxes):
+        assert w / h == pytest.approx((bx[1] - bx[0]) / (bx[3] - bx[2]), rel=1e-3)

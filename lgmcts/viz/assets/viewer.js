@@ -282,10 +282,36 @@
     return best.corners;
   }
 
-  function fitGoals(goals, frame) {
+  // A goal's region and facing for drawing, as lgmcts.params defines them
+  // (the page given only a scene and a plan computes them itself).
+  var ROWS = ["bottom", "middle", "top"], COLS = ["left", "center", "right"];
+  var HEADINGS = { east: 0, north: Math.PI / 2, west: Math.PI, south: -Math.PI / 2 };
+
+  function regionBox(region, ws) {
+    if (Array.isArray(region)) return region.slice(0, 4);
+    if (typeof region !== "string") return null;
+    var w = region.toLowerCase().split(/\s+/).filter(Boolean);
+    if (w.length === 1 && (w[0] === "center" || w[0] === "middle")) w = ["middle", "center"];
+    if (w.length === 2 && (w[1] === "row" || w[1] === "column")) w = [w[0]];
+    var row = null, col = null;
+    if (w.length === 2) { row = w[0]; col = w[1]; }
+    else if (ROWS.indexOf(w[0]) >= 0) row = w[0];
+    else col = w[0];
+    var ri = ROWS.indexOf(row), ci = COLS.indexOf(col);
+    var dx = (ws.x[1] - ws.x[0]) / 3, dy = (ws.y[1] - ws.y[0]) / 3;
+    return [ci < 0 ? ws.x[0] : ws.x[0] + ci * dx, ci < 0 || ci === 2 ? ws.x[1] : ws.x[0] + (ci + 1) * dx,
+            ri < 0 ? ws.y[0] : ws.y[0] + ri * dy, ri < 0 || ri === 2 ? ws.y[1] : ws.y[0] + (ri + 1) * dy];
+  }
+
+  function fitGoals(goals, frame, ws) {
     return goals.map(function (g, k) {
       var xy = g.objects.map(function (i) { return frame.poses[i].slice(0, 2); });
       var out = { index: k, met: null, problem: null };
+      if (g.region !== undefined && g.region !== null && ws) out.region = regionBox(g.region, ws);
+      if (g.facing !== undefined && g.facing !== null) {
+        out.heading = typeof g.facing === "number" ? g.facing : HEADINGS[String(g.facing).toLowerCase()];
+        out.anchor_point = [0, 1].map(function (c) { return xy.reduce(function (s, p) { return s + p[c]; }, 0) / xy.length; });
+      }
       if (g.pattern === "line") { out.kind = "line"; out.points = lineFit(xy); }
       else if (g.pattern === "circle") {
         var c = xy.length >= 3 ? circleFit(xy) : null;
@@ -385,7 +411,7 @@
     var frames = replay(objects, actions);
     var goalFrames = frames.map(function (f, k) {
       var given = data.frames && data.frames[k] && data.frames[k].goals;
-      return given || fitGoals(goals, f);
+      return given || fitGoals(goals, f, scene.workspace);
     });
     var member = {};
     goals.forEach(function (g, k) { g.objects.forEach(function (i) { (member[i] = member[i] || []).push(k); }); });
