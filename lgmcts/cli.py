@@ -12,8 +12,9 @@ from typing import Optional
 
 import typer
 
-from .cli_util import fail, write_text
+from .cli_util import configure_logging, fail, write_text
 from .errors import InputError
+from .extras import missing_extra
 
 app = typer.Typer(
     add_completion=False,
@@ -48,17 +49,6 @@ def _root(
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 
-def _verbosity(verbose: int) -> None:
-    try:
-        from .progress import configure_logging
-    except ModuleNotFoundError:  # pragma: no cover - progress helpers always ship
-        import logging
-
-        logging.basicConfig(level=logging.WARNING - 10 * min(verbose, 2), stream=sys.stderr)
-        return
-    configure_logging(verbose)
-
-
 @app.command()
 def plan(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
@@ -83,7 +73,7 @@ def plan(
     from . import formats
     from .planner import plan as run_plan
 
-    _verbosity(verbose)
+    configure_logging(verbose)
     try:
         spec = formats.load_scene(scene)
         if (goal is None) == (instruction is None):
@@ -137,25 +127,24 @@ def check(
 
 
 def _register_plugins() -> None:
+    # The plug-in modules import only typer; what a command needs beyond the
+    # base install loads when it runs (see main() for a missing extra).
     for name in _PLUGINS:
-        try:
-            mod = importlib.import_module(name)
-        except ModuleNotFoundError as exc:
-            if exc.name is not None and name.startswith(exc.name):
-                continue  # that part is not installed
-            raise
-        mod.register(app)
+        importlib.import_module(name).register(app)
 
 
 _register_plugins()
 
 
 def main() -> None:
-    """Entry point: run the app, turning stray exceptions into one line."""
+    """Entry point: run the app; a missing optional extra becomes one line and exit 2."""
     try:
         app()
-    except InputError as exc:  # pragma: no cover - commands catch their own
-        typer.echo(str(exc), err=True)
+    except ModuleNotFoundError as exc:
+        message = missing_extra(exc)
+        if message is None:
+            raise
+        typer.echo(message, err=True)
         sys.exit(2)
 
 

@@ -130,11 +130,6 @@ class Scene:
         """
         return np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in self.spec.objects], dtype=float)
 
-    @property
-    def workspace_area(self) -> float:
-        xmin, xmax, ymin, ymax = self.bounds
-        return (xmax - xmin) * (ymax - ymin)
-
     def footprint(self, i: int, pose: np.ndarray) -> np.ndarray:
         """Table-frame vertices of object index ``i`` at ``pose`` (``(3,)`` or ``(m, 3)``)."""
         return geo.transform(self.local[i], pose)
@@ -250,7 +245,3 @@ class State:
         out = np.empty(len(self._polys), dtype=object)
         out[:] = self._polys
         return out
-
-    def key(self) -> tuple:
-        """Hashable summary of the state (poses rounded to 0.1 mm)."""
-        return (tuple(np.round(self.poses, 4).ravel().tolist()), self.on)

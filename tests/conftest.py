@@ -36,3 +36,16 @@ def example_scene() -> Path:
 @pytest.fixture(scope="session")
 def example_goals() -> Path:
     return ROOT / "examples" / "goals.json"
+
+
+#: Test folders and files whose tests are all slow: physics, the service (a
+#: server in a subprocess), headless browsers. `pytest -m "not slow"` is the
+#: quick loop; `make test` runs everything.
+SLOW_PARTS = ("sim", "service", "test_viz_html_browser.py")
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        parts = Path(str(item.fspath)).relative_to(ROOT / "tests").parts
+        if any(p in SLOW_PARTS for p in parts):
+            item.add_marker(pytest.mark.slow)

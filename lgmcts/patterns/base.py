@@ -31,7 +31,6 @@ __all__ = [
     "Context",
     "register",
     "registry",
-    "get",
     "CLEARANCE",
     "BAND",
     "EDGE_EPS",
@@ -239,10 +238,6 @@ def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None)
     return loaded
 
 
-def get(name: str) -> Pattern:
-    return registry()[name]
-
-
 # ---------------------------------------------------------------- helpers
 
 
@@ -327,11 +322,6 @@ def box_region(ctx: "Context") -> Any:
     if reg is None:
         return None
     return shapely.box(reg[0], reg[2], reg[1], reg[3])
-
-
-def in_bounds(scene: Scene, xy: np.ndarray, margin: float = 0.0) -> np.ndarray:
-    xmin, xmax, ymin, ymax = scene.bounds
-    return (xy[..., 0] >= xmin + margin) & (xy[..., 0] <= xmax - margin) & (xy[..., 1] >= ymin + margin) & (xy[..., 1] <= ymax - margin)
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ status     meaning
 413        the request body is larger than ``max_body`` bytes
 422        bad input; ``detail`` is the one-line message the CLI prints
 500        the planner crashed (its worker died); the service goes on
-501        the language parser is not installed
+501        an extra the request needs is not installed
 504        the request ran past its wall-clock timeout
 =========  ==============================================================
 

@@ -5,7 +5,8 @@ JSON-ready dict. They run in a process of :class:`lgmcts.service.pool.WorkerPool
 never in the process that serves HTTP, so a slow or crashing planner cannot
 stall the event loop. Bad input raises :class:`lgmcts.errors.InputError`
 (pickled back to the server, which answers 422); a missing optional part of
-the package raises :class:`Unavailable` (answered 501).
+the package (an extra that is not installed, see :mod:`lgmcts.extras`)
+raises :class:`Unavailable` (answered 501).
 
 The language parser (and with it torch) is imported lazily, only by the jobs
 that need it.
@@ -20,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from ..errors import InputError
+from ..extras import missing_extra
 from ..formats import GoalSpec, PlanSpec, SceneSpec, to_dict
 
 __all__ = [
@@ -142,26 +144,25 @@ def tracked(fn: Callable[[Any], Any], job_id: int, job: Any) -> Any:
 
 def run_parse(job: ParseJob) -> dict:
     """Goal JSON (a dict) for ``job.instruction``."""
-    try:
-        from ..language import parse
-    except ImportError as exc:
-        # Absent, or present without its parse() (a partial install): a 501,
-        # not a planner failure. Errors inside its own imports still surface.
-        missing = getattr(exc, "name", None) or ""
-        if missing and not "lgmcts.language".startswith(missing):
-            raise
-        raise Unavailable("the language parser (lgmcts.language) is not installed") from None
+    from ..language import parse
+
     remaining = job.deadline - time.time()
     if remaining <= 0:
         raise DeadlinePassed("the request's deadline passed before parsing started")
-    goals = parse(
-        job.scene,
-        job.instruction,
-        parser=job.parser,
-        llm_model=job.llm_model,
-        llm_base_url=job.llm_base_url,
-        timeout=max(1.0, min(remaining, 60.0)),
-    )
+    try:
+        goals = parse(
+            job.scene,
+            job.instruction,
+            parser=job.parser,
+            llm_model=job.llm_model,
+            llm_base_url=job.llm_base_url,
+            timeout=max(1.0, min(remaining, 60.0)),
+        )
+    except ModuleNotFoundError as exc:  # the 'language' (or 'llm') extra is not installed
+        message = missing_extra(exc)
+        if message is None:
+            raise
+        raise Unavailable(message) from None
     return to_dict(goals)
 
 

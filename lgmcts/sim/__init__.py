@@ -9,11 +9,33 @@
 The design and its numbers are described in ``docs/sim.md``.
 """
 
-# The render module picks the OpenGL backend (MUJOCO_GL) and must run before
-# anything imports mujoco, so it is imported first.
-from .render import CameraOptions, VideoRecorder, footprint_iou, observe  # isort: skip
-from .executor import ExecOptions, Execution, Executor, StepOutcome, execute_plan
-from .model import ModelOptions, SimModel, build_model
+from __future__ import annotations
+
+import os
+from importlib import import_module
+from typing import Any
+
+# MuJoCo reads the OpenGL backend when it is first imported, so it is chosen
+# here, before any module of this package imports mujoco. The names below load
+# on first use: importing ``lgmcts.sim`` (the command line does) needs no
+# mujoco, which comes with the 'sim' extra.
+os.environ.setdefault("MUJOCO_GL", "osmesa")
+os.environ.setdefault("PYOPENGL_PLATFORM", os.environ["MUJOCO_GL"])
+
+_WHERE = {
+    "CameraOptions": ".render",
+    "VideoRecorder": ".render",
+    "footprint_iou": ".render",
+    "observe": ".render",
+    "ExecOptions": ".executor",
+    "Execution": ".executor",
+    "Executor": ".executor",
+    "StepOutcome": ".executor",
+    "execute_plan": ".executor",
+    "ModelOptions": ".model",
+    "SimModel": ".model",
+    "build_model": ".model",
+}
 
 __all__ = [
     "CameraOptions",
@@ -29,3 +51,13 @@ __all__ = [
     "footprint_iou",
     "observe",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(import_module(_WHERE[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -14,12 +14,15 @@ canvas only: no pyplot, no global backend switch, safe in a server process.
 from __future__ import annotations
 
 import math
+import os
+import sys
 import textwrap
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Sequence
 
 import numpy as np
+from tqdm import tqdm
 
 from ..errors import InputError
 from ..formats import GoalSpec, PlanSpec, SceneSpec, load_plan, load_scene, parse_goals
@@ -784,9 +787,10 @@ def write_plan_figures(
     img = render_state(ctx, 0)
     frames.append(img)
     written.append(_save_png(img, out / "initial.png", options.dpi))
-    from ..progress import progress
-
-    for s in progress(range(1, n + 1), desc="drawing steps"):
+    # A bar only on a terminal (tqdm's disable=None); LGMCTS_NO_PROGRESS=1 hides it there too.
+    quiet = os.environ.get("LGMCTS_NO_PROGRESS", "") not in ("", "0")
+    steps = tqdm(range(1, n + 1), desc="drawing steps", file=sys.stderr, leave=False, disable=True if quiet else None)
+    for s in steps:
         img = render_state(ctx, s)
         frames.append(img)
         written.append(_save_png(img, out / f"step_{step_name(s, n)}.png", options.dpi))

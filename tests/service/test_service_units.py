@@ -54,14 +54,6 @@ def test_viewer_script_is_inlined_safely(tmp_path, monkeypatch):
     assert "<\\/script>" in body
 
 
-def test_viewer_page_without_the_script_keeps_its_own_drawing(tmp_path, monkeypatch):
-    monkeypatch.setattr(viewer, "VIEWER_JS", tmp_path / "absent.js")
-    html = viewer.page()
-    assert "drawFallback" in html and "window.LGMCTSViewer = {" not in html
-    assert viewer.viewer_script() is None
-    assert "/*EXAMPLE_SCENE*/" not in html
-
-
 def test_example_scene_is_valid():
     parse_scene(viewer.EXAMPLE_SCENE)
 

@@ -55,7 +55,7 @@ def test_viz_imports_no_plotting_library_until_drawing():
     import sys
 
     code = (
-        "import sys, lgmcts, lgmcts.viz, lgmcts.progress\n"
+        "import sys, lgmcts, lgmcts.viz, lgmcts.cli_util\n"
         "from lgmcts.viz import render_html\n"
         f"render_html({str(SCENE)!r}, {str(PLAN)!r})\n"
         "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'\n"
