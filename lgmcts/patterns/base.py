@@ -135,6 +135,10 @@ class Pattern(Protocol):
     ordered : whether objects must be placed in list order (tower) or after
         an anchor (relations).
     on_table : whether the goal's objects must end on the table.
+    anchored : whether a goal names an ``anchor`` (relations).
+    needs_pose : whether a goal gives a ``pose`` (and one object).
+    size_word : what a goal's ``size`` measures ("radius", "length"...), or
+        ``None`` when the pattern has no size of its own.
     deterministic : whether ``sample`` returns the same poses whatever the
         branch and the random generator (a fixed target), and ``region`` the
         same region for as long as the goal is unfinished; the planner may
@@ -166,12 +170,48 @@ class Pattern(Protocol):
     def region(self, ctx: Context) -> Any:
         """Shapely geometry where the unplaced objects will go, or ``None`` if unknown."""
 
+    def fit(self, xy: np.ndarray) -> Any:
+        """The pattern's parameter record fitted to final centres ``(n, 2)``
+        (a frozen dataclass of floats, or ``None`` when there is nothing to fit)."""
+
+    def accept(self, goal: Any, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
+        """The acceptance rule: ``None`` when ``goal`` (a format goal) holds for
+        ``poses``/``on``, else why not. The on-table requirement is checked before."""
+
+    def shape(self, goal: Any, scene: Scene, poses: np.ndarray) -> tuple[str, dict]:
+        """What to draw for ``goal`` at ``poses``: a kind and its geometry (see
+        :class:`lgmcts.viz.model.GoalShape`)."""
+
+    def size(self, fitted: Any) -> float:
+        """The characteristic length a goal's ``size`` is compared with (m)."""
+
+    def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
+        """The arrangement's own direction for a ``facing``: ``(angle, period,
+        what)``, the angle compared with the heading modulo ``period``, or ``None``."""
+
 
 _REGISTRY: dict[str, Pattern] = {}
 
 
 def register(pattern: Pattern) -> Pattern:
-    """Add a pattern instance to the database (keyed by its name)."""
+    """Add a pattern instance to the database (keyed by its name).
+
+    This one call is all a pattern module makes: it declares the pattern in
+    the goal format (from ``min_objects``, ``anchored``, ``needs_pose`` and
+    ``on_table``), gives the validator its rule (``accept``), the pictures its
+    shape and the language parser its keys (read from this registry).
+    """
+    from ..formats import PatternFormat, declare_pattern
+
+    declare_pattern(
+        PatternFormat(
+            pattern.name,
+            min_objects=pattern.min_objects,
+            anchor=bool(getattr(pattern, "anchored", False)),
+            pose=bool(getattr(pattern, "needs_pose", False)),
+            on_table=pattern.on_table,
+        )
+    )
     _REGISTRY[pattern.name] = pattern
     return pattern
 
@@ -334,6 +374,9 @@ class BasePattern:
     min_objects: ClassVar[int] = 1
     ordered: ClassVar[bool] = False
     on_table: ClassVar[bool] = True
+    anchored: ClassVar[bool] = False
+    needs_pose: ClassVar[bool] = False
+    size_word: ClassVar[str | None] = None
     deterministic: ClassVar[bool] = False
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
@@ -344,3 +387,31 @@ class BasePattern:
 
     def region(self, ctx: Context) -> Any:
         return None
+
+    def fit(self, xy: np.ndarray) -> Any:
+        return None
+
+    def accept(self, goal: Any, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
+        from ..errors import InputError
+
+        raise InputError(f"pattern '{self.name}' has no acceptance rule (define accept in its module)")
+
+    def shape(self, goal: Any, scene: Scene, poses: np.ndarray) -> tuple[str, dict]:
+        return "points", {"points": goal_xy(goal, scene, poses)}
+
+    def size(self, fitted: Any) -> float:
+        raise NotImplementedError(f"pattern '{self.name}' has no size")
+
+    def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
+        return None
+
+
+def goal_xy(goal: Any, scene: Scene, poses: np.ndarray) -> np.ndarray:
+    """``(n, 2)`` centres of a format goal's objects at ``poses``."""
+    return np.asarray(poses[[scene.index[i] for i in goal.objects], :2], dtype=float)
+
+
+def wrap_off(a: float, b: float, period: float) -> float:
+    """Distance between angles ``a`` and ``b`` modulo ``period`` (rad)."""
+    d = (a - b) % period
+    return min(d, period - d)

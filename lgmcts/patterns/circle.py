@@ -23,12 +23,14 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..tolerances import MIN_CIRCLE_RADIUS, TOL
 from .base import (
     BAND,
     CLEARANCE,
     EDGE_EPS,
     BasePattern,
     Context,
+    goal_xy,
     GoalProgress,
     box_region,
     params_mask,
@@ -138,6 +140,51 @@ def _chord_ks(ctx: Context, d: float, lo: float, hi: float) -> list[tuple[int, f
         if lo - EDGE_EPS <= r <= hi + EDGE_EPS:
             out.append((k, r))
     return out
+
+
+# ---------------------------------------------------------------- the finished circle
+
+
+@dataclass(frozen=True)
+class CircleParams:
+    """A circle fitted to final centres: ``centre``, ``radius``, the angle of
+    the first object about the centre (``start_angle``) and the object ``count``."""
+
+    centre: tuple[float, float]
+    radius: float
+    start_angle: float
+    count: int
+
+
+def fit_circle(xy: np.ndarray) -> tuple[np.ndarray, float]:
+    """Geometric least-squares circle: centre ``(2,)`` and radius (m)."""
+    x, y = xy[:, 0], xy[:, 1]
+    a = np.stack([2 * x, 2 * y, np.ones_like(x)], axis=1)
+    b = x**2 + y**2
+    sol, *_ = np.linalg.lstsq(a, b, rcond=None)
+    c0 = sol[:2]
+    r0 = math.sqrt(max(sol[2] + c0 @ c0, 1e-12))
+
+    from scipy.optimize import least_squares  # imported on first use: it costs 0.6 s at start-up
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        return np.hypot(x - p[0], y - p[1]) - p[2]
+
+    res = least_squares(resid, np.array([c0[0], c0[1], r0]), method="lm")
+    cx, cy, r = res.x
+    return np.array([cx, cy]), abs(float(r))
+
+
+def circle_params(xy: np.ndarray) -> CircleParams:
+    """:class:`CircleParams` of ``(n, 2)`` centres (radius 0 at their mean for fewer than 3)."""
+    xy = np.asarray(xy, dtype=float)
+    if len(xy) >= 3:
+        c, r = fit_circle(xy)
+        r = r if math.isfinite(r) else 0.0
+    else:
+        c, r = xy.mean(axis=0), 0.0
+    a0 = math.atan2(xy[0, 1] - c[1], xy[0, 0] - c[0]) if len(xy) else 0.0
+    return CircleParams((float(c[0]), float(c[1])), float(r), a0, len(xy))
 
 
 @dataclass(frozen=True)
@@ -260,6 +307,35 @@ class Circle(BasePattern):
         cx, cy, r, _, _ = ctx.progress.params
         w = ctx.max_radius + BAND
         return shapely.Point(cx, cy).buffer(r + w).difference(shapely.Point(cx, cy).buffer(max(r - w, 0.0)))
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "radius"
+
+    def fit(self, xy: np.ndarray) -> CircleParams:
+        return circle_params(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        xy = goal_xy(goal, scene, poses)
+        if len(xy) < 3:
+            return "a circle needs at least 3 objects"
+        centre, r = fit_circle(xy)
+        if not math.isfinite(r) or r < MIN_CIRCLE_RADIUS:
+            return f"fitted radius {r:.3f} m is below {MIN_CIRCLE_RADIUS} m"
+        err = np.abs(np.hypot(*(xy - centre).T) - r)
+        if err.max() > TOL:
+            return f"a centre is {err.max():.3f} m off the fitted circle"
+        ang = np.sort(np.arctan2(xy[:, 1] - centre[1], xy[:, 0] - centre[0]))
+        gaps = np.diff(np.concatenate([ang, ang[:1] + 2 * math.pi]))
+        if gaps.max() >= math.pi:
+            return f"largest angular gap {math.degrees(gaps.max()):.0f} deg is not below 180 deg"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        p = circle_params(goal_xy(goal, scene, poses))
+        return "circle", {"centre": np.asarray(p.centre), "radius": p.radius}
+
+    def size(self, fitted: CircleParams) -> float:
+        return fitted.radius
 
 
 register(Circle())

@@ -14,11 +14,13 @@ distance and keeps the spread of the centres along the line in its band
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
+from ..tolerances import TOL
 from .base import (
     BAND,
     CLEARANCE,
@@ -27,6 +29,7 @@ from .base import (
     Context,
     GoalProgress,
     box_region,
+    goal_xy,
     params_mask,
     register,
     room,
@@ -64,6 +67,49 @@ def _chord(ctx: Context, obj: int, p0: np.ndarray, u: np.ndarray) -> tuple[float
         t1, t2 = (a - p0[c]) / u[c], (b - p0[c]) / u[c]
         lo, hi = max(lo, min(t1, t2)), min(hi, max(t1, t2))
     return lo, hi
+
+
+# ---------------------------------------------------------------- the finished line
+
+
+@dataclass(frozen=True)
+class LineParams:
+    """A line fitted to final centres: through ``centre`` (their mean) along
+    the unit ``direction`` (total least squares), from ``ends[0]`` to ``ends[1]``
+    (the extreme centres projected on it)."""
+
+    centre: tuple[float, float]
+    direction: tuple[float, float]
+    ends: tuple[tuple[float, float], tuple[float, float]]
+
+    @property
+    def length(self) -> float:
+        """Spread of the centres along the line (m)."""
+        (x0, y0), (x1, y1) = self.ends
+        return float(np.hypot(x1 - x0, y1 - y0))
+
+
+def fit_line(xy: np.ndarray) -> LineParams:
+    """Total-least-squares line through ``(n, 2)`` centres (any ``n >= 1``)."""
+    xy = np.asarray(xy, dtype=float)
+    c = xy.mean(axis=0)
+    if len(xy) < 2:
+        u = np.array([1.0, 0.0])
+    else:
+        _, _, vt = np.linalg.svd(xy - c, full_matrices=False)
+        u = vt[0]
+    t = (xy - c) @ u
+    a, b = c + u * t.min(), c + u * t.max()
+    return LineParams((float(c[0]), float(c[1])), (float(u[0]), float(u[1])), ((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))))
+
+
+def line_residuals(xy: np.ndarray) -> np.ndarray:
+    """Distances of points to their total-least-squares line."""
+    c = xy - xy.mean(axis=0)
+    if len(xy) < 3:
+        return np.zeros(len(xy))
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    return np.abs(c @ vt[-1])
 
 
 @dataclass(frozen=True)
@@ -258,6 +304,29 @@ class Line(BasePattern):
             return None
         seg = shapely.LineString([p0 + lo * u, p0 + hi * u])
         return seg.buffer(ctx.max_radius + BAND)
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "length"
+
+    def fit(self, xy: np.ndarray) -> LineParams:
+        return fit_line(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        r = line_residuals(goal_xy(goal, scene, poses))
+        if r.max(initial=0.0) > TOL:
+            return f"a centre is {r.max():.3f} m off the fitted line"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        return "line", {"points": np.asarray(fit_line(goal_xy(goal, scene, poses)).ends)}
+
+    def size(self, fitted: LineParams) -> float:
+        return fitted.length
+
+    def facing_axis(self, fitted: LineParams) -> tuple[float, float, str]:
+        # A row facing north runs east-west: its direction is across the heading.
+        ux, uy = fitted.direction
+        return math.atan2(uy, ux) - math.pi / 2, math.pi, "the line runs {deg:.0f} deg off across facing '{facing}'"
 
 
 register(Line())

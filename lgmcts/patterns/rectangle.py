@@ -25,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..tolerances import MIN_RECT_SIDE, TOL
+from .line import fit_line
 from .base import (
     BAND,
     CLEARANCE,
@@ -33,6 +35,7 @@ from .base import (
     Context,
     GoalProgress,
     box_region,
+    goal_xy,
     params_mask,
     register,
     start_poses,
@@ -58,6 +61,36 @@ def corners(params: tuple[float, ...]) -> np.ndarray:
     """``(4, 2)`` corner positions of rectangle ``params = (cx, cy, w, h, phi)``."""
     cx, cy, w, h, phi = params[:5]
     return np.array([cx, cy]) + (_CORNERS * [w / 2, h / 2]) @ _rot(phi).T
+
+
+# ---------------------------------------------------------------- the finished rectangle
+
+
+@dataclass(frozen=True)
+class RectangleParams:
+    """The minimum-area rectangle around final centres, by its ``corners``
+    (counter-clockwise; ``None`` when the centres are collinear)."""
+
+    corners: tuple[tuple[float, float], ...] | None
+
+    @property
+    def sides(self) -> np.ndarray:
+        cs = np.asarray(self.corners)
+        return np.linalg.norm(np.roll(cs, -1, axis=0) - cs, axis=1)
+
+    @property
+    def angle(self) -> float:
+        """Direction of the first side (rad)."""
+        (x0, y0), (x1, y1) = self.corners[:2]  # type: ignore[index]
+        return math.atan2(y1 - y0, x1 - x0)
+
+
+def fit_rectangle(xy: np.ndarray) -> RectangleParams:
+    """The minimum-area rectangle around ``(n, 2)`` centres."""
+    rect = shapely.MultiPoint(np.asarray(xy, dtype=float)).minimum_rotated_rectangle
+    if rect.geom_type != "Polygon":
+        return RectangleParams(None)
+    return RectangleParams(tuple((float(x), float(y)) for x, y in np.asarray(rect.exterior.coords)[:4]))
 
 
 @dataclass(frozen=True)
@@ -294,6 +327,49 @@ class Rectangle(BasePattern):
             return box_region(ctx)
         ring = shapely.LinearRing(corners(ctx.progress.params))
         return ring.buffer(ctx.max_radius + BAND)
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "longer side"
+
+    def fit(self, xy: np.ndarray) -> RectangleParams:
+        return fit_rectangle(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        xy = goal_xy(goal, scene, poses)
+        if len(xy) < 4:
+            return "a rectangle needs at least 4 objects"
+        fitted = fit_rectangle(xy)
+        if fitted.corners is None:
+            return "centres are collinear"
+        cs = np.asarray(fitted.corners)
+        sides = fitted.sides
+        if sides.min() < MIN_RECT_SIDE:
+            return f"rectangle side {sides.min():.3f} m is below {MIN_RECT_SIDE} m"
+        segs = [shapely.LineString([cs[k], cs[(k + 1) % 4]]) for k in range(4)]
+        pts = shapely.points(xy)
+        d = np.stack([shapely.distance(pts, s) for s in segs], axis=1)  # (n, 4)
+        if d.min(axis=1).max() > TOL:
+            return f"a centre is {d.min(axis=1).max():.3f} m off the rectangle's perimeter"
+        if not (d <= TOL).any(axis=0).all():
+            return "a side of the rectangle holds no object"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        xy = goal_xy(goal, scene, poses)
+        fitted = fit_rectangle(xy)
+        if fitted.corners is not None:
+            return "rectangle", {"corners": np.asarray(fitted.corners)}
+        # Collinear centres: the degenerate rectangle drawn as their segment.
+        a, b = np.asarray(fit_line(xy).ends)
+        return "rectangle", {"corners": np.stack([a, b, b, a])}
+
+    def size(self, fitted: RectangleParams) -> float:
+        return 0.0 if fitted.corners is None else float(fitted.sides.max(initial=0.0))
+
+    def facing_axis(self, fitted: RectangleParams) -> tuple[float, float, str] | None:
+        if fitted.corners is None:
+            return None
+        return fitted.angle, math.pi / 2, "the rectangle's sides are {deg:.0f} deg off facing '{facing}'"
 
 
 register(Rectangle())

@@ -15,7 +15,8 @@ import numpy as np
 import shapely
 
 from ..formats import RELATIONS
-from .base import CLEARANCE, BasePattern, Context, GoalProgress, params_mask, register, with_heading
+from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
+from .base import CLEARANCE, BasePattern, Context, GoalProgress, goal_xy, params_mask, register, with_heading
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
 HALF_ANGLE = math.pi / 4 - 0.06
@@ -41,6 +42,7 @@ class Relation(BasePattern):
     relation: str = "left"
     ordered = True
     min_objects = 1
+    anchored = True
 
     @property
     def name(self) -> str:  # type: ignore[override]
@@ -94,6 +96,25 @@ class Relation(BasePattern):
         arc = self.direction + np.linspace(-math.pi / 4, math.pi / 4, 9)
         pts = [(x, y)] + [(x + 0.30 * math.cos(t), y + 0.30 * math.sin(t)) for t in arc]
         return shapely.Polygon(pts).buffer(ctx.max_radius)
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    def accept(self, goal, scene, poses, on) -> str | None:
+        d = np.asarray(RELATIONS[self.relation])
+        a = poses[scene.index[goal.anchor], :2]
+        for i in (scene.index[o] for o in goal.objects):
+            v = poses[i, :2] - a
+            n = float(np.hypot(*v))
+            if n <= 0 or n > MAX_RELATION_DIST:
+                return f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
+            ang = math.acos(max(-1.0, min(1.0, float(v @ d) / n)))
+            if ang > RELATION_HALF_ANGLE + 1e-9:
+                return f"object {scene.ids[i]} is {math.degrees(ang):.0f} deg off '{self.relation}' of anchor {goal.anchor}"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        a = np.asarray(poses[scene.index[goal.anchor], :2], dtype=float)
+        xy = goal_xy(goal, scene, poses)
+        return "relation", {"anchor": a, "arrows": [(a, xy[j]) for j in range(len(xy))], "direction": np.asarray(RELATIONS[self.relation])}
 
 
 for _rel in RELATIONS:

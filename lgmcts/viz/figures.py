@@ -388,6 +388,9 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
                 c[0] + r * 0.75, c[1] + r * 0.75, f"tower ×{len(s.goal.objects)}", fontsize=6.5, color=col, zorder=4.6,
                 bbox=dict(boxstyle="round,pad=0.12", facecolor="white", edgecolor=col, lw=0.6, alpha=0.9),
             )
+        elif s.kind == "points":
+            p = np.asarray(g["points"], dtype=float).reshape(-1, 2)
+            ax.plot(p[:, 0], p[:, 1], ls="none", marker="o", mfc="none", color=style["edgecolor"], ms=9, mew=1.3, zorder=1.5)
         elif s.kind == "pose":
             t = g["target"]
             k0 = ctx.scene.index[s.goal.objects[0]]
