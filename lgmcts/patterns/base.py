@@ -170,6 +170,14 @@ class Pattern(Protocol):
     def region(self, ctx: Context) -> Any:
         """Shapely geometry where the unplaced objects will go, or ``None`` if unknown."""
 
+    def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
+        """Order among the priors ``obj`` is in: the lowest ranked samples, the others filter."""
+
+    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+        """The search progress of ``goal`` whose ``placed`` objects stand at
+        ``poses``, in a plan that ends at ``final`` (plans do not record kappa;
+        the pose-field pictures rebuild it from the plan)."""
+
     def fit(self, xy: np.ndarray) -> Any:
         """The pattern's parameter record fitted to final centres ``(n, 2)``
         (a frozen dataclass of floats, or ``None`` when there is nothing to fit)."""
@@ -387,6 +395,15 @@ class BasePattern:
 
     def region(self, ctx: Context) -> Any:
         return None
+
+    def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
+        # Priors whose kappa is fixed sample best, then relations, then the rest.
+        if progress.params is not None:
+            return 2
+        return 3 if goal.anchor is not None else 4
+
+    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), None)
 
     def fit(self, xy: np.ndarray) -> Any:
         return None

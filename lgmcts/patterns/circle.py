@@ -308,6 +308,19 @@ class Circle(BasePattern):
         w = ctx.max_radius + BAND
         return shapely.Point(cx, cy).buffer(r + w).difference(shapely.Point(cx, cy).buffer(max(r - w, 0.0)))
 
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa fitted to the goal's final centres, slots read from the positions.
+        if not placed:
+            return GoalProgress()
+        c, r = fit_circle(final[list(goal.objects), :2])
+        n = len(goal.objects)
+        a0 = math.atan2(final[placed[0], 1] - c[1], final[placed[0], 0] - c[0])
+        slots = []
+        for p in placed:
+            a = math.atan2(poses[p, 1] - c[1], poses[p, 0] - c[0])
+            slots.append(int(round(((a - a0) % (2 * math.pi)) / (2 * math.pi / n))) % n)
+        return GoalProgress(tuple(placed), tuple(slots), (float(c[0]), float(c[1]), float(r), float(a0), float(n)))
+
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "radius"
 

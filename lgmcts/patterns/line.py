@@ -305,6 +305,14 @@ class Line(BasePattern):
         seg = shapely.LineString([p0 + lo * u, p0 + hi * u])
         return seg.buffer(ctx.max_radius + BAND)
 
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa is the first two placed objects' point and direction.
+        if len(placed) < 2:
+            return super().recover(goal, placed, poses, final)
+        p0, p1 = poses[placed[0], :2], poses[placed[1], :2]
+        u = (p1 - p0) / (np.hypot(*(p1 - p0)) or 1.0)
+        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), (float(p0[0]), float(p0[1]), float(u[0]), float(u[1])))
+
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "length"
 

@@ -56,6 +56,9 @@ class Pose(BasePattern):
         x, y, _ = ctx.goal.pose  # type: ignore[misc]
         return _disc(float(x), float(y), ctx.max_radius)
 
+    def rank(self, goal, progress, obj) -> int:
+        return 0  # a fixed target: it samples, the other priors filter
+
     # The finished arrangement (the acceptance rule and what to draw).
     def accept(self, goal, scene, poses, on) -> str | None:
         tgt = np.asarray(goal.pose)

@@ -328,6 +328,22 @@ class Rectangle(BasePattern):
         ring = shapely.LinearRing(corners(ctx.progress.params))
         return ring.buffer(ctx.max_radius + BAND)
 
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa fitted to the goal's final centres; a placed object near a corner holds it.
+        fitted = fit_rectangle(final[list(goal.objects), :2])
+        if not placed or fitted.corners is None:
+            return super().recover(goal, placed, poses, final)
+        cs = np.asarray(fitted.corners)
+        e1, e2 = cs[1] - cs[0], cs[2] - cs[1]
+        ctr = cs.mean(axis=0)
+        params = (float(ctr[0]), float(ctr[1]), float(np.hypot(*e1)), float(np.hypot(*e2)), math.atan2(e1[1], e1[0]))
+        at = corners(params)
+        slots = []
+        for j, p in enumerate(placed):
+            d = np.hypot(*(at - poses[p, :2]).T)
+            slots.append(int(np.argmin(d)) if d.min() <= 0.01 else 4 + j)
+        return GoalProgress(tuple(placed), tuple(slots), params)
+
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "longer side"
 

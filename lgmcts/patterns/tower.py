@@ -69,6 +69,10 @@ class Tower(BasePattern):
     def region(self, ctx: Context):
         return box_region(ctx) if not ctx.progress.placed else None
 
+    def rank(self, goal, progress, obj) -> int:
+        # An upper level's pose is its support's; a base goes after the other priors.
+        return 1 if goal.objects.index(obj) > 0 else 5
+
     # The finished arrangement (the acceptance rule and what to draw).
     def accept(self, goal, scene, poses, on) -> str | None:
         idx = [scene.index[i] for i in goal.objects]
