@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any, Sequence
 
 import numpy as np
 import shapely
@@ -19,7 +20,7 @@ from . import geometry as geo
 from .errors import InputError
 from .formats import ObjectSpec, SceneSpec, Workspace
 
-__all__ = ["Scene", "State", "TABLE"]
+__all__ = ["Scene", "State", "TABLE", "replay"]
 
 #: Support index meaning "on the table".
 TABLE = -1
@@ -245,3 +246,29 @@ class State:
         out = np.empty(len(self._polys), dtype=object)
         out[:] = self._polys
         return out
+
+
+def replay(scene: Scene, actions: Sequence[Any]) -> list[State]:
+    """The states a plan passes through: before the first action and after
+    each one (``len(actions) + 1``). The one replay of the package: the
+    validator, polishing, the pose fields, the pictures and the service's
+    viewer all step through :meth:`State.moved` this way.
+
+    Raises
+    ------
+    InputError
+        When an action names an object the scene does not have, or places an
+        object on itself. Illegal but well-formed actions (picking a covered
+        object) are replayed as given: the validator judges them.
+    """
+    states = [scene.initial]
+    for k, a in enumerate(actions):
+        if a.object not in scene.index:
+            raise InputError(f"action {k + 1} moves unknown object id {a.object}")
+        if a.on is not None and a.on not in scene.index:
+            raise InputError(f"action {k + 1} places object {a.object} on unknown object id {a.on}")
+        if a.on == a.object:
+            raise InputError(f"action {k + 1} places object {a.object} on itself")
+        sup = TABLE if a.on is None else scene.index[a.on]
+        states.append(states[-1].moved(scene.index[a.object], np.asarray(a.to, dtype=float), sup))
+    return states

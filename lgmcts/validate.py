@@ -212,11 +212,11 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
     pl = load_plan(plan)
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
-    poses = np.array(sc.initial.poses, dtype=float)
-    on = list(sc.initial.on)
-    polys = list(sc.initial.polys)
+    state = sc.initial
     reasons: list[str] = []
     for step, act in enumerate(pl.actions, start=1):
+        # The state steps as in lgmcts.scene.replay, judged before each move.
+        poses, on, polys = state.poses, state.on, state.polys
         if act.object not in sc.index:
             reasons.append(f"action {step}: unknown object {act.object}")
             break
@@ -271,9 +271,8 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             if not shapely.contains_xy(polys[j], new_pose[0], new_pose[1]):
                 reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
             new_on = j
-        poses[i] = new_pose
-        on[i] = new_on
-        polys[i] = poly
+        state = state.moved(i, new_pose, new_on)
+    poses, on = state.poses, state.on
     results = []
     for k, g in enumerate(gs.goals):
         why = goal_satisfied(g, sc, poses, tuple(on))

@@ -18,7 +18,7 @@ import shapely
 from .. import geometry as geo
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, Context
-from ..scene import TABLE, Scene
+from ..scene import Scene, replay
 from .step import Problem
 
 __all__ = ["Fields", "pose_fields"]
@@ -45,12 +45,8 @@ def pose_fields(scene: Scene, goals: GoalSpec, actions: list[Action], step: int,
     if not 0 <= step < len(actions):
         raise IndexError(f"step {step} is outside the plan's {len(actions)} actions")
     problem = Problem.build(scene, goals)
-    world = scene.initial
-    final = world
-    for a in actions:
-        final = final.moved(scene.index[a.object], a.to, TABLE if a.on is None else scene.index[a.on])
-    for a in actions[:step]:
-        world = world.moved(scene.index[a.object], a.to, TABLE if a.on is None else scene.index[a.on])
+    states = replay(scene, actions)
+    world, final = states[step], states[-1]
     last_goal_move = {scene.index[a.object]: t for t, a in enumerate(actions) if a.purpose == "goal"}
     act = actions[step]
     o = scene.index[act.object]

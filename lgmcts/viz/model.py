@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import InputError
 from ..formats import RELATIONS, Action, Goal, GoalSpec, PlanSpec
 from ..params import resolve as resolve_params
-from ..scene import TABLE, Scene, State
+from ..scene import Scene, State, replay
 from ..patterns import registry
 from ..validate import goal_satisfied
 
@@ -80,29 +80,6 @@ class GoalShape:
             return v
 
         return {"index": self.index, "met": self.met, "problem": self.problem, "kind": self.kind, **{k: conv(v) for k, v in self.geometry.items()}}
-
-
-def replay(scene: Scene, actions: list[Action]) -> list[State]:
-    """States before the first action and after each one (``len(actions) + 1``).
-
-    Raises
-    ------
-    InputError
-        When an action names an object the scene does not have. Illegal but
-        well-formed actions (picking a covered object) are replayed as given:
-        pictures show what the plan says, the validator judges it.
-    """
-    states = [scene.initial]
-    for k, a in enumerate(actions):
-        if a.object not in scene.index:
-            raise InputError(f"action {k + 1} moves unknown object id {a.object}")
-        if a.on is not None and a.on not in scene.index:
-            raise InputError(f"action {k + 1} places object {a.object} on unknown object id {a.on}")
-        if a.on == a.object:
-            raise InputError(f"action {k + 1} places object {a.object} on itself")
-        sup = TABLE if a.on is None else scene.index[a.on]
-        states.append(states[-1].moved(scene.index[a.object], np.asarray(a.to, dtype=float), sup))
-    return states
 
 
 def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[GoalShape]:
