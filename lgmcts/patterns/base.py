@@ -17,6 +17,7 @@ from typing import Any, ClassVar, Protocol
 import numpy as np
 import shapely
 
+from ..geometry import wrap_angle
 from ..params import GoalParams
 from ..params import resolve as resolve_params
 from ..scene import TABLE, Scene, State
@@ -359,7 +360,7 @@ def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
         e = EDGE_EPS
         ok &= (poses[:, 0] >= x0 - e) & (poses[:, 0] <= x1 + e) & (poses[:, 1] >= y0 - e) & (poses[:, 1] <= y1 + e)
     if gp.heading is not None:
-        d = np.abs((poses[:, 2] - gp.heading + np.pi) % (2 * np.pi) - np.pi)
+        d = np.abs(wrap_angle(poses[:, 2] - gp.heading))
         ok &= d <= YAW_SHARE * gp.heading_tol
     return ok
 

@@ -24,6 +24,7 @@ import numpy as np
 import shapely
 
 from ..tolerances import MIN_CIRCLE_RADIUS, TOL
+from ..geometry import wrap_angle
 from .base import (
     BAND,
     CLEARANCE,
@@ -265,7 +266,7 @@ class Circle(BasePattern):
             return np.zeros(len(poses))
         d = np.hypot(poses[:, 0] - cx, poses[:, 1] - cy) - r
         a = np.arctan2(poses[:, 1] - cy, poses[:, 0] - cx)
-        da = np.abs((a[:, None] - angles[None, :] + math.pi) % (2 * math.pi) - math.pi).min(axis=1)
+        da = np.abs(wrap_angle(a[:, None] - angles[None, :])).min(axis=1)
         spread, band = _spread(ctx, r, k), _band(ctx)
         ok = (np.abs(d) <= band + EDGE_EPS) & (da <= spread + EDGE_EPS)
         return np.where(ok, np.exp(-0.5 * (d / (band / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
@@ -298,7 +299,7 @@ class Circle(BasePattern):
         free, angles = self._slot_angles(ctx)
         cx, cy = prog.params[0], prog.params[1]
         a = math.atan2(pose[1] - cy, pose[0] - cx)
-        da = np.abs((a - angles + math.pi) % (2 * math.pi) - math.pi)
+        da = np.abs(wrap_angle(a - angles))
         return prog.add(obj, slot=int(free[int(np.argmin(da))]))
 
     def region(self, ctx: Context):

@@ -44,7 +44,7 @@ class Pose(BasePattern):
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         t = np.asarray(ctx.goal.pose)
-        dth = np.abs((poses[:, 2] - t[2] + np.pi) % (2 * np.pi) - np.pi)
+        dth = np.abs(wrap_angle(poses[:, 2] - t[2]))
         return ((np.hypot(*(poses[:, :2] - t[:2]).T) <= XY_TOL) & (dth <= YAW_TOL)).astype(float)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:

@@ -16,6 +16,7 @@ import shapely
 
 from ..formats import RELATIONS
 from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
+from ..geometry import wrap_angle
 from .base import CLEARANCE, BasePattern, Context, GoalProgress, goal_xy, params_mask, register, with_heading
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
@@ -82,7 +83,7 @@ class Relation(BasePattern):
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         v = poses[:, :2] - ctx.state.poses[ctx.goal.anchor, :2]
         rho = np.hypot(v[:, 0], v[:, 1])
-        ang = np.abs((np.arctan2(v[:, 1], v[:, 0]) - self.direction + math.pi) % (2 * math.pi) - math.pi)
+        ang = np.abs(wrap_angle(np.arctan2(v[:, 1], v[:, 0]) - self.direction))
         ok = (rho > 1e-6) & (rho <= MAX_DIST) & (ang <= HALF_ANGLE)
         if not ctx.goal.params.empty:
             ok &= params_mask(ctx, obj, poses)
