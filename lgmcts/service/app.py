@@ -32,7 +32,7 @@ from .. import __version__
 from ..errors import InputError
 from ..formats import GoalSpec
 from . import jobs
-from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut
+from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut, ViewRequest
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
 from .viewer import EXAMPLE_GOALS, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE, page
 
@@ -369,6 +369,17 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         except InputError as exc:
             return _error(422, str(exc))
         return await run(jobs.run_check, jobs.CheckJob(req.scene, req.goals, req.plan), deadline, "checking")
+
+    @app.post("/view", response_model=None, responses={200: {"description": "Viewer data."}, **_ERRORS}, tags=["viewer"])
+    async def view(req: ViewRequest) -> Any:
+        """What the viewer draws for the plan: each state's poses, footprints, paints and goal shapes
+        (``lgmcts.viz.viewer_data``); the page's script draws only this."""
+        try:
+            deadline = deadline_of(req.timeout)
+        except InputError as exc:
+            return _error(422, str(exc))
+        job = jobs.ViewJob(req.scene, req.plan, req.goals, req.instruction)
+        return await run(jobs.run_view, job, deadline, "drawing")
 
     @app.get("/", response_class=HTMLResponse, tags=["viewer"])
     async def viewer() -> HTMLResponse:

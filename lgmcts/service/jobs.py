@@ -221,6 +221,23 @@ def run_check(job: CheckJob) -> dict:
     return {"valid": verdict.valid, "reasons": list(verdict.reasons), "goals": list(verdict.goals)}
 
 
+@dataclass(frozen=True)
+class ViewJob:
+    """What the viewer draws for ``plan`` on ``scene`` (against ``goals``, default the plan's)."""
+
+    scene: SceneSpec
+    plan: PlanSpec
+    goals: GoalSpec | None = None
+    instruction: str | None = None
+
+
+def run_view(job: ViewJob) -> dict:
+    """The viewer's data (:func:`lgmcts.viz.viewer_data`): states, footprints, paints and goal shapes."""
+    from ..viz.html import viewer_data
+
+    return viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
+
+
 def warm_up(pause: float) -> int:
     """Import the planner and pause briefly, so warm-up jobs land on distinct workers."""
     from .. import planner, validate  # noqa: F401

@@ -160,9 +160,11 @@ _PAGE = """<!DOCTYPE html>
     return data;
   }
 
-  function show(scene, plan, instruction) {
+  async function show(scene, plan, instruction) {
     $("json").textContent = JSON.stringify(plan, null, 2);
-    window.LGMCTSViewer.render($("view"), { scene: scene, plan: plan, instruction: instruction });
+    // The server computes what to draw (states, footprints, goal shapes); the script only draws it.
+    var data = await post("/view", { scene: scene, plan: plan, instruction: instruction });
+    window.LGMCTSViewer.render($("view"), data);
   }
 
   async function doPlan() {
@@ -177,7 +179,7 @@ _PAGE = """<!DOCTYPE html>
       var t0 = performance.now();
       var plan = await post("/plan", body);
       last = { scene: scene, plan: plan };
-      show(scene, plan, instruction || null);
+      await show(scene, plan, instruction || null);
       status((plan.solved ? "solved: " : "not solved: ") + plan.actions.length + " actions in " +
              Math.round(performance.now() - t0) + " ms", plan.solved ? "ok" : "error");
     } catch (e) { status(e.message, "error"); }

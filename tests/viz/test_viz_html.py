@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lgmcts.formats import load_scene
-from lgmcts.scene import Scene
+from lgmcts.formats import load_plan, load_scene
+from lgmcts.scene import Scene, replay
 from lgmcts.viz import render_html, viewer_data, viewer_js
 
 DATA = Path(__file__).parent / "data"
@@ -32,7 +32,7 @@ def test_viewer_data_contract():
     data = viewer_data(SCENE, PLAN, instruction="hi")
     plan = json.loads(PLAN.read_text())
     sc = Scene.from_spec(load_scene(SCENE))
-    assert set(data) == {"scene", "plan", "instruction", "footprints", "paints", "frames"}
+    assert set(data) == {"scene", "plan", "instruction", "footprints", "paints", "frames", "goal_text"}
     assert data["instruction"] == "hi"
     assert len(data["frames"]) == len(plan["actions"]) + 1
     assert [g["met"] for g in data["frames"][-1]["goals"]] == [True, True]
@@ -40,6 +40,13 @@ def test_viewer_data_contract():
     for k, i in enumerate(sc.ids):
         assert np.allclose(data["footprints"][str(i)], sc.local[k], atol=1e-6)
     assert data["paints"]["7"]["texture"] == "dots"
+    # Each frame carries the replayed state, so the script replays nothing.
+    states = replay(sc, load_plan(PLAN).actions)
+    for f, st in zip(data["frames"], states):
+        for k, i in enumerate(sc.ids):
+            assert np.allclose(f["poses"][str(i)], st.poses[k], atol=1e-6)
+            assert f["on"][str(i)] == (None if st.on[k] < 0 else sc.ids[st.on[k]])
+    assert len(data["goal_text"]) == len(load_plan(PLAN).goals.goals)
     json.dumps(data, allow_nan=False)
 
 
