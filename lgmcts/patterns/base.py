@@ -83,14 +83,16 @@ class GoalProgress:
 
     ``placed`` are the object indices committed so far in commit order,
     ``slots`` their slot numbers (pattern-specific, -1 when unused), and
-    ``params`` the curve parameters kappa once they are known.
+    ``params`` the curve parameters kappa once they are known: the pattern
+    module's frozen record (``LineParams``, ``CircleParams``,
+    ``RectangleParams``), the same type its ``fit`` returns.
     """
 
     placed: tuple[int, ...] = ()
     slots: tuple[int, ...] = ()
-    params: tuple[float, ...] | None = None
+    params: Any = None
 
-    def add(self, obj: int, slot: int = -1, params: tuple[float, ...] | None = None) -> "GoalProgress":
+    def add(self, obj: int, slot: int = -1, params: Any = None) -> "GoalProgress":
         return GoalProgress(self.placed + (obj,), self.slots + (slot,), self.params if params is None else params)
 
     def without(self, obj: int) -> "GoalProgress":

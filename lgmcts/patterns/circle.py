@@ -143,13 +143,15 @@ def _chord_ks(ctx: Context, d: float, lo: float, hi: float) -> list[tuple[int, f
     return out
 
 
-# ---------------------------------------------------------------- the finished circle
+# ---------------------------------------------------------------- kappa and the finished circle
 
 
 @dataclass(frozen=True)
 class CircleParams:
-    """A circle fitted to final centres: ``centre``, ``radius``, the angle of
-    the first object about the centre (``start_angle``) and the object ``count``."""
+    """kappa of a circle: ``centre``, ``radius``, the angle about the centre
+    of slot 0 (the first object placed, ``start_angle``) and the number of
+    evenly spaced slots (``count``, the goal's object count). Fitted to final
+    centres it is the least-squares circle, slot 0 at the first object."""
 
     centre: tuple[float, float]
     radius: float
@@ -199,7 +201,8 @@ class Circle(BasePattern):
     min_objects = 3
 
     def _slot_angles(self, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
-        cx, cy, r, a0, n = ctx.progress.params  # type: ignore[misc]
+        kappa = ctx.progress.params
+        a0, n = kappa.start_angle, kappa.count
         used = set(ctx.progress.slots)
         free = np.array([s for s in range(int(n)) if s not in used], dtype=int)
         return free, a0 + 2 * math.pi * free / n
@@ -229,7 +232,8 @@ class Circle(BasePattern):
             return _first(ctx, obj, rng, n)
         if ctx.progress.params is None:
             return self._second(ctx, rng, n)
-        cx, cy, r, a0, k = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), r, k = kappa.centre, kappa.radius, kappa.count
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.empty((0, 3))
@@ -260,7 +264,8 @@ class Circle(BasePattern):
                     c1, c2 = _centres(p0, poses[:, :2], r)
                     ok |= inside & (_fits(ctx, c1, r) | _fits(ctx, c2, r))
             return ok.astype(float)
-        cx, cy, r, a0, k = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), r, k = kappa.centre, kappa.radius, kappa.count
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.zeros(len(poses))
@@ -294,10 +299,10 @@ class Circle(BasePattern):
             a0 = math.atan2(p0[1] - c[1], p0[0] - c[0])
             a1 = math.atan2(p1[1] - c[1], p1[0] - c[0])
             step = round(((a1 - a0) % (2 * math.pi)) / (2 * math.pi / ctx.n)) % ctx.n
-            params = (float(c[0]), float(c[1]), float(r), float(a0), float(ctx.n))
+            params = CircleParams((float(c[0]), float(c[1])), float(r), float(a0), ctx.n)
             return GoalProgress((first, obj), (0, int(step)), params)
         free, angles = self._slot_angles(ctx)
-        cx, cy = prog.params[0], prog.params[1]
+        cx, cy = prog.params.centre
         a = math.atan2(pose[1] - cy, pose[0] - cx)
         da = np.abs(wrap_angle(a - angles))
         return prog.add(obj, slot=int(free[int(np.argmin(da))]))
@@ -305,7 +310,7 @@ class Circle(BasePattern):
     def region(self, ctx: Context):
         if ctx.progress.params is None:
             return box_region(ctx)
-        cx, cy, r, _, _ = ctx.progress.params
+        (cx, cy), r = ctx.progress.params.centre, ctx.progress.params.radius
         w = ctx.max_radius + BAND
         return shapely.Point(cx, cy).buffer(r + w).difference(shapely.Point(cx, cy).buffer(max(r - w, 0.0)))
 
@@ -320,7 +325,7 @@ class Circle(BasePattern):
         for p in placed:
             a = math.atan2(poses[p, 1] - c[1], poses[p, 0] - c[0])
             slots.append(int(round(((a - a0) % (2 * math.pi)) / (2 * math.pi / n))) % n)
-        return GoalProgress(tuple(placed), tuple(slots), (float(c[0]), float(c[1]), float(r), float(a0), float(n)))
+        return GoalProgress(tuple(placed), tuple(slots), CircleParams((float(c[0]), float(c[1])), float(r), float(a0), n))
 
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "radius"

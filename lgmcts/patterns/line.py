@@ -69,22 +69,25 @@ def _chord(ctx: Context, obj: int, p0: np.ndarray, u: np.ndarray) -> tuple[float
     return lo, hi
 
 
-# ---------------------------------------------------------------- the finished line
+# ---------------------------------------------------------------- kappa and the finished line
 
 
 @dataclass(frozen=True)
 class LineParams:
-    """A line fitted to final centres: through ``centre`` (their mean) along
-    the unit ``direction`` (total least squares), from ``ends[0]`` to ``ends[1]``
-    (the extreme centres projected on it)."""
+    """kappa of a line: a ``point`` on it and its unit ``direction``; in the
+    search the first object and the direction to the second. Fitted to final
+    centres: through their mean along the total-least-squares direction, with
+    ``ends``, the extreme centres projected on it."""
 
-    centre: tuple[float, float]
+    point: tuple[float, float]
     direction: tuple[float, float]
-    ends: tuple[tuple[float, float], tuple[float, float]]
+    ends: tuple[tuple[float, float], tuple[float, float]] | None = None
 
     @property
     def length(self) -> float:
-        """Spread of the centres along the line (m)."""
+        """Spread of the centres along the line (m); 0 before the line is finished."""
+        if self.ends is None:
+            return 0.0
         (x0, y0), (x1, y1) = self.ends
         return float(np.hypot(x1 - x0, y1 - y0))
 
@@ -125,8 +128,8 @@ class Line(BasePattern):
     def _params(self, ctx: Context) -> tuple[np.ndarray, np.ndarray] | None:
         if ctx.progress.params is None:
             return None
-        x, y, ux, uy = ctx.progress.params
-        return np.array([x, y]), np.array([ux, uy])
+        kappa = ctx.progress.params
+        return np.array(kappa.point), np.array(kappa.direction)
 
     def _reach(self, ctx: Context, obj: int) -> tuple[float, float]:
         """Distances the second object may take from the first (m)."""
@@ -291,7 +294,7 @@ class Line(BasePattern):
             p0 = ctx.state.poses[prog.placed[0], :2]
             v = np.asarray(pose[:2]) - p0
             norm = float(np.hypot(*v)) or 1.0
-            return prog.add(obj, params=(float(p0[0]), float(p0[1]), float(v[0] / norm), float(v[1] / norm)))
+            return prog.add(obj, params=LineParams((float(p0[0]), float(p0[1])), (float(v[0] / norm), float(v[1] / norm))))
         return prog.add(obj)
 
     def region(self, ctx: Context):
@@ -311,7 +314,7 @@ class Line(BasePattern):
             return super().recover(goal, placed, poses, final)
         p0, p1 = poses[placed[0], :2], poses[placed[1], :2]
         u = (p1 - p0) / (np.hypot(*(p1 - p0)) or 1.0)
-        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), (float(p0[0]), float(p0[1]), float(u[0]), float(u[1])))
+        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), LineParams((float(p0[0]), float(p0[1])), (float(u[0]), float(u[1]))))
 
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "length"
