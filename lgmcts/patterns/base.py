@@ -193,6 +193,10 @@ class Pattern(Protocol):
         """What to draw for ``goal`` at ``poses``: a kind and its geometry (see
         :class:`lgmcts.viz.model.GoalShape`)."""
 
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        """What to draw from a fitted record in its JSON form (as plans carry
+        it, :func:`fit_json`), or ``None`` when the record alone does not say."""
+
     def size(self, fitted: Any) -> float:
         """The characteristic length a goal's ``size`` is compared with (m)."""
 
@@ -419,10 +423,40 @@ class BasePattern:
     def shape(self, goal: Any, scene: Scene, poses: np.ndarray) -> tuple[str, dict]:
         return "points", {"points": goal_xy(goal, scene, poses)}
 
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        return None
+
     def size(self, fitted: Any) -> float:
         raise NotImplementedError(f"pattern '{self.name}' has no size")
 
     def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
+        return None
+
+
+def fit_json(fitted: Any) -> dict | None:
+    """A fitted record (a frozen dataclass of numbers and tuples) as JSON-ready
+    lists and floats, or ``None`` when there is none or it is not finite."""
+    import dataclasses
+
+    if fitted is None or not dataclasses.is_dataclass(fitted):
+        return None
+
+    def conv(v: Any) -> Any:
+        if isinstance(v, (tuple, list, np.ndarray)):
+            return [conv(x) for x in v]
+        if isinstance(v, (bool, np.bool_)):
+            return bool(v)
+        if isinstance(v, (int, np.integer)):
+            return int(v)
+        if isinstance(v, (float, np.floating)):
+            if not np.isfinite(v):
+                raise ValueError
+            return float(v)
+        return v
+
+    try:
+        return {f.name: conv(getattr(fitted, f.name)) for f in dataclasses.fields(fitted)}
+    except ValueError:
         return None
 
 

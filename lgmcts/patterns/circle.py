@@ -31,6 +31,7 @@ from .base import (
     EDGE_EPS,
     BasePattern,
     Context,
+    fit_json,
     goal_xy,
     GoalProgress,
     box_region,
@@ -350,8 +351,14 @@ class Circle(BasePattern):
         return None
 
     def shape(self, goal, scene, poses) -> tuple[str, dict]:
-        p = circle_params(goal_xy(goal, scene, poses))
-        return "circle", {"centre": np.asarray(p.centre), "radius": p.radius}
+        xy = goal_xy(goal, scene, poses)
+        fitted = fit_json(circle_params(xy))
+        if fitted is None:  # a fit that did not converge: nothing to draw but the centres' mean
+            return "circle", {"centre": xy.mean(axis=0), "radius": 0.0}
+        return self.draw(fitted)
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        return "circle", {"centre": np.asarray(fitted["centre"], dtype=float), "radius": float(fitted["radius"])}
 
     def size(self, fitted: CircleParams) -> float:
         return fitted.radius

@@ -29,6 +29,7 @@ from .base import (
     Context,
     GoalProgress,
     box_region,
+    fit_json,
     goal_xy,
     params_mask,
     register,
@@ -329,7 +330,12 @@ class Line(BasePattern):
         return None
 
     def shape(self, goal, scene, poses) -> tuple[str, dict]:
-        return "line", {"points": np.asarray(fit_line(goal_xy(goal, scene, poses)).ends)}
+        return self.draw(fit_json(fit_line(goal_xy(goal, scene, poses))))
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        if fitted.get("ends") is None:
+            return None
+        return "line", {"points": np.asarray(fitted["ends"], dtype=float)}
 
     def size(self, fitted: LineParams) -> float:
         return fitted.length

@@ -383,6 +383,10 @@ class Rectangle(BasePattern):
         a, b = np.asarray(fit_line(xy).ends)
         return "rectangle", {"corners": np.stack([a, b, b, a])}
 
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        p = RectangleParams(tuple(fitted["centre"]), fitted["width"], fitted["height"], fitted["angle"])
+        return "rectangle", {"corners": corners(p)}
+
     def size(self, fitted: RectangleParams | None) -> float:
         return 0.0 if fitted is None else max(fitted.width, fitted.height)
 

@@ -20,7 +20,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
-from ..scene import Scene
+from ..patterns import registry
+from ..patterns.base import fit_json, goal_xy
+from ..scene import Scene, replay
 from .polish import polished
 from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
 from .step import Problem
@@ -162,4 +164,14 @@ def plan(
     if not res.solved:
         stats["reason"] = res.reason
     stats.update(extra)
-    return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats)
+    return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
+                    fits=final_fits(sc, gspec, res.actions))
+
+
+def final_fits(scene: Scene, goals: GoalSpec, actions: list) -> list[dict | None]:
+    """Each goal's pattern parameters fitted to the state ``actions`` end in
+    (JSON-ready; ``None`` for patterns without a fit): what a plan carries so
+    that viewers draw the arrangement without fitting it again."""
+    reg = registry()
+    final = replay(scene, actions)[-1]
+    return [fit_json(reg[g.pattern].fit(goal_xy(g, scene, final.poses))) for g in goals.goals]

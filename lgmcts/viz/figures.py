@@ -100,6 +100,12 @@ class _Ctx:
     paints: tuple[Paint, ...]
     instruction: str | None
     options: FigureOptions
+    #: The plan's fits of its final state, when drawn against its own goals.
+    fits: list | None = None
+
+    def shapes(self, step: int) -> list[GoalShape]:
+        """The goals' shapes after ``step`` actions (the last from the plan's fits)."""
+        return goal_shapes(self.scene, self.goals, self.states[step], fits=self.fits if step == self.n_actions else None)
 
     @property
     def n_actions(self) -> int:
@@ -532,7 +538,7 @@ def render_state(ctx: _Ctx, step: int, *, goals_drawn: str = "met") -> np.ndarra
     ``"all"`` every goal's fitted shape, ``"none"`` no shapes.
     """
     state = ctx.states[step]
-    shapes = goal_shapes(ctx.scene, ctx.goals, state)
+    shapes = ctx.shapes(step)
     fig, (ax,), pax = _new_figure(ctx)
     _draw_table(ax, ctx.scene)
     n = ctx.n_actions
@@ -575,7 +581,7 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
     """The initial and the final scene side by side (final with goal shapes) as RGB."""
     n = ctx.n_actions
     final = ctx.states[n]
-    shapes = goal_shapes(ctx.scene, ctx.goals, final)
+    shapes = ctx.shapes(n)
     fig, (a0, a1), pax = _new_figure(ctx, panels=2)
     for ax, st, name in ((a0, ctx.states[0], "before"), (a1, final, f"after {n} action{'s' if n != 1 else ''}")):
         _draw_table(ax, ctx.scene)
@@ -704,7 +710,7 @@ def _context(scene: Any, plan: Any, goals: Any, instruction: str | None, options
         instruction = extra.get("instruction") if isinstance(extra.get("instruction"), str) else None
     states = replay(sc, list(pl.actions))
     paints = tuple(paint(c) for c in sc.colors)
-    return _Ctx(sc, gs, pl, states, paints, instruction, options)
+    return _Ctx(sc, gs, pl, states, paints, instruction, options, pl.fits if goals is None else None)
 
 
 def _save_png(img: np.ndarray, path: Path, dpi: int) -> Path:

@@ -93,15 +93,17 @@ def viewer_data(
         extra = pl.model_extra or {}
         instruction = extra.get("instruction") if isinstance(extra.get("instruction"), str) else None
     states = replay(sc, list(pl.actions))
+    # The plan's own fits draw its final state when it is drawn against its own goals.
+    fits = pl.fits if goals is None else None
     footprints = {str(i): np.round(sc.local[k], 6).tolist() for k, i in enumerate(sc.ids)}
     scene_json = to_dict(sc.to_spec(sc.initial))
     frames = [
         {
             "poses": {str(i): [float(v) for v in st.poses[k]] for k, i in enumerate(sc.ids)},
             "on": {str(i): (None if st.on[k] == TABLE else sc.ids[st.on[k]]) for k, i in enumerate(sc.ids)},
-            "goals": [s.to_json() for s in goal_shapes(sc, gs, st)],
+            "goals": [s.to_json() for s in goal_shapes(sc, gs, st, fits=fits if k == len(states) - 1 else None)],
         }
-        for st in states
+        for k, st in enumerate(states)
     ]
     return {
         "scene": scene_json,

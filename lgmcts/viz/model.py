@@ -82,8 +82,12 @@ class GoalShape:
         return {"index": self.index, "met": self.met, "problem": self.problem, "kind": self.kind, **{k: conv(v) for k, v in self.geometry.items()}}
 
 
-def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[GoalShape]:
-    """Describe every goal's geometry in ``state`` and whether it holds."""
+def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None) -> list[GoalShape]:
+    """Describe every goal's geometry in ``state`` and whether it holds.
+
+    ``fits`` are the goals' fitted parameters a plan carries for its final
+    state (``PlanSpec.fits``): given for that state, a goal is drawn from
+    them instead of being fitted again."""
     if goals is None:
         return []
     out = []
@@ -96,7 +100,8 @@ def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[Goal
         pattern = registry().get(g.pattern)
         if pattern is None:
             raise InputError(f"goal {k}: pattern '{g.pattern}' is not registered (load its module)")
-        kind, geom = pattern.shape(g, scene, state.poses)
+        drawn = pattern.draw(fits[k]) if fits is not None and k < len(fits) and fits[k] is not None else None
+        kind, geom = drawn if drawn is not None else pattern.shape(g, scene, state.poses)
         geom = dict(geom)
         if g.region is not None or g.facing is not None:
             gp = resolve_params(g, scene.bounds, scene.radii[idx])

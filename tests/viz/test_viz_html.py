@@ -85,3 +85,26 @@ def test_core_does_not_import_viz():
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+def test_plans_carry_fits_and_viewers_draw_from_them():
+    """A plan carries each goal's fitted parameters for its final state; the
+    viewer draws the final state from them instead of fitting again, and a
+    plan without them (older files) is drawn by fitting."""
+    import lgmcts
+
+    root = Path(__file__).resolve().parents[2]
+    scene, goals = root / "examples" / "tabletop.json", root / "examples" / "goals.json"
+    p = lgmcts.plan(scene, goals, seed=0)
+    circle = p.fits[[g.pattern for g in p.goals.goals].index("circle")]
+    assert set(circle) == {"centre", "radius", "start_angle", "count"} and circle["count"] == 4
+    assert all(f is None for f, g in zip(p.fits, p.goals.goals) if g.pattern in ("behind", "tower", "pose"))
+    plan = json.loads(lgmcts.save_json(p))
+    k = [g["pattern"] for g in plan["goals"]["goals"]].index("circle")
+    drawn = viewer_data(scene, plan)["frames"][-1]["goals"][k]
+    assert np.allclose(drawn["centre"], circle["centre"]) and np.isclose(drawn["radius"], circle["radius"])
+    plan["fits"][k] = {**circle, "radius": 0.5}  # the viewer believes the plan
+    assert viewer_data(scene, plan)["frames"][-1]["goals"][k]["radius"] == 0.5
+    del plan["fits"]
+    refit = viewer_data(scene, plan)["frames"][-1]["goals"][k]
+    assert np.isclose(refit["radius"], circle["radius"])
