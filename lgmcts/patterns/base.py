@@ -193,6 +193,9 @@ class Pattern(Protocol):
         """What to draw for ``goal`` at ``poses``: a kind and its geometry (see
         :class:`lgmcts.viz.model.GoalShape`)."""
 
+    def describe(self, goal: Any) -> str:
+        """A few words for a format goal, as pictures and the viewer list it."""
+
     def draw(self, fitted: dict) -> tuple[str, dict] | None:
         """What to draw from a fitted record in its JSON form (as plans carry
         it, :func:`fit_json`), or ``None`` when the record alone does not say."""
@@ -425,6 +428,10 @@ class BasePattern:
 
     def draw(self, fitted: dict) -> tuple[str, dict] | None:
         return None
+
+    def describe(self, goal: Any) -> str:
+        """A few words for ``goal`` (a format goal): ``"circle of 1, 2, 3"``."""
+        return f"{self.name} of " + ", ".join(str(i) for i in goal.objects)
 
     def size(self, fitted: Any) -> float:
         raise NotImplementedError(f"pattern '{self.name}' has no size")

@@ -56,6 +56,10 @@ class Pose(BasePattern):
         x, y, _ = ctx.goal.pose  # type: ignore[misc]
         return _disc(float(x), float(y), ctx.max_radius)
 
+    def describe(self, goal) -> str:
+        x, y, t = goal.pose
+        return f"{goal.objects[0]} to ({x:.2f}, {y:.2f}, {t:.2f})"
+
     def rank(self, goal, progress, obj) -> int:
         return 0  # a fixed target: it samples, the other priors filter
 

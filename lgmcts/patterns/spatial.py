@@ -98,6 +98,10 @@ class Relation(BasePattern):
         pts = [(x, y)] + [(x + 0.30 * math.cos(t), y + 0.30 * math.sin(t)) for t in arc]
         return shapely.Polygon(pts).buffer(ctx.max_radius)
 
+    def describe(self, goal) -> str:
+        word = "behind" if self.relation == "behind" else f"{self.relation.replace('_', '-')} of"
+        return ", ".join(str(i) for i in goal.objects) + f" {word} {goal.anchor}"
+
     # The finished arrangement (the acceptance rule and what to draw).
     def accept(self, goal, scene, poses, on) -> str | None:
         d = np.asarray(RELATIONS[self.relation])

@@ -69,6 +69,9 @@ class Tower(BasePattern):
     def region(self, ctx: Context):
         return box_region(ctx) if not ctx.progress.placed else None
 
+    def describe(self, goal) -> str:
+        return "tower " + " < ".join(str(i) for i in goal.objects)
+
     def rank(self, goal, progress, obj) -> int:
         # An upper level's pose is its support's; a base goes after the other priors.
         return 1 if goal.objects.index(obj) > 0 else 5

@@ -46,8 +46,8 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     scene = problem.scene
     goals: list[Goal] = []
     fixed: set[int] = set()
-    for g in problem.spec.goals:
-        if g.pattern == "tower":
+    for g, pattern in zip(problem.spec.goals, problem.patterns):
+        if _stacks(pattern):
             goals.append(g)
             fixed.update(g.objects[1:])
     for o in [*problem.targets, *sorted(problem.standing_anchors)]:
@@ -57,6 +57,11 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
         pose = final.get(oid, tuple(float(v) for v in scene.initial.poses[o]))
         goals.append(Goal(pattern="pose", objects=[oid], pose=pose))
     return GoalSpec(goals=goals)
+
+
+def _stacks(pattern) -> bool:
+    """Whether a pattern stacks its objects (a tower): PMCTS keeps such goals as they are."""
+    return not pattern.on_table and not getattr(pattern, "needs_pose", False)
 
 
 def _accept(opts: SearchOptions) -> Accept:
@@ -73,7 +78,7 @@ def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions)
 
 
 def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    if all(g.pattern in ("pose", "tower") for g in problem.spec.goals):
+    if all(p.needs_pose or _stacks(p) for p in problem.patterns):
         return mcts(problem, rng, opts, _accept(opts)), {}
     t0 = time.perf_counter()
     poses = goal_poses(problem, rng, opts)

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..formats import RELATIONS, Action, Goal, GoalSpec, PlanSpec
+from ..formats import Action, Goal, GoalSpec, PlanSpec
 from ..params import resolve as resolve_params
 from ..scene import Scene, State, replay
 from ..patterns import registry
@@ -134,17 +134,10 @@ def describe_goal(goal: Goal) -> str:
 
 
 def _describe_shape(goal: Goal) -> str:
-    objs = ", ".join(str(i) for i in goal.objects)
-    p = goal.pattern
-    if p in RELATIONS:
-        word = "behind" if p == "behind" else f"{p.replace('_', '-')} of"
-        return f"{objs} {word} {goal.anchor}"
-    if p == "tower":
-        return "tower " + " < ".join(str(i) for i in goal.objects)
-    if p == "pose":
-        x, y, t = goal.pose  # type: ignore[misc]
-        return f"{objs} to ({x:.2f}, {y:.2f}, {t:.2f})"
-    return f"{p} of {objs}"
+    pattern = registry().get(goal.pattern)
+    if pattern is None:
+        return f"{goal.pattern} of " + ", ".join(str(i) for i in goal.objects)
+    return pattern.describe(goal)
 
 
 def describe_action(scene: Scene, action: Action, number: int, total: int) -> str:
