@@ -311,7 +311,8 @@ class _Parser:
             if m.reason == "no arrangement is named":
                 raise InputError(f"'{text}' does not say how to arrange the objects (known patterns: {known})")
             hint = f"; closest is '{m.runner_up}' ({m.score:.2f})" if m.runner_up else ""
-            raise InputError(f"no pattern in the database matches '{phrase or text}'{hint}; known patterns: {known}")
+            why = f" ({m.reason})" if m.reason.startswith("'") else ""
+            raise InputError(f"no pattern in the database matches '{phrase or text}'{why}{hint}; known patterns: {known}")
         return m
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
@@ -454,7 +455,7 @@ class _Parser:
             w = words[k]
             if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA:
                 continue
-            if _stem(w) in self.key_vocab:
+            if _stem(w) in self.key_vocab or self._pattern_word(w):
                 continue
             j = k - 1
             while j >= 0 and j in restset and words[j] not in _DET_WORDS and words[j].isalpha() and words[j] not in STOPWORDS:
@@ -471,6 +472,13 @@ class _Parser:
                         end = nxt.end
                     raise InputError(f"nothing in the scene matches '{' '.join(words[j:end])}' (no {w} object)")
                 raise InputError(f"'{' '.join(words[j:end])}' names nothing in the scene")
+
+    def _pattern_word(self, w: str) -> bool:
+        """Whether ``w``, in no key, still names a pattern by its embedding ("perimeter")."""
+        if not w.isalpha() or len(w) < 3:
+            return False
+        p, _, unsupported = self.matcher.word_pattern(w)
+        return p is not None
 
     # ------------------------------------------------------------ the command
     def command(self, text: str) -> GoalSpec:
