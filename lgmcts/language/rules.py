@@ -38,8 +38,9 @@ from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
+from .shapes import normalise, stack_roles, take_params
 
-__all__ = ["RulesOptions", "parse_rules", "split_clauses"]
+__all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
 _STRONG_WORDS = frozenset({"then", "while", "also", "afterwards", "meanwhile", "additionally", "furthermore", "whereas"})
 _STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"))
@@ -59,8 +60,20 @@ _FRONTED = frozenset(
 _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
-     "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand"}
+     "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
+     "use", "find"}
 )
+#: Verbs of a selection clause: it names objects for the next clause ("select
+#: objects that are red. circle"; "take the red mug and put it ...").
+_SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch"})
+_VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
+                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must"})
+_VERT_ON = frozenset({("on",), ("onto",), ("on", "top", "of"), ("atop",), ("upon",), ("above",), ("over",),
+                      ("on", "to"), ("top", "of")})
+_VERT_UNDER = frozenset({("under",), ("below",), ("beneath",), ("underneath",), ("under", "neath")})
+_VERT_WORDS = frozenset(w for s in _VERT_ON | _VERT_UNDER for w in s)
+_INVERSE = {"left": "right", "right": "left", "front": "behind", "behind": "front", "left_front": "right_behind",
+            "right_behind": "left_front", "left_behind": "right_front", "right_front": "left_behind"}
 _ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
 #: Words never counted as naming an arrangement when deciding where to split.
 _NOT_PATTERN = frozenset({"other", "top", "exactly", "position", "coordinate", "shape", "pose", "this", "single"})
@@ -93,6 +106,7 @@ class _Pending:
     anchor: int | Choice | None
     pose: tuple[float, float, float] | None
     clause: str
+    params: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -101,6 +115,12 @@ class _State:
     last: list[int | Choice] = field(default_factory=list)
     #: The previous clause built a tower: "it" then means its top object.
     last_tower: bool = False
+    #: Objects chosen by a selection clause ("select objects that are red.").
+    selection: list[int | Choice] | None = None
+    #: A pattern named before its objects ("make a tower: ...").
+    header: tuple[str, dict, str] | None = None
+    #: The tower of the previous clause, which "then the red block" extends.
+    tower: "_Pending | None" = None
 
 
 def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
@@ -315,11 +335,93 @@ class _Parser:
             raise InputError(f"no pattern in the database matches '{phrase or text}'{why}{hint}; known patterns: {known}")
         return m
 
+    def _free_word(self, w: str) -> bool:
+        """Whether ``w`` names a pattern that takes no anchor (a shape), by its keys or its embedding."""
+        rel, free = self._word_kinds()
+        st = _stem(w)
+        if st in free or (st in self.key_vocab and st not in rel and st not in FILLERS and st not in _NOT_PATTERN):
+            return True
+        if st in rel or st in STOPWORDS or st in FILLERS or not w.isalpha() or len(w) < 4:
+            return False
+        p, _, _ = self.matcher.word_pattern(w)
+        return p is not None and not self.infos[p].anchored
+
+    def _roles(self, words: tuple[str, ...], mentions: list[Mention]):
+        """Stack roles right after mentions ("the blue block as the base"); words without them.
+
+        Read only in a clause about stacking (a tower word, a tower named
+        before, or two role phrases): elsewhere "in the middle" is a place.
+        """
+        roles: dict[int, str] = {}
+        drop: set[int] = set()
+        for m in mentions:
+            if m.start in drop:
+                continue
+            got = stack_roles(words, m.end)
+            if got is None:
+                continue
+            role, end = got
+            roles[m.start] = role
+            drop.update(range(m.end, end))
+        if not drop:
+            return None, words
+        towerish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or len(roles) >= 2 \
+            or (self.state.header is not None and self.state.header[0] == "tower") or self.state.tower is not None
+        if not towerish:
+            return None, words
+        kept = [k for k in range(len(words)) if k not in drop]
+        new_pos = {k: n for n, k in enumerate(kept)}
+        return {new_pos[s]: r for s, r in roles.items()}, tuple(words[k] for k in kept)
+
+    def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
+        """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
+        main, sub = words[:k], words[k + n_skip :]
+        text = " ".join(words)
+        mentions = find_mentions(self.vocab, main, self.key_vocab)
+        if not mentions:
+            raise InputError(f"'{text}': say which object to move")
+        movers: list[int | Choice] = []
+        for m in mentions:
+            sel = self._select(m)
+            movers.extend(sel if isinstance(sel, list) else [sel])
+        self.state.last = list(movers)
+        self.state.last_tower = False
+        out = self.clause(sub)
+        res = []
+        for p in out:
+            if any(o in movers for o in p.objects):
+                res.append(p)
+            elif p.anchor is not None and p.anchor in movers and p.pattern in _INVERSE and len(p.objects) == 1:
+                res.append(_Pending(_INVERSE[p.pattern], [p.anchor], p.objects[0], None, text))
+            elif p.pattern == "tower" and any(o in movers for o in p.objects):
+                res.append(p)
+            else:
+                raise InputError(f"'{text}': the goal after 'so that' does not involve the object to move")
+        return res
+
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
         text = " ".join(words)
         if any(w in ("itself", "themselves", "himself", "herself") for w in words):
             raise InputError(f"'{text}': an object cannot be placed relative to itself")
+        for k in range(1, len(words) - 1):
+            if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they")):
+                return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
         mentions = find_mentions(self.vocab, words, self.key_vocab)
+        role_at, reduced = self._roles(words, mentions)
+        if role_at is not None:
+            words = reduced
+            mentions = find_mentions(self.vocab, words, self.key_vocab)
+        params: dict = {}
+        inside = {k for m in mentions for k in range(m.start, m.end)}
+        if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
+            params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions})
+            if words2 != words:
+                words = words2
+                mentions = find_mentions(self.vocab, words, self.key_vocab)
+                if role_at is not None:
+                    role_at = None  # positions moved; roles and places are not mixed
+        roles = [role_at.get(m.start) for m in mentions] if role_at else None
+        text = " ".join(words)
         groups, gaps = _groups(words, mentions)
         rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
         while rest and words[rest[0]] in _LEADING:
@@ -330,7 +432,67 @@ class _Parser:
         if not mentions:
             if not meaningful:
                 return []  # a preamble such as "set the table" or "please"
+            if self.state.selection is not None:
+                # "select objects that are red. small circle in the top left": the
+                # structure sentence takes the objects selected before it.
+                sel = self.state.selection
+                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                     if not i.anchored and not i.needs_pose))
+                p = self._shape(m.pattern, [[sel]], words, [], text, phrase_words)
+                p.params = params
+                return [p]
+            if any(self._free_word(w) for w in meaningful):
+                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                     if not i.anchored and not i.needs_pose))
+                self.state.header = (m.pattern, params, text)
+                return []  # "make a tower:" names its objects in the next clause
             raise InputError(f"'{text}' names no object in the scene")
+        if words[0] in _SELECT_VERBS and roles is None and all(
+                w in _SELECT_VERBS or w in ("up", "out", "only", "just") for w in meaningful):
+            sel: list[int | Choice] = []
+            for m in mentions:
+                got = self._select(m)
+                for x in got if isinstance(got, list) else [got]:
+                    if x not in sel:
+                        sel.append(x)
+            self.state.selection = sel
+            self.state.last = list(sel)
+            self.state.last_tower = False
+            return []
+        if roles is not None and not any(self._free_word(w) for w in meaningful):
+            phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
+            meaningful = ["stack"]
+            if self.state.header is not None and self.state.header[0] == "tower":
+                params = {**self.state.header[1], **params}
+                self.state.header = None
+        vertical = None
+        if len(groups) == 2 and roles is None:
+            lo, hi = gaps[1]
+            between = tuple(w for w in words[lo:hi] if w not in _VERT_SKIP and w != "the")
+            if between in _VERT_ON or between in _VERT_UNDER:
+                others = [w for w in meaningful if w not in _VERT_WORDS and w not in _VERT_SKIP
+                          and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")]
+                if not others:
+                    vertical = "on" if between in _VERT_ON else "under"
+                    phrase_words = ["stack"]
+                    meaningful = ["stack"]
+        if not meaningful and self.state.header is not None:
+            pat, hparams, _ = self.state.header
+            self.state.header = None
+            sels = [[self._select(mm) for mm in g] for g in groups]
+            p = self._shape(pat, sels, words, gaps, text, phrase_words)
+            p.params = {**hparams, **params}
+            return [p]
+        if not meaningful and self.state.tower is not None and len(groups) == 1:
+            # "stack A as the base, then B, then C": each next clause goes on top.
+            tower = self.state.tower
+            for mm in groups[0]:
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x in tower.objects:
+                        tower.objects.remove(x)
+                    tower.objects.append(x)
+            return []
         # Order and emphasis words ("the first one at the bottom", "another")
         # carry no pattern meaning: leave them out of the phrase to match.
         phrase = " ".join(w for w in phrase_words if w not in _ALLOWED_EXTRA or _stem(w) in self.key_vocab)
@@ -365,6 +527,7 @@ class _Parser:
             out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
             targets = out[0].objects
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
+            out[-1].params = params
             return out
         m = self._match(phrase, text, usable)
         if infos[m.pattern].anchored:
@@ -373,7 +536,16 @@ class _Parser:
                 counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
             p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
             return self._relation(m.pattern, groups, sels, p, text)
-        return [self._shape(m.pattern, sels, words, gaps, text, phrase_words)]
+        role_of: dict = {}
+        if roles is not None:
+            for mm, r in zip(mentions, roles):
+                if r is not None:
+                    got = self._select(mm)
+                    for x in got if isinstance(got, list) else [got]:
+                        role_of[x] = r
+        shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of)
+        shape.params = params
+        return [shape]
 
     def _relation(self, pattern: str, groups, sels, p: int, text: str) -> list[_Pending]:
         words_rel = pattern.replace("_", " and ")
@@ -399,13 +571,16 @@ class _Parser:
             raise InputError(f"'{text}': an object cannot be {words_rel} of itself")
         self.state.last = targets
         self.state.last_tower = False
+        self.state.tower = None
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
-    def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words) -> _Pending:
+    def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
+               roles: dict | None = None) -> _Pending:
         info = self.infos[pattern]
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
-            if any(tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1]):
+            if vertical == "on" or (vertical is None and any(
+                    tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1])):
                 order.reverse()
         objs: list[int | Choice] = []
         for g in order:
@@ -415,6 +590,11 @@ class _Parser:
                         objs.append(x)
         if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
             objs.reverse()
+        if roles:
+            # Stack roles: bottom first, then "goes on it"/"next" in order, the
+            # middle, the objects without a role, the top last.
+            rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
+            objs = sorted(objs, key=lambda x: rank[roles.get(x)])
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
         if n < info.min_objects:
             noun = "object" if n == 1 else "objects"
@@ -429,7 +609,9 @@ class _Parser:
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
         self.state.last_tower = pattern == "tower"
-        return _Pending(pattern, objs, None, pose, text)
+        out = _Pending(pattern, objs, None, pose, text)
+        self.state.tower = out if pattern == "tower" else None
+        return out
 
     def _select(self, m: Mention) -> list[int] | Choice:
         if m.det == "pronoun":
@@ -484,9 +666,12 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
-        words = tuple(t.text for t in tokenize(text))
+        words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
+        dinner = self._dinner(words)
+        if dinner is not None:
+            return self._finish(dinner)
         pending: list[_Pending] = []
         for clause in split_clauses(words):
             mentions = find_mentions(self.vocab, clause, self.key_vocab)
@@ -497,9 +682,53 @@ class _Parser:
                         sub = sub[1:]
                     if sub:
                         pending.extend(self.clause(sub))
+        if self.state.header is not None:
+            raise InputError(f"'{self.state.header[2]}' names no object in the scene")
         if not pending:
+            if self.state.selection is not None:
+                raise InputError("the instruction selects objects but does not say how to arrange them")
             raise InputError("the instruction names nothing to arrange")
         return self._finish(pending)
+
+    # ------------------------------------------------------------ dinner
+    _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
+               ("dinner",), ("place", "setting"), ("table", "setting"))
+
+    def _dinner(self, words: tuple[str, ...]) -> list[_Pending] | None:
+        """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
+        lined up beside it (the StructFormer-style composite goal). Only when nothing else is asked.
+        """
+        k = next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
+        if k is None:
+            return None
+        seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
+        rest = words[:k] + words[k + len(seq):]
+        # Anything else a clause asks for is read by the ordinary grammar ("Set the table: put ...").
+        if any(w in (":", ";", ".") for w in rest if rest.index(w) < len(rest) - 1) and any(
+                self._free_word(w) for w in rest):
+            return None
+        side = "left"
+        for w, sd in (("right", "right"), ("left", "left")):
+            if w in rest:
+                side = sd
+        params, rest2 = take_params(rest, lambda w: True) if any(
+            w in rest for w in ("small", "medium", "large", "big", "facing", "top", "bottom", "middle", "center")) else ({}, rest)
+        by = {n: [i for i, nn, _ in self.vocab.objects if nn == n] for n in ("plate", "bowl")}
+        cut = [i for i, nn, _ in self.vocab.objects if nn in ("fork", "knife", "spoon", "chopstick", "chopsticks")]
+        if len(by["plate"]) != 1:
+            raise InputError(f"'{' '.join(words)}': a dinner setting needs exactly one plate, the scene has {len(by['plate'])}")
+        if len(cut) < 2:
+            raise InputError(f"'{' '.join(words)}': a dinner setting needs at least two pieces of cutlery")
+        plate = by["plate"][0]
+        meas = {x[0]: x[2] for x in self.vocab.measures}
+        bowls = sorted(by["bowl"], key=lambda i: (-meas.get(i, 0.0), i))
+        text = " ".join(words)
+        out = []
+        if bowls:
+            out.append(_Pending("tower", [plate, *bowls], None, None, text, dict(params)))
+        out.append(_Pending("line", list(cut), None, None, text, dict(params)))
+        out.append(_Pending(side, list(cut), plate, None, text))
+        return out
 
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
         picked: dict[int, list[int]] = {}
@@ -557,10 +786,15 @@ class _Parser:
                 g["anchor"] = anchor
             if p.pose is not None:
                 g["pose"] = list(p.pose)
+            if p.params and anchor is None and p.pose is None:
+                g.update(p.params)
             if g not in goals:
                 goals.append(g)
         goals = _chain_towers(goals)
         self._contradictions(goals)
+        self.goal_dicts = [dict(g) for g in goals]
+        if not _params_accepted():
+            goals = [{k: v for k, v in g.items() if k not in _PARAM_KEYS} for g in goals]
         spec = parse_goals({"goals": goals})
         try:
             spec.check_against(self.spec)
@@ -644,6 +878,24 @@ def _chain_towers(goals: list[dict]) -> list[dict]:
                    for big in towers)
 
     return [g for g in goals if g["pattern"] != "tower" or not inside(g["objects"])]
+
+
+_PARAM_KEYS = ("region", "size", "facing")
+
+
+def _params_accepted() -> bool:
+    """Whether the goal format has the optional parameters region, size and facing."""
+    from ..formats import Goal
+
+    return all(k in Goal.model_fields for k in _PARAM_KEYS)
+
+
+def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: RulesOptions | None = None) -> list[dict]:
+    """The goals the parser reads, as dicts with their parameters (region, size, facing) even where the
+    goal format does not take them yet."""
+    p = _Parser(spec, matcher, options or RulesOptions())
+    p.command(text)
+    return p.goal_dicts
 
 
 def _is_number(w: str) -> bool:
