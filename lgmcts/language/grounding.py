@@ -607,8 +607,12 @@ def _mention_at(
     num = _number(words, j)
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
         count, j = num
+        of_count = None
         if _starts(words, j, ("of", "the")):
             j += 2
+            got_n = _number(words, j)
+            if got_n is not None:  # "two of the three cans"
+                of_count, j = got_n
         det = "count" if det in ("", "the", "one") else det
         if j < n and words[j] in ("other", "more", "additional", "different", "remaining", "new", "further"):
             j += 1  # "three other blocks": three not named before
@@ -647,7 +651,7 @@ def _mention_at(
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None
         names, plural, end = None, words[j].endswith("s"), j + 1
-        if words[j] in ("one", "ones") and colors is not None:
+        if words[j] in ("one", "ones") and (colors is not None or det == "other"):
             head = "one"
     elif colors is not None and det in ("all", "other"):
         names, plural, end = None, True, j
@@ -674,7 +678,8 @@ def _mention_at(
         det = "all" if plural else "the"
     if det == "count" and count == 1:
         det = "one"
-    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head)
+    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head,
+                of_count=locals().get("of_count"))
     # Qualifiers.
     while end < n:
         if everything is not None and m.colors is None and not m.filters:
@@ -774,6 +779,9 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             later = [mentions[x] for x in g[pos + 1 :] if not mentions[x].head and mentions[x].names is not None]
             earlier = [mentions[x] for x in reversed(g[:pos]) if not mentions[x].head and mentions[x].names is not None]
             order = later + earlier if m.head == "elided" else earlier + later
+            if not order and m.head == "one":
+                # "stack the red block on the blue one": the nearest noun before it.
+                order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
             if not order:
                 if m.head == "elided":
                     raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")
@@ -894,6 +902,8 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
     ids = candidates(vocab, m, named=named)
     if not ids:
         raise InputError(f"nothing in the scene matches '{m.text}'")
+    if m.of_count is not None and len(ids) != m.of_count:
+        raise InputError(f"'{m.text}' speaks of {m.of_count}, but {len(ids)} objects match: {describe(vocab, ids)}")
     if m.det in ("all", "ids"):
         return ids
     if m.det == "other":

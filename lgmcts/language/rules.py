@@ -36,7 +36,7 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import COLOUR_WORDS, NUMBERS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
 from .shapes import normalise, stack_roles, take_params
 
@@ -119,6 +119,8 @@ class _State:
     selection: list[int | Choice] | None = None
     #: A pattern named before its objects ("make a tower: ...").
     header: tuple[str, dict, str] | None = None
+    #: "one X" choices made so far ("the other one" takes the one left).
+    choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
 
@@ -625,9 +627,29 @@ class _Parser:
             if any(isinstance(x, Choice) for x in last):
                 raise InputError(f"'{m.text}' is unclear: the objects it refers to are not fixed yet")
             return [x for x in last if isinstance(x, int)]
-        sel = select(self.vocab, m, named=frozenset(self.state.named))
+        if m.det == "other" and m.names is None and not m.plural and self.state.choices:
+            # "one mug ... the other one": the one of two that the first did not take.
+            prev = self.state.choices[-1]
+            if prev.k == 1 and len(prev.options) == 2:
+                return Choice(prev.options, 1, m.text, fresh=True)
+        try:
+            sel = select(self.vocab, m, named=frozenset(self.state.named))
+        except InputError as exc:
+            # A definite reference that fits several objects but exactly one
+            # named before it in the command means that one ("move the red mug
+            # so that the plate ends up on the mug's right").
+            if m.det != "the" or "ambiguous" not in str(exc):
+                raise
+            from .grounding import candidates
+
+            earlier = [i for i in candidates(self.vocab, m) if i in self.state.named]
+            if len(earlier) != 1:
+                raise
+            sel = earlier
         if isinstance(sel, list):
             self.state.named.update(sel)
+        else:
+            self.state.choices.append(sel)
         return sel
 
     def _unknown_objects(self, words: tuple[str, ...], rest: list[int], mentions: list[Mention]) -> None:
@@ -635,10 +657,13 @@ class _Parser:
         restset = set(rest)
         for k in rest:
             w = words[k]
-            if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA:
+            if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA or w in NUMBERS:
                 continue
             if _stem(w) in self.key_vocab or self._pattern_word(w):
                 continue
+            nxt = [words[x] for x in range(k + 1, min(k + 4, len(words)))]
+            if nxt[:1] == ["of"] and any(_stem(x) in self.key_vocab or self._free_word(x) for x in nxt[1:]):
+                continue  # "each corner of a square", "the perimeter of a circle": a part of the shape
             j = k - 1
             while j >= 0 and j in restset and words[j] not in _DET_WORDS and words[j].isalpha() and words[j] not in STOPWORDS:
                 j -= 1

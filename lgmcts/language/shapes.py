@@ -248,8 +248,10 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             continue
         keep.append(w)
         i += 1
-    if row is not None or col is not None:
-        params["region"] = f"{row or 'middle'} {col or 'center'}"
+    if row is not None and col is not None:
+        params["region"] = f"{row} {col}"
+    elif row is not None or col is not None:
+        params["region"] = row or col  # one band of the table: "bottom", "left"
     return params, tuple(keep)
 
 

@@ -133,7 +133,7 @@ case("params", K, "Put the cans in a large circle in the top left of the table f
 case("params", K, "select objects that are can. small line in the bottom right of the table facing east",
      [g("line", CANS, size="small", region="bottom right", facing="east")])
 case("params", K, "a big circle of the blocks in the top-left corner", [g("circle", BLOCKS, size="large", region="top left")])
-case("params", K, "put the cans in a short line near the front edge", [g("line", CANS, size="small", region="bottom center")])
+case("params", K, "put the cans in a short line near the front edge", [g("line", CANS, size="small", region="bottom")])
 case("params", K, "line the blocks up in the middle of the table", [g("line", BLOCKS, region="middle center")])
 case("params", K, "medium circle of cans in the middle center of the table facing west",
      [g("circle", CANS, size="medium", region="middle center", facing="west")])
