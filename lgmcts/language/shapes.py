@@ -49,8 +49,9 @@ _SIDES = frozenset({"left", "right", "front", "back", "top"})
 def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
     """Casual register and possessive relations, token by token."""
     out: list[str] = []
-    for w in words:
-        out.extend(_ABBREV.get(w, (w,)))
+    for k, w in enumerate(words):
+        # "letter R", "letter U": a one-letter word after "letter" is a name.
+        out.extend(_ABBREV.get(w, (w,)) if not (k and words[k - 1] == "letter") else (w,))
     words = tuple(out)
     out = []
     i = 0
