@@ -18,8 +18,7 @@ object lists as sets except for ordered patterns without anchor (towers);
 an expected goal may say ``"objects_from": [ids], "count": k`` (any k of
 those: "three blocks") and ``"anchor_any": [ids]`` (any one: "behind one
 block"); ``"disjoint": [[i, j]]`` at the top requires goals i and j to share
-no object ("another line"); the optional parameters ``region``, ``size``
-and ``facing`` must be equal (absent on both sides counts as equal). A refusal case passes when the parser raises
+no object ("another line"). A refusal case passes when the parser raises
 :class:`~lgmcts.errors.InputError` (and its message contains ``refuse``
 when that is a non-empty string).
 """
@@ -36,9 +35,6 @@ from typing import Any, Callable
 
 from ..errors import InputError
 from ..formats import GoalSpec, SceneSpec, parse_scene, to_dict
-
-#: Optional parameters of pattern goals compared when either side has them.
-PARAMS = ("region", "size", "facing")
 
 __all__ = ["Case", "CaseResult", "EvalReport", "load_cases", "goals_match", "evaluate"]
 
@@ -191,9 +187,6 @@ def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
             return False
     elif exp.get("anchor") != anchor:
         return False
-    for k in PARAMS:  # optional goal parameters: where, how big, facing
-        if exp.get(k) != got.get(k):
-            return False
     if exp.get("pose") is not None or got.get("pose") is not None:
         a, b = exp.get("pose"), got.get("pose")
         if a is None or b is None or any(abs(x - y) > 1e-6 for x, y in zip(a, b)):
