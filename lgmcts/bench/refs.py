@@ -119,7 +119,7 @@ def phrase(ref: Ref, rng: np.random.Generator) -> str:
         return str(rng.choice([
             f"objects whose color is the same as {_the(ref[1])}",
             f"all objects with the same color as {_the(ref[1])}",
-            f"the objects that have the same color as {_the(ref[1])}",
+            f"the objects of the same color as {_the(ref[1])}",
         ]))
     if k == "list":
         words = [_the(r) for r in ref[1]]

@@ -86,8 +86,10 @@ GROUPS: dict[str, tuple[str, ...]] = {
               "circle"),
 }
 
+_PLURAL_ONLY = frozenset({"shape", "letter", "toy"})
+
 #: Words that name an object without a category.
-GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "piece", "pieces", "one", "ones"})
+GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "piece", "pieces", "one", "ones", "stuff"})
 
 #: Colour and texture words used only to recognise a reference to an object
 #: the scene does not have ("the purple giraffe").
@@ -229,6 +231,8 @@ class Vocabulary:
                 add(w[:-1] + (_plural(w[-1]),), n, True)
             if len(w) > 1 and len(w[-1]) == 1:  # "letters" selects every "letter x"
                 add((_plural(w[0]),), n, True)
+                if w[-1] not in ("a", "i", "u", "r", "n", "w", "o"):
+                    add((w[-1],), n, False)  # "the yellow T"
         real = set(cats)
         for canon, syns in SYNONYMS.items():
             if canon not in names:
@@ -259,7 +263,9 @@ class Vocabulary:
             gw = _words(group)
             if not hit or gw in real:
                 continue
-            for form in (gw, gw[:-1] + (_plural(gw[-1]),)):
+            # "shape" alone is a word of patterns ("in a star shape"): only "shapes" is a group.
+            forms = (gw[:-1] + (_plural(gw[-1]),),) if group in _PLURAL_ONLY else (gw, gw[:-1] + (_plural(gw[-1]),))
+            for form in forms:
                 if form not in real:
                     add(form, next(iter(hit)), True)
                     cats[form][0].update(hit)
@@ -376,14 +382,14 @@ _EXCEPT = tuple(
 _REL_OPEN = frozenset({"whose", "with", "of", "that", "which", "having", "has", "have", "are", "is", "who"})
 _ATTRS = {"color": "color", "colour": "color", "colors": "color", "colours": "color", "shape": "name",
           "type": "name", "kind": "name", "category": "name", "class": "name", "size": "volume",
-          "volume": "volume", "height": "height", "width": "width"}
+          "volume": "volume", "volumn": "volume", "shapes": "name", "sizes": "volume", "height": "height", "width": "width"}
 #: Comparison words: (words, op). "not" before any of them negates eq.
 _CMP = tuple(
     (tuple(w.split()), op)
     for w, op in sorted(
         [
             ("equal to", "eq"), ("equal", "eq"), ("the same as", "eq"), ("same as", "eq"), ("identical to", "eq"),
-            ("identical", "eq"), ("alike", "eq"), ("equivalent to", "eq"), ("similar to", "eq"), ("like", "eq"),
+            ("identical", "eq"), ("alike", "eq"), ("similar", "eq"), ("equivalent to", "eq"), ("similar to", "eq"), ("like", "eq"),
             ("matching", "eq"), ("matches", "eq"), ("match", "eq"), ("the same", "eq"), ("same", "eq"),
             ("different with", "ne"), ("different from", "ne"), ("different than", "ne"), ("different to", "ne"),
             ("different", "ne"), ("unlike", "ne"), ("not alike", "ne"),
@@ -437,7 +443,11 @@ def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern
     while j < n and words[j] in _REL_OPEN and opened < 3:
         j, opened = j + 1, opened + 1
     if not opened:
-        return None
+        # "objects identical to color X", "objects different from color X"
+        # (older LGMCTS-D wording): a comparison right before an attribute.
+        got = _cmp_at(words, j)
+        if got is None or got[1] >= n or words[got[1]] not in _ATTRS:
+            return None
     k = j
     if k < n and words[k] in ("the", "a", "an"):
         k += 1
@@ -461,6 +471,12 @@ def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern
                 imp = words[k2 - 1] if words[k2 - 1] in _IMPLIED else words[k2 - 2]
                 op, attr, k = op0, _IMPLIED[imp], k2
     if op is not None and attr is not None:
+        # StructFormer's "objects that have the same color as the X" / "equal
+        # height as the X" leave the X out (it is the anchor of the query);
+        # LGMCTS-D's "whose color is ... X", "with/of/has the same color as X"
+        # put it in.
+        if op == "eq" and words[i] in ("that", "which") and any(w in ("have", "has") for w in words[i:j]):
+            op = "eqx"
         while k < n and words[k] in _PREP:
             k += 1
         ref = _mention_at(vocab, words, k, pattern_words, nested=True)
@@ -603,6 +619,9 @@ def _mention_at(
         if _starts(words, i, seq):
             det, j = kind, i + len(seq)
             break
+    if det == "the" and j < n and words[j] == "same" and j + 1 < n and words[j + 1] not in ("color", "colour", "shape",
+                                                                                        "size", "as"):
+        j += 1  # "the same can": the can named before (resolved by the parser)
     count = None
     num = _number(words, j)
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
@@ -668,6 +687,14 @@ def _mention_at(
             # noun is shared with a coordinated neighbour (resolved in find_mentions).
             return Mention(i, j, " ".join(words[i:j]), det or "the", False, None, colors, color_order,
                            head="elided")
+        if k == j and det == "" and not nested and len(colors) > 1 and all(
+                sum(c == oc for _, _, oc in vocab.objects) == 1 for c in colors):
+            # "purple, orange, yellow": each colour is the one object that has it.
+            return Mention(i, j, " ".join(words[i:j]), "all", True, None, colors, color_order)
+        if k == j and det == "" and not nested and not (j < n and words[j] in _COORD):
+            # A bare colour standing for its object ("stack red on blue"): the
+            # one object of that colour, refused as ambiguous when there are more.
+            return Mention(i, j, " ".join(words[i:j]), "the", False, None, colors, color_order)
         phrase = " ".join(words[i:k])
         raise InputError(f"'{phrase}' names nothing in the scene")
     else:
@@ -866,15 +893,28 @@ def _apply_filter(vocab: Vocabulary, f: tuple, out: list[int], named: frozenset[
     if attr == "value":
         vals = set(candidates(vocab, ref, named=named)) if _any_match(vocab, ref) else set()
         return [i for i in out if (i in vals) == (op == "eq")]
+    if attr in ("color", "name"):
+        # "the same shape as heart" with several hearts: they share the value.
+        col = 2 if attr == "color" else 1
+        refs = candidates(vocab, ref, named=named)
+        if not refs:
+            raise InputError(f"nothing in the scene matches '{ref.text}'")
+        values = {o[col] for o in vocab.objects if o[0] in refs}
+        if len(values) != 1:
+            raise InputError(f"'{ref.text}' is ambiguous: it matches objects {describe(vocab, refs)} "
+                             f"of different {'colours' if attr == 'color' else 'kinds'}")
+        (rv,) = values
+        same = {o[0] for o in vocab.objects if o[col] == rv}
+        if op == "eqx":
+            return [i for i in out if i in same and i not in refs]
+        return [i for i in out if (i in same) == (op == "eq")]
     sel = select(vocab, ref, named=named)
     if isinstance(sel, Choice) or len(sel) != 1:
         raise InputError(f"'{ref.text}' must name one definite object to compare with")
     (r,) = sel
-    if attr in ("color", "name"):
-        col = 2 if attr == "color" else 1
-        rv = next(o[col] for o in vocab.objects if o[0] == r)
-        same = {o[0] for o in vocab.objects if o[col] == rv}
-        return [i for i in out if (i in same) == (op == "eq")]
+    if op == "eqx":
+        out = [i for i in out if i != r]
+        op = "eq"
     k = {"height": 1, "volume": 2, "width": 3}[attr]
     meas = {x[0]: x[k] for x in vocab.measures}
     rv = meas.get(r, 0.0)

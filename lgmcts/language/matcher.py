@@ -323,6 +323,7 @@ class PatternMatcher:
     _vocab: frozenset[str] = frozenset()
     _infos: dict[str, PatternInfo] = field(default_factory=dict)
     _neg: tuple[str, ...] = ()
+    _word_owner: dict = field(default_factory=dict)
     _neg_emb: np.ndarray | None = None
 
     def infos(self) -> dict[str, PatternInfo]:
@@ -339,6 +340,12 @@ class PatternMatcher:
             self._vocab = key_vocabulary(infos)
             self._infos = infos
             names = {n for n, _ in keys} | {k for _, k in keys}
+            owner: dict[str, set[str]] = {}
+            for n, k in keys:
+                for w in content_words(k):
+                    if w not in FILLERS:
+                        owner.setdefault(w, set()).add(n)
+            self._word_owner = {w: frozenset(v) for w, v in owner.items()}
             self._neg = tuple(x for x in UNSUPPORTED if x not in names and not set(content_words(x)) <= self._vocab)
             self._neg_emb = None
 
@@ -449,6 +456,12 @@ class PatternMatcher:
                 o = self.options
                 others = [v[1] for n, v in best.items() if n != top]
                 margin = c - max(others) if others else 1.0
+                # A key word of exactly one pattern ("line" in "chain them into a
+                # line") with the rest naming no other pattern and no missing
+                # arrangement: the rest are modifiers.
+                own = {n for w in words if w not in rest for n in self._word_owner.get(w, ())}
+                if own == {top} and not named:
+                    return m
                 if not (c >= o.phrase_accept and margin >= o.phrase_margin):
                     return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
         return m

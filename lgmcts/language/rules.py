@@ -262,7 +262,9 @@ def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tup
     cuts = []
     for k in range(1, len(mentions) - 2):
         a, b, c, d = mentions[k - 1], mentions[k], mentions[k + 1], mentions[k + 2]
-        if (words[a.end : b.start] in _ON_WORDS and words[c.end : d.start] in _ON_WORDS
+        # "A on B and C on D", "A on B and C behind D": C starts a second step.
+        if (words[a.end : b.start] in _ON_WORDS and c.end < d.start
+                and not all(w in _COORD for w in words[c.end : d.start])
                 and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
     if not cuts:
@@ -406,7 +408,7 @@ class _Parser:
         if any(w in ("itself", "themselves", "himself", "herself") for w in words):
             raise InputError(f"'{text}': an object cannot be placed relative to itself")
         for k in range(1, len(words) - 1):
-            if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they")):
+            if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
                 return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
         mentions = find_mentions(self.vocab, words, self.key_vocab)
         role_at, reduced = self._roles(words, mentions)
@@ -460,6 +462,26 @@ class _Parser:
             self.state.selection = sel
             self.state.last = list(sel)
             self.state.last_tower = False
+            if self.state.header is not None:
+                # "small line in the top left. select objects that are mug.": the
+                # structure sentence first, its objects selected after it.
+                pat, hparams, htext = self.state.header
+                self.state.header = None
+                p = self._shape(pat, [[sel]], words, [], htext, [])
+                p.params = dict(hparams)
+                return [p]
+            return []
+        if (roles is not None and self.state.tower is not None and self.state.header is None
+                and not any(self._free_word(w) for w in meaningful) and any(roles)):
+            # "...; the red one goes in between": a role for an object of the tower just built.
+            tower = self.state.tower.objects
+            for mm, r in zip(mentions, roles):
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x in tower:
+                        tower.remove(x)
+                    at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, len(tower))
+                    tower.insert(at, x)
             return []
         if roles is not None and not any(self._free_word(w) for w in meaningful):
             phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
@@ -717,7 +739,7 @@ class _Parser:
 
     # ------------------------------------------------------------ dinner
     _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
-               ("dinner",), ("place", "setting"), ("table", "setting"))
+               ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"))
 
     def _dinner(self, words: tuple[str, ...]) -> list[_Pending] | None:
         """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
@@ -749,9 +771,10 @@ class _Parser:
         bowls = sorted(by["bowl"], key=lambda i: (-meas.get(i, 0.0), i))
         text = " ".join(words)
         out = []
+        # Where and which way the setting goes is said of the plate, its centre.
         if bowls:
             out.append(_Pending("tower", [plate, *bowls], None, None, text, dict(params)))
-        out.append(_Pending("line", list(cut), None, None, text, dict(params)))
+        out.append(_Pending("line", list(cut), None, None, text, {} if bowls else dict(params)))
         out.append(_Pending(side, list(cut), plate, None, text))
         return out
 
@@ -816,6 +839,7 @@ class _Parser:
             if g not in goals:
                 goals.append(g)
         goals = _chain_towers(goals)
+        goals = [g for k, g in enumerate(goals) if g not in goals[:k]]
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
         if not _params_accepted():

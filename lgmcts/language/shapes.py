@@ -28,7 +28,9 @@ _ABBREV = {
     "u": ("you",), "pls": ("please",), "plz": ("please",), "pleas": ("please",), "thx": ("thanks",),
     "ty": ("thanks",), "r": ("are",), "ur": ("your",), "wanna": ("want", "to"), "gonna": ("going", "to"),
     "gimme": ("give", "me"), "lemme": ("let", "me"), "n": ("and",), "w": ("with",), "btw": (), "asap": (),
-    "thru": ("through",), "obj": ("object",), "objs": ("objects",),
+    "thru": ("through",), "obj": ("object",), "objs": ("objects",), "that's": ("that", "is"),
+    "it's": ("it", "is"), "they're": ("they", "are"), "aren't": ("are", "not"), "isn't": ("is", "not"),
+    "don't": ("do", "not"), "doesn't": ("does", "not"), "what's": ("what", "is"), "there's": ("there", "is"),
 }
 #: Words of greeting, politeness and hesitation that never carry an
 #: arrangement or an object (dropped anywhere in the command).
@@ -41,7 +43,9 @@ _CHATTER_SEQ = (
     ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),
     ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("how", "about"),
     ("is", "it", "possible", "to"), ("are", "you", "able", "to"), ("you", "should"), ("let's",), ("we", "need", "to"),
-    ("ok", "so"), ("so", "basically"), ("much", "appreciated"),
+    ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
+    ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
+    ("nothing", "else"), ("when", "you", "get", "a", "chance"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
@@ -186,7 +190,13 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
     and the clause without their words. Two different values of one
     parameter are refused.
     """
-    protected = protected or {}
+    protected = dict(protected or {})
+    for k in range(len(words)):
+        # "from top to bottom", "bottom up": an order along a stack, not a place.
+        for seq in (("top", "to", "bottom"), ("bottom", "to", "top"), ("bottom", "up"), ("top", "down"),
+                    ("the", "top", "down"), ("from", "the", "top"), ("from", "the", "bottom")):
+            if words[k : k + len(seq)] == seq:
+                protected[k] = max(protected.get(k, k), k + len(seq))
     seen_pattern = False
     blocked = False
     params: dict[str, str] = {}
@@ -270,6 +280,8 @@ _ROLES = tuple(
             ("in between", "middle"), ("in the centre", "middle"), ("in the center", "middle"),
             ("between them", "middle"), ("goes on it", "next"), ("goes on that", "next"), ("goes next", "next"),
             ("goes above", "next"), ("goes on top of it", "next"), ("goes on top of that", "next"),
+            ("bottom", "bottom"), ("top", "top"), ("lowest", "bottom"), ("highest", "top"),
+            ("goes in between", "middle"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )

@@ -115,8 +115,11 @@ case("peer_selection", K, "select objects that have greater height than the whit
      [g("line", [1, 2, 9, 10, 11, 12])])
 case("peer_selection", K, "select objects that have less height than the red mug. circle",
      [g("circle", [2, 3, 4, 5, 6, 7, 8, 13, 14, 15])])
-case("peer_selection", K, "select objects that have equal height as the red can. line", [g("line", CANS)])
-case("peer_selection", K, "select objects that have the same color as the green bowl. line", [g("line", [4, 11])])
+# StructFormer's "that have the same/equal ... as the X" leaves the X out.
+case("peer_selection", K, "select objects that have equal height as the red can. line", [g("line", [10, 11])])
+case("peer_selection", K, "select objects that have the same color as the red mug. line", [g("line", [9, 14])])
+case("peer_selection", K, "line in the top left of the table. select objects that are can.", [g("line", CANS, region="top left")])
+case("peer_selection", K, "Select Objects with the same shape as the red can, and put them in a line pattern", [g("line", CANS)])
 case("peer_selection", K, "select objects that have greater volume than the red mug. line", [g("line", [3, 4, 5, 12])])
 
 # 3. vertical relations between two objects: a two-object tower

@@ -443,7 +443,6 @@ RELABELLED: dict[str, dict] = {
     "grounding-037": {"goals": [_g("line", [8, 9])]},
     "grounding-039": {"goals": [_g("line", [7, 8])]},
     "grounding-040": {"goals": [_g("line", [6, 13, 15])]},
-    "grounding-041": {"goals": [_g("line", [2, 14, 1])]},
 }
 
 
