@@ -669,7 +669,7 @@ def _mention_at(
     elif j < n and words[j] in GENERIC:
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None
-        names, plural, end = None, words[j].endswith("s"), j + 1
+        names, plural, end = None, words[j].endswith("s") or words[j] == "stuff", j + 1
         if words[j] in ("one", "ones") and (colors is not None or det == "other"):
             head = "one"
     elif colors is not None and det in ("all", "other"):

@@ -260,6 +260,14 @@ def _weak_split(
 def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[str, ...]]:
     """Cut "A on B and C on D" into "A on B" and "C on D" (two stacking steps)."""
     cuts = []
+    if len(mentions) == 3:
+        # "the bowl on the plate, the forks lined up on the left": a stacking
+        # step, then a clause about the third object.
+        a, b, c = mentions
+        tail = [w for w in words[c.end:] if w not in _COORD]
+        if (words[a.end : b.start] in _ON_WORDS and b.end < c.start and tail
+                and all(w in _COORD for w in words[b.end : c.start])):
+            cuts.append((b.end, c.start))
     for k in range(1, len(mentions) - 2):
         a, b, c, d = mentions[k - 1], mentions[k], mentions[k + 1], mentions[k + 2]
         # "A on B and C on D", "A on B and C behind D": C starts a second step.
@@ -750,10 +758,21 @@ class _Parser:
             return None
         seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
         rest = words[:k] + words[k + len(seq):]
-        # Anything else a clause asks for is read by the ordinary grammar ("Set the table: put ...").
-        if any(w in (":", ";", ".") for w in rest if rest.index(w) < len(rest) - 1) and any(
-                self._free_word(w) for w in rest):
-            return None
+        # Objects named along with it must be the setting's own (plate, bowls,
+        # cutlery: "set a place: bowl on the plate, silverware on the left");
+        # anything else ("Set the table: put the mugs ...") is read by the
+        # ordinary grammar.
+        plates = {"plate"}
+        cutlery = {"fork", "knife", "spoon", "chopstick", "chopsticks"}
+        own = plates | {"bowl"} | cutlery
+        named: dict[str, list[int]] = {"plate": [], "bowl": [], "cut": []}
+        for m in find_mentions(self.vocab, rest, self.key_vocab):
+            if m.names is None or not set(m.names) <= own or m.det == "pronoun":
+                return None
+            got = self._select(m)
+            for x in got if isinstance(got, list) else []:
+                nm = next(n for i, n, _ in self.vocab.objects if i == x)
+                named["plate" if nm in plates else "bowl" if nm == "bowl" else "cut"].append(x)
         side = "left"
         for w, sd in (("right", "right"), ("left", "left")):
             if w in rest:
@@ -761,7 +780,11 @@ class _Parser:
         params, rest2 = take_params(rest, lambda w: True) if any(
             w in rest for w in ("small", "medium", "large", "big", "facing", "top", "bottom", "middle", "center")) else ({}, rest)
         by = {n: [i for i, nn, _ in self.vocab.objects if nn == n] for n in ("plate", "bowl")}
-        cut = [i for i, nn, _ in self.vocab.objects if nn in ("fork", "knife", "spoon", "chopstick", "chopsticks")]
+        cut = named["cut"] or [i for i, nn, _ in self.vocab.objects if nn in cutlery]
+        if named["plate"]:
+            by["plate"] = sorted(set(named["plate"]))
+        if named["bowl"]:
+            by["bowl"] = list(dict.fromkeys(named["bowl"]))
         if len(by["plate"]) != 1:
             raise InputError(f"'{' '.join(words)}': a dinner setting needs exactly one plate, the scene has {len(by['plate'])}")
         if len(cut) < 2:
@@ -779,6 +802,13 @@ class _Parser:
         return out
 
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
+        for p in pending:
+            # "stack three blocks: red at the bottom, then blue, then green": the
+            # blocks named one by one are the three.
+            if p.pattern == "tower":
+                for c in [x for x in p.objects if isinstance(x, Choice)]:
+                    if sum(1 for x in p.objects if isinstance(x, int) and x in c.options) >= c.k:
+                        p.objects.remove(c)
         picked: dict[int, list[int]] = {}
         used: set[int] = set()
         for p in pending:

@@ -65,7 +65,7 @@ def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
             i += len(seq)
             continue
         w = words[i]
-        if w in _CHATTER or (w == "so" and i + 1 < len(words) and words[i + 1] not in ("that", "it", "the")):
+        if w in _CHATTER or (w == "so" and i + 1 < len(words) and words[i + 1] not in ("that", "it", "the", "they")):
             i += 1
             continue
         out.append(w)
