@@ -338,6 +338,13 @@ class _Parser:
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         m = self.matcher.match(phrase, allowed=allowed)
+        if m and m.pattern in RELATIONS:
+            # Directions compose: the direction words of the phrase fix the
+            # relation exactly ("at the back right of" is right_behind even
+            # where the sentence model puts it nearer "front right of").
+            d = _direction(phrase)
+            if d is not None and d != m.pattern and d in allowed:
+                m = replace(m, pattern=d)
         if not m:
             known = ", ".join(sorted(self.infos))
             if m.reason == "no arrangement is named":
@@ -975,6 +982,25 @@ def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: 
     p = _Parser(spec, matcher, options or RulesOptions())
     p.command(text)
     return p.goal_dicts
+
+
+_DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
+              "rear": (0, 1)}
+
+
+def _direction(phrase: str) -> str | None:
+    """The relation the direction words of ``phrase`` compose to, or None."""
+    words = set(re.findall(r"[a-z]+", phrase.lower()))
+    hit = [_DIR_WORDS[w] for w in words if w in _DIR_WORDS]
+    if not hit:
+        return None
+    xs, ys = {h[0] for h in hit if h[0]}, {h[1] for h in hit if h[1]}
+    if len(xs) > 1 or len(ys) > 1:
+        return None  # "left and right": a contradiction, left to the checks
+    x, y = (xs.pop() if xs else 0), (ys.pop() if ys else 0)
+    name = {(-1, 0): "left", (1, 0): "right", (0, -1): "front", (0, 1): "behind", (-1, -1): "left_front",
+            (-1, 1): "left_behind", (1, -1): "right_front", (1, 1): "right_behind"}[(x, y)]
+    return name if name in RELATIONS else None
 
 
 def _is_number(w: str) -> bool:
