@@ -433,7 +433,20 @@ class _Parser:
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
-            params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions})
+            stackish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or (
+                self.state.header is not None and self.state.header[0] == "tower")
+            order_by = None
+            sup = re.search(r"\b(largest|biggest|widest|heaviest|tallest|smallest|lightest|narrowest)( one| ones)? "
+                            r"(at the bottom|on the bottom|at the base|as the base|on top|at the top)\b", " ".join(words))
+            if stackish and sup:
+                big = sup.group(1) in ("largest", "biggest", "widest", "heaviest", "tallest")
+                order_by = "desc" if big == ("bottom" in sup.group(3) or "base" in sup.group(3)) else "asc"
+                cut = set(range(len(" ".join(words)[: sup.start()].split()),
+                                len(" ".join(words)[: sup.end()].split())))
+                words = tuple(w for k, w in enumerate(words) if k not in cut)
+                mentions = find_mentions(self.vocab, words, self.key_vocab)
+            self._order_by = order_by
+            params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions}, stack=stackish)
             if words2 != words:
                 words = words2
                 mentions = find_mentions(self.vocab, words, self.key_vocab)
@@ -629,6 +642,11 @@ class _Parser:
                         objs.append(x)
         if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
             objs.reverse()
+        if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):
+            # "largest at the bottom": by volume, largest first (or smallest first).
+            vol = {x[0]: x[2] for x in self.vocab.measures}
+            objs = sorted(objs, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))
+            self._order_by = None
         if roles:
             # Stack roles: bottom first, then "goes on it"/"next" in order, the
             # middle, the objects without a role, the top last.

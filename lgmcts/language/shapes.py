@@ -130,7 +130,7 @@ _REGION_PREP = frozenset({"in", "at", "on", "near", "along", "toward", "towards"
 _FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face"})
 
 
-def _region_run(words: tuple[str, ...], i: int):
+def _region_run(words: tuple[str, ...], i: int, stack: bool = False):
     """A region phrase starting at ``i``: ``(row, col, end)`` or None."""
     n = len(words)
     j = i
@@ -158,6 +158,8 @@ def _region_run(words: tuple[str, ...], i: int):
     if not (of_table or noun or len(pos) == 2 or pos[0] in ("middle", "center", "centre", "central")
             or (i < j and words[i] in _REGION_PREP)):
         return None
+    if stack and not (of_table or noun or len(pos) == 2):
+        return None  # "at the bottom", "on top", "in the middle" of a stack are places in it
     row = col = None
     for p in pos:
         if len(pos) == 2 and p in ("middle", "center", "centre", "central"):
@@ -176,12 +178,15 @@ def _region_run(words: tuple[str, ...], i: int):
     return row, col, j
 
 
-def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int] | None = None
-                ) -> tuple[dict, tuple[str, ...]]:
+def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int] | None = None,
+                stack: bool = False) -> tuple[dict, tuple[str, ...]]:
     """Pull where / how big / facing out of a clause that names an arrangement.
 
     ``pattern_nouns(word)`` says whether a word names a pattern (a size word
     counts only right before one: "a large circle", not "the large bowl").
+    ``stack``: the clause is about a stack, whose "bottom", "top" and
+    "middle" are places in the stack, not on the table (only "of the table",
+    a corner or a two-word place is a region then).
     ``protected`` maps the start of each object reference to its end: those
     words are kept as they are, and a place named right after an object
     listed after the arrangement ("a line and the phone in the middle") is
@@ -242,7 +247,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 put("size", SIZES[w], " ".join(words))
                 i += 1
                 continue
-        got = None if blocked else _region_run(words, i)
+        got = None if blocked else _region_run(words, i, stack)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
         if got is not None:
