@@ -231,6 +231,7 @@ class Vocabulary:
                 add(w[:-1] + (_plural(w[-1]),), n, True)
             if len(w) > 1 and len(w[-1]) == 1:  # "letters" selects every "letter x"
                 add((_plural(w[0]),), n, True)
+                add((w[0],), n, False)  # "every letter" (the longest form still wins: "letter a")
                 if w[-1] not in ("a", "i", "u", "r", "n", "w", "o"):
                     add((w[-1],), n, False)  # "the yellow T"
         real = set(cats)
@@ -445,8 +446,12 @@ def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern
     if not opened:
         # "objects identical to color X", "objects different from color X"
         # (older LGMCTS-D wording): a comparison right before an attribute.
+        # "objects smaller than the plate": a comparative with "than" right after the noun.
         got = _cmp_at(words, j)
-        if got is None or got[1] >= n or words[got[1]] not in _ATTRS:
+        if got is None:
+            return None
+        implied = words[j] in _IMPLIED and words[got[1] - 1] == "than"
+        if not implied and (got[1] >= n or words[got[1]] not in _ATTRS):
             return None
     k = j
     if k < n and words[k] in ("the", "a", "an"):
@@ -672,6 +677,9 @@ def _mention_at(
         names, plural, end = None, words[j].endswith("s") or words[j] == "stuff", j + 1
         if words[j] in ("one", "ones") and (colors is not None or det == "other"):
             head = "one"
+    elif colors is None and det == "other" and words[i] == "the" and not nested and (j >= n or words[j] not in _COORD):
+        # "the other" with no noun: the other one of a pair named before it.
+        names, plural, end, head = None, False, j, "one"
     elif colors is not None and det in ("all", "other"):
         names, plural, end = None, True, j
     elif colors is not None:

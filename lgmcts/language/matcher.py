@@ -361,6 +361,11 @@ class PatternMatcher:
             self._emb = self.encoder.encode([k for _, k in self._keys])
         return self._emb
 
+    def prefetch(self, words: list[str]) -> None:
+        """Encode the words of a command that may be read one by one, in one batch (cached)."""
+        if words:
+            self.encoder.encode(list(words))
+
     def word_pattern(self, word: str, *, allowed: frozenset[str] | None = None) -> tuple[str | None, float, bool]:
         """What one content word that occurs in no key names, by its own embedding.
 

@@ -749,6 +749,13 @@ class _Parser:
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
+        # Words that may be read by their own embedding, encoded in one batch
+        # (one forward pass for all of them instead of one per word).
+        cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
+                and _stem(w) not in STOPWORDS and _stem(w) not in FILLERS and w not in STOPWORDS
+                and (w,) not in self.vocab.categories and w not in self.vocab.color_words and w not in COLOUR_WORDS]
+        if cand:
+            self.matcher.prefetch(cand)
         dinner = self._dinner(words)
         if dinner is not None:
             return self._finish(dinner)

@@ -70,6 +70,11 @@ def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
             continue
         out.append(w)
         i += 1
+    # Distributive "one X at each corner": every X, one per place.
+    for k in range(len(out) - 3):
+        if out[k] == "one" and any(out[m : m + 2] in (["at", "each"], ["at", "every"], ["on", "each"], ["in", "each"])
+                                   for m in range(k + 2, min(k + 5, len(out) - 1))):
+            out[k] = "every"
     # Possessive relations: "on the mug's right (side)" -> "on the right of the mug";
     # "on its left" -> "on the left of it".
     res: list[str] = []
