@@ -36,7 +36,7 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import COLOUR_WORDS, NUMBERS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
 from .shapes import normalise, stack_roles, take_params
 
@@ -482,11 +482,11 @@ class _Parser:
         if words[0] in _SELECT_VERBS and roles is None and all(
                 w in _SELECT_VERBS or w in ("up", "out", "only", "just") for w in meaningful):
             sel: list[int | Choice] = []
-            for m in mentions:
-                got = self._select(m)
-                for x in got if isinstance(got, list) else [got]:
-                    if x not in sel:
-                        sel.append(x)
+            for g in groups:
+                for got in self._select_group(g):
+                    for x in got if isinstance(got, list) else [got]:
+                        if x not in sel:
+                            sel.append(x)
             self.state.selection = sel
             self.state.last = list(sel)
             self.state.last_tower = False
@@ -531,7 +531,7 @@ class _Parser:
         if not meaningful and self.state.header is not None:
             pat, hparams, _ = self.state.header
             self.state.header = None
-            sels = [[self._select(mm) for mm in g] for g in groups]
+            sels = [self._select_group(g) for g in groups]
             p = self._shape(pat, sels, words, gaps, text, phrase_words)
             p.params = {**hparams, **params}
             return [p]
@@ -560,7 +560,7 @@ class _Parser:
         rel_words, free_words = self._word_kinds()
         rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
         free_pos = [k for k in rest if _stem(words[k]) in free_words]
-        sels = [[self._select(mm) for mm in g] for g in groups]
+        sels = [self._select_group(g) for g in groups]
         if re.search(r"\b(another|second|new|separate|different)\b", phrase):
             # "another line": a second arrangement of objects no other goal uses.
             sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
@@ -670,6 +670,29 @@ class _Parser:
         self.state.tower = out if pattern == "tower" else None
         return out
 
+    def _select_group(self, group: list[Mention]) -> list:
+        """Resolve a list of mentions; a description repeated in the list as many times as it has
+        matches names each of them once ("white triangle, blue triangle, white triangle" with two
+        white triangles)."""
+        out: list = []
+        done: set[str] = set()
+        for mm in group:
+            try:
+                out.append(self._select(mm))
+            except InputError as exc:
+                key = mm.text.removeprefix("the ").strip()
+                same = [x for x in group if x.text.removeprefix("the ").strip() == key]
+                if "ambiguous" not in str(exc) or len(same) < 2:
+                    raise
+                ids = candidates(self.vocab, mm)
+                if len(ids) != len(same):
+                    raise
+                if key not in done:
+                    done.add(key)
+                    self.state.named.update(ids)
+                    out.append(list(ids))
+        return out
+
     def _select(self, m: Mention) -> list[int] | Choice:
         if m.det == "pronoun":
             if not self.state.last:
@@ -695,8 +718,6 @@ class _Parser:
             # so that the plate ends up on the mug's right").
             if m.det != "the" or "ambiguous" not in str(exc):
                 raise
-            from .grounding import candidates
-
             earlier = [i for i in candidates(self.vocab, m) if i in self.state.named]
             if len(earlier) != 1:
                 raise
@@ -902,6 +923,7 @@ class _Parser:
                 goals.append(g)
         goals = _chain_towers(goals)
         goals = [g for k, g in enumerate(goals) if g not in goals[:k]]
+        goals = _merge_relations(goals)
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
         if not _params_accepted():
@@ -1007,6 +1029,31 @@ def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: 
     p = _Parser(spec, matcher, options or RulesOptions())
     p.command(text)
     return p.goal_dicts
+
+
+def _merge_relations(goals: list[dict]) -> list[dict]:
+    """Relation goals with one relation and one anchor whose objects together are exactly the
+    objects of an arrangement of the same command become one goal: "put the spoon left of the plate;
+    put the fork left of the plate; put the fork and the spoon in a line" is the line left of the
+    plate (a relation holds object by object, so this changes nothing it asks). Other relation
+    goals stay one per clause."""
+    shapes = [set(g["objects"]) for g in goals if g["pattern"] not in RELATIONS]
+    groups: dict[tuple, list[int]] = {}
+    for k, g in enumerate(goals):
+        if g["pattern"] in RELATIONS and "anchor" in g:
+            groups.setdefault((g["pattern"], g["anchor"], tuple(sorted(set(g) - {"objects"}))), []).append(k)
+    drop: set[int] = set()
+    merged: dict[int, dict] = {}
+    for ks in groups.values():
+        if len(ks) < 2:
+            continue
+        union: list[int] = []
+        for k in ks:
+            union += [o for o in goals[k]["objects"] if o not in union]
+        if set(union) in shapes:
+            merged[ks[0]] = dict(goals[ks[0]], objects=union)
+            drop.update(ks[1:])
+    return [merged.get(k, g) for k, g in enumerate(goals) if k not in drop]
 
 
 _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),

@@ -118,3 +118,26 @@ def test_unsupported_arrangement_words_are_refused_not_approximated(tabletop, ma
 def test_parse_is_deterministic(matcher):
     for case in CASES[:30]:
         assert _run(case, matcher) == _run(case, matcher)
+
+
+def test_repeated_description_in_a_list_names_each_match_once(matcher):
+    # LGMCTS-D lists every object by colour and name, repeating a description
+    # shared by two objects: "red can, red can" then means both red cans.
+    from lgmcts.formats import parse_scene, to_dict
+
+    d = to_dict(CASES[0].scene)  # the kitchen scene of make_issue9_cases.py
+    d["objects"][10]["color"] = "red"  # the green can (11) becomes a second red can
+    s2 = parse_scene(d)
+    got = goal_dicts(s2, "Place red can, red can, white can at a line pattern", matcher=matcher)
+    assert got == [{"pattern": "line", "objects": [9, 11, 10]}]
+    with pytest.raises(InputError, match="ambiguous"):
+        goal_dicts(s2, "Place red can, white can at a line pattern", matcher=matcher)
+
+
+def test_relations_stated_for_each_member_of_an_arrangement_are_one_goal(matcher):
+    k = CASES[0].scene
+    got = goal_dicts(k, "put the fork left of the plate; put the knife left of the plate; put the fork and the knife "
+                        "in a line", matcher=matcher)
+    assert {"pattern": "left", "objects": [6, 7], "anchor": 5} in got and len(got) == 2
+    got = goal_dicts(k, "put the fork left of the plate; then put the knife left of the plate", matcher=matcher)
+    assert len(got) == 2  # no arrangement of both: one goal per clause, as before
