@@ -165,6 +165,7 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         if spec["mode"] == "same_color":
             objs.append(make(g, name=spec["ref_name"], color=spec["color"]))
             extra[g] = len(objs) - 1
+            idx.append(extra[g])  # the referent belongs to its "same colour" set
     # Spatial goals: a new target; the anchor new or taken from another goal.
     placed_before = [i for m in members for i in m]
     for g, spec in enumerate(goals):
