@@ -22,6 +22,7 @@ from itertools import combinations, product
 import numpy as np
 import shapely
 
+from . import geometry as geo
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
@@ -430,8 +431,8 @@ def labbe_protocol_case(n: int, seed: int) -> Case:
 
     Deviations, and why: the evaluator bounds disc *centres* by the square,
     while an lgmcts workspace bounds *footprints*; the workspace here is the
-    square grown by the footprint's circumradius (R / cos(pi / 32), the
-    32-gon that stands for a disc), so a centre is legal exactly where the
+    square grown by the footprint's circumradius (R / cos(pi / 24), the
+    24-gon that stands for a disc), so a centre is legal exactly where the
     evaluator allows it. The evaluator seeds numpy's global generator and
     caps an addition by time; here a ``np.random.Generator`` seeded with
     ``seed`` and a dart count, so a seed gives the same case anywhere (the
@@ -443,7 +444,7 @@ def labbe_protocol_case(n: int, seed: int) -> Case:
     rng = np.random.default_rng(seed)
     r = LABBE_RADIUS
     lo, hi = np.asarray(LABBE_SQUARE[0], dtype=float), np.asarray(LABBE_SQUARE[1], dtype=float)
-    grow = r / math.cos(math.pi / 32)
+    grow = r / math.cos(math.pi / geo.CIRCLE_SEGMENTS)
     ws = {"x": [float(lo[0] - grow), float(hi[0] + grow)], "y": [float(lo[1] - grow), float(hi[1] + grow)]}
     start = _rsa(n, rng, lo, hi, 2 * r)
     goal = _rsa(n, rng, lo, hi, 2 * r)

@@ -70,3 +70,13 @@ def test_planner_solves_protocol_cases(n, seed):
     c = labbe_protocol_case(n, 1000 * n + seed)
     p = plan(c.scene, c.goals, seed=seed, max_iter=2000)
     assert p.solved and check(c.scene, c.goals, p).valid
+
+
+def test_protocol_workspace_admits_centres_on_the_square_edge():
+    from lgmcts.casegen import _disc_case, labbe_protocol_case
+
+    ws = labbe_protocol_case(1, 0).scene.workspace
+    (x0, y0), (x1, y1) = LABBE_SQUARE
+    corners = np.array([[x0, y0], [x1, y1], [x0, y1], [x1, y0]])
+    c = _disc_case(corners, corners[::-1], LABBE_RADIUS, {"x": list(ws.x), "y": list(ws.y)}, "labbe")
+    assert Scene.from_spec(c.scene).n == 4
