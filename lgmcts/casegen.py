@@ -110,17 +110,93 @@ def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gene
     raise ValueError(kind)
 
 
-def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None) -> Case:
-    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``."""
+def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None, dense: bool = False) -> Case:
+    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``.
+
+    ``dense=True`` gives the dense variant of the same case: the case drawn
+    for ``seed`` without it, plus 4-10 extra clutter objects packed edge to
+    edge around the goal region (see :func:`_pack_clutter`); its ``kind``
+    gets a ``"dense-"`` prefix.
+    """
     rng = np.random.default_rng(seed)
     for _ in range(200):
-        case = _try_case(rng, n_objects, kind)
+        case = _try_case(rng, n_objects, kind, np.random.default_rng([seed, 1]) if dense else None)
         if case is not None:
             return case
     raise RuntimeError(f"could not build a case for seed {seed}")  # pragma: no cover
 
 
-def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None) -> Case | None:
+#: Step and bisection depth of the search for contact along a ray (m, count).
+_PACK_STEP, _PACK_BISECT = 0.003, 10
+
+
+def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
+    """Extra clutter objects (4-10, shapes as in the base cases) packed in
+    contact around the goal region.
+
+    Nothing may overlap ``goal_feet``, the final footprints of the goal
+    objects, nor ``other_feet``, the start footprints of the table-level
+    objects.
+    Each extra object starts at a goal object's final centre, at a random
+    yaw, and slides outward along a random ray to the first pose where it
+    overlaps nothing; a bisection then brings it to within about 3 um of
+    that contact (footprints do not intersect, edges nearly meet). The goal
+    footprints stay free, so the goal arrangement itself remains legal.
+    """
+    xmin, xmax, ymin, ymax = scene.bounds
+    goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
+    placed = list(goal_feet) + list(other_feet)
+    extra = []
+    k = int(rng.integers(4, 11))
+    n0 = len(objects)
+    for e in range(k):
+        name, shape = _shape(rng)
+        spec = {"id": n0 + e + 1, "name": name, "color": _COLORS[(n0 + e) % len(_COLORS)], "shape": shape,
+                "pose": [0.0, 0.0, 0.0], "on": None}
+        local = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": [spec]})).local[0]
+
+        def poly_at(p):
+            return shapely.polygons(geo.transform(local, p))
+
+        def fits(p) -> bool:
+            v = geo.transform(local, p)
+            if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+                return False
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            return not bool(shapely.intersects(shapely.polygons(v), arr).any())
+
+        for _ in range(30):
+            c = goal_centres[int(rng.integers(len(goal_centres)))]
+            phi, yaw = rng.uniform(-math.pi, math.pi, 2)
+            u = np.array([math.cos(phi), math.sin(phi)])
+            t_hit = None
+            for t in np.arange(_PACK_STEP, 0.35, _PACK_STEP):
+                if fits(np.array([*(c + t * u), yaw])):
+                    t_hit = float(t)
+                    break
+            if t_hit is None:
+                continue
+            lo, hi = t_hit - _PACK_STEP, t_hit
+            for _ in range(_PACK_BISECT):
+                mid = (lo + hi) / 2
+                if fits(np.array([*(c + mid * u), yaw])):
+                    hi = mid
+                else:
+                    lo = mid
+            pose = np.array([*(c + hi * u), yaw])
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            if shapely.distance(poly_at(pose), arr).min() > 1e-4:
+                continue  # stopped by the workspace edge, not by a neighbour: not packed
+            placed.append(poly_at(pose))
+            extra.append({**spec, "pose": [float(v) for v in pose]})
+            break
+    return extra
+
+
+def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
+              dense_rng: np.random.Generator | None = None) -> Case | None:
     n = int(n_objects or rng.integers(6, 17))
     kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
     objects = []
@@ -237,6 +313,11 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
     objs_out = []
     for k, ob in enumerate(objects):
         objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})
+    if dense_rng is not None:
+        goal_feet = [shapely.polygons(scene.footprint(t, final_pose[t])) for t in targets if t not in final_on]
+        other_feet = [shapely.polygons(scene.footprint(o, spose[o])) for o in range(n) if o not in son]
+        objs_out += _pack_clutter(scene, objs_out, goal_feet, other_feet, dense_rng)
+        kind = f"dense-{kind}"
     sspec = parse_scene({"workspace": WORKSPACE, "objects": objs_out})
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
 

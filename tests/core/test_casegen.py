@@ -80,3 +80,34 @@ def test_protocol_workspace_admits_centres_on_the_square_edge():
     corners = np.array([[x0, y0], [x1, y1], [x0, y1], [x1, y0]])
     c = _disc_case(corners, corners[::-1], LABBE_RADIUS, {"x": list(ws.x), "y": list(ws.y)}, "labbe")
     assert Scene.from_spec(c.scene).n == 4
+
+
+@pytest.mark.parametrize("seed", [0, 3, 7])
+def test_dense_random_case_adds_packed_clutter_to_the_same_case(seed):
+    from lgmcts.casegen import random_case
+
+    base, dense = random_case(seed), random_case(seed, dense=True)
+    assert dense == random_case(seed, dense=True)
+    assert dense.goals == base.goals and dense.kind == f"dense-{base.kind}"
+    nb = len(base.scene.objects)
+    assert dense.scene.objects[:nb] == base.scene.objects
+    assert 4 <= len(dense.scene.objects) - nb <= 10
+    sc = Scene.from_spec(dense.scene)
+    polys = sc.initial.polys
+    table = [k for k in range(sc.n) if sc.initial.on[k] == -1]
+    for e in range(nb, sc.n):
+        others = [polys[k] for k in table if k != e]
+        assert max(float((polys[e].intersection(q)).area) for q in others) <= 1e-9  # no overlap
+    # Packed edge to edge: most extra objects touch a neighbour (or the goal region).
+    gaps = [min(polys[e].distance(polys[k]) for k in table if k != e) for e in range(nb, sc.n)]
+    assert np.median(gaps) < 1e-4 or len(gaps) < 4
+
+
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_dense_random_cases_are_solved(method):
+    from lgmcts.casegen import random_case
+
+    for seed in range(3):
+        c = random_case(seed, dense=True)
+        p = plan(c.scene, c.goals, method=method, seed=seed)
+        assert p.solved and check(c.scene, c.goals, p).valid
