@@ -621,12 +621,13 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
         polys[:] = [feet[o] for o in objs]
         xy = np.array([problem.fixed[o][:2] for o in objs])
         sc = problem.scene
+        # Only overlaps block a fixed target (it may touch, see _to_table):
+        # pairs that meet at all, then those that overlap beyond contact.
         ci, oi = geo.colliding_near(polys, xy, sc.radii[objs], world.poly_array, world.poses[:, :2],
-                                    sc.radii, opts.clearance, cand_disc=sc.discs[objs], obs_disc=sc.discs)
+                                    sc.radii, 0.0, cand_disc=sc.discs[objs], obs_disc=sc.discs)
         keep = oi != np.asarray(objs)[ci]
         ci, oi = ci[keep], oi[keep]
         if len(ci):
-            # A fixed target may touch its neighbours (see _to_table): only overlaps block it.
             mover = np.asarray(objs)[ci]
             over = geo.overlapping(polys[ci], xy[ci], sc.discs[mover], world.poly_array[oi], world.poses[oi, :2],
                                    sc.discs[oi], CONTACT_AREA)
