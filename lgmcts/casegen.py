@@ -27,7 +27,7 @@ from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
+__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -132,28 +132,42 @@ _PACK_STEP, _PACK_BISECT = 0.003, 10
 
 def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
     """Extra clutter objects (4-10, shapes as in the base cases) packed in
-    contact around the goal region.
+    contact around the goal region (see :func:`pack_clutter`)."""
+    n0 = len(objects)
+    specs = []
+    for e in range(int(rng.integers(4, 11))):
+        name, shape = _shape(rng)
+        specs.append({"id": n0 + e + 1, "name": name, "color": _COLORS[(n0 + e) % len(_COLORS)], "shape": shape})
+    return pack_clutter(scene.bounds, specs, goal_feet, other_feet, rng)
 
-    Nothing may overlap ``goal_feet``, the final footprints of the goal
-    objects, nor ``other_feet``, the start footprints of the table-level
-    objects.
-    Each extra object starts at a goal object's final centre, at a random
-    yaw, and slides outward along a random ray to the first pose where it
-    overlaps nothing; a bisection then brings it to within about 3 um of
-    that contact (footprints do not intersect, edges nearly meet). The goal
-    footprints stay free, so the goal arrangement itself remains legal.
+
+def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], goal_feet: list, other_feet: list,
+                 rng: np.random.Generator) -> list[dict]:
+    """Object ``specs`` (dicts with id, name, color, shape) packed edge to
+    edge around the goal region; returns those placed, with ``pose`` and
+    ``on`` set, in order.
+
+    Nothing may overlap ``goal_feet`` (footprint polygons of the goal
+    objects where the goals put them) nor ``other_feet`` (any other polygons
+    to keep clear, such as the start footprints). Each object starts at the
+    centre of a random goal footprint, at a random yaw, and slides outward
+    along a random ray to the first pose where it overlaps nothing; a
+    bisection brings it to within about 3 um of that contact. A pose stopped
+    by the workspace edge (``bounds = (xmin, xmax, ymin, ymax)``, 3 mm
+    margin) rather than by a neighbour is redrawn, up to 30 times; an object
+    that finds none is left out. The goal footprints stay free, so the goal
+    arrangement remains legal.
     """
-    xmin, xmax, ymin, ymax = scene.bounds
+    xmin, xmax, ymin, ymax = bounds
     goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
     placed = list(goal_feet) + list(other_feet)
-    extra = []
-    k = int(rng.integers(4, 11))
-    n0 = len(objects)
-    for e in range(k):
-        name, shape = _shape(rng)
-        spec = {"id": n0 + e + 1, "name": name, "color": _COLORS[(n0 + e) % len(_COLORS)], "shape": shape,
-                "pose": [0.0, 0.0, 0.0], "on": None}
-        local = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": [spec]})).local[0]
+    out = []
+    if not goal_centres:
+        return out
+    for spec in specs:
+        full = {**spec, "pose": [0.0, 0.0, 0.0], "on": None}
+        local = Scene.from_spec(parse_scene({"workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
+                                             "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}]})).local[0]
 
         def poly_at(p):
             return shapely.polygons(geo.transform(local, p))
@@ -190,9 +204,9 @@ def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet
             if shapely.distance(poly_at(pose), arr).min() > 1e-4:
                 continue  # stopped by the workspace edge, not by a neighbour: not packed
             placed.append(poly_at(pose))
-            extra.append({**spec, "pose": [float(v) for v in pose]})
+            out.append({**full, "pose": [float(v) for v in pose]})
             break
-    return extra
+    return out
 
 
 def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,

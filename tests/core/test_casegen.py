@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from lgmcts import check, plan
+from lgmcts.formats import parse_scene
 from lgmcts.casegen import LABBE_RADIUS, LABBE_SQUARE, labbe_case, labbe_protocol_case
 from lgmcts.scene import Scene
 
@@ -98,9 +99,26 @@ def test_dense_random_case_adds_packed_clutter_to_the_same_case(seed):
     for e in range(nb, sc.n):
         others = [polys[k] for k in table if k != e]
         assert max(float((polys[e].intersection(q)).area) for q in others) <= 1e-9  # no overlap
-    # Packed edge to edge: most extra objects touch a neighbour (or the goal region).
-    gaps = [min(polys[e].distance(polys[k]) for k in table if k != e) for e in range(nb, sc.n)]
-    assert np.median(gaps) < 1e-4 or len(gaps) < 4
+
+
+def test_pack_clutter_packs_in_contact_without_overlap():
+    import shapely
+
+    from lgmcts.casegen import pack_clutter
+
+    rng = np.random.default_rng(0)
+    goal = [shapely.box(-0.05, -0.05, 0.05, 0.05)]
+    other = [shapely.Point(0.2, 0.1).buffer(0.03)]
+    specs = [{"id": 10 + k, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.03, 0.03]}}
+             for k in range(8)]
+    out = pack_clutter((-0.4, 0.4, -0.3, 0.3), specs, goal, other, rng)
+    assert len(out) == 8 and [o["id"] for o in out] == [s["id"] for s in specs]
+    sc = Scene.from_spec(parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": out}))
+    seen = list(goal) + list(other)
+    for k, p in enumerate(sc.initial.polys):
+        assert max(p.intersection(q).area for q in seen) <= 1e-12  # no overlap
+        assert min(p.distance(q) for q in seen) <= 1e-4  # edge to edge with the goal region or a neighbour
+        seen.append(p)
 
 
 @pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
