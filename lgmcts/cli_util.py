@@ -17,8 +17,10 @@ def fail(message: str, code: int = 2) -> NoReturn:
     raise typer.Exit(code)
 
 
-def check_output_file(path: str | Path | None) -> None:
+def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> None:
     """Fail (exit 2) unless ``path`` can be written as a file; ``None`` and ``-`` mean stdout.
+
+    With ``make_parents`` false, its folder must already exist.
 
     Checked before any work so that a bad output location costs nothing and
     overwrites nothing.
@@ -30,6 +32,8 @@ def check_output_file(path: str | Path | None) -> None:
         fail(f"cannot write {p}: it is a folder")
     if p.exists() and not p.is_file():
         fail(f"cannot write {p}: it is not a regular file")
+    if not make_parents and not p.parent.is_dir():
+        fail(f"cannot write {p}: folder {p.parent} does not exist")
     parent = _existing_parent(p.parent)
     if not parent.is_dir():
         fail(f"cannot write {p}: {parent} is not a folder")

@@ -31,7 +31,7 @@ def viz(
     if step is not None and output is None:
         fail("--step chooses the heatmap step of the pictures; give -o DIR as well")
     check_output_dir(output)
-    check_output_file(html)
+    check_output_file(html, make_parents=False)
     try:
         spec = formats.load_scene(scene)
         pl = formats.load_plan(plan_file)
