@@ -217,7 +217,7 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
     for i in range(n):
         name, shape = _shape(rng)
         objects.append({"id": i + 1, "name": name, "color": _COLORS[i % len(_COLORS)], "shape": shape, "pose": [0.0, 0.0, 0.0], "on": None})
-    scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}))
+    scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}), overlap_ok=True)
     order = list(rng.permutation(n))
     n_goals = int(rng.integers(1, 3))
     final = _Placer(scene)

@@ -7,9 +7,13 @@ samplers or the search: only the footprint definitions of :mod:`lgmcts.scene`.
 Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
 * every pick is of a clear object (nothing rests on it);
-* a table placement keeps the footprint inside the workspace and overlaps no
-  other table-level footprint by more than ``1e-6`` m² (between two
-  cylinders, the overlap of their true circles, so cylinders may touch);
+* a target pose is finite, within ``lgmcts.limits.MAX_COORD`` m and
+  ``MAX_ANGLE`` rad (checked before any geometry);
+* a table placement keeps the footprint inside the workspace (centre inside,
+  no vertex more than ``EDGE_TOL = 1e-3`` m outside, at most ``1e-6`` m²
+  outside) and overlaps no other table-level footprint by more than
+  ``1e-6`` m² (between two cylinders, the overlap of their true circles, so
+  cylinders may touch);
 * a placement ``on`` another object needs that object clear and the centre
   over its footprint;
 * line: every centre within TOL of the total-least-squares line;
@@ -42,6 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from . import limits
 from .errors import InputError
 from .formats import (
     PATTERN_NAMES,
@@ -69,6 +74,26 @@ RELATION_HALF_ANGLE = math.pi / 4
 POSE_ANGLE_TOL = 0.1
 MIN_CIRCLE_RADIUS = 0.05
 MIN_RECT_SIDE = 0.05
+#: A footprint vertex this far (m) outside the workspace is a violation
+#: whatever the area outside.
+EDGE_TOL = 1e-3
+
+
+def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
+    """Why a target pose is unacceptable before any geometry, or ``None``.
+
+    Non-finite values, coordinates beyond :data:`lgmcts.limits.MAX_COORD` and
+    yaws beyond :data:`lgmcts.limits.MAX_ANGLE` are refused here (the plan
+    format refuses them too; this holds for plans built in code), so that the
+    polygon tests only ever run at magnitudes where a footprint keeps its
+    shape.
+    """
+    if pose.shape != (3,) or not np.isfinite(pose).all():
+        return "has a non-finite target pose"
+    if abs(pose[0]) > limits.MAX_COORD or abs(pose[1]) > limits.MAX_COORD or abs(pose[2]) > limits.MAX_ANGLE:
+        return "placed outside the workspace (target beyond the coordinate bounds)"
+    return None
+
 
 #: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
 Rule = Callable[[Goal, Scene, np.ndarray, tuple[int, ...]], "str | None"]
@@ -342,14 +367,25 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             top = [sc.ids[k] for k, s in enumerate(on) if s == i]
             reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
+        bad = _pose_out_of_bounds(new_pose)
+        if bad is not None:
+            # Bounds first: geometry at such magnitudes means nothing (a
+            # footprint at x = 1e20 collapses to a point of zero area).
+            reasons.append(f"action {step}: object {act.object} {bad}")
+            break
         verts = sc.footprint(i, new_pose)
         poly = shapely.polygons(verts)
         if act.on is None:
-            # Every vertex in the box means the convex footprint is inside;
-            # otherwise measure how much of it lies outside.
+            # Every vertex in the box means the convex footprint is inside. A
+            # centre off the workspace or a vertex beyond EDGE_TOL outside is
+            # always a violation; a smaller excursion is one when the area
+            # outside exceeds OVERLAP_AREA.
             x, y = verts[:, 0], verts[:, 1]
-            inside = bool((x >= xmin).all() and (x <= xmax).all() and (y >= ymin).all() and (y <= ymax).all())
-            if not inside and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
+            excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
+            centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
+            if not centre_in or excursion > EDGE_TOL or (
+                excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA
+            ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
             # Only footprints whose circumscribed circles meet can overlap.
             reach = sc.radii[i] + sc.radii + 1e-9
