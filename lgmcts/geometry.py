@@ -24,6 +24,7 @@ __all__ = [
     "transform",
     "polygons",
     "inside_workspace",
+    "lens_area",
     "overlapping",
     "radius_of",
     "wrap_angle",
@@ -208,3 +209,18 @@ def overlapping(a_polys: np.ndarray, a_xy: np.ndarray, a_disc: np.ndarray, b_pol
         out[poly] = shapely.area(shapely.intersection(a_polys[poly], b_polys[poly])) > max_area
     return out
 
+
+def lens_area(r1: float, r2: float, d: float) -> float:
+    """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart.
+
+    Cylinder footprints are polygons circumscribing the circle, so two touching
+    cylinders overlap as polygons by a sliver; their contact is judged here.
+    """
+    if d >= r1 + r2:
+        return 0.0
+    if d <= abs(r1 - r2):
+        return math.pi * min(r1, r2) ** 2
+    a1 = r1 * r1 * math.acos(max(-1.0, min(1.0, (d * d + r1 * r1 - r2 * r2) / (2 * d * r1))))
+    a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
+    k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
+    return a1 + a2 - k

@@ -69,7 +69,13 @@ def _refuse_start_overlaps(spec: SceneSpec, on: tuple[int, ...], polys: np.ndarr
     a, b = a[keep], b[keep]
     if not len(a):
         return
-    areas = shapely.area(shapely.intersection(tab_polys[a], tab_polys[b]))
+    areas = np.array(shapely.area(shapely.intersection(tab_polys[a], tab_polys[b])), dtype=float)
+    # Two cylinders are judged on their true circles, as the validator does.
+    objs = [spec.objects[k] for k in table]
+    disc = np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in objs], dtype=float)
+    xy = np.array([o.pose[:2] if o.pose is not None else (0.0, 0.0) for o in objs], dtype=float)
+    for k in np.flatnonzero((disc[a] > 0) & (disc[b] > 0)):
+        areas[k] = geo.lens_area(float(disc[a[k]]), float(disc[b[k]]), float(np.hypot(*(xy[a[k]] - xy[b[k]]))))
     bad = np.flatnonzero(areas > limits.START_OVERLAP_AREA)
     if len(bad):
         k = bad[0]

@@ -46,6 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from . import geometry as geo
 from . import limits
 from .errors import InputError
 from .formats import (
@@ -134,18 +135,6 @@ class Verdict:
 
 
 # ---------------------------------------------------------------- shape fits
-
-
-def _lens_area(r1: float, r2: float, d: float) -> float:
-    """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart."""
-    if d >= r1 + r2:
-        return 0.0
-    if d <= abs(r1 - r2):
-        return math.pi * min(r1, r2) ** 2
-    a1 = r1 * r1 * math.acos(max(-1.0, min(1.0, (d * d + r1 * r1 - r2 * r2) / (2 * d * r1))))
-    a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
-    k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
-    return a1 + a2 - k
 
 
 def line_residuals(xy: np.ndarray) -> np.ndarray:
@@ -403,7 +392,7 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
                         k = others[int(t)]
                         if sc.discs[k] > 0:
                             d = math.hypot(*(poses[k, :2] - new_pose[:2]))
-                            areas[t_k] = _lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
+                            areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
                 for t, area in zip(touching, areas):
                     if area > OVERLAP_AREA:
                         k = others[int(t)]

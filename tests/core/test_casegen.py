@@ -129,3 +129,14 @@ def test_dense_random_cases_are_solved(method):
         c = random_case(seed, dense=True)
         p = plan(c.scene, c.goals, method=method, seed=seed)
         assert p.solved and check(c.scene, c.goals, p).valid
+
+
+def test_touching_cylinders_load_as_a_start_scene():
+    """Two cylinders in contact are legal at the start, as in a plan (their 32-gons overlap by a sliver)."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.scene import Scene
+
+    r = 0.0375
+    objs = [{"id": i + 1, "name": "disc", "color": "red", "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+             "pose": [0.1 + 2 * r * i, 0.25, 0.3 * i], "on": None} for i in range(2)]
+    Scene.from_spec(parse_scene({"workspace": {"x": [0, 0.5], "y": [0, 0.5]}, "objects": objs}))

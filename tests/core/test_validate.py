@@ -145,7 +145,7 @@ def test_cylinders_may_touch_whatever_their_yaw(yaw, gap, valid):
 
 
 def test_lens_area_matches_polygons():
-    from lgmcts.validate import _lens_area
+    from lgmcts.geometry import lens_area as _lens_area
     import shapely
 
     for r1, r2, d in [(0.03, 0.03, 0.05), (0.02, 0.04, 0.05), (0.03, 0.01, 0.025), (0.02, 0.02, 0.05)]:
