@@ -105,3 +105,48 @@ def test_ids_must_be_integers(tmp_path):
     f.write_text(json.dumps(sc))
     out = run("plan", str(f), "-g", GOALS)
     assert out.returncode == 2 and "JSON integers" in out.stderr
+
+
+@pytest.mark.parametrize("cmd", [("eval-parse",), ("bench", "--no-exec", "--suite")])
+def test_deep_jsonl_lines_are_one_line_exit_2(cmd, tmp_path):
+    f = tmp_path / "deep.jsonl"
+    f.write_text("[" * 100_000 + "\n")
+    args = [*cmd, str(f)]
+    if cmd[0] == "bench":
+        args += ["-o", str(tmp_path / "out")]
+    out = run(*args)
+    assert out.returncode == 2 and one_line(out.stderr) and "nested too deeply" in out.stderr, out.stderr
+
+
+def test_execute_refuses_huge_targets(tmp_path):
+    plan = {"solved": True, "actions": [{"object": 9, "to": [1e300, 0, 0], "on": None, "purpose": "relocate"}]}
+    f = tmp_path / "plan.json"
+    f.write_text(json.dumps(plan))
+    out = run("execute", SCENE, str(f))
+    assert out.returncode == 2 and one_line(out.stderr), out.stderr
+
+
+def test_serve_warns_on_a_public_bind_without_token():
+    import socket
+    import time
+
+    from lgmcts.service.cli import _loopback
+
+    assert _loopback("127.0.0.1") and _loopback("::1") and _loopback("localhost")
+    assert not _loopback("0.0.0.0") and not _loopback("192.168.1.2")
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    env = {k: v for k, v in os.environ.items() if k != "LGMCTS_SERVICE_TOKEN"}
+    proc = subprocess.Popen([sys.executable, "-m", "lgmcts.service", "--host", "0.0.0.0", "--port", str(port),
+                             "--workers", "1", "--log-level", "warning"],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, env=env)
+    try:
+        first = proc.stderr.readline()
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+    assert first.startswith("WARNING") and "--token" in first
