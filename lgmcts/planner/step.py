@@ -323,25 +323,20 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     return np.empty((0, 3))
 
 
-def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
-    """Inside-workspace mask and, per candidate, the objects its footprint comes too close to.
-
-    Tests every footprint (bounding circles first, then exactly) and drops the hits
-    that do not count (the moving object itself; with ``obstacles="placed"``,
-    objects not yet committed to a goal). Stacked objects count too, although
-    the acceptance rules only compare table-level footprints: an object put
-    under the overhang of a wide object resting on a narrow one would strike
-    it when lowered.
-    """
-    inside, hits, _, _ = _collisions_full(problem, ss, o, poses, opts)
-    return inside, hits
-
-
 def _pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
            opts: StepOptions) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
     """Inside-workspace mask, the colliding pairs (candidate indices,
-    obstacle indices) that count (see :func:`_collisions`), the candidates'
-    footprint polygons (``None`` when only discs are involved) and vertices."""
+    obstacle indices) that count, the candidates' footprint polygons
+    (``None`` when only discs are involved) and vertices.
+
+    Tests every footprint (bounding circles first, then exactly: circles for
+    two cylinders, polygons otherwise) against the clearance and drops the
+    hits that do not count (the moving object itself; with
+    ``obstacles="placed"``, objects not yet committed to a goal). Stacked
+    objects count too, although the acceptance rules only compare
+    table-level footprints: an object put under the overhang of a wide
+    object resting on a narrow one would strike it when lowered.
+    """
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
@@ -361,8 +356,9 @@ def _pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
 
 def _collisions_full(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
                      opts: StepOptions) -> tuple[np.ndarray, list[list[int]], np.ndarray | None, np.ndarray]:
-    """:func:`_collisions`, and the candidates' footprint polygons (``None``
-    when only discs are involved) and vertices."""
+    """Inside-workspace mask and, per candidate, the objects its footprint
+    comes too close to (see :func:`_pairs`); also the candidates' footprint
+    polygons (``None`` when only discs are involved) and vertices."""
     inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
     for a, b in zip(ci.tolist(), oi.tolist()):

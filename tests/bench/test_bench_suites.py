@@ -187,9 +187,7 @@ def test_generate_cli_writes_the_same_file_for_the_same_seed(tmp_path):
 
 @pytest.mark.parametrize("k", range(4))
 def test_dense_elgr_is_the_same_task_with_packed_clutter(k):
-    from lgmcts.bench import elgr
     from lgmcts.bench.catalog import color_words
-    from lgmcts.bench.refs import resolve  # noqa: F401  (the meaning of references is by name and colour)
 
     cat = SUITES["elgr"].categories[k % 10]
     base = SUITES["elgr"].build(cat, task_seed(7, k))

@@ -127,3 +127,24 @@ def test_colliding_near_decides_disc_pairs_on_circles(obs, x, y, r, clearance):
                                clearance, cand_disc=r, obs_disc=radii)
     want = np.flatnonzero(np.hypot(*(xy - (x, y)).T) <= r + radii + clearance + 1e-12)
     assert sorted(oi.tolist()) == want.tolist()
+
+
+def test_replay_keeps_the_clearance_except_for_fixed_targets():
+    # A pose goal's fixed target 1.1 mm from a box may be reached in contact;
+    # a move for a sampled goal (here a relation) may not come that close.
+    from lgmcts.formats import Action, parse_goals, parse_scene
+
+    def box(i, x, y):
+        return {"id": i, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+                "pose": [x, y, 0.0], "on": None}
+
+    sc = Scene.from_spec(parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+                                      "objects": [box(1, 0.2, 0.2), box(2, -0.2, 0.0), box(3, 0.0, 0.0)]}))
+    gs = parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.0411, 0.0, 0.0]},
+                                {"pattern": "left", "objects": [2], "anchor": 3}]})
+    problem = Problem.build(sc, gs)
+    ref = np.array(sc.initial.poses)
+    to_target = Action(object=1, to=(0.0411, 0.0, 0.0), purpose="goal")
+    too_close = Action(object=2, to=(-0.0411, 0.0, 0.0), purpose="goal")
+    assert pol._replay(problem, [to_target], 0, sc.initial, ref) is not None
+    assert pol._replay(problem, [to_target, too_close], 0, sc.initial, ref) is None
