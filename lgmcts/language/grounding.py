@@ -627,6 +627,12 @@ def _mention_at(
     if det == "the" and j < n and words[j] == "same" and j + 1 < n and words[j + 1] not in ("color", "colour", "shape",
                                                                                         "size", "as"):
         j += 1  # "the same can": the can named before (resolved by the parser)
+    non = None
+    if j + 1 < n and words[j] == "non":
+        got_c = _colors(vocab, words, j + 1)
+        if got_c is not None:  # "the non-red cans": every can but the red ones
+            non = got_c[0]
+            j = got_c[1]
     count = None
     num = _number(words, j)
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
@@ -715,6 +721,8 @@ def _mention_at(
         det = "one"
     m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head,
                 of_count=locals().get("of_count"))
+    if non is not None:
+        m = replace(m, filters=(("value", "ne", Mention(i, end, "non " + " ".join(non), "all", True, None, non, non)),))
     # Qualifiers.
     while end < n:
         if everything is not None and m.colors is None and not m.filters:

@@ -51,6 +51,8 @@ _LEADING = frozenset(
      "you", "would", "will", "whereas", "while", "afterwards"}
 )
 _COORD = frozenset({"and", ",", "&", "plus"})
+#: Where a clause naming two arrangements may be cut ("a line but the bottle behind the plate").
+_CUT = _COORD | {"but"}
 #: Verbs that start a new command after "and" or a comma ("stack the blocks
 #: and put the bowls in a line"); a list of objects never continues with one.
 _FRONTED = frozenset(
@@ -67,7 +69,8 @@ _COMMAND_VERBS = frozenset(
 #: objects that are red. circle"; "take the red mug and put it ...").
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch"})
 _VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
-                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must"})
+                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must", "sitting",
+                        "resting", "standing", "lying", "stacked", "set", "neatly", "squarely", "centred", "centered"})
 _VERT_ON = frozenset({("on",), ("onto",), ("on", "top", "of"), ("atop",), ("upon",), ("above",), ("over",),
                       ("on", "to"), ("top", "of")})
 _VERT_UNDER = frozenset({("under",), ("below",), ("beneath",), ("underneath",), ("under", "neath")})
@@ -233,17 +236,17 @@ def _weak_split(
             continue  # "to the left of the bowl, line up A and B": a fronted relation, its targets follow
         cut = None
         _, hi = gaps[p]
-        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _COORD]
+        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _CUT]
         if after:
             cut = after[0]
         else:
             qlo, _ = gaps[q]
-            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _COORD]
+            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _CUT]
             if before:
                 cut = before[-1]
             elif any(words[k] in rel_words for k in ppos) and q > p + 1:
                 alo, ahi = gaps[p + 1]
-                if ahi > alo and all(words[k] in _COORD for k in range(alo, ahi)):
+                if ahi > alo and all(words[k] in _CUT for k in range(alo, ahi)):
                     cut = alo
         if cut is not None and (not cuts or cut > cuts[-1]):
             cuts.append(cut)
@@ -392,6 +395,30 @@ class _Parser:
         new_pos = {k: n for n, k in enumerate(kept)}
         return {new_pos[s]: r for s, r in roles.items()}, tuple(words[k] for k in kept)
 
+    _DETACHED_EXCEPT = (("except", "for"), ("except",), ("excluding",), ("apart", "from"), ("other", "than"),
+                        ("but", "not"), ("save", "for"), ("leaving", "out"), ("minus",))
+
+    def _detached_exception(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
+        """"put the red things in a line except the block": the exception moved next to its set."""
+        for k in range(1, len(mentions)):
+            m2, m1 = mentions[k], mentions[k - 1]
+            seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
+            if seq is None or m1.end >= m2.start - len(seq) or not m1.plural:
+                continue
+            try:
+                from .grounding import candidates as _cands
+
+                inner = set(_cands(self.vocab, m2)) & set(_cands(self.vocab, m1))
+            except InputError:
+                continue
+            if not inner:
+                continue
+            lo = m2.start - len(seq)
+            block = words[lo : m2.end]
+            rest = words[: m1.end] + block + words[m1.end : lo] + words[m2.end :]
+            return tuple(rest)
+        return None
+
     def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
         """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
         main, sub = words[:k], words[k + n_skip :]
@@ -429,6 +456,11 @@ class _Parser:
         role_at, reduced = self._roles(words, mentions)
         if role_at is not None:
             words = reduced
+            mentions = find_mentions(self.vocab, words, self.key_vocab)
+        moved = self._detached_exception(words, mentions)
+        if moved is not None:
+            words = moved
+            text = " ".join(words)
             mentions = find_mentions(self.vocab, words, self.key_vocab)
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
@@ -532,7 +564,8 @@ class _Parser:
             pat, hparams, _ = self.state.header
             self.state.header = None
             sels = [self._select_group(g) for g in groups]
-            p = self._shape(pat, sels, words, gaps, text, phrase_words)
+            # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
+            p = self._shape(pat, sels, words, gaps, text, phrase_words, defer_min=True)
             p.params = {**hparams, **params}
             return [p]
         if not meaningful and self.state.tower is not None and len(groups) == 1:
@@ -627,7 +660,7 @@ class _Parser:
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
-               roles: dict | None = None) -> _Pending:
+               roles: dict | None = None, defer_min: bool = False) -> _Pending:
         info = self.infos[pattern]
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
@@ -653,7 +686,7 @@ class _Parser:
             rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
             objs = sorted(objs, key=lambda x: rank[roles.get(x)])
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
-        if n < info.min_objects:
+        if n < info.min_objects and not (pattern == "tower" and defer_min):
             noun = "object" if n == 1 else "objects"
             raise InputError(f"'{text}': a {pattern} needs at least {info.min_objects} objects, this names {n} {noun}")
         pose = None
@@ -767,6 +800,8 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
+        text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
+                      r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
@@ -856,6 +891,11 @@ class _Parser:
 
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
         for p in pending:
+            if p.pattern == "tower" and p.anchor is None:
+                n = sum(x.k if isinstance(x, Choice) else 1 for x in p.objects)
+                if n < self.infos["tower"].min_objects:
+                    raise InputError(f"'{p.clause}': a tower needs at least {self.infos['tower'].min_objects} objects, "
+                                     f"this names {n} object{'' if n == 1 else 's'}")
             # "stack three blocks: red at the bottom, then blue, then green": the
             # blocks named one by one are the three.
             if p.pattern == "tower":
