@@ -116,6 +116,8 @@ class _Pending:
 class _State:
     named: set[int] = field(default_factory=set)
     last: list[int | Choice] = field(default_factory=list)
+    #: The anchor of the previous clause's relation, if it had one.
+    last_anchor: "int | Choice | None" = None
     #: The previous clause built a tower: "it" then means its top object.
     last_tower: bool = False
     #: Objects chosen by a selection clause ("select objects that are red.").
@@ -492,6 +494,12 @@ class _Parser:
             rest = rest[1:]
         phrase_words = [words[k] for k in rest]
         self._unknown_objects(words, rest, mentions)
+        for k in rest[:-1]:
+            nxt = words[k + 1] if k + 1 < len(words) else ""
+            if (words[k] in NUMBERS or words[k] in ("several", "multiple", "separate")) and nxt.endswith("s") \
+                    and self._free_word(nxt):
+                raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
+                                 f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
         if not mentions:
             if not meaningful:
@@ -657,6 +665,7 @@ class _Parser:
         self.state.last = targets
         self.state.last_tower = False
         self.state.tower = None
+        self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
@@ -699,6 +708,7 @@ class _Parser:
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
         self.state.last_tower = pattern == "tower"
+        self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
         self.state.tower = out if pattern == "tower" else None
         return out
@@ -731,8 +741,19 @@ class _Parser:
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last
+            if m.count:
+                # "one of them": any one of the objects "them" refers to.
+                opts = tuple(x for x in last if isinstance(x, int))
+                if len(opts) < m.count or len(opts) != len(last):
+                    raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
+                return Choice(opts, m.count, m.text)
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
+            if m.text == "it" and len(last) > 1 and not self.state.last_tower:
+                # "it" is one object: with several placed before, it is the one they were placed by.
+                if isinstance(self.state.last_anchor, int):
+                    return [self.state.last_anchor]
+                raise InputError(f"'{m.text}' is unclear: the clause before it places {len(last)} objects")
             if len(last) == 1 and isinstance(last[0], Choice):
                 return last[0]
             if any(isinstance(x, Choice) for x in last):
