@@ -557,6 +557,12 @@ class _Parser:
             if self.state.header is not None and self.state.header[0] == "tower":
                 params = {**self.state.header[1], **params}
                 self.state.header = None
+        joined = " ".join(phrase_words)
+        if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
+                     joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
+            # "the cans behind each other", "next to one another": one after the other, a line.
+            phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
+            meaningful = ["line"]
         vertical = None
         if len(groups) == 2 and roles is None:
             lo, hi = gaps[1]

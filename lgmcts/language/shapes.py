@@ -45,7 +45,7 @@ _CHATTER_SEQ = (
     ("is", "it", "possible", "to"), ("are", "you", "able", "to"), ("you", "should"), ("let's",), ("we", "need", "to"),
     ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
     ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
-    ("nothing", "else"), ("when", "you", "get", "a", "chance"),
+    ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
