@@ -344,7 +344,9 @@ _DETS: tuple[tuple[tuple[str, ...], str], ...] = tuple(
             (("the", "rest", "of", "the"), "other"), (("all", "other"), "other"), (("all", "the", "other"), "other"),
             (("all", "remaining"), "other"), (("remaining",), "other"), (("other",), "other"), (("another",), "another"),
             (("the",), "the"), (("a",), "one"), (("an",), "one"), (("any",), "one"), (("one", "of", "the"), "one"),
-            (("any", "one", "of", "the"), "one"), (("a", "single"), "one"), (("one",), "one"), (("some",), "all"),
+            (("any", "one", "of", "the"), "one"), (("a", "single"), "one"), (("one",), "one"), (("some", "of", "the"), "vague"),
+            (("some",), "vague"), (("a", "few"), "vague"), (("several",), "vague"), (("most", "of", "the"), "vague"),
+            (("most",), "vague"), (("half", "of", "the"), "half"), (("half", "the"), "half"), (("half",), "half"),
             (("those",), "all"), (("these",), "all"),
         ],
         key=lambda kv: -len(kv[0]),
@@ -619,6 +621,11 @@ def _mention_at(
     if got is not None:
         ids, j = got
         return Mention(i, j, " ".join(words[i:j]), "ids", len(ids) > 1, ids=ids)
+    if not nested and i + 2 < n and words[i + 1] == "of" and words[i + 2] in ("them", "those", "these") and (
+            words[i] == "one" or words[i] in NUMBERS):
+        # "one of them", "two of those": a choice among what the pronoun refers to.
+        k = 1 if words[i] == "one" else NUMBERS[words[i]]
+        return Mention(i, i + 3, " ".join(words[i : i + 3]), "pronoun", k > 1, count=k)
     det, j = "", i
     for seq, kind in _DETS:
         if _starts(words, i, seq):
@@ -627,6 +634,12 @@ def _mention_at(
     if det == "the" and j < n and words[j] == "same" and j + 1 < n and words[j + 1] not in ("color", "colour", "shape",
                                                                                         "size", "as"):
         j += 1  # "the same can": the can named before (resolved by the parser)
+    non = None
+    if j + 1 < n and words[j] == "non":
+        got_c = _colors(vocab, words, j + 1)
+        if got_c is not None:  # "the non-red cans": every can but the red ones
+            non = got_c[0]
+            j = got_c[1]
     count = None
     num = _number(words, j)
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
@@ -647,6 +660,7 @@ def _mention_at(
             det = "fresh"
     if det == "" and j < n and words[j] in _PRONOUNS and not nested:
         return Mention(i, j + 1, words[j], "pronoun", True)
+
     if det in ("the", "all", "other") and j < n and words[j] in ("rest", "others", "remaining"):
         end = j + 1
         return Mention(i, end, " ".join(words[i:end]), "other", True)
@@ -707,6 +721,8 @@ def _mention_at(
         raise InputError(f"'{phrase}' names nothing in the scene")
     else:
         return None
+    if det == "vague":
+        raise InputError(f"'{' '.join(words[i:end])}' does not say how many; name them, give a number or say all")
     if det == "both" and not plural:
         det = "the"
     if det == "" or (det == "the" and plural):
@@ -715,6 +731,8 @@ def _mention_at(
         det = "one"
     m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head,
                 of_count=locals().get("of_count"))
+    if non is not None:
+        m = replace(m, filters=(("value", "ne", Mention(i, end, "non " + " ".join(non), "all", True, None, non, non)),))
     # Qualifiers.
     while end < n:
         if everything is not None and m.colors is None and not m.filters:
@@ -970,6 +988,10 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
         if len(ids) != 2:
             raise InputError(f"'{m.text}' says both, but {len(ids)} objects match: {describe(vocab, ids)}")
         return ids
+    if m.det == "half":
+        if len(ids) % 2:
+            raise InputError(f"'{m.text}': half of {len(ids)} objects is not a whole number")
+        return Choice(tuple(ids), len(ids) // 2, m.text)
     k = 1 if m.det in ("one", "another") else int(m.count or 1)
     fresh = m.det in ("another", "fresh")
     if k < 1:

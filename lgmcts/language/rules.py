@@ -51,6 +51,8 @@ _LEADING = frozenset(
      "you", "would", "will", "whereas", "while", "afterwards"}
 )
 _COORD = frozenset({"and", ",", "&", "plus"})
+#: Where a clause naming two arrangements may be cut ("a line but the bottle behind the plate").
+_CUT = _COORD | {"but"}
 #: Verbs that start a new command after "and" or a comma ("stack the blocks
 #: and put the bowls in a line"); a list of objects never continues with one.
 _FRONTED = frozenset(
@@ -67,7 +69,8 @@ _COMMAND_VERBS = frozenset(
 #: objects that are red. circle"; "take the red mug and put it ...").
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch"})
 _VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
-                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must"})
+                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must", "sitting",
+                        "resting", "standing", "lying", "stacked", "set", "neatly", "squarely", "centred", "centered"})
 _VERT_ON = frozenset({("on",), ("onto",), ("on", "top", "of"), ("atop",), ("upon",), ("above",), ("over",),
                       ("on", "to"), ("top", "of")})
 _VERT_UNDER = frozenset({("under",), ("below",), ("beneath",), ("underneath",), ("under", "neath")})
@@ -113,6 +116,8 @@ class _Pending:
 class _State:
     named: set[int] = field(default_factory=set)
     last: list[int | Choice] = field(default_factory=list)
+    #: The anchor of the previous clause's relation, if it had one.
+    last_anchor: "int | Choice | None" = None
     #: The previous clause built a tower: "it" then means its top object.
     last_tower: bool = False
     #: Objects chosen by a selection clause ("select objects that are red.").
@@ -233,17 +238,17 @@ def _weak_split(
             continue  # "to the left of the bowl, line up A and B": a fronted relation, its targets follow
         cut = None
         _, hi = gaps[p]
-        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _COORD]
+        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _CUT]
         if after:
             cut = after[0]
         else:
             qlo, _ = gaps[q]
-            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _COORD]
+            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _CUT]
             if before:
                 cut = before[-1]
             elif any(words[k] in rel_words for k in ppos) and q > p + 1:
                 alo, ahi = gaps[p + 1]
-                if ahi > alo and all(words[k] in _COORD for k in range(alo, ahi)):
+                if ahi > alo and all(words[k] in _CUT for k in range(alo, ahi)):
                     cut = alo
         if cut is not None and (not cuts or cut > cuts[-1]):
             cuts.append(cut)
@@ -392,6 +397,30 @@ class _Parser:
         new_pos = {k: n for n, k in enumerate(kept)}
         return {new_pos[s]: r for s, r in roles.items()}, tuple(words[k] for k in kept)
 
+    _DETACHED_EXCEPT = (("except", "for"), ("except",), ("excluding",), ("apart", "from"), ("other", "than"),
+                        ("but", "not"), ("save", "for"), ("leaving", "out"), ("minus",))
+
+    def _detached_exception(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
+        """"put the red things in a line except the block": the exception moved next to its set."""
+        for k in range(1, len(mentions)):
+            m2, m1 = mentions[k], mentions[k - 1]
+            seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
+            if seq is None or m1.end >= m2.start - len(seq) or not m1.plural:
+                continue
+            try:
+                from .grounding import candidates as _cands
+
+                inner = set(_cands(self.vocab, m2)) & set(_cands(self.vocab, m1))
+            except InputError:
+                continue
+            if not inner:
+                continue
+            lo = m2.start - len(seq)
+            block = words[lo : m2.end]
+            rest = words[: m1.end] + block + words[m1.end : lo] + words[m2.end :]
+            return tuple(rest)
+        return None
+
     def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
         """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
         main, sub = words[:k], words[k + n_skip :]
@@ -430,6 +459,11 @@ class _Parser:
         if role_at is not None:
             words = reduced
             mentions = find_mentions(self.vocab, words, self.key_vocab)
+        moved = self._detached_exception(words, mentions)
+        if moved is not None:
+            words = moved
+            text = " ".join(words)
+            mentions = find_mentions(self.vocab, words, self.key_vocab)
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
@@ -460,6 +494,12 @@ class _Parser:
             rest = rest[1:]
         phrase_words = [words[k] for k in rest]
         self._unknown_objects(words, rest, mentions)
+        for k in rest[:-1]:
+            nxt = words[k + 1] if k + 1 < len(words) else ""
+            if (words[k] in NUMBERS or words[k] in ("several", "multiple", "separate")) and nxt.endswith("s") \
+                    and self._free_word(nxt):
+                raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
+                                 f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
         if not mentions:
             if not meaningful:
@@ -517,6 +557,12 @@ class _Parser:
             if self.state.header is not None and self.state.header[0] == "tower":
                 params = {**self.state.header[1], **params}
                 self.state.header = None
+        joined = " ".join(phrase_words)
+        if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
+                     joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
+            # "the cans behind each other", "next to one another": one after the other, a line.
+            phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
+            meaningful = ["line"]
         vertical = None
         if len(groups) == 2 and roles is None:
             lo, hi = gaps[1]
@@ -532,7 +578,8 @@ class _Parser:
             pat, hparams, _ = self.state.header
             self.state.header = None
             sels = [self._select_group(g) for g in groups]
-            p = self._shape(pat, sels, words, gaps, text, phrase_words)
+            # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
+            p = self._shape(pat, sels, words, gaps, text, phrase_words, defer_min=True)
             p.params = {**hparams, **params}
             return [p]
         if not meaningful and self.state.tower is not None and len(groups) == 1:
@@ -624,10 +671,11 @@ class _Parser:
         self.state.last = targets
         self.state.last_tower = False
         self.state.tower = None
+        self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
-               roles: dict | None = None) -> _Pending:
+               roles: dict | None = None, defer_min: bool = False) -> _Pending:
         info = self.infos[pattern]
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
@@ -653,7 +701,7 @@ class _Parser:
             rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
             objs = sorted(objs, key=lambda x: rank[roles.get(x)])
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
-        if n < info.min_objects:
+        if n < info.min_objects and not (pattern == "tower" and defer_min):
             noun = "object" if n == 1 else "objects"
             raise InputError(f"'{text}': a {pattern} needs at least {info.min_objects} objects, this names {n} {noun}")
         pose = None
@@ -666,6 +714,7 @@ class _Parser:
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
         self.state.last_tower = pattern == "tower"
+        self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
         self.state.tower = out if pattern == "tower" else None
         return out
@@ -698,8 +747,19 @@ class _Parser:
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last
+            if m.count:
+                # "one of them": any one of the objects "them" refers to.
+                opts = tuple(x for x in last if isinstance(x, int))
+                if len(opts) < m.count or len(opts) != len(last):
+                    raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
+                return Choice(opts, m.count, m.text)
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
+            if m.text == "it" and len(last) > 1 and not self.state.last_tower:
+                # "it" is one object: with several placed before, it is the one they were placed by.
+                if isinstance(self.state.last_anchor, int):
+                    return [self.state.last_anchor]
+                raise InputError(f"'{m.text}' is unclear: the clause before it places {len(last)} objects")
             if len(last) == 1 and isinstance(last[0], Choice):
                 return last[0]
             if any(isinstance(x, Choice) for x in last):
@@ -767,6 +827,8 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
+        text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
+                      r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
@@ -856,6 +918,11 @@ class _Parser:
 
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
         for p in pending:
+            if p.pattern == "tower" and p.anchor is None:
+                n = sum(x.k if isinstance(x, Choice) else 1 for x in p.objects)
+                if n < self.infos["tower"].min_objects:
+                    raise InputError(f"'{p.clause}': a tower needs at least {self.infos['tower'].min_objects} objects, "
+                                     f"this names {n} object{'' if n == 1 else 's'}")
             # "stack three blocks: red at the bottom, then blue, then green": the
             # blocks named one by one are the three.
             if p.pattern == "tower":

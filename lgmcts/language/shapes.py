@@ -45,7 +45,7 @@ _CHATTER_SEQ = (
     ("is", "it", "possible", "to"), ("are", "you", "able", "to"), ("you", "should"), ("let's",), ("we", "need", "to"),
     ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
     ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
-    ("nothing", "else"), ("when", "you", "get", "a", "chance"),
+    ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
@@ -226,6 +226,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             end = protected[i]
             if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
                 blocked = True
+            if seen_pattern and i > 0 and words[i - 1] == "with" and end < n and _region_run(words, end) is not None \
+                    and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))):
+                blocked = True  # "a circle with the plate in the middle": the plate's place, not the circle's
             keep.extend(words[i:end])
             i = end
             continue
@@ -245,7 +248,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 f"'{' '.join(words[i:j + 2])}': facing can be north, east, south or west only, not towards an object")
         if w in SIZES and i + 1 < n:
             j = i + 1
-            while j < n and (words[j] in ("straight", "neat", "tidy", "nice", "single", "round", "and", ",")
+            while j < n and (words[j] in ("straight", "neat", "tidy", "nice", "single", "round", "and", ",", "sized",
+                                          "size", "scale", "scaled")
                              or words[j] in SIZES):
                 j += 1
             if j < n and pattern_nouns(words[j]):
