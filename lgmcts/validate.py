@@ -10,9 +10,13 @@ size and facing. It shares no code with the search.
 Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
 * every pick is of a clear object (nothing rests on it);
-* a table placement keeps the footprint inside the workspace and overlaps no
-  other table-level footprint by more than ``1e-6`` m² (between two
-  cylinders, the overlap of their true circles, so cylinders may touch);
+* a target pose is finite, within ``lgmcts.limits.MAX_COORD`` m and
+  ``MAX_ANGLE`` rad (checked before any geometry);
+* a table placement keeps the footprint inside the workspace (centre inside,
+  no vertex more than ``EDGE_TOL = 1e-3`` m outside, at most ``1e-6`` m²
+  outside) and overlaps no other table-level footprint by more than
+  ``1e-6`` m² (between two cylinders, the overlap of their true circles, so
+  cylinders may touch);
 * a placement ``on`` another object needs that object clear and the centre
   over its footprint;
 * line: every centre within TOL of the total-least-squares line;
@@ -45,6 +49,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from . import geometry as geo
+from . import limits
 from .errors import InputError
 from .formats import (
     PATTERN_NAMES,
@@ -81,6 +87,26 @@ __all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLA
 # tolerances (defined in lgmcts.patterns and lgmcts.tolerances).
 _REEXPORTED = (fit_circle, line_residuals, MAX_RELATION_DIST, MIN_CIRCLE_RADIUS, MIN_RECT_SIDE, POSE_ANGLE_TOL,
                RELATION_HALF_ANGLE, TOL, TOWER_TOL)
+#: A footprint vertex this far (m) outside the workspace is a violation
+#: whatever the area outside.
+EDGE_TOL = 1e-3
+
+
+def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
+    """Why a target pose is unacceptable before any geometry, or ``None``.
+
+    Non-finite values, coordinates beyond :data:`lgmcts.limits.MAX_COORD` and
+    yaws beyond :data:`lgmcts.limits.MAX_ANGLE` are refused here (the plan
+    format refuses them too; this holds for plans built in code), so that the
+    polygon tests only ever run at magnitudes where a footprint keeps its
+    shape.
+    """
+    if pose.shape != (3,) or not np.isfinite(pose).all():
+        return "has a non-finite target pose"
+    if abs(pose[0]) > limits.MAX_COORD or abs(pose[1]) > limits.MAX_COORD or abs(pose[2]) > limits.MAX_ANGLE:
+        return "placed outside the workspace (target beyond the coordinate bounds)"
+    return None
+
 
 #: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
 Rule = Callable[[Goal, Scene, np.ndarray, tuple[int, ...]], "str | None"]
@@ -121,19 +147,9 @@ class Verdict:
         return self.valid
 
 
-# ---------------------------------------------------------------- shape fits
+# ---------------------------------------------------------------- goal rules
 
 
-def _lens_area(r1: float, r2: float, d: float) -> float:
-    """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart."""
-    if d >= r1 + r2:
-        return 0.0
-    if d <= abs(r1 - r2):
-        return math.pi * min(r1, r2) ** 2
-    a1 = r1 * r1 * math.acos(max(-1.0, min(1.0, (d * d + r1 * r1 - r2 * r2) / (2 * d * r1))))
-    a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
-    k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
-    return a1 + a2 - k
 
 
 def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> str | None:
@@ -225,14 +241,25 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             top = [sc.ids[k] for k, s in enumerate(on) if s == i]
             reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
+        bad = _pose_out_of_bounds(new_pose)
+        if bad is not None:
+            # Bounds first: geometry at such magnitudes means nothing (a
+            # footprint at x = 1e20 collapses to a point of zero area).
+            reasons.append(f"action {step}: object {act.object} {bad}")
+            break
         verts = sc.footprint(i, new_pose)
         poly = shapely.polygons(verts)
         if act.on is None:
-            # Every vertex in the box means the convex footprint is inside;
-            # otherwise measure how much of it lies outside.
+            # Every vertex in the box means the convex footprint is inside. A
+            # centre off the workspace or a vertex beyond EDGE_TOL outside is
+            # always a violation; a smaller excursion is one when the area
+            # outside exceeds OVERLAP_AREA.
             x, y = verts[:, 0], verts[:, 1]
-            inside = bool((x >= xmin).all() and (x <= xmax).all() and (y >= ymin).all() and (y <= ymax).all())
-            if not inside and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
+            excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
+            centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
+            if not centre_in or excursion > EDGE_TOL or (
+                excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA
+            ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
             # Only footprints whose circumscribed circles meet can overlap.
             reach = sc.radii[i] + sc.radii + 1e-9
@@ -250,7 +277,7 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
                         k = others[int(t)]
                         if sc.discs[k] > 0:
                             d = math.hypot(*(poses[k, :2] - new_pose[:2]))
-                            areas[t_k] = _lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
+                            areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
                 for t, area in zip(touching, areas):
                     if area > OVERLAP_AREA:
                         k = others[int(t)]

@@ -133,29 +133,24 @@ def read_suite(path: str | Path, *, limit: int | None = None) -> list[Task]:
 
 
 def _iter_suite(path: Path, limit: int | None) -> Iterator[Task]:
-    try:
-        fh = open(path)
-    except FileNotFoundError:
-        raise InputError(f"suite file not found: {path}") from None
-    except OSError as exc:
-        raise InputError(f"cannot read suite file {path}: {exc.strerror}") from None
+    from ..inputs import loads, read_lines
+
     seen: set[str] = set()
     n = 0
-    with fh:
-        for lineno, line in enumerate(fh, start=1):
-            if limit is not None and n >= limit:
-                return
-            if not line.strip():
-                continue
-            try:
-                data = json.loads(line)
-            except json.JSONDecodeError as exc:
-                raise InputError(f"{path} line {lineno} is not valid JSON: {exc.msg}") from None
-            task = Task.from_dict(data, where=f"{path} line {lineno}")
-            if task.id in seen:
-                raise InputError(f"{path} line {lineno}: duplicate task id {task.id}")
-            seen.add(task.id)
-            n += 1
-            yield task
+    for lineno, line in read_lines(path, "suite"):
+        if limit is not None and n >= limit:
+            return
+        if not line.strip():
+            continue
+        try:
+            data = loads(line, f"{path} line {lineno}")
+        except json.JSONDecodeError as exc:
+            raise InputError(f"{path} line {lineno} is not valid JSON: {exc.msg}") from None
+        task = Task.from_dict(data, where=f"{path} line {lineno}")
+        if task.id in seen:
+            raise InputError(f"{path} line {lineno}: duplicate task id {task.id}")
+        seen.add(task.id)
+        n += 1
+        yield task
     if n == 0:
         raise InputError(f"suite file {path} holds no tasks")

@@ -10,7 +10,7 @@ from typing import Optional
 
 import typer
 
-from ..cli_util import fail, write_text
+from ..cli_util import check_output_file, fail, write_text
 from ..errors import InputError
 
 __all__ = ["register"]
@@ -28,6 +28,7 @@ def parse_cmd(
     from .. import formats
     from . import parse
 
+    check_output_file(output)
     try:
         spec = formats.load_scene(scene)
         goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)

@@ -161,19 +161,16 @@ def load_cases(path: str | Path, *, split: str | None = None) -> list[Case]:
     With ``split``, only the cases of that split ("dev" or "test").
     """
     path = Path(path)
-    try:
-        lines = path.read_text().splitlines()
-    except FileNotFoundError:
-        raise InputError(f"case file not found: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read case file {path}: {exc}") from None
+    from ..inputs import loads, read_text
+
+    lines = read_text(path, "case").splitlines()
     scenes: dict[str, SceneSpec] = {}
     cases: list[Case] = []
     for n, line in enumerate(lines, 1):
         if not line.strip() or line.lstrip().startswith("//"):
             continue
         try:
-            row = json.loads(line)
+            row = loads(line, f"{path}:{n}")
         except json.JSONDecodeError as exc:
             raise InputError(f"{path}:{n}: not valid JSON ({exc.msg})") from None
         if not isinstance(row, dict):

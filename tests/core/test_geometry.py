@@ -137,3 +137,18 @@ def test_overlapping_matches_exact_shapes(r1, r2, gap, ang, yaw, discs):
     got = geo.overlapping(np.array([pa]), np.zeros((1, 2)), da, np.array([pb]), xy[None], db, 0.5e-6)[0]
     want = d < r1 + r2 - 1e-9 if discs else shapely.area(shapely.intersection(pa, pb)) > 0.5e-6
     assert got == want
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(0.01, 0.05)), min_size=1, max_size=6),
+       st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(0.01, 0.05), st.sampled_from([0.0, 0.002]))
+def test_colliding_near_decides_disc_pairs_on_circles(obs, x, y, r, clearance):
+    xy = np.array([[a, b] for a, b, _ in obs])
+    radii = np.array([c for _, _, c in obs])
+    polys = np.array([shapely.polygons(geo.circle_footprint(c) + (a, b)) for a, b, c in obs])
+    rr = radii / np.cos(np.pi / geo.CIRCLE_SEGMENTS)
+    me = shapely.polygons(geo.circle_footprint(r) + (x, y))
+    _, oi = geo.colliding_near(np.array([me]), np.array([[x, y]]), r / np.cos(np.pi / geo.CIRCLE_SEGMENTS), polys, xy, rr,
+                               clearance, cand_disc=r, obs_disc=radii)
+    want = np.flatnonzero(np.hypot(*(xy - (x, y)).T) <= r + radii + clearance + 1e-12)
+    assert sorted(oi.tolist()) == want.tolist()
