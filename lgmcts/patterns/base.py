@@ -406,6 +406,14 @@ class BasePattern:
     def region(self, ctx: Context) -> Any:
         return None
 
+    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        # A pattern may define only _density (its own support); a goal's
+        # region and facing then narrow it here.
+        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        if ctx.goal.params.empty:
+            return self._density(ctx, obj, poses)
+        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
+
     def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
         # Priors whose kappa is fixed sample best, then relations, then the rest.
         if progress.params is not None:

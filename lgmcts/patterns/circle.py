@@ -35,7 +35,6 @@ from .base import (
     goal_xy,
     GoalProgress,
     box_region,
-    params_mask,
     register,
     start_poses,
     uniform_poses,
@@ -242,12 +241,6 @@ class Circle(BasePattern):
         a = rng.choice(angles, n) + np.clip(rng.normal(0, spread / 2, n), -spread, spread)
         rr = r + np.clip(rng.normal(0, band / 2, n), -band, band)
         return with_heading(ctx, np.column_stack([cx + rr * np.cos(a), cy + rr * np.sin(a), a + math.pi / 2]))
-
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
 
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:

@@ -254,12 +254,6 @@ class Line(BasePattern):
         out = with_heading(ctx, np.column_stack([xy, theta]))
         return out if ctx.goal.params.box is None else out[params_mask(ctx, obj, out)]
 
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
-
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         placed = ctx.progress.placed
         if not placed:

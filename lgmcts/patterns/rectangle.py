@@ -251,12 +251,6 @@ class Rectangle(BasePattern):
         (cx, cy), phi = kappa.centre, kappa.angle
         return (poses[:, :2] - [cx, cy]) @ _rot(phi)
 
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
-
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:
             return np.ones(len(poses))

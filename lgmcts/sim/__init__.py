@@ -12,8 +12,8 @@ The design and its numbers are described in ``docs/sim.md``.
 from __future__ import annotations
 
 import os
-from importlib import import_module
-from typing import Any
+
+from ..lazy import lazy_names
 
 # MuJoCo reads the OpenGL backend when it is first imported, so it is chosen
 # here, before any module of this package imports mujoco. The names below load
@@ -53,11 +53,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        return getattr(import_module(_WHERE[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_names(__name__, _WHERE)
