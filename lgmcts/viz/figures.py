@@ -648,7 +648,7 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
 
 
 def _fields(ctx: _Ctx, step: int) -> Any:
-    from ..planner.fields import pose_fields
+    from .fields import pose_fields
 
     if ctx.goals is None:
         raise InputError("heatmaps need the goals (the plan carries none; pass them)")
@@ -669,7 +669,7 @@ def heatmap_fields(
 
     Returns
     -------
-    lgmcts.planner.fields.Fields
+    lgmcts.viz.fields.Fields
         ``prior`` (H, W) in [0, 1], ``free`` (H, W) bool and ``product``
         ``= prior * free``, on cell centres ``xs`` (W,) and ``ys`` (H,) in metres,
         ``resolution`` metres apart.
@@ -682,7 +682,7 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     """f_prior, f_free and f = f_prior × f_free for action ``step`` (1-based) as RGB.
 
     Black is 0 and white 1, as in the paper's Fig. 5. The grids are those of
-    :func:`lgmcts.planner.fields.pose_fields` in the state before the action;
+    :func:`lgmcts.viz.fields.pose_fields` in the state before the action;
     the object's pose before the move is a circle, the pose the plan chose a star.
     """
     import matplotlib.patheffects as pe

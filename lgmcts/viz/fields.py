@@ -18,8 +18,8 @@ import shapely
 from .. import geometry as geo
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, Context
+from ..planner.step import Problem
 from ..scene import Scene, replay
-from .step import Problem
 
 __all__ = ["Fields", "pose_fields"]
 
