@@ -30,7 +30,6 @@ import math
 from itertools import combinations_with_replacement
 
 import numpy as np
-import shapely
 
 from ..formats import RELATIONS, parse_goals, parse_scene
 from ..scene import TABLE, Scene
@@ -40,7 +39,7 @@ from .layout import Layout, pattern_poses, relation_pose, scene_of
 from .refs import phrase, resolve, unambiguous
 from .tasks import Task
 
-__all__ = ["CATEGORIES", "WORKSPACE", "generate_task", "generate_dense_task"]
+__all__ = ["CATEGORIES", "WORKSPACE", "generate_task"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _KINDS = ("line", "circle", "rectangle", "spatial")
@@ -366,48 +365,3 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         "clutter": [[ids[c], ids[t]] for c, t in clutter_pairs],
     }
     return scene_dict, instruction, {"goals": goal_list}, final_d, start_d
-
-
-def generate_dense_task(category: str, seed: int, *, task_id: str | None = None) -> Task:
-    """The dense variant of the ELGR-style task of ``category`` and ``seed``.
-
-    Task, start state, instruction and goals are those of
-    :func:`generate_task` for the same arguments, plus 4-8 clutter objects
-    packed edge to edge around the goal region
-    (:func:`lgmcts.casegen.pack_clutter`): clear of the goal objects' final
-    footprints and of every object's start and final footprint, so the
-    final arrangement (with the clutter where it stands) still meets every
-    goal. The clutter's categories and colours occur nowhere else in the
-    scene (no colour word shared either), so the instruction means exactly
-    what it meant without it. ``start["packed"]`` lists the clutter's ids.
-    """
-    from ..casegen import pack_clutter
-
-    base = generate_task(category, seed, task_id=task_id or f"elgr-dense-{seed}")
-    rng = np.random.default_rng([seed, 2])
-    objs = base.scene["objects"]
-    names = {o["name"] for o in objs}
-    words = set().union(*(color_words(o["color"]) for o in objs))
-    kinds = [k for k in VIMA_KINDS if k.name not in names]
-    colors = [c for c in VIMA_COLORS if not color_words(c) & words]
-    spec = parse_scene(base.scene)
-    sc = Scene.from_spec(spec)
-    goal_ids = {i for g in base.goals["goals"] for i in [*g["objects"], *([g["anchor"]] if g.get("anchor") is not None else [])]}
-    table = [k for k in range(sc.n) if sc.initial.on[k] == TABLE]
-    final = {int(i): np.asarray(p, dtype=float) for i, p in base.final.items()}
-    final_on = {int(i) for i in base.final_on}
-    goal_feet = [shapely.polygons(sc.footprint(sc.index[i], final[i])) for i in sorted(goal_ids) if i not in final_on]
-    other_feet = [sc.initial.polys[k] for k in table]
-    other_feet += [shapely.polygons(sc.footprint(sc.index[i], final[i])) for i in sorted(final) if i not in goal_ids and i not in final_on]
-    specs = []
-    if kinds and colors:
-        first = max(o["id"] for o in objs) + 1
-        for e in range(int(rng.integers(4, 9))):
-            k = kinds[int(rng.integers(len(kinds)))]
-            specs.append({"id": first + e, "name": k.name, "color": _pick(rng, colors), "shape": k.make(scale(rng))})
-    packed = pack_clutter(sc.bounds, specs, goal_feet, other_feet, rng)
-    scene = {**base.scene, "objects": [*objs, *packed]}
-    final_d = {**base.final, **{str(o["id"]): list(o["pose"]) for o in packed}}
-    start = {**base.start, "packed": [o["id"] for o in packed]}
-    return Task(id=base.id, seed=seed, suite="elgr-dense", category=category, scene=scene, instruction=base.instruction,
-                goals=base.goals, final=final_d, final_on=base.final_on, start=start)

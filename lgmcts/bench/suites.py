@@ -38,8 +38,6 @@ def _suite(name: str, mod: ModuleType, default_n: int, description: str) -> Suit
 SUITES: dict[str, Suite] = {
     "elgr": _suite("elgr", elgr, 1600, "two composed patterns, infeasible starts, templated language"),
     "structformer": _suite("structformer", structformer, 2000, "one pattern per task: line, circle, tower, dinner"),
-    "elgr-dense": Suite("elgr-dense", tuple(elgr.CATEGORIES), 1600, elgr.generate_dense_task,
-                        "the ELGR-style tasks with clutter packed edge to edge around the goal region"),
 }
 
 
