@@ -3,6 +3,7 @@
 Examples (one core; the figures in docs/benchmarks.md come from these)::
 
     python benchmarks/planner.py random --n 300
+    python benchmarks/planner.py random --n 300 --dense
     python benchmarks/planner.py labbe --per-n 100 --ns 1-37
     python benchmarks/planner.py labbe --variant spaced --ns 1,4,8,12,16,20,25,30,37
     python benchmarks/planner.py memory --objects 40
@@ -74,7 +75,7 @@ def _summary(rows: list[dict]) -> dict:
 
 
 def cmd_random(a: argparse.Namespace) -> dict:
-    cases = [random_case(a.first_seed + k) for k in range(a.n)]
+    cases = [random_case(a.first_seed + k, dense=a.dense) for k in range(a.n)]
     out: dict = {}
     for m in a.methods.split(","):
         rows = []
@@ -89,7 +90,7 @@ def cmd_random(a: argparse.Namespace) -> dict:
         for r in rows:
             by_n.setdefault(r["objects"], []).append(r["time_s"])
         s["time_median_by_objects"] = {n: float(np.median(v)) for n, v in sorted(by_n.items())}
-        s["by_kind"] = {k: _summary([r for r in rows if r["kind"] == k]) for k in ("blockers", "clutter")}
+        s["by_kind"] = {k: _summary([r for r in rows if r["kind"] == k]) for k in sorted({r["kind"] for r in rows})}
         out[m] = s
     print("| method | cases | success | median time (s) | p95 time (s) | max time (s) | mean iterations | mean actions "
           "| mean reference | actions / reference | mean lower bound | actions / bound |")
@@ -180,6 +181,8 @@ def main() -> None:
     r.add_argument("--n", type=int, default=300)
     r.add_argument("--first-seed", type=int, default=0)
     r.add_argument("--methods", default="lgmcts,greedy,pmcts")
+    r.add_argument("--dense", action="store_true",
+                   help="the dense variant: 4-10 extra clutter objects packed edge to edge around the goal region")
     lb = sub.add_parser("labbe")
     lb.add_argument("--ns", default="1-37", help="N values: a list (1,4,8) and/or ranges (1-37)")
     lb.add_argument("--variant", default="protocol", choices=LABBE_VARIANTS,

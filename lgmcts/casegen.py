@@ -22,11 +22,12 @@ from itertools import combinations, product
 import numpy as np
 import shapely
 
+from . import geometry as geo
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
+__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -109,17 +110,107 @@ def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gene
     raise ValueError(kind)
 
 
-def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None) -> Case:
-    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``."""
+def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None, dense: bool = False) -> Case:
+    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``.
+
+    ``dense=True`` gives the dense variant of the same case: the case drawn
+    for ``seed`` without it, plus 4-10 extra clutter objects packed edge to
+    edge around the goal region (see :func:`_pack_clutter`); its ``kind``
+    gets a ``"dense-"`` prefix.
+    """
     rng = np.random.default_rng(seed)
     for _ in range(200):
-        case = _try_case(rng, n_objects, kind)
+        case = _try_case(rng, n_objects, kind, np.random.default_rng([seed, 1]) if dense else None)
         if case is not None:
             return case
     raise RuntimeError(f"could not build a case for seed {seed}")  # pragma: no cover
 
 
-def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None) -> Case | None:
+#: Step and bisection depth of the search for contact along a ray (m, count).
+_PACK_STEP, _PACK_BISECT = 0.003, 10
+
+
+def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
+    """Extra clutter objects (4-10, shapes as in the base cases) packed in
+    contact around the goal region (see :func:`pack_clutter`)."""
+    n0 = len(objects)
+    specs = []
+    for e in range(int(rng.integers(4, 11))):
+        name, shape = _shape(rng)
+        specs.append({"id": n0 + e + 1, "name": name, "color": _COLORS[(n0 + e) % len(_COLORS)], "shape": shape})
+    return pack_clutter(scene.bounds, specs, goal_feet, other_feet, rng)
+
+
+def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], goal_feet: list, other_feet: list,
+                 rng: np.random.Generator) -> list[dict]:
+    """Object ``specs`` (dicts with id, name, color, shape) packed edge to
+    edge around the goal region; returns those placed, with ``pose`` and
+    ``on`` set, in order.
+
+    Nothing may overlap ``goal_feet`` (footprint polygons of the goal
+    objects where the goals put them) nor ``other_feet`` (any other polygons
+    to keep clear, such as the start footprints). Each object starts at the
+    centre of a random goal footprint, at a random yaw, and slides outward
+    along a random ray to the first pose where it overlaps nothing; a
+    bisection brings it to within about 3 um of that contact. A pose stopped
+    by the workspace edge (``bounds = (xmin, xmax, ymin, ymax)``, 3 mm
+    margin) rather than by a neighbour is redrawn, up to 30 times; an object
+    that finds none is left out. The goal footprints stay free, so the goal
+    arrangement remains legal.
+    """
+    xmin, xmax, ymin, ymax = bounds
+    goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
+    placed = list(goal_feet) + list(other_feet)
+    out = []
+    if not goal_centres:
+        return out
+    for spec in specs:
+        full = {**spec, "pose": [0.0, 0.0, 0.0], "on": None}
+        local = Scene.from_spec(parse_scene({"workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
+                                             "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}]})).local[0]
+
+        def poly_at(p):
+            return shapely.polygons(geo.transform(local, p))
+
+        def fits(p) -> bool:
+            v = geo.transform(local, p)
+            if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+                return False
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            return not bool(shapely.intersects(shapely.polygons(v), arr).any())
+
+        for _ in range(30):
+            c = goal_centres[int(rng.integers(len(goal_centres)))]
+            phi, yaw = rng.uniform(-math.pi, math.pi, 2)
+            u = np.array([math.cos(phi), math.sin(phi)])
+            t_hit = None
+            for t in np.arange(_PACK_STEP, 0.35, _PACK_STEP):
+                if fits(np.array([*(c + t * u), yaw])):
+                    t_hit = float(t)
+                    break
+            if t_hit is None:
+                continue
+            lo, hi = t_hit - _PACK_STEP, t_hit
+            for _ in range(_PACK_BISECT):
+                mid = (lo + hi) / 2
+                if fits(np.array([*(c + mid * u), yaw])):
+                    hi = mid
+                else:
+                    lo = mid
+            pose = np.array([*(c + hi * u), yaw])
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            if shapely.distance(poly_at(pose), arr).min() > 1e-4:
+                continue  # stopped by the workspace edge, not by a neighbour: not packed
+            placed.append(poly_at(pose))
+            out.append({**full, "pose": [float(v) for v in pose]})
+            break
+    return out
+
+
+def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
+              dense_rng: np.random.Generator | None = None) -> Case | None:
     n = int(n_objects or rng.integers(6, 17))
     kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
     objects = []
@@ -236,6 +327,11 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
     objs_out = []
     for k, ob in enumerate(objects):
         objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})
+    if dense_rng is not None:
+        goal_feet = [shapely.polygons(scene.footprint(t, final_pose[t])) for t in targets if t not in final_on]
+        other_feet = [shapely.polygons(scene.footprint(o, spose[o])) for o in range(n) if o not in son]
+        objs_out += _pack_clutter(scene, objs_out, goal_feet, other_feet, dense_rng)
+        kind = f"dense-{kind}"
     sspec = parse_scene({"workspace": WORKSPACE, "objects": objs_out})
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
 
@@ -430,8 +526,8 @@ def labbe_protocol_case(n: int, seed: int) -> Case:
 
     Deviations, and why: the evaluator bounds disc *centres* by the square,
     while an lgmcts workspace bounds *footprints*; the workspace here is the
-    square grown by the footprint's circumradius (R / cos(pi / 32), the
-    32-gon that stands for a disc), so a centre is legal exactly where the
+    square grown by the footprint's circumradius (R / cos(pi / 24), the
+    24-gon that stands for a disc), so a centre is legal exactly where the
     evaluator allows it. The evaluator seeds numpy's global generator and
     caps an addition by time; here a ``np.random.Generator`` seeded with
     ``seed`` and a dart count, so a seed gives the same case anywhere (the
@@ -443,7 +539,7 @@ def labbe_protocol_case(n: int, seed: int) -> Case:
     rng = np.random.default_rng(seed)
     r = LABBE_RADIUS
     lo, hi = np.asarray(LABBE_SQUARE[0], dtype=float), np.asarray(LABBE_SQUARE[1], dtype=float)
-    grow = r / math.cos(math.pi / 32)
+    grow = r / math.cos(math.pi / geo.CIRCLE_SEGMENTS)
     ws = {"x": [float(lo[0] - grow), float(hi[0] + grow)], "y": [float(lo[1] - grow), float(hi[1] + grow)]}
     start = _rsa(n, rng, lo, hi, 2 * r)
     goal = _rsa(n, rng, lo, hi, 2 * r)

@@ -142,8 +142,9 @@ def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[
     return pairs[0], pairs[1]
 
 
-def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
-                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
+                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float, *, cand_disc: np.ndarray | float | None = None,
+                   obs_disc: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``, as
     :func:`colliding`, without an R-tree.
 
@@ -151,11 +152,31 @@ def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarr
     ``*_r``); only the pairs whose circles come within ``clearance`` are
     tested exactly, elementwise. Cheaper than building a tree for a state
     queried a few times. Pairs are sorted by candidate, then obstacle.
+
+    With ``cand_disc`` and ``obs_disc`` (true circle radii, 0 for shapes that
+    are not discs), a pair of discs is decided on the circles themselves
+    (centre distance at most the radii plus ``clearance``), without the
+    polygons; ``candidates`` may then be ``None`` when every pair is one of
+    discs.
     """
     cand_xy = np.asarray(cand_xy, dtype=float).reshape(-1, 2)
     d2 = (cand_xy[:, None, 0] - obs_xy[None, :, 0]) ** 2 + (cand_xy[:, None, 1] - obs_xy[None, :, 1]) ** 2
     reach = np.asarray(cand_r, dtype=float).reshape(-1, 1) + obs_r[None, :] + clearance + 1e-9
     ci, oi = np.nonzero(d2 <= reach**2)
+    if len(ci) and cand_disc is not None and obs_disc is not None:
+        cd = np.broadcast_to(np.asarray(cand_disc, dtype=float).reshape(-1), (len(cand_xy),))[ci]
+        od = np.asarray(obs_disc, dtype=float)[oi]
+        disc = (cd > 0) & (od > 0)
+        if disc.any():
+            hit = np.ones(len(ci), dtype=bool)
+            hit[disc] = d2[ci[disc], oi[disc]] <= (cd[disc] + od[disc] + clearance + 1e-12) ** 2
+            rest = np.flatnonzero(~disc)
+            if len(rest):
+                if clearance > 0:
+                    hit[rest] = shapely.dwithin(candidates[ci[rest]], obstacles[oi[rest]], clearance)
+                else:
+                    hit[rest] = shapely.intersects(candidates[ci[rest]], obstacles[oi[rest]])
+            return ci[hit], oi[hit]
     if len(ci):
         if clearance > 0:
             hit = shapely.dwithin(candidates[ci], obstacles[oi], clearance)

@@ -74,7 +74,8 @@ def default_step(problem: Problem, ss: SearchState, ready: list[int], rng: np.ra
     """One default-policy step: commit an object where it stands if one can
     (a free step); else place one of the ready objects (in random order)
     whose prior has a free pose; else move the obstacle that blocks the most
-    of their placements (:func:`_most_blocking`); else clear the way for a
+    of their placements (:func:`_blocking_order`, up to :data:`CLEAR_TRIES` of them
+    while none can move); else clear the way for a
     random ready object as the simulation step does. ``memo`` carries what
     earlier steps of the same rollout learnt (:class:`BlockMemo`)."""
     order = [ready[k] for k in rng.permutation(len(ready))]
@@ -112,26 +113,33 @@ def default_step(problem: Problem, ss: SearchState, ready: list[int], rng: np.ra
             blocks[o] = blockers
             if memo is not None:
                 memo.put(o, blockers)
-    pick = _most_blocking(problem, ss, blocks, rng, memo.last if memo is not None else -1)
-    if pick is not None:
-        o, b = pick
+    ranked = _blocking_order(problem, ss, blocks, rng, memo.last if memo is not None else -1)
+    for o, b in ranked[:CLEAR_TRIES]:
         tr = clear_way(problem, ss, b, rng, opts.step, o)
         if tr is not None:
             return o, tr
     return order[0], attempt(problem, ss, order[0], rng, opts.step, placed_anchors=False)
 
 
-def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],
-                   rng: np.random.Generator, last: int = -1) -> tuple[int, int] | None:
-    """The obstacle whose move frees the most goal placements: (an object it
-    blocks, the obstacle), or ``None``.
+#: How many obstacles, best first, a step tries to move before it falls back
+#: to the simulation step for a random object.
+CLEAR_TRIES = 64
+
+
+def _blocking_order(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],
+                    rng: np.random.Generator, last: int = -1) -> list[tuple[int, int]]:
+    """Obstacles whose move frees the most goal placements, best first, each
+    as (an object it blocks, the obstacle).
 
     Scored by the objects it alone blocks, then by all it blocks; objects a
     goal has already placed are left alone, and ties are broken at random.
+    The object given is one that the obstacle alone blocks when there is one
+    (its placement is freed by the move).
     """
     sole: dict[int, int] = {}
     total: dict[int, int] = {}
     first: dict[int, int] = {}
+    only: dict[int, int] = {}
     for o, bs in blocks.items():
         for b in bs:
             if b == o or ss.committed(problem, b):
@@ -139,15 +147,17 @@ def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[in
             total[b] = total.get(b, 0) + 1
             sole[b] = sole.get(b, 0) + (len(bs) == 1)
             first.setdefault(b, o)
+            if len(bs) == 1:
+                only.setdefault(b, o)
     if not total:
-        return None
+        return []
     if len(total) > 1:
         # The object just moved is not moved straight back out of the way.
         total.pop(last, None)
-    best = max((sole[b], total[b]) for b in total)
-    ties = sorted(b for b in total if (sole[b], total[b]) == best)
-    b = ties[int(rng.integers(len(ties)))]
-    return first[b], b
+    cands = sorted(total)
+    tie = rng.permutation(len(cands))
+    ranked = sorted(range(len(cands)), key=lambda j: (-sole[cands[j]], -total[cands[j]], tie[j]))
+    return [(only.get(cands[j], first[cands[j]]), cands[j]) for j in ranked]
 
 
 def rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions,

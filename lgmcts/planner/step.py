@@ -146,6 +146,11 @@ class Problem:
                 if getattr(self.patterns[k], "deterministic", False)}
 
     @cached_property
+    def all_discs(self) -> bool:
+        """Whether every object is a cylinder (collisions are then circle tests)."""
+        return bool((self.scene.discs > 0).all())
+
+    @cached_property
     def targets(self) -> tuple[int, ...]:
         return tuple(sorted(self.member))
 
@@ -332,23 +337,54 @@ def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, op
     return inside, hits
 
 
-def _collisions_full(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
-                     opts: StepOptions) -> tuple[np.ndarray, list[list[int]], np.ndarray, np.ndarray]:
-    """:func:`_collisions`, and the candidates' footprint polygons and vertices."""
+def _pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
+           opts: StepOptions) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
+    """Inside-workspace mask, the colliding pairs (candidate indices,
+    obstacle indices) that count (see :func:`_collisions`), the candidates'
+    footprint polygons (``None`` when only discs are involved) and vertices."""
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
+    # Disc against discs is decided on circles: no polygons needed then.
+    polys = None if scene.discs[o] > 0 and problem.all_discs else shapely.polygons(verts)
+    if scene.n <= 1:
+        return inside, np.empty(0, dtype=int), np.empty(0, dtype=int), polys, verts
+    ci, oi = geo.colliding_near(polys, poses[:, :2], scene.radii[o], world.poly_array,
+                                world.poses[:, :2], scene.radii, opts.clearance,
+                                cand_disc=scene.discs[o], obs_disc=scene.discs)
+    keep = oi != o
+    if opts.obstacles == "placed":
+        counts = np.array([ss.committed(problem, int(b)) or int(b) in problem.standing_anchors for b in oi], dtype=bool)
+        keep &= counts if len(oi) else keep
+    return inside, ci[keep], oi[keep], polys, verts
+
+
+def _collisions_full(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
+                     opts: StepOptions) -> tuple[np.ndarray, list[list[int]], np.ndarray | None, np.ndarray]:
+    """:func:`_collisions`, and the candidates' footprint polygons (``None``
+    when only discs are involved) and vertices."""
+    inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
-    polys = shapely.polygons(verts)
-    if scene.n > 1:
-        ci, oi = geo.colliding_near(polys, poses[:, :2], scene.radii[o], world.poly_array,
-                                    world.poses[:, :2], scene.radii, opts.clearance)
-        placed_only = opts.obstacles == "placed"
-        for a, b in zip(ci.tolist(), oi.tolist()):
-            if b == o or (placed_only and not ss.committed(problem, b) and b not in problem.standing_anchors):
-                continue
-            hits[a].append(int(b))
+    for a, b in zip(ci.tolist(), oi.tolist()):
+        hits[a].append(b)
     return inside, hits, polys, verts
+
+
+def _free(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions,
+          contact: bool = False) -> np.ndarray:
+    """Mask of the candidate poses of ``o`` that are free: inside the
+    workspace and clear of every obstacle by the clearance or, with
+    ``contact``, inside and at most touching (see :func:`touching_only`)."""
+    inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
+    if contact:
+        inside = geo.inside_workspace(verts, problem.scene.bounds)
+        if len(ci):
+            world, scene = ss.world, problem.scene
+            mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
+            over = geo.overlapping(mine, poses[ci, :2], np.full(len(ci), scene.discs[o]), world.poly_array[oi],
+                                   world.poses[oi, :2], scene.discs[oi], CONTACT_AREA)
+            ci = ci[over]
+    return inside & (np.bincount(ci, minlength=len(poses)) == 0)
 
 
 def touching_only(scene: Scene, world: State, i: int, near: np.ndarray, polys: np.ndarray | None = None,
@@ -377,7 +413,8 @@ def _hard(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, polys: n
     oi = [b for a in cands.tolist() for b in hits[a]]
     out: list[list[int]] = [[] for _ in hits]
     if ci:
-        over = geo.overlapping(polys[ci], poses[ci, :2], np.full(len(ci), scene.discs[o]), world.poly_array[oi],
+        mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
+        over = geo.overlapping(mine, poses[ci, :2], np.full(len(ci), scene.discs[o]), world.poly_array[oi],
                                world.poses[oi, :2], scene.discs[oi], CONTACT_AREA)
         for a, b, v in zip(ci, oi, over.tolist()):
             if v:
@@ -417,6 +454,7 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
     check = StepOptions(opts.samples, opts.clearance, "all")
+    off = _off_target(problem, b, avoid)
     # Candidates from the grid of clear centres first, then, if it has none
     # (elongated neighbours make it pessimistic), larger uniform batches.
     room = clear_centres(scene, world, b, opts.clearance)
@@ -438,15 +476,16 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
         if grid:
             # Circumscribed circles apart by the clearance: free at any yaw.
-            free = np.ones(n, dtype=bool)
-            break
-        inside, hits = _collisions(problem, ss, b, poses, check)
-        free = inside & np.array([not h for h in hits])
+            free = off(poses)
+            if free.any():
+                break
+            continue
+        free = _free(problem, ss, b, poses, check) & off(poses)
         if free.any():
             break
     else:
         # No room with the clearance anywhere: park touching neighbours.
-        poses = _contact_spots(problem, ss, b, rng, check)
+        poses = _contact_spots(problem, ss, b, rng, check, off)
         if not len(poses):
             return None
         free = np.ones(len(poses), dtype=bool)
@@ -467,29 +506,46 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     return Transition(act, SearchState(new_world, _uncommit(problem, ss.progress, b)))
 
 
-def _contact_spots(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions) -> np.ndarray:
+def _off_target(problem: Problem, b: int, avoid: int):
+    """A mask function over poses ``(k, 3)`` of ``b``: whether ``b`` there
+    leaves ``avoid``'s fixed target free (its circle, or its circumscribed
+    circle for other shapes, at most touching the target's). All true when
+    ``avoid`` has no fixed target: parking on a fixed target would not make
+    the room the move is for, so such a spot is never taken."""
+    if avoid not in problem.fixed:
+        return lambda poses: np.ones(len(poses), dtype=bool)
+    sc = problem.scene
+    t = problem.fixed[avoid][:2]
+    both = sc.discs[b] > 0 and sc.discs[avoid] > 0
+    reach = float(sc.discs[b] + sc.discs[avoid]) if both else float(sc.radii[b] + sc.radii[avoid])
+    return lambda poses: np.hypot(poses[:, 0] - t[0], poses[:, 1] - t[1]) >= reach - 1e-9
+
+
+def _contact_spots(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions,
+                   keep) -> np.ndarray:
     """Poses ``(k, 3)`` where ``b`` fits at most touching other objects and
-    the workspace edge: grid centres whose circumscribed circles do not
-    overlap, else uniform draws that pass the contact test."""
+    the workspace edge, and that pass the mask function ``keep``: grid
+    centres whose circumscribed circles do not overlap, else uniform draws
+    that pass the contact test."""
     scene, world = problem.scene, ss.world
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
     room = clear_centres(scene, world, b, 0.0)
     if len(room):
-        pick = room[rng.choice(len(room), size=min(len(room), 4 * opts.samples), replace=False)]
-        poses = np.empty((len(pick), 3))
-        poses[:, :2] = pick
+        poses = np.empty((len(room), 3))
+        poses[:, :2] = room
         poses[:, 2] = world.poses[b, 2]
-        return poses
+        poses = poses[keep(poses)]
+        if len(poses):
+            return poses[rng.choice(len(poses), size=min(len(poses), 4 * opts.samples), replace=False)]
     n = 16 * opts.samples
     poses = np.empty((n, 3))
     poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
     poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
     poses[:, 2] = world.poses[b, 2]
-    _, hits, polys, verts = _collisions_full(problem, ss, b, poses, opts)
-    edge = geo.inside_workspace(verts, scene.bounds)
-    hard = _hard(problem, ss, b, poses, polys, hits, np.flatnonzero(edge))
-    return poses[edge & np.array([not h for h in hard])]
+    keep_mask = keep(poses)
+    poses = poses[keep_mask]
+    return poses[_free(problem, ss, b, poses, opts, contact=True)] if len(poses) else poses
 
 
 def _clear_top(world: State, i: int, rng: np.random.Generator, exclude: int = -2) -> int:
@@ -566,12 +622,13 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
         polys[:] = [feet[o] for o in objs]
         xy = np.array([problem.fixed[o][:2] for o in objs])
         sc = problem.scene
+        # Only overlaps block a fixed target (it may touch, see _to_table):
+        # pairs that meet at all, then those that overlap beyond contact.
         ci, oi = geo.colliding_near(polys, xy, sc.radii[objs], world.poly_array, world.poses[:, :2],
-                                    sc.radii, opts.clearance)
+                                    sc.radii, 0.0, cand_disc=sc.discs[objs], obs_disc=sc.discs)
         keep = oi != np.asarray(objs)[ci]
         ci, oi = ci[keep], oi[keep]
         if len(ci):
-            # A fixed target may touch its neighbours (see _to_table): only overlaps block it.
             mover = np.asarray(objs)[ci]
             over = geo.overlapping(polys[ci], xy[ci], sc.discs[mover], world.poly_array[oi], world.poses[oi, :2],
                                    sc.discs[oi], CONTACT_AREA)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from lgmcts import check, plan
+from lgmcts.formats import parse_scene
 from lgmcts.casegen import LABBE_RADIUS, LABBE_SQUARE, labbe_case, labbe_protocol_case
 from lgmcts.scene import Scene
 
@@ -70,3 +71,61 @@ def test_planner_solves_protocol_cases(n, seed):
     c = labbe_protocol_case(n, 1000 * n + seed)
     p = plan(c.scene, c.goals, seed=seed, max_iter=2000)
     assert p.solved and check(c.scene, c.goals, p).valid
+
+
+def test_protocol_workspace_admits_centres_on_the_square_edge():
+    from lgmcts.casegen import _disc_case, labbe_protocol_case
+
+    ws = labbe_protocol_case(1, 0).scene.workspace
+    (x0, y0), (x1, y1) = LABBE_SQUARE
+    corners = np.array([[x0, y0], [x1, y1], [x0, y1], [x1, y0]])
+    c = _disc_case(corners, corners[::-1], LABBE_RADIUS, {"x": list(ws.x), "y": list(ws.y)}, "labbe")
+    assert Scene.from_spec(c.scene).n == 4
+
+
+@pytest.mark.parametrize("seed", [0, 3, 7])
+def test_dense_random_case_adds_packed_clutter_to_the_same_case(seed):
+    from lgmcts.casegen import random_case
+
+    base, dense = random_case(seed), random_case(seed, dense=True)
+    assert dense == random_case(seed, dense=True)
+    assert dense.goals == base.goals and dense.kind == f"dense-{base.kind}"
+    nb = len(base.scene.objects)
+    assert dense.scene.objects[:nb] == base.scene.objects
+    assert 4 <= len(dense.scene.objects) - nb <= 10
+    sc = Scene.from_spec(dense.scene)
+    polys = sc.initial.polys
+    table = [k for k in range(sc.n) if sc.initial.on[k] == -1]
+    for e in range(nb, sc.n):
+        others = [polys[k] for k in table if k != e]
+        assert max(float((polys[e].intersection(q)).area) for q in others) <= 1e-9  # no overlap
+
+
+def test_pack_clutter_packs_in_contact_without_overlap():
+    import shapely
+
+    from lgmcts.casegen import pack_clutter
+
+    rng = np.random.default_rng(0)
+    goal = [shapely.box(-0.05, -0.05, 0.05, 0.05)]
+    other = [shapely.Point(0.2, 0.1).buffer(0.03)]
+    specs = [{"id": 10 + k, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.03, 0.03]}}
+             for k in range(8)]
+    out = pack_clutter((-0.4, 0.4, -0.3, 0.3), specs, goal, other, rng)
+    assert len(out) == 8 and [o["id"] for o in out] == [s["id"] for s in specs]
+    sc = Scene.from_spec(parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": out}))
+    seen = list(goal) + list(other)
+    for k, p in enumerate(sc.initial.polys):
+        assert max(p.intersection(q).area for q in seen) <= 1e-12  # no overlap
+        assert min(p.distance(q) for q in seen) <= 1e-4  # edge to edge with the goal region or a neighbour
+        seen.append(p)
+
+
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_dense_random_cases_are_solved(method):
+    from lgmcts.casegen import random_case
+
+    for seed in range(3):
+        c = random_case(seed, dense=True)
+        p = plan(c.scene, c.goals, method=method, seed=seed)
+        assert p.solved and check(c.scene, c.goals, p).valid

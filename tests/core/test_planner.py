@@ -170,6 +170,54 @@ def test_pose_targets_in_contact_are_reached():
 def test_pose_target_touching_the_workspace_edge():
     r = 0.02
     sc = scene(can(1, 0.0, 0.0, r=r), x=(-0.2, 0.2), y=(-0.2, 0.2))
-    edge = 0.2 - r / math.cos(math.pi / 32)  # the footprint's vertices on the edge
+    edge = 0.2 - r / math.cos(math.pi / 24)  # the footprint's vertices on the edge
     p = _solved(sc, goals({"pattern": "pose", "objects": [1], "pose": [edge, 0.0, 0.0]}), seed=0)
     assert len(p.actions) == 1
+
+
+def test_swap_in_a_tight_workspace_uses_one_buffer():
+    # Two discs on each other's targets, a third parked between them, and
+    # room for one buffer spot only (1 cm of play along x, none along y):
+    # the plan needs exactly one relocation.
+    r = 0.0375
+    w = 2 * r / math.cos(math.pi / 24)  # the 24-gon footprint's width across its corners
+    sc = scene(can(1, 0.0, 0.0, r=r), can(2, 2 * r, 0.0, r=r), can(3, 4 * r, 0.0, r=r),
+               x=(-w / 2, 6 * r + w / 2 + 0.01), y=(-w / 2, w / 2))
+    gs = goals({"pattern": "pose", "objects": [1], "pose": [2 * r, 0.0, 0.0]},
+               {"pattern": "pose", "objects": [2], "pose": [0.0, 0.0, 0.0]},
+               {"pattern": "pose", "objects": [3], "pose": [4 * r, 0.0, 0.0]})
+    for seed in range(3):
+        p = _solved(sc, gs, seed=seed, max_iter=500)
+        assert len(p.actions) == 3
+        assert sum(a.purpose == "relocate" for a in p.actions) == 1
+
+
+def test_relocation_never_parks_on_the_target_it_clears():
+    import numpy as np
+
+    from lgmcts.planner.step import Problem, StepOptions, relocate
+    from lgmcts.scene import Scene
+
+    c = labbe_case(30, 30003, variant="protocol")
+    problem = Problem.build(Scene.from_spec(c.scene), c.goals)
+    ss = problem.root()
+    rng = np.random.default_rng(0)
+    moved = 0
+    for o in range(problem.scene.n):
+        t = problem.fixed[o][:2]
+        d = np.hypot(*(ss.world.poses[:, :2] - t).T)
+        for b in np.flatnonzero(d < 2 * 0.0375):
+            if b == o:
+                continue
+            tr = relocate(problem, ss, int(b), rng, StepOptions(), "relocate", o)
+            if tr is not None:
+                moved += 1
+                assert np.hypot(*(tr.state.world.poses[b, :2] - t)) >= 2 * 0.0375 - 1e-9
+    assert moved > 0
+
+
+@pytest.mark.parametrize("n,k", [(37, 0), (36, 5)])
+def test_dense_protocol_cases_are_solved(n, k):
+    c = labbe_case(n, 1000 * n + k, variant="protocol")
+    p = _solved(c.scene, c.goals, seed=k, max_iter=3000)
+    assert len(p.actions) <= 2 * n
