@@ -42,6 +42,7 @@ import numpy as np
 import shapely
 
 from lgmcts import check, plan
+from lgmcts.errors import InputError
 from lgmcts.scene import TABLE, Scene
 
 
@@ -69,6 +70,19 @@ def contact_placements(scene, p, gap: float = 0.001) -> int:
         polys[i] = poly
         on[i] = TABLE if a.on is None else sc.index[a.on]
     return count
+
+
+def outline_density(scene, gap: float = 0.001) -> tuple[float, float]:
+    """Fraction of table-level footprints within ``gap`` of another, and the
+    largest overlap between two of them (mm^2)."""
+    sc = Scene.from_spec(scene)
+    table = [k for k in range(sc.n) if sc.initial.on[k] == TABLE]
+    polys = sc.initial.polys
+    if len(table) < 2:
+        return 0.0, 0.0
+    near = [min(polys[k].distance(polys[j]) for j in table if j != k) <= gap for k in table]
+    worst = max(float(polys[a].intersection(polys[b]).area) for a in table for b in table if a < b)
+    return float(np.mean(near)), 1e6 * worst
 
 
 def physics_probe(scene, p) -> tuple[float, float]:
@@ -134,10 +148,19 @@ def main(argv: list[str] | None = None) -> int:
     for name, group, scene, goals in _cases(args):
         t0 = time.perf_counter()
         plan_scene = observe(scene) if args.observe else scene
-        p = plan(plan_scene, goals, seed=0, max_iter=args.max_iter)
+        try:
+            p = plan(plan_scene, goals, seed=0, max_iter=args.max_iter)
+        except InputError as exc:  # e.g. a goal names an object the camera did not see
+            row = {"case": name, "group": group, "objects": len(scene.objects), "solved": False, "valid": False,
+                   "actions": 0, "refused": str(exc), "wall_s": time.perf_counter() - t0}
+            rows.append(row)
+            print(json.dumps(row), file=sys.stderr, flush=True)
+            continue
         valid = bool(p.solved and check(scene if not args.observe else plan_scene, goals, p).valid)
         row = {"case": name, "group": group, "objects": len(scene.objects), "solved": bool(p.solved), "valid": valid,
                "actions": len(p.actions)}
+        if args.observe:
+            row["outline_near"], row["outline_overlap_mm2"] = outline_density(plan_scene)
         if p.solved:
             row["contacts"] = contact_placements(plan_scene, p)
             res = execute_plan(scene, p, goals, plan_scene=plan_scene if args.observe else None)
@@ -166,11 +189,16 @@ def main(argv: list[str] | None = None) -> int:
         print(f"| {'N = ' + str(g) if args.what == 'labbe' else g} | {len(rs)} | {sum(r['valid'] for r in rs)}/{len(rs)} | "
               f"{n_ep}/{len(ex)} | {sum(r.get('contacts', 0) for r in ex)} of {sum(r['actions'] for r in ex)} | "
               f"{fmt('push_mm')} | {fmt('penetration_mm')} | {fmt('max_error_mm')} |")
+    if args.observe:
+        obs = [r for r in rows if "outline_near" in r]
+        if obs:
+            print(f"observed outlines: {np.mean([r['outline_near'] for r in obs]):.2f} of the table-level objects within 1 mm "
+                  f"of another (mean over {len(obs)} scenes); largest overlap {max(r['outline_overlap_mm2'] for r in obs):.3f} mm^2")
     for r in rows:
         if r.get("solved") and not r.get("sr_ep"):
             print(f"  failed in physics {r['case']}: {r['reasons']}")
         if not r["valid"]:
-            print(f"  not planned/valid {r['case']}")
+            print(f"  not planned/valid {r['case']}" + (f": refused ({r['refused']})" if "refused" in r else ""))
     if rows:
         print(f"wall time per case: median {statistics.median(r['wall_s'] for r in rows):.2f} s")
     if args.json:
