@@ -126,12 +126,13 @@ def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list,
     of a random goal object along a random ray, to the first pose where they
     overlap nothing, then bisected to within micrometres of contact
     (:func:`lgmcts.casegen.pack_clutter`). Of up to six such packings per
-    object, the first that touches both an object of the start scene and
+    object, the first that touches both a table-level object of the start scene and
     the spot of a goal object is kept, else the best drawn (touching the
     start scene counts more than touching a goal spot). They keep clear of every final
     footprint (so the arrangement the task was built from stays legal with
     the extras where they start, which is also their final pose) and of
-    every start footprint on the table. An extra whose name and colour would
+    every start footprint, stacked objects' included (no extra stands under
+    the overhang of an object resting on another). An extra whose name and colour would
     change what a reference of the instruction means is redrawn. The start
     state lists the extras under ``"packed"``.
     """
@@ -143,11 +144,15 @@ def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list,
     goal_feet: list = []
     other_feet: list = []
     start_feet: list = []
+    table_feet: list = []
     for k, i in enumerate(st.ids):
         fp = shapely.polygons(st.footprint(k, np.asarray(final[str(i)], dtype=float)))
         (goal_feet if i in goal_ids else other_feet).append(fp)
+        # Every start footprint, stacked ones too: an extra taller than a
+        # base would otherwise stand under the overhang of the object on it.
+        start_feet.append(st.initial.polys[k])
         if st.initial.on[k] == TABLE:
-            start_feet.append(st.initial.polys[k])
+            table_feet.append(st.initial.polys[k])
     other_feet += start_feet
 
     def st_one(o: dict) -> shapely.Polygon:
@@ -167,11 +172,11 @@ def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list,
                 break
     bounds = (WORKSPACE["x"][0], WORKSPACE["x"][1], WORKSPACE["y"][0], WORKSPACE["y"][1])
     packed: list[dict] = []
-    real = list(start_feet)  # footprints present in the start scene
+    real = list(table_feet)  # table-level footprints of the start scene
     for spec in specs:
         best, best_score = None, -1
         for _ in range(_DENSE_TRIES):
-            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(start_feet):], rng)
+            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(table_feet):], rng)
             if not got:
                 continue
             k = st_one(got[0])
