@@ -34,7 +34,7 @@ def _tasks(suite_arg: str, n: Optional[int], seed: int, instructions: str = "our
 
 
 def bench_generate(
-    suite: str = typer.Option(..., "--suite", help="elgr or structformer."),
+    suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense or structformer."),
     n: Optional[int] = typer.Option(None, "--n", help="Number of tasks (default: the full suite)."),
     seed: int = typer.Option(0, "--seed", help="Suite seed: 0 is the reported test suite, >= 1 for tuning."),
     category: Optional[str] = typer.Option(None, "--category", help="Only tasks of this category."),
@@ -53,7 +53,7 @@ def bench_generate(
 
 
 def bench(
-    suite: str = typer.Option(..., "--suite", help="elgr, structformer, or a suite JSONL file."),
+    suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense, structformer, or a suite JSONL file."),
     method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, or module:function (your planner)."),
     parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
@@ -79,7 +79,9 @@ def bench(
     from .tasks import write_suite
 
     try:
-        if instructions != "ours" and suite not in ("elgr", "structformer"):
+        from .suites import SUITES
+
+        if instructions != "ours" and suite not in SUITES:
             raise InputError("--instructions applies to a suite name; a suite file carries its own instructions")
         tasks, source, suite_name = _tasks(suite, n, seed, instructions)
         chosen = parser or ("gt" if suite_name == "structformer" else "rules")
@@ -87,7 +89,7 @@ def bench(
                           execute=not no_exec, llm_model=llm_model, llm_base_url=llm_base_url)
         opts.check()
         output.mkdir(parents=True, exist_ok=True)
-        if suite in ("elgr", "structformer") and not (output / "suite.jsonl").exists():
+        if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")
         records = run_suite(tasks, output, options=opts, workers=workers, ray_address=ray, source=source)
     except InputError as exc:
