@@ -108,3 +108,17 @@ def test_bundled_and_generated_scenes_pass_the_start_rules_and_precheck():
             sc = parse_scene(task.scene) if isinstance(task.scene, dict) else task.scene
             g = task.goals
             precheck(Scene.from_spec(sc), parse_goals(g) if isinstance(g, (dict, list)) else g)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(min_value=1000, max_value=10**6))
+def test_precheck_never_refuses_a_case_built_from_a_real_arrangement(seed):
+    """random_case places the goal arrangement first, so its goals are satisfiable: the pre-check must let them be."""
+    from lgmcts.casegen import random_case
+
+    case = random_case(seed)
+    precheck(Scene.from_spec(case.scene), case.goals)
