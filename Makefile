@@ -15,7 +15,9 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install -q --upgrade pip
 	# The CPU build of PyTorch first, so nothing pulls the multi-GB CUDA build.
 	$(PY) -m pip install -q torch==2.13.0
-	$(PY) -m pip install -q -e ".[test,ray]"
+	$(PY) -m pip install -q -e ".[test,ray,language]"
+	# The sentence model to ONNX, once (the only use of torch; see lgmcts/language/export.py).
+	$(PY) -m lgmcts.language.export --quiet
 	@rm -f $(VENV)/.installed-*
 	@touch $(STAMP)
 
