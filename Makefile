@@ -12,7 +12,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo test bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo test golden bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -41,6 +41,10 @@ demo: install system-deps
 
 test: install system-deps
 	$(PY) -m pytest tests
+
+# Rewrite tests/data/golden_plans.json: only when a change is meant to alter plans.
+golden: install
+	$(PY) tests/core/golden.py --write
 
 bench: install
 	$(PY) benchmarks/planner.py random --n 300

@@ -6,8 +6,11 @@ meets every goal (checked with the acceptance rules), then a start state
 with the goal objects scattered, and either blockers stacked on goal objects
 or clutter standing where goal objects must go.
 
-Also the protocol of Labbé et al. (RA-L 2020): N discs of radius 3.75 cm in a
-0.5 m x 0.5 m workspace with random collision-free start and goal poses.
+Also the protocol of Labbé et al. (RA-L 2020): N discs of radius 3.75 cm
+with random collision-free start and goal positions in a 0.5 m x 0.5 m
+square, sampled as their public evaluator samples it
+(:func:`labbe_protocol_case`), and this project's earlier, more spaced
+variant of it (:func:`labbe_case`).
 """
 
 from __future__ import annotations
@@ -19,11 +22,12 @@ from itertools import combinations, product
 import numpy as np
 import shapely
 
+from . import geometry as geo
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "labbe_case", "lower_bound", "reference_count"]
+__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -106,24 +110,114 @@ def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gene
     raise ValueError(kind)
 
 
-def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None) -> Case:
-    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``."""
+def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = None, dense: bool = False) -> Case:
+    """A random case with 6-16 objects and 1-2 goals; ``kind`` is ``"blockers"`` or ``"clutter"``.
+
+    ``dense=True`` gives the dense variant of the same case: the case drawn
+    for ``seed`` without it, plus 4-10 extra clutter objects packed edge to
+    edge around the goal region (see :func:`_pack_clutter`); its ``kind``
+    gets a ``"dense-"`` prefix.
+    """
     rng = np.random.default_rng(seed)
     for _ in range(200):
-        case = _try_case(rng, n_objects, kind)
+        case = _try_case(rng, n_objects, kind, np.random.default_rng([seed, 1]) if dense else None)
         if case is not None:
             return case
     raise RuntimeError(f"could not build a case for seed {seed}")  # pragma: no cover
 
 
-def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None) -> Case | None:
+#: Step and bisection depth of the search for contact along a ray (m, count).
+_PACK_STEP, _PACK_BISECT = 0.003, 10
+
+
+def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
+    """Extra clutter objects (4-10, shapes as in the base cases) packed in
+    contact around the goal region (see :func:`pack_clutter`)."""
+    n0 = len(objects)
+    specs = []
+    for e in range(int(rng.integers(4, 11))):
+        name, shape = _shape(rng)
+        specs.append({"id": n0 + e + 1, "name": name, "color": _COLORS[(n0 + e) % len(_COLORS)], "shape": shape})
+    return pack_clutter(scene.bounds, specs, goal_feet, other_feet, rng)
+
+
+def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], goal_feet: list, other_feet: list,
+                 rng: np.random.Generator) -> list[dict]:
+    """Object ``specs`` (dicts with id, name, color, shape) packed edge to
+    edge around the goal region; returns those placed, with ``pose`` and
+    ``on`` set, in order.
+
+    Nothing may overlap ``goal_feet`` (footprint polygons of the goal
+    objects where the goals put them) nor ``other_feet`` (any other polygons
+    to keep clear, such as the start footprints). Each object starts at the
+    centre of a random goal footprint, at a random yaw, and slides outward
+    along a random ray to the first pose where it overlaps nothing; a
+    bisection brings it to within about 3 um of that contact. A pose stopped
+    by the workspace edge (``bounds = (xmin, xmax, ymin, ymax)``, 3 mm
+    margin) rather than by a neighbour is redrawn, up to 30 times; an object
+    that finds none is left out. The goal footprints stay free, so the goal
+    arrangement remains legal.
+    """
+    xmin, xmax, ymin, ymax = bounds
+    goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
+    placed = list(goal_feet) + list(other_feet)
+    out = []
+    if not goal_centres:
+        return out
+    for spec in specs:
+        full = {**spec, "pose": [0.0, 0.0, 0.0], "on": None}
+        local = Scene.from_spec(parse_scene({"workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
+                                             "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}]})).local[0]
+
+        def poly_at(p):
+            return shapely.polygons(geo.transform(local, p))
+
+        def fits(p) -> bool:
+            v = geo.transform(local, p)
+            if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+                return False
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            return not bool(shapely.intersects(shapely.polygons(v), arr).any())
+
+        for _ in range(30):
+            c = goal_centres[int(rng.integers(len(goal_centres)))]
+            phi, yaw = rng.uniform(-math.pi, math.pi, 2)
+            u = np.array([math.cos(phi), math.sin(phi)])
+            t_hit = None
+            for t in np.arange(_PACK_STEP, 0.35, _PACK_STEP):
+                if fits(np.array([*(c + t * u), yaw])):
+                    t_hit = float(t)
+                    break
+            if t_hit is None:
+                continue
+            lo, hi = t_hit - _PACK_STEP, t_hit
+            for _ in range(_PACK_BISECT):
+                mid = (lo + hi) / 2
+                if fits(np.array([*(c + mid * u), yaw])):
+                    hi = mid
+                else:
+                    lo = mid
+            pose = np.array([*(c + hi * u), yaw])
+            arr = np.empty(len(placed), dtype=object)
+            arr[:] = placed
+            if shapely.distance(poly_at(pose), arr).min() > 1e-4:
+                continue  # stopped by the workspace edge, not by a neighbour: not packed
+            placed.append(poly_at(pose))
+            out.append({**full, "pose": [float(v) for v in pose]})
+            break
+    return out
+
+
+def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
+              dense_rng: np.random.Generator | None = None) -> Case | None:
     n = int(n_objects or rng.integers(6, 17))
     kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
     objects = []
     for i in range(n):
         name, shape = _shape(rng)
         objects.append({"id": i + 1, "name": name, "color": _COLORS[i % len(_COLORS)], "shape": shape, "pose": [0.0, 0.0, 0.0], "on": None})
-    scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}))
+    scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}), overlap_ok=True)
     order = list(rng.permutation(n))
     n_goals = int(rng.integers(1, 3))
     final = _Placer(scene)
@@ -233,6 +327,11 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None)
     objs_out = []
     for k, ob in enumerate(objects):
         objs_out.append({**ob, "pose": [float(v) for v in spose[k]], "on": None if k not in son else scene.ids[son[k]]})
+    if dense_rng is not None:
+        goal_feet = [shapely.polygons(scene.footprint(t, final_pose[t])) for t in targets if t not in final_on]
+        other_feet = [shapely.polygons(scene.footprint(o, spose[o])) for o in range(n) if o not in son]
+        objs_out += _pack_clutter(scene, objs_out, goal_feet, other_feet, dense_rng)
+        kind = f"dense-{kind}"
     sspec = parse_scene({"workspace": WORKSPACE, "objects": objs_out})
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
 
@@ -362,8 +461,104 @@ def lower_bound(scene: SceneSpec, goals: GoalSpec) -> int:
     return best or 0
 
 
-def labbe_case(n: int, seed: int) -> Case:
+#: The Labbé et al. protocol's disc radius (m) and the square its evaluator
+#: samples disc centres in, ``((xmin, ymin), (xmax, ymax))`` (m).
+LABBE_RADIUS = 0.0375
+LABBE_SQUARE = ((0.25, -0.25), (0.75, 0.25))
+#: Darts one random sequential addition may throw before it starts afresh,
+#: and how many fresh starts are allowed (the evaluator's 2 s timeout and 50
+#: retries, as a count so that a seed gives the same case on any machine).
+LABBE_DARTS, LABBE_RESTARTS = 200_000, 50
+
+
+def _rsa(n: int, rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, dist: float) -> np.ndarray:
+    """Random sequential addition: ``n`` centres ``(n, 2)``, uniform in the box
+    ``lo``-``hi``, each kept when at least ``dist`` from every centre kept before.
+
+    Darts are drawn in batches and the first acceptable one of a batch is
+    kept (the rest are thrown away unused), which is the same process as
+    drawing them one at a time.
+    """
+    batch = 1024
+    for _ in range(LABBE_RESTARTS + 1):
+        pts = np.empty((0, 2))
+        darts = 0
+        while len(pts) < n and darts < LABBE_DARTS:
+            d = rng.uniform(lo, hi, (batch, 2))
+            if len(pts):
+                ok = ((d[:, None, :] - pts[None, :, :]) ** 2).sum(axis=-1).min(axis=1) >= dist * dist
+                k = np.flatnonzero(ok)
+            else:
+                k = np.zeros(1, dtype=int)
+            if not len(k):
+                darts += batch
+                continue
+            darts += int(k[0]) + 1
+            pts = np.vstack([pts, d[k[0]]])
+        if len(pts) == n:
+            return pts
+    raise RuntimeError(f"random sequential addition could not place {n} discs")  # pragma: no cover
+
+
+def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str) -> Case:
+    n = len(start)
+    objs = [
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
+        for i in range(n)
+    ]
+    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    sspec = parse_scene({"workspace": ws, "objects": objs})
+    gspec = parse_goals({"goals": goals})
+    return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
+
+
+def labbe_protocol_case(n: int, seed: int) -> Case:
+    """The Labbé et al. (RA-L 2020) protocol as its public evaluator samples it.
+
+    Task: N discs of radius 3.75 cm, a ``pose`` goal for each (yaw 0).
+    Randomisations: start and goal are independent random sequential
+    additions of N centres, uniform in the evaluator's 0.5 m x 0.5 m square
+    ``LABBE_SQUARE``, each accepted when its distance to every centre already
+    placed is at least 2R (discs may touch); an addition that jams starts
+    afresh (:data:`LABBE_DARTS`, :data:`LABBE_RESTARTS`). Works up to N = 37.
+    Success: every disc at its goal with no overlap on the way.
+
+    Deviations, and why: the evaluator bounds disc *centres* by the square,
+    while an lgmcts workspace bounds *footprints*; the workspace here is the
+    square grown by the footprint's circumradius (R / cos(pi / 24), the
+    24-gon that stands for a disc), so a centre is legal exactly where the
+    evaluator allows it. The evaluator seeds numpy's global generator and
+    caps an addition by time; here a ``np.random.Generator`` seeded with
+    ``seed`` and a dart count, so a seed gives the same case anywhere (the
+    instances differ from the evaluator's, the distribution does not).
+    The evaluator counts a disc placed within 1 mm of its target; the
+    validator's pose rule allows 15 mm, and the planner places discs on
+    their targets exactly.
+    """
+    rng = np.random.default_rng(seed)
+    r = LABBE_RADIUS
+    lo, hi = np.asarray(LABBE_SQUARE[0], dtype=float), np.asarray(LABBE_SQUARE[1], dtype=float)
+    grow = r / math.cos(math.pi / geo.CIRCLE_SEGMENTS)
+    ws = {"x": [float(lo[0] - grow), float(hi[0] + grow)], "y": [float(lo[1] - grow), float(hi[1] + grow)]}
+    start = _rsa(n, rng, lo, hi, 2 * r)
+    goal = _rsa(n, rng, lo, hi, 2 * r)
+    return _disc_case(start, goal, r, ws, "labbe")
+
+
+#: Generators of Labbé-style cases by name: ``protocol`` as the authors
+#: sample it, ``spaced`` this project's earlier variant (see :func:`labbe_case`).
+LABBE_VARIANTS = ("protocol", "spaced")
+
+
+def labbe_case(n: int, seed: int, *, variant: str = "spaced") -> Case:
     """N discs (r = 3.75 cm) in 0.5 m x 0.5 m with random start and goal poses.
+
+    ``variant="protocol"`` is :func:`labbe_protocol_case`. The default,
+    ``"spaced"``, is an easier variant kept for comparison with earlier
+    figures (and the golden plans): every pair of discs at least
+    2R x 1.0087 + 4 mm apart (about 4.7 mm of clearance), centres at least
+    R + 2 mm from the edge of a 0.5 m square workspace.
 
     Start and goal are each a random sequential addition of N discs: uniform
     darts for N <= 24; for N = 25-26, darts drawn among the grid points that
@@ -371,6 +566,10 @@ def labbe_case(n: int, seed: int) -> Case:
     discs here, so N > 26 uses a jittered hexagonal lattice of 37 sites
     (random sites, an easier problem: start and goal share the sites).
     """
+    if variant == "protocol":
+        return labbe_protocol_case(n, seed)
+    if variant != "spaced":
+        raise ValueError(f"unknown Labbé variant '{variant}' (known: {', '.join(LABBE_VARIANTS)})")
     rng = np.random.default_rng(seed)
     r = 0.0375
     ws = {"x": [0.0, 0.5], "y": [0.0, 0.5]}
@@ -414,12 +613,4 @@ def labbe_case(n: int, seed: int) -> Case:
         return grid[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
 
     start, goal = config(), config()
-    objs = [
-        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
-         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
-        for i in range(n)
-    ]
-    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
-    sspec = parse_scene({"workspace": ws, "objects": objs})
-    gspec = parse_goals({"goals": goals})
-    return Case(sspec, gspec, "labbe", lower_bound(sspec, gspec), reference_count(sspec, gspec))
+    return _disc_case(start, goal, r, ws, "labbe")

@@ -12,7 +12,7 @@ from typing import Optional
 
 import typer
 
-from .cli_util import fail, write_text
+from .cli_util import check_output_dir, check_output_file, fail, write_text
 from .errors import InputError
 
 app = typer.Typer(
@@ -84,6 +84,8 @@ def plan(
     from .planner import plan as run_plan
 
     _verbosity(verbose)
+    check_output_file(output)
+    check_output_dir(viz)
     try:
         spec = formats.load_scene(scene)
         if (goal is None) == (instruction is None):
@@ -150,13 +152,40 @@ def _register_plugins() -> None:
 _register_plugins()
 
 
-def main() -> None:
-    """Entry point: run the app, turning stray exceptions into one line."""
+def _click_exceptions():
+    """The exception classes of the click that typer runs on (newer typer vendors its own copy)."""
     try:
-        app()
+        from typer._click import exceptions as cx
+    except ImportError:  # pragma: no cover - typer on the public click
+        from click import exceptions as cx
+    return cx
+
+
+def main() -> None:
+    """Entry point: run the app; usage errors and stray bad input become one line and exit 2."""
+    cx = _click_exceptions()
+    command = typer.main.get_command(app)
+    try:
+        code = command.main(prog_name="lgmcts", standalone_mode=False)
+    except cx.NoArgsIsHelpError as exc:
+        typer.echo(exc.ctx.get_help() if exc.ctx is not None else str(exc), err=True)
+        sys.exit(2)
+    except cx.UsageError as exc:
+        where = f"{exc.ctx.command_path}: " if exc.ctx is not None else ""
+        typer.echo(" ".join(f"{where}{exc.format_message()}".split()) + " (see --help)", err=True)
+        sys.exit(2)
+    except cx.ClickException as exc:
+        typer.echo(" ".join(exc.format_message().split()), err=True)
+        sys.exit(exc.exit_code)
+    except typer.Exit as exc:
+        sys.exit(exc.exit_code)
     except InputError as exc:  # pragma: no cover - commands catch their own
         typer.echo(str(exc), err=True)
         sys.exit(2)
+    except (typer.Abort, KeyboardInterrupt):
+        typer.echo("interrupted", err=True)
+        sys.exit(130)
+    sys.exit(code if isinstance(code, int) else 0)
 
 
 if __name__ == "__main__":

@@ -14,5 +14,12 @@ class InputError(ValueError):
     exits with status 2, the service answers 422 with it.
     """
 
+    #: Longest message (characters); a longer one (an echoed 100 KB
+    #: instruction, say) is cut, with its full length noted.
+    MAX_LENGTH = 500
+
     def __init__(self, message: str) -> None:
-        super().__init__(" ".join(str(message).split()))
+        line = " ".join(str(message).split())
+        if len(line) > self.MAX_LENGTH:
+            line = f"{line[: self.MAX_LENGTH]}... ({len(line)} characters)"
+        super().__init__(line)

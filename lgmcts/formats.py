@@ -16,8 +16,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
+from . import limits
 from .errors import InputError
 
 __all__ = [
@@ -130,6 +131,43 @@ def _finite(values: Any, what: str) -> None:
             raise ValueError(f"{what} must be finite numbers")
 
 
+def _bounded(values: Any, what: str, bound: float) -> None:
+    """Finite and at most ``bound`` in absolute value (see :mod:`lgmcts.limits`)."""
+    for v in values:
+        f = float(v)
+        if not math.isfinite(f):
+            raise ValueError(f"{what} must be finite numbers")
+        if abs(f) > bound:
+            raise ValueError(f"{what} must lie within +-{bound:g}, got {f:g}")
+
+
+def _lengths(values: Any, what: str) -> None:
+    """Object lengths between :data:`~lgmcts.limits.MIN_LENGTH` and :data:`~lgmcts.limits.MAX_LENGTH` m."""
+    for v in values:
+        f = float(v)
+        if not limits.MIN_LENGTH <= f <= limits.MAX_LENGTH:
+            raise ValueError(f"{what} must lie between {limits.MIN_LENGTH:g} and {limits.MAX_LENGTH:g} m, got {f:g}")
+
+
+def _pose_bounds(v: Any, what: str) -> None:
+    """``[x, y, theta]``: x and y within MAX_COORD, theta within MAX_ANGLE."""
+    _bounded(v[:2], what, limits.MAX_COORD)
+    _bounded(v[2:], f"{what} yaw", limits.MAX_ANGLE)
+
+
+def _json_int(v: Any) -> Any:
+    # Ids are JSON integers: true, "1" and 1.0 are not ids.
+    if isinstance(v, (bool, str, bytes, float)):
+        raise ValueError(f"object ids must be JSON integers, got {limits.truncate(repr(v), 40)}")
+    if isinstance(v, int) and abs(v) > limits.MAX_ID:
+        raise ValueError(f"object ids must lie within +-{limits.MAX_ID}")
+    return v
+
+
+#: An object id: a JSON integer (``true``, ``"1"`` and ``1.0`` are refused).
+ObjectId = Annotated[int, BeforeValidator(_json_int)]
+
+
 class BoxShape(_Model):
     """A box; ``size`` is its full extent along the object's x, y, z axes (m)."""
 
@@ -142,6 +180,7 @@ class BoxShape(_Model):
         _finite(v, "box size")
         if min(v) <= 0:
             raise ValueError("box size must be positive")
+        _lengths(v, "box size")
         return v
 
 
@@ -157,6 +196,7 @@ class CylinderShape(_Model):
         _finite((self.radius, self.height), "cylinder radius and height")
         if self.radius <= 0 or self.height <= 0:
             raise ValueError("cylinder radius and height must be positive")
+        _lengths((self.radius, self.height), "cylinder radius and height")
         return self
 
 
@@ -164,7 +204,7 @@ class PolygonShape(_Model):
     """A convex footprint in the object frame, extruded to ``height`` (m)."""
 
     type: Literal["polygon"]
-    points: list[tuple[float, float]]
+    points: list[tuple[float, float]] = Field(max_length=limits.MAX_POLYGON_POINTS)
     height: float
 
     @model_validator(mode="after")
@@ -173,6 +213,8 @@ class PolygonShape(_Model):
         _finite((self.height,), "polygon height")
         if self.height <= 0:
             raise ValueError("polygon height must be positive")
+        _lengths((self.height,), "polygon height")
+        _bounded((c for p in self.points for c in p), "polygon points", limits.MAX_LENGTH)
         if len(self.points) < 3:
             raise ValueError("a polygon needs at least 3 points")
         from shapely import MultiPoint
@@ -187,11 +229,12 @@ class PointsShape(_Model):
     """A point cloud in the table frame; footprint = convex hull of its xy."""
 
     type: Literal["points"]
-    points: list[tuple[float, float, float]]
+    points: list[tuple[float, float, float]] = Field(max_length=limits.MAX_CLOUD_POINTS)
 
     @model_validator(mode="after")
     def _enough(self) -> "PointsShape":
         _finite((c for p in self.points for c in p), "cloud points")
+        _bounded((c for p in self.points for c in p), "cloud points", limits.MAX_COORD)
         if len(self.points) < 3:
             raise ValueError("a point cloud needs at least 3 points")
         from shapely import MultiPoint
@@ -208,18 +251,19 @@ Shape = Annotated[Union[BoxShape, CylinderShape, PolygonShape, PointsShape], Fie
 class ObjectSpec(_Model):
     """One object of a scene. ``pose`` is the footprint centre ``[x, y, theta]``."""
 
-    id: int
-    name: str
-    color: str = ""
+    id: ObjectId
+    name: str = Field(max_length=limits.MAX_TEXT)
+    color: str = Field("", max_length=limits.MAX_TEXT)
     shape: Shape
     pose: tuple[float, float, float] | None = None
-    on: int | None = None
+    on: ObjectId | None = None
 
     @field_validator("pose")
     @classmethod
     def _finite_pose(cls, v: tuple[float, float, float] | None) -> tuple[float, float, float] | None:
         if v is not None:
             _finite(v, "pose")
+            _pose_bounds(v, "pose")
         return v
 
     @model_validator(mode="after")
@@ -238,16 +282,62 @@ class Workspace(_Model):
     @model_validator(mode="after")
     def _ordered(self) -> "Workspace":
         _finite((*self.x, *self.y), "workspace bounds")
+        _bounded((*self.x, *self.y), "workspace bounds", limits.MAX_COORD)
         if not (self.x[0] < self.x[1] and self.y[0] < self.y[1]):
             raise ValueError("workspace bounds must be [min, max] with min < max")
         return self
+
+
+def _acyclic(support: dict[int, int | None]) -> None:
+    """Raise when the ``on`` relations form a cycle; linear in the number of objects.
+
+    Each object is walked at most once: a walk stops at an object already
+    known to rest (through its chain) on the table.
+    """
+    grounded: set[int] = set()
+    for start in support:
+        path: list[int] = []
+        on_path: set[int] = set()
+        cur: int | None = start
+        while cur is not None and cur not in grounded:
+            if cur in on_path:
+                raise ValueError(f"cycle in 'on' relations through object {cur}")
+            path.append(cur)
+            on_path.add(cur)
+            cur = support[cur]
+        grounded.update(path)
+
+
+def _on_cycle(edges: dict[int, Any]) -> int | None:
+    """An object on a cycle of the directed graph ``edges`` (``node -> successors``), or ``None``.
+
+    One iterative depth-first search over all nodes: linear in nodes plus edges.
+    """
+    state: dict[int, int] = {}  # 1: on the current path, 2: done
+    for root in sorted(edges):
+        if root in state:
+            continue
+        state[root] = 1
+        stack = [(root, iter(sorted(edges.get(root, ()))))]
+        while stack:
+            node, it = stack[-1]
+            nxt = next(it, None)
+            if nxt is None:
+                state[node] = 2
+                stack.pop()
+            elif state.get(nxt) == 1:
+                return nxt
+            elif nxt not in state:
+                state[nxt] = 1
+                stack.append((nxt, iter(sorted(edges.get(nxt, ())))))
+    return None
 
 
 class SceneSpec(_Model):
     """A tabletop scene: the workspace and its objects."""
 
     workspace: Workspace
-    objects: list[ObjectSpec]
+    objects: list[ObjectSpec] = Field(max_length=limits.MAX_OBJECTS)
 
     @model_validator(mode="after")
     def _consistent(self) -> "SceneSpec":
@@ -263,13 +353,7 @@ class SceneSpec(_Model):
                 raise ValueError(f"object {o.id} is on unknown object {o.on}")
             if o.on == o.id:
                 raise ValueError(f"object {o.id} is on itself")
-        for o in self.objects:
-            chain, cur = [o.id], support[o.id]
-            while cur is not None:
-                if cur in chain:
-                    raise ValueError(f"cycle in 'on' relations through object {o.id}")
-                chain.append(cur)
-                cur = support[cur]
+        _acyclic(support)
         return self
 
     def object(self, object_id: int) -> ObjectSpec:
@@ -280,12 +364,55 @@ class SceneSpec(_Model):
 
 
 class Goal(_Model):
-    """One pattern goal over a set of objects."""
+    """One pattern goal over a set of objects.
 
-    pattern: str
-    objects: list[int]
-    anchor: int | None = None
+    ``region``, ``size`` and ``facing`` are optional parameters (where the
+    objects go, how big the arrangement is, which way it faces); their
+    meaning and tolerances are defined in :mod:`lgmcts.params`.
+    """
+
+    pattern: str = Field(max_length=limits.MAX_TEXT)
+    objects: list[ObjectId] = Field(max_length=limits.MAX_OBJECTS)
+    anchor: ObjectId | None = None
     pose: tuple[float, float, float] | None = None
+    region: str | tuple[float, float, float, float] | None = None
+    size: str | float | None = None
+    facing: str | float | None = None
+
+    @field_validator("region", "size", "facing", mode="before")
+    @classmethod
+    def _param_value(cls, v: Any, info: Any) -> Any:
+        if isinstance(v, bool):
+            raise ValueError(f"'{info.field_name}' must be a name or a number, not true/false")
+        if isinstance(v, str):
+            return " ".join(v.lower().split())
+        if info.field_name == "region" and v is not None:
+            if not isinstance(v, (list, tuple)) or len(v) != 4 or not all(
+                    isinstance(c, (int, float)) and not isinstance(c, bool) for c in v):
+                raise ValueError("a region is a name such as 'top left' or a box [xmin, xmax, ymin, ymax]")
+        elif v is not None and not isinstance(v, (int, float)):
+            raise ValueError(f"'{info.field_name}' must be a name or a number")
+        return v
+
+    def _check_params(self, fmt: "PatternFormat") -> None:
+        from . import params as gp
+
+        p = self.pattern
+        given = [k for k in ("region", "size", "facing") if getattr(self, k) is not None]
+        if given and fmt.pose:
+            raise ValueError(f"a {p} goal takes no '{given[0]}' (its pose says where)")
+        if self.region is not None:
+            gp.region_box(self.region, (0.0, 1.0, 0.0, 1.0))
+        if self.size is not None:
+            if p not in gp.SIZED and p != "tower":
+                raise ValueError(f"a {p} goal takes no 'size'")
+            if isinstance(self.size, str):
+                if self.size not in gp.SIZES:
+                    raise ValueError(f"unknown size '{self.size}' (small|medium|large or a length in metres)")
+            elif not (math.isfinite(self.size) and self.size > 0):
+                raise ValueError("a size in metres must be a positive number")
+        if self.facing is not None:
+            gp.heading_of(self.facing)
 
     @model_validator(mode="after")
     def _shape(self) -> "Goal":
@@ -309,8 +436,10 @@ class Goal(_Model):
             if self.pose is None or n != 1:
                 raise ValueError(f"{p} goal needs exactly one object and a 'pose'")
             _finite(self.pose, "goal pose")
+            _pose_bounds(self.pose, "goal pose")
         elif self.pose is not None:
             raise ValueError(f"{p} goal takes no 'pose'")
+        self._check_params(fmt)
         need = fmt.min_objects
         if n < need:
             noun = "object" if n == 1 else "objects"
@@ -321,7 +450,7 @@ class Goal(_Model):
 class GoalSpec(_Model):
     """A list of pattern goals; every one must hold at the end of the plan."""
 
-    goals: list[Goal]
+    goals: list[Goal] = Field(max_length=limits.MAX_GOALS)
 
     def check_against(self, scene: SceneSpec) -> None:
         """Raise :class:`InputError` when a goal cannot refer to ``scene``."""
@@ -332,6 +461,16 @@ class GoalSpec(_Model):
             for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]:
                 if i not in ids:
                     raise InputError(f"goal {k} ({g.pattern}) names unknown object id {i}")
+            if isinstance(g.region, tuple):
+                ws = scene.workspace
+                x0, x1, y0, y1 = g.region
+                if x1 <= ws.x[0] or x0 >= ws.x[1] or y1 <= ws.y[0] or y0 >= ws.y[1]:
+                    raise InputError(f"goal {k} ({g.pattern}): region box {list(g.region)} lies outside the workspace")
+        from .params import conflict
+
+        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
+        if why is not None:
+            raise InputError(why)
         # A pose goal and another fixed pose for the same object contradict.
         fixed: dict[int, tuple[float, float, float]] = {}
         for g in self.goals:
@@ -348,38 +487,18 @@ class GoalSpec(_Model):
                     if b in below and below[b] != a:
                         raise InputError(f"object {b} must rest on both {below[b]} and {a}")
                     below[b] = a
-        for o in below:
-            chain, cur = [o], below.get(o)
-            while cur is not None:
-                if cur in chain:
-                    raise InputError(f"tower goals form a cycle through object {o}")
-                chain.append(cur)
-                cur = below.get(cur)
+        o = _on_cycle({b: (a,) for b, a in below.items()})
+        if o is not None:
+            raise InputError(f"tower goals form a cycle through object {o}")
         # Relations among the same goal objects must not form a cycle of dependencies.
         dep: dict[int, set[int]] = {}
         for g in self.goals:
             if g.anchor is not None:
                 for o in g.objects:
                     dep.setdefault(o, set()).add(g.anchor)
-
-        def _cyclic(start: int) -> bool:
-            stack, seen = [(start, iter(dep.get(start, ())))], {start}
-            while stack:
-                node, it = stack[-1]
-                nxt = next(it, None)
-                if nxt is None:
-                    stack.pop()
-                    continue
-                if nxt == start:
-                    return True
-                if nxt not in seen:
-                    seen.add(nxt)
-                    stack.append((nxt, iter(dep.get(nxt, ()))))
-            return False
-
-        for o in sorted(dep):
-            if _cyclic(o):
-                raise InputError(f"spatial relations form a cycle through object {o}")
+        o = _on_cycle(dep)
+        if o is not None:
+            raise InputError(f"spatial relations form a cycle through object {o}")
         for g in self.goals:
             if _FORMATS[g.pattern].on_table:
                 for o in g.objects:
@@ -392,15 +511,16 @@ class GoalSpec(_Model):
 class Action(_Model):
     """Pick ``object`` and place it at ``to`` on the table or on object ``on``."""
 
-    object: int
+    object: ObjectId
     to: tuple[float, float, float]
-    on: int | None = None
+    on: ObjectId | None = None
     purpose: Literal["goal", "relocate", "unstack"] = "goal"
 
     @field_validator("to")
     @classmethod
     def _finite_to(cls, v: tuple[float, float, float]) -> tuple[float, float, float]:
         _finite(v, "action pose")
+        _pose_bounds(v, "action pose")
         return v
 
 
@@ -410,7 +530,7 @@ class PlanSpec(_Model):
     model_config = ConfigDict(extra="allow", frozen=True)
 
     solved: bool
-    actions: list[Action]
+    actions: list[Action] = Field(max_length=limits.MAX_ACTIONS)
     goals: GoalSpec | None = None
     stats: dict[str, Any] = Field(default_factory=dict)
 
@@ -419,23 +539,20 @@ def _one_line(err: ValidationError, what: str) -> str:
     first = err.errors()[0]
     loc = ".".join(str(x) for x in first.get("loc", ()) if not isinstance(x, str) or not x.startswith("function-"))
     msg = first.get("msg", "invalid value")
-    msg = msg.removeprefix("Value error, ")
-    where = f" at {loc}" if loc else ""
+    msg = limits.truncate(msg.removeprefix("Value error, "), 300)
+    where = f" at {limits.truncate(loc, 120)}" if loc else ""
     return f"invalid {what}{where}: {msg}"
 
 
 def _read(source: Any, what: str) -> Any:
     if isinstance(source, (dict, list, BaseModel)):
         return source
+    from . import inputs
+
     path = Path(source)
+    text = inputs.read_text(path, what)
     try:
-        text = path.read_text()
-    except FileNotFoundError:
-        raise InputError(f"{what} file not found: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read {what} file {path}: {exc}") from None
-    try:
-        return json.loads(text)
+        return inputs.loads(text, f"{what} file {path}")
     except json.JSONDecodeError as exc:
         raise InputError(f"{what} file {path} is not valid JSON: {exc.msg} (line {exc.lineno})") from None
 

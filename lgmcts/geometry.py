@@ -24,6 +24,8 @@ __all__ = [
     "transform",
     "polygons",
     "inside_workspace",
+    "lens_area",
+    "overlapping",
     "radius_of",
     "wrap_angle",
 ]
@@ -141,8 +143,9 @@ def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[
     return pairs[0], pairs[1]
 
 
-def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
-                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
+                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float, *, cand_disc: np.ndarray | float | None = None,
+                   obs_disc: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``, as
     :func:`colliding`, without an R-tree.
 
@@ -150,11 +153,31 @@ def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarr
     ``*_r``); only the pairs whose circles come within ``clearance`` are
     tested exactly, elementwise. Cheaper than building a tree for a state
     queried a few times. Pairs are sorted by candidate, then obstacle.
+
+    With ``cand_disc`` and ``obs_disc`` (true circle radii, 0 for shapes that
+    are not discs), a pair of discs is decided on the circles themselves
+    (centre distance at most the radii plus ``clearance``), without the
+    polygons; ``candidates`` may then be ``None`` when every pair is one of
+    discs.
     """
     cand_xy = np.asarray(cand_xy, dtype=float).reshape(-1, 2)
     d2 = (cand_xy[:, None, 0] - obs_xy[None, :, 0]) ** 2 + (cand_xy[:, None, 1] - obs_xy[None, :, 1]) ** 2
     reach = np.asarray(cand_r, dtype=float).reshape(-1, 1) + obs_r[None, :] + clearance + 1e-9
     ci, oi = np.nonzero(d2 <= reach**2)
+    if len(ci) and cand_disc is not None and obs_disc is not None:
+        cd = np.broadcast_to(np.asarray(cand_disc, dtype=float).reshape(-1), (len(cand_xy),))[ci]
+        od = np.asarray(obs_disc, dtype=float)[oi]
+        disc = (cd > 0) & (od > 0)
+        if disc.any():
+            hit = np.ones(len(ci), dtype=bool)
+            hit[disc] = d2[ci[disc], oi[disc]] <= (cd[disc] + od[disc] + clearance + 1e-12) ** 2
+            rest = np.flatnonzero(~disc)
+            if len(rest):
+                if clearance > 0:
+                    hit[rest] = shapely.dwithin(candidates[ci[rest]], obstacles[oi[rest]], clearance)
+                else:
+                    hit[rest] = shapely.intersects(candidates[ci[rest]], obstacles[oi[rest]])
+            return ci[hit], oi[hit]
     if len(ci):
         if clearance > 0:
             hit = shapely.dwithin(candidates[ci], obstacles[oi], clearance)
@@ -162,3 +185,42 @@ def colliding_near(candidates: np.ndarray, cand_xy: np.ndarray, cand_r: np.ndarr
             hit = shapely.intersects(candidates[ci], obstacles[oi])
         ci, oi = ci[hit], oi[hit]
     return ci, oi
+
+
+def overlapping(a_polys: np.ndarray, a_xy: np.ndarray, a_disc: np.ndarray, b_polys: np.ndarray, b_xy: np.ndarray,
+                b_disc: np.ndarray, max_area: float) -> np.ndarray:
+    """Elementwise, whether shape pairs overlap by more than legal contact.
+
+    Pairs of discs (both ``*_disc`` radii > 0, m) overlap when their true
+    circles do (centre distance below the sum of radii, less 1e-9 m); other
+    pairs when their polygons' intersection is larger than ``max_area`` (m²).
+    Touching shapes do not overlap. Arrays are ``(k,)`` (polygons, radii) and
+    ``(k, 2)`` (centres).
+    """
+    a_xy, b_xy = np.asarray(a_xy, dtype=float).reshape(-1, 2), np.asarray(b_xy, dtype=float).reshape(-1, 2)
+    a_disc, b_disc = np.asarray(a_disc, dtype=float), np.asarray(b_disc, dtype=float)
+    out = np.zeros(len(a_xy), dtype=bool)
+    discs = (a_disc > 0) & (b_disc > 0)
+    if discs.any():
+        d = np.hypot(*(a_xy[discs] - b_xy[discs]).T)
+        out[discs] = d < a_disc[discs] + b_disc[discs] - 1e-9
+    poly = np.flatnonzero(~discs)
+    if len(poly):
+        out[poly] = shapely.area(shapely.intersection(a_polys[poly], b_polys[poly])) > max_area
+    return out
+
+
+def lens_area(r1: float, r2: float, d: float) -> float:
+    """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart.
+
+    Cylinder footprints are polygons circumscribing the circle, so two touching
+    cylinders overlap as polygons by a sliver; their contact is judged here.
+    """
+    if d >= r1 + r2:
+        return 0.0
+    if d <= abs(r1 - r2):
+        return math.pi * min(r1, r2) ** 2
+    a1 = r1 * r1 * math.acos(max(-1.0, min(1.0, (d * d + r1 * r1 - r2 * r2) / (2 * d * r1))))
+    a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
+    k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
+    return a1 + a2 - k

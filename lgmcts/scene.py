@@ -16,6 +16,7 @@ import numpy as np
 import shapely
 
 from . import geometry as geo
+from . import limits
 from .errors import InputError
 from .formats import ObjectSpec, SceneSpec, Workspace
 
@@ -52,6 +53,39 @@ def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, f
     return local, max(height, 1e-3), pose  # type: ignore[return-value]
 
 
+def _refuse_start_overlaps(spec: SceneSpec, on: tuple[int, ...], polys: np.ndarray) -> None:
+    """Raise :class:`InputError` when two table-level footprints share more than
+    :data:`lgmcts.limits.START_OVERLAP_AREA` m^2. Touching is legal.
+
+    An R-tree finds the candidate pairs, so the cost is about n log n.
+    """
+    table = np.flatnonzero(np.asarray(on) == TABLE)
+    if len(table) < 2:
+        return
+    tab_polys = np.asarray(polys, dtype=object)[table]
+    tree = shapely.STRtree(tab_polys)
+    a, b = tree.query(tab_polys, predicate="intersects")
+    keep = a < b
+    a, b = a[keep], b[keep]
+    if not len(a):
+        return
+    areas = np.array(shapely.area(shapely.intersection(tab_polys[a], tab_polys[b])), dtype=float)
+    # Two cylinders are judged on their true circles, as the validator does.
+    objs = [spec.objects[k] for k in table]
+    disc = np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in objs], dtype=float)
+    xy = np.array([o.pose[:2] if o.pose is not None else (0.0, 0.0) for o in objs], dtype=float)
+    for k in np.flatnonzero((disc[a] > 0) & (disc[b] > 0)):
+        areas[k] = geo.lens_area(float(disc[a[k]]), float(disc[b[k]]), float(np.hypot(*(xy[a[k]] - xy[b[k]]))))
+    bad = np.flatnonzero(areas > limits.START_OVERLAP_AREA)
+    if len(bad):
+        k = bad[0]
+        i, j = spec.objects[table[a[k]]], spec.objects[table[b[k]]]
+        raise InputError(
+            f"objects {i.id} and {j.id} overlap by {areas[k] * 1e4:.2f} cm^2 in the start scene "
+            f"(footprints on the table may touch, not overlap)"
+        )
+
+
 @dataclass(frozen=True, eq=False)
 class Scene:
     """The static part of a scene: workspace and object descriptions.
@@ -76,8 +110,14 @@ class Scene:
     initial: "State"
 
     @classmethod
-    def from_spec(cls, spec: SceneSpec) -> "Scene":
-        """Build the scene; raise :class:`InputError` for objects off the workspace."""
+    def from_spec(cls, spec: SceneSpec, *, overlap_ok: bool = False) -> "Scene":
+        """Build the scene; raise :class:`InputError` for objects off the workspace.
+
+        Table-level footprints that overlap by more than
+        :data:`lgmcts.limits.START_OVERLAP_AREA` m^2 are bad input too, unless
+        ``overlap_ok`` (for scenes built only for their footprints, with every
+        object at one place).
+        """
         ids = tuple(o.id for o in spec.objects)
         if not ids:
             raise InputError("the scene has no objects")
@@ -97,6 +137,8 @@ class Scene:
         for k, o in enumerate(spec.objects):
             if on[k] == TABLE and not geo.inside_workspace(verts[k][None], bounds, margin=-1e-6)[0]:
                 raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
+        if not overlap_ok:
+            _refuse_start_overlaps(spec, on, polys)
         scene = cls(
             spec=spec,
             ids=ids,
@@ -119,6 +161,16 @@ class Scene:
     @property
     def n(self) -> int:
         return len(self.ids)
+
+    @cached_property
+    def discs(self) -> np.ndarray:
+        """``(n,)`` radius of each cylinder's true circle (m), 0 for other shapes.
+
+        Footprints are polygons circumscribing the circle; two cylinders that
+        touch overlap as polygons by a sliver, so contact between cylinders is
+        judged on the circles.
+        """
+        return np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in self.spec.objects], dtype=float)
 
     @property
     def workspace_area(self) -> float:

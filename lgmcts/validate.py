@@ -7,8 +7,13 @@ samplers or the search: only the footprint definitions of :mod:`lgmcts.scene`.
 Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
 * every pick is of a clear object (nothing rests on it);
-* a table placement keeps the footprint inside the workspace and overlaps no
-  other table-level footprint by more than ``1e-6`` m²;
+* a target pose is finite, within ``lgmcts.limits.MAX_COORD`` m and
+  ``MAX_ANGLE`` rad (checked before any geometry);
+* a table placement keeps the footprint inside the workspace (centre inside,
+  no vertex more than ``EDGE_TOL = 1e-3`` m outside, at most ``1e-6`` m²
+  outside) and overlaps no other table-level footprint by more than
+  ``1e-6`` m² (between two cylinders, the overlap of their true circles, so
+  cylinders may touch);
 * a placement ``on`` another object needs that object clear and the centre
   over its footprint;
 * line: every centre within TOL of the total-least-squares line;
@@ -21,7 +26,12 @@ Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 * spatial relations: the anchor-to-object vector within 45° of the relation's
   direction and 0 < length ≤ 0.30 m;
 * pose: within TOL and 0.1 rad;
-* objects of line, circle, rectangle and spatial goals end on the table.
+* objects of line, circle, rectangle and spatial goals end on the table;
+* a goal's optional ``region``, ``size`` and ``facing`` hold as
+  :mod:`lgmcts.params` defines them (centres within 0.015 m of the region,
+  the characteristic length within 0.015 m of its band, every yaw and a
+  line's or rectangle's direction within pi/8 of a named facing or 0.1 rad
+  of an angle).
 
 A pattern added outside this module brings its own rule
 (:func:`register_rule`), written apart from its sampler.
@@ -36,6 +46,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from . import geometry as geo
+from . import limits
 from .errors import InputError
 from .formats import (
     PATTERN_NAMES,
@@ -49,6 +61,8 @@ from .formats import (
     load_scene,
     pattern_format,
 )
+from .params import REGION_TOL, SIZE_TOL
+from .params import resolve as resolve_params
 from .scene import TABLE, Scene
 
 __all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
@@ -61,6 +75,26 @@ RELATION_HALF_ANGLE = math.pi / 4
 POSE_ANGLE_TOL = 0.1
 MIN_CIRCLE_RADIUS = 0.05
 MIN_RECT_SIDE = 0.05
+#: A footprint vertex this far (m) outside the workspace is a violation
+#: whatever the area outside.
+EDGE_TOL = 1e-3
+
+
+def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
+    """Why a target pose is unacceptable before any geometry, or ``None``.
+
+    Non-finite values, coordinates beyond :data:`lgmcts.limits.MAX_COORD` and
+    yaws beyond :data:`lgmcts.limits.MAX_ANGLE` are refused here (the plan
+    format refuses them too; this holds for plans built in code), so that the
+    polygon tests only ever run at magnitudes where a footprint keeps its
+    shape.
+    """
+    if pose.shape != (3,) or not np.isfinite(pose).all():
+        return "has a non-finite target pose"
+    if abs(pose[0]) > limits.MAX_COORD or abs(pose[1]) > limits.MAX_COORD or abs(pose[2]) > limits.MAX_ANGLE:
+        return "placed outside the workspace (target beyond the coordinate bounds)"
+    return None
+
 
 #: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
 Rule = Callable[[Goal, Scene, np.ndarray, tuple[int, ...]], "str | None"]
@@ -168,8 +202,79 @@ def _rectangle_ok(xy: np.ndarray) -> str | None:
     return None
 
 
+def _line_direction(xy: np.ndarray) -> np.ndarray:
+    """Unit direction of the total-least-squares line through ``xy``."""
+    c = xy - xy.mean(axis=0)
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    return vt[0]
+
+
+def _off(a: float, b: float, period: float) -> float:
+    """Distance between angles ``a`` and ``b`` modulo ``period`` (rad)."""
+    d = (a - b) % period
+    return min(d, period - d)
+
+
+def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> str | None:
+    """Why ``goal``'s region, size or facing does not hold, or ``None`` (rules in :mod:`lgmcts.params`)."""
+    if goal.region is None and goal.size is None and goal.facing is None:
+        return None
+    gp = resolve_params(goal, scene.bounds, scene.radii[idx])
+    xy = poses[idx, :2]
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        out = np.maximum.reduce([x0 - xy[:, 0], xy[:, 0] - x1, y0 - xy[:, 1], xy[:, 1] - y1, np.zeros(len(xy))])
+        k = int(np.argmax(out))
+        if out[k] > REGION_TOL:
+            where = f"'{goal.region}'" if isinstance(goal.region, str) else f"box {list(goal.region)}"
+            return f"object {scene.ids[idx[k]]} is {out[k]:.3f} m outside region {where}"
+    p = goal.pattern
+    if gp.heading is not None:
+        h, tol = gp.heading, gp.heading_tol
+        for i in idx:
+            d = _off(float(poses[i, 2]), h, 2 * math.pi)
+            if d > tol + 1e-9:
+                return f"object {scene.ids[i]} faces {math.degrees(d):.0f} deg off facing '{goal.facing}'"
+        if p == "line" and len(xy) >= 2:
+            u = _line_direction(xy)
+            d = _off(math.atan2(u[1], u[0]), h + math.pi / 2, math.pi)
+            if d > tol + 1e-9:
+                return f"the line runs {math.degrees(d):.0f} deg off across facing '{goal.facing}'"
+        if p == "rectangle":
+            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
+            if rect.geom_type == "Polygon":
+                cs = np.asarray(rect.exterior.coords)[:2]
+                e = cs[1] - cs[0]
+                d = _off(math.atan2(e[1], e[0]), h, math.pi / 2)
+                if d > tol + 1e-9:
+                    return f"the rectangle's sides are {math.degrees(d):.0f} deg off facing '{goal.facing}'"
+    if gp.size is not None:
+        if p == "circle":
+            length = fit_circle(xy)[1]
+        elif p == "line":
+            t = (xy - xy.mean(axis=0)) @ _line_direction(xy)
+            length = float(t.max() - t.min())
+        else:
+            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
+            cs = np.asarray(rect.exterior.coords)[:4] if rect.geom_type == "Polygon" else xy[:1]
+            length = float(np.linalg.norm(np.roll(cs, -1, axis=0) - cs, axis=1).max(initial=0.0))
+        lo, hi = gp.size
+        if not lo - SIZE_TOL <= length <= hi + SIZE_TOL:
+            what = {"circle": "radius", "line": "length", "rectangle": "longer side"}[p]
+            want = f"{lo:.3f}..{hi:.3f}" if hi < math.inf else f">= {lo:.3f}"
+            return f"{what} {length:.3f} m is not {goal.size!r} ({want} m, tolerance {SIZE_TOL} m)"
+    return None
+
+
 def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
     """``None`` when ``goal`` holds for ``poses``/``on``, else why it does not."""
+    why = _shape_satisfied(goal, scene, poses, on)
+    if why is not None:
+        return why
+    return _params_ok(goal, scene, poses, [scene.index[i] for i in goal.objects])
+
+
+def _shape_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
     idx = [scene.index[i] for i in goal.objects]
     xy = poses[idx, :2]
     p = goal.pattern
@@ -251,14 +356,25 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             top = [sc.ids[k] for k, s in enumerate(on) if s == i]
             reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
+        bad = _pose_out_of_bounds(new_pose)
+        if bad is not None:
+            # Bounds first: geometry at such magnitudes means nothing (a
+            # footprint at x = 1e20 collapses to a point of zero area).
+            reasons.append(f"action {step}: object {act.object} {bad}")
+            break
         verts = sc.footprint(i, new_pose)
         poly = shapely.polygons(verts)
         if act.on is None:
-            # Every vertex in the box means the convex footprint is inside;
-            # otherwise measure how much of it lies outside.
+            # Every vertex in the box means the convex footprint is inside. A
+            # centre off the workspace or a vertex beyond EDGE_TOL outside is
+            # always a violation; a smaller excursion is one when the area
+            # outside exceeds OVERLAP_AREA.
             x, y = verts[:, 0], verts[:, 1]
-            inside = bool((x >= xmin).all() and (x <= xmax).all() and (y >= ymin).all() and (y <= ymax).all())
-            if not inside and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA:
+            excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
+            centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
+            if not centre_in or excursion > EDGE_TOL or (
+                excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA
+            ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
             # Only footprints whose circumscribed circles meet can overlap.
             reach = sc.radii[i] + sc.radii + 1e-9
@@ -269,6 +385,14 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
                 arr[:] = [polys[k] for k in others]
                 touching = np.flatnonzero(shapely.intersects(poly, arr))
                 areas = shapely.area(shapely.intersection(poly, arr[touching])) if len(touching) else []
+                if len(touching) and sc.discs[i] > 0:
+                    # Cylinder against cylinder: the circles' lens, not the polygons'.
+                    areas = np.asarray(areas, dtype=float)
+                    for t_k, t in enumerate(touching):
+                        k = others[int(t)]
+                        if sc.discs[k] > 0:
+                            d = math.hypot(*(poses[k, :2] - new_pose[:2]))
+                            areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
                 for t, area in zip(touching, areas):
                     if area > OVERLAP_AREA:
                         k = others[int(t)]

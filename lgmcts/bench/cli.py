@@ -13,13 +13,17 @@ from ..errors import InputError
 __all__ = ["register"]
 
 
-def _tasks(suite_arg: str, n: Optional[int], seed: int):
+_INSTRUCTIONS_HELP = "Instruction templates: ours (written for this parser) or peer (the peers' own templates)."
+
+
+def _tasks(suite_arg: str, n: Optional[int], seed: int, instructions: str = "ours"):
     """Tasks and a source label from a suite name or a JSONL file."""
     from .suites import SUITES, generate
     from .tasks import read_suite
 
     if suite_arg in SUITES:
-        return generate(suite_arg, n=n, seed=seed), f"{suite_arg}:seed={seed}", suite_arg
+        label = f"{suite_arg}:seed={seed}" + ("" if instructions == "ours" else f":instructions={instructions}")
+        return generate(suite_arg, n=n, seed=seed, instructions=instructions), label, suite_arg
     path = Path(suite_arg)
     if not path.suffix and not path.exists():
         raise InputError(f"unknown suite '{suite_arg}' (known: {', '.join(SUITES)}, or a .jsonl file)")
@@ -30,25 +34,26 @@ def _tasks(suite_arg: str, n: Optional[int], seed: int):
 
 
 def bench_generate(
-    suite: str = typer.Option(..., "--suite", help="elgr or structformer."),
+    suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense or structformer."),
     n: Optional[int] = typer.Option(None, "--n", help="Number of tasks (default: the full suite)."),
     seed: int = typer.Option(0, "--seed", help="Suite seed: 0 is the reported test suite, >= 1 for tuning."),
     category: Optional[str] = typer.Option(None, "--category", help="Only tasks of this category."),
     output: Path = typer.Option(..., "-o", "--output", help="JSONL file to write."),
+    instructions: str = typer.Option("ours", "--instructions", help=_INSTRUCTIONS_HELP),
 ) -> None:
     """Generate a benchmark suite as a JSONL file, one task per line."""
     from .suites import iter_generate
     from .tasks import write_suite
 
     try:
-        count = write_suite(iter_generate(suite, n=n, seed=seed, category=category), output)
+        count = write_suite(iter_generate(suite, n=n, seed=seed, category=category, instructions=instructions), output)
     except InputError as exc:
         fail(str(exc))
     typer.echo(f"wrote {count} {suite} tasks to {output}", err=True)
 
 
 def bench(
-    suite: str = typer.Option(..., "--suite", help="elgr, structformer, or a suite JSONL file."),
+    suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense, structformer, or a suite JSONL file."),
     method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, lfsp (the LLM proposes the poses; needs --llm-model), or module:function (your planner)."),
     parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
@@ -61,6 +66,7 @@ def bench(
     llm_model: Optional[str] = typer.Option(None, "--llm-model"),
     llm_base_url: Optional[str] = typer.Option(None, "--llm-base-url"),
     output: Path = typer.Option(..., "-o", "--output", help="Output folder (an interrupted run there resumes)."),
+    instructions: str = typer.Option("ours", "--instructions", help=_INSTRUCTIONS_HELP + " Only with a suite name."),
 ) -> None:
     """Run a planning method on a suite; write results.jsonl, summary.md and summary.csv to OUTPUT.
 
@@ -73,13 +79,17 @@ def bench(
     from .tasks import write_suite
 
     try:
-        tasks, source, suite_name = _tasks(suite, n, seed)
+        from .suites import SUITES
+
+        if instructions != "ours" and suite not in SUITES:
+            raise InputError("--instructions applies to a suite name; a suite file carries its own instructions")
+        tasks, source, suite_name = _tasks(suite, n, seed, instructions)
         chosen = parser or ("gt" if suite_name == "structformer" else "rules")
         opts = RunOptions(method=method, parser=chosen, max_iter=max_iter, time_limit=time_limit,
                           execute=not no_exec, llm_model=llm_model, llm_base_url=llm_base_url)
         opts.check()
         output.mkdir(parents=True, exist_ok=True)
-        if suite in ("elgr", "structformer") and not (output / "suite.jsonl").exists():
+        if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")
         records = run_suite(tasks, output, options=opts, workers=workers, ray_address=ray, source=source)
     except InputError as exc:

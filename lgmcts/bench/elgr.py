@@ -19,6 +19,10 @@ Start state
     move are scattered, at least one object is stacked on an object that must
     move, and at least one other object lies where a goal object ends in that
     arrangement.
+Dense variant (suite ``elgr-dense``)
+    The same task (same scene objects, poses, instruction and goals) plus
+    6-12 extra objects packed edge to edge around the goal region, touching
+    within micrometres and overlapping nothing (:func:`_densify`).
 Success
     The ground-truth goals hold after the plan (validator) and after its
     execution in physics (SR_p and SR_ep).
@@ -30,6 +34,7 @@ import math
 from itertools import combinations_with_replacement
 
 import numpy as np
+import shapely
 
 from ..formats import RELATIONS, parse_goals, parse_scene
 from ..scene import TABLE, Scene
@@ -74,8 +79,13 @@ _PLURAL_KINDS = tuple(k.name for k in VIMA_KINDS if k.plural)
 _ALL_NAMES = tuple(k.name for k in VIMA_KINDS)
 
 
-def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Task:
-    """Build the ELGR-style task of ``category`` from ``seed`` (deterministic)."""
+def generate_task(category: str, seed: int, *, task_id: str | None = None, dense: bool = False) -> Task:
+    """Build the ELGR-style task of ``category`` from ``seed`` (deterministic).
+
+    ``dense=True`` gives the task of the dense variant (suite ``elgr-dense``):
+    the same task plus touching clutter packed around the goal region
+    (:func:`_densify`).
+    """
     if category not in CATEGORIES:
         raise ValueError(f"unknown ELGR category {category}")
     rng = np.random.default_rng(seed)
@@ -83,11 +93,14 @@ def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Ta
     for _ in range(400):
         t = _attempt(kinds, rng)
         if t is not None:
-            scene, instruction, goals, final, start = t
+            scene, instruction, goals, final, start, meanings = t
+            if dense:
+                scene, final, start = _densify(scene, goals, final, start, meanings, np.random.default_rng([seed, 1]))
+            name = "elgr-dense" if dense else "elgr"
             return Task(
-                id=task_id or f"elgr-{seed}",
+                id=task_id or f"{name}-{seed}",
                 seed=seed,
-                suite="elgr",
+                suite=name,
                 category=category,
                 scene=scene,
                 instruction=instruction,
@@ -96,6 +109,88 @@ def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Ta
                 start=start,
             )
     raise RuntimeError(f"could not build an ELGR task for seed {seed}")  # pragma: no cover
+
+
+#: Extra objects the dense variant tries to pack (it keeps those that find a
+#: spot in contact and leave every reference of the instruction unchanged).
+DENSE_EXTRA = (6, 12)
+#: Packings drawn per extra object (see :func:`_densify`).
+_DENSE_TRIES = 6
+
+
+def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list, rng: np.random.Generator):
+    """Add clutter packed edge to edge around the goal region of a task.
+
+    Between 6 and 12 extra VIMA-like objects (their number, kinds, colours,
+    sizes and yaws drawn from ``rng``) are slid, each from the final centre
+    of a random goal object along a random ray, to the first pose where they
+    overlap nothing, then bisected to within micrometres of contact
+    (:func:`lgmcts.casegen.pack_clutter`). Of up to six such packings per
+    object, the first that touches both a table-level object of the start scene and
+    the spot of a goal object is kept, else the best drawn (touching the
+    start scene counts more than touching a goal spot). They keep clear of every final
+    footprint (so the arrangement the task was built from stays legal with
+    the extras where they start, which is also their final pose) and of
+    every start footprint, stacked objects' included (no extra stands under
+    the overhang of an object resting on another). An extra whose name and colour would
+    change what a reference of the instruction means is redrawn. The start
+    state lists the extras under ``"packed"``.
+    """
+    from ..casegen import pack_clutter
+
+    objects = [dict(o) for o in scene["objects"]]
+    st = Scene.from_spec(parse_scene(scene))
+    goal_ids = {i for g in goals["goals"] for i in g["objects"]}
+    goal_feet: list = []
+    other_feet: list = []
+    start_feet: list = []
+    table_feet: list = []
+    for k, i in enumerate(st.ids):
+        fp = shapely.polygons(st.footprint(k, np.asarray(final[str(i)], dtype=float)))
+        (goal_feet if i in goal_ids else other_feet).append(fp)
+        # Every start footprint, stacked ones too: an extra taller than a
+        # base would otherwise stand under the overhang of the object on it.
+        start_feet.append(st.initial.polys[k])
+        if st.initial.on[k] == TABLE:
+            table_feet.append(st.initial.polys[k])
+    other_feet += start_feet
+
+    def st_one(o: dict) -> shapely.Polygon:
+        one = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": [o]}))
+        return one.initial.polys[0]
+
+    specs: list[dict] = []
+    next_id = max(o["id"] for o in objects) + 1
+    for _ in range(int(rng.integers(DENSE_EXTRA[0], DENSE_EXTRA[1] + 1))):
+        for _try in range(30):
+            name, color = _pick(rng, _ALL_NAMES), _pick(rng, VIMA_COLORS)
+            cand = {"id": next_id, "name": name, "color": color}
+            pool = objects + specs + [cand]
+            if all(unambiguous(ref, pool, want) for ref, want in meanings):
+                specs.append({**cand, "shape": kind(name).make(scale(rng))})
+                next_id += 1
+                break
+    bounds = (WORKSPACE["x"][0], WORKSPACE["x"][1], WORKSPACE["y"][0], WORKSPACE["y"][1])
+    packed: list[dict] = []
+    real = list(table_feet)  # table-level footprints of the start scene
+    for spec in specs:
+        best, best_score = None, -1
+        for _ in range(_DENSE_TRIES):
+            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(table_feet):], rng)
+            if not got:
+                continue
+            k = st_one(got[0])
+            score = 2 * (min(shapely.distance(k, q) for q in real) <= 1e-4) + (min(shapely.distance(k, q) for q in goal_feet) <= 1e-4)
+            if score > best_score:
+                best, best_score = (got[0], k), score
+            if score == 3:
+                break
+        if best is not None:
+            packed.append(best[0])
+            real.append(best[1])
+    out_scene = {**scene, "objects": objects + packed}
+    out_final = {**final, **{str(o["id"]): list(o["pose"]) for o in packed}}
+    return out_scene, out_final, {**start, "packed": [o["id"] for o in packed]}
 
 
 def _pick(rng: np.random.Generator, pool: list[str] | tuple[str, ...]) -> str:
@@ -165,6 +260,7 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         if spec["mode"] == "same_color":
             objs.append(make(g, name=spec["ref_name"], color=spec["color"]))
             extra[g] = len(objs) - 1
+            idx.append(extra[g])  # the referent belongs to its "same colour" set
     # Spatial goals: a new target; the anchor new or taken from another goal.
     placed_before = [i for m in members for i in m]
     for g, spec in enumerate(goals):
@@ -363,4 +459,14 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         "blockers": [[ids[t], ids[b]] for t, b in tops],
         "clutter": [[ids[c], ids[t]] for c, t in clutter_pairs],
     }
-    return scene_dict, instruction, {"goals": goal_list}, final_d, start_d
+    # What each reference must keep meaning when objects are added (dense variant).
+    meanings: list[tuple[tuple, frozenset[int]]] = []
+    for g, spec in enumerate(goals):
+        if spec["kind"] == "spatial":
+            ra, rb = refs[g]
+            meanings += [(ra, frozenset({ids[spec["target"]]})), (rb, frozenset({ids[spec["anchor"]]}))]
+        else:
+            meanings.append((refs[g], sets[g]))
+            if spec["mode"] == "same_color":
+                meanings.append((refs[g][1], frozenset({ids[extra[g]]})))
+    return scene_dict, instruction, {"goals": goal_list}, final_d, start_d, meanings

@@ -27,7 +27,7 @@ def scene_of(workspace: dict, objects: list[dict]) -> Scene:
     cx = (workspace["x"][0] + workspace["x"][1]) / 2
     cy = (workspace["y"][0] + workspace["y"][1]) / 2
     objs = [{**o, "pose": [cx, cy, 0.0], "on": None} for o in objects]
-    return Scene.from_spec(parse_scene({"workspace": workspace, "objects": objs}))
+    return Scene.from_spec(parse_scene({"workspace": workspace, "objects": objs}), overlap_ok=True)
 
 
 class Layout:

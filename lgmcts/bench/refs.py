@@ -6,7 +6,7 @@ A reference is a small tuple:
 * ``("all_name", name)``: "all blocks";
 * ``("all_color", color)``: "all red objects";
 * ``("same_color", one)``: "objects whose color is the same as the triangle"
-  (the named object itself is not included);
+  (the named object itself is included, as in the peers' object selectors);
 * ``("list", (one, one, ...))``: "the red block, the blue heart and the granite star".
 
 :func:`resolve` gives the set of objects a reference means. A generator keeps
@@ -49,7 +49,7 @@ def resolve(ref: Ref, objects: list[dict]) -> frozenset[int]:
             return frozenset()
         (j,) = one
         cj = next(c for i, _, c in objs if i == j)
-        return frozenset(i for i, _, c in objs if c == cj and i != j)
+        return frozenset(i for i, _, c in objs if c == cj)
     if k == "list":
         out: set[int] = set()
         for r in ref[1]:
@@ -79,7 +79,7 @@ def resolve_loose(ref: Ref, objects: list[dict]) -> frozenset[int]:
             return frozenset(i for i, _, _ in objs)
         (j,) = one
         cj = next(c for i, _, c in objs if i == j)
-        return frozenset(i for i, _, c in objs if close(c, cj) and i != j)
+        return frozenset(i for i, _, c in objs if close(c, cj))
     if k == "list":
         out: set[int] = set()
         for r in ref[1]:
@@ -119,7 +119,7 @@ def phrase(ref: Ref, rng: np.random.Generator) -> str:
         return str(rng.choice([
             f"objects whose color is the same as {_the(ref[1])}",
             f"all objects with the same color as {_the(ref[1])}",
-            f"the objects that have the same color as {_the(ref[1])}",
+            f"the objects of the same color as {_the(ref[1])}",
         ]))
     if k == "list":
         words = [_the(r) for r in ref[1]]

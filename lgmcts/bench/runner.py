@@ -164,6 +164,7 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
         "category": t.category,
         "seed": t.seed,
         "instruction": t.instruction,
+        "instructions": t.instructions,
         "method": options.method,
         "parser": options.parser,
     }
@@ -485,6 +486,19 @@ def _reachable(address: str, timeout: float = 5.0) -> None:
         raise InputError(f"cannot reach Ray at {address}: {exc.strerror or exc}") from None
 
 
+def _ray_failure(address: str, exc: BaseException) -> str:
+    """One line saying why Ray would not start or connect, with a hint for token authentication."""
+    text = " ".join(str(exc).split())
+    kind = type(exc).__name__
+    line = f"cannot connect to Ray at {address}: {kind}: {text[:300]}"
+    if any(w in text.lower() for w in ("auth", "token", "unauthenticated", "permission denied")):
+        line += (
+            " (the cluster uses token authentication: set RAY_AUTH_TOKEN, or RAY_AUTH_TOKEN_PATH, to its token, "
+            "which `ray get-auth-token` prints on the head node; see docs/bench.md)"
+        )
+    return line
+
+
 def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int | None) -> Iterator[dict[str, Any]]:
     try:
         import ray
@@ -492,6 +506,11 @@ def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int 
         raise InputError("--ray needs Ray: pip install 'lgmcts[ray]'") from None
     started = False
     if not ray.is_initialized():
+        if address.startswith("ray://"):
+            import importlib.util
+
+            if importlib.util.find_spec("grpc") is None:
+                raise InputError("--ray ray://... needs Ray's client: pip install 'lgmcts[ray]' (ray[client])")
         _reachable(address)
         try:
             if address == "local":
@@ -499,7 +518,7 @@ def _ray_map(tasks: list[Task], options: RunOptions, address: str, workers: int 
             else:
                 ray.init(address=address, log_to_driver=False)
         except Exception as exc:  # an unreachable cluster is bad input to the runner
-            raise InputError(f"cannot connect to Ray at {address}: {' '.join(str(exc).split())[:200]}") from None
+            raise InputError(_ray_failure(address, exc)) from None
         started = True
     try:
         remote = ray.remote(_safe)

@@ -9,6 +9,7 @@ len(CATEGORIES)]`` (so any prefix of a suite is balanced) and seed
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from types import ModuleType
 from typing import Callable, Iterator
 
@@ -30,13 +31,16 @@ class Suite:
     description: str
 
 
-def _suite(name: str, mod: ModuleType, default_n: int, description: str) -> Suite:
-    return Suite(name, tuple(mod.CATEGORIES), default_n, mod.generate_task, description)
+def _suite(name: str, mod: ModuleType, default_n: int, description: str, **options) -> Suite:
+    build = partial(mod.generate_task, **options) if options else mod.generate_task
+    return Suite(name, tuple(mod.CATEGORIES), default_n, build, description)
 
 
 #: Registered suites by name.
 SUITES: dict[str, Suite] = {
     "elgr": _suite("elgr", elgr, 1600, "two composed patterns, infeasible starts, templated language"),
+    "elgr-dense": _suite("elgr-dense", elgr, 1600, "the elgr tasks plus touching clutter packed around the goal region",
+                         dense=True),
     "structformer": _suite("structformer", structformer, 2000, "one pattern per task: line, circle, tower, dinner"),
 }
 
@@ -49,12 +53,19 @@ def suite(name: str) -> Suite:
         raise InputError(f"unknown suite '{name}' (known: {', '.join(SUITES)})") from None
 
 
-def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: str | None = None) -> Iterator[Task]:
+def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: str | None = None,
+                  instructions: str = "ours") -> Iterator[Task]:
     """Yield the first ``n`` tasks of suite ``name`` generated with ``seed``.
 
     With ``category``, only that category's tasks (their indices and seeds
-    are those they have in the full suite).
+    are those they have in the full suite). ``instructions="peer"`` phrases
+    each task with the peers' sentence templates
+    (:mod:`lgmcts.bench.peer_language`); scenes and goals are unchanged.
     """
+    from .peer_language import MODES, rephrase
+
+    if instructions not in MODES:
+        raise InputError(f"unknown instruction mode '{instructions}' (known: {', '.join(MODES)})")
     s = suite(name)
     if n is not None and n < 1:
         raise InputError("--n must be at least 1")
@@ -67,11 +78,12 @@ def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: s
     while made < total:
         cat = s.categories[k % len(s.categories)]
         if category is None or cat == category:
-            yield s.build(cat, task_seed(seed, k), task_id=f"{name}-{seed}-{k:05d}")
+            yield rephrase(s.build(cat, task_seed(seed, k), task_id=f"{name}-{seed}-{k:05d}"), instructions)
             made += 1
         k += 1
 
 
-def generate(name: str, *, n: int | None = None, seed: int = 0, category: str | None = None) -> list[Task]:
+def generate(name: str, *, n: int | None = None, seed: int = 0, category: str | None = None,
+             instructions: str = "ours") -> list[Task]:
     """The first ``n`` tasks of suite ``name`` (its default size when ``n`` is None)."""
-    return list(iter_generate(name, n=n, seed=seed, category=category))
+    return list(iter_generate(name, n=n, seed=seed, category=category, instructions=instructions))

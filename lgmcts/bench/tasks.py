@@ -7,7 +7,8 @@ A suite file holds one task per line::
      "goals": {"goals": [...]},            # ground truth
      "final": {"3": [x, y, theta], ...},   # the arrangement the task was built from
      "final_on": {"5": 4, ...},            # supports in that arrangement (towers)
-     "start": {"blockers": [[top, base]], "clutter": [[object, target]]}}
+     "start": {"blockers": [[top, base]], "clutter": [[object, target]]},
+     "instructions": "peer"}                # only when phrased in the peers' templates
 
 Seeds: task ``k`` of a suite generated with seed ``S`` is built from the
 integer ``S * 1_000_000 + k`` alone, so any task can be rebuilt from its
@@ -56,6 +57,8 @@ class Task:
     final: dict = field(default_factory=dict)
     final_on: dict = field(default_factory=dict)
     start: dict = field(default_factory=dict)
+    #: Who wrote the instruction's template: "ours" or "peer" (``lgmcts.bench.peer_language``).
+    instructions: str = "ours"
 
     def scene_spec(self) -> SceneSpec:
         """The start scene as a validated model."""
@@ -66,6 +69,7 @@ class Task:
         return parse_goals(self.goals)
 
     def to_dict(self) -> dict[str, Any]:
+        extra = {} if self.instructions == "ours" else {"instructions": self.instructions}
         return {
             "id": self.id,
             "seed": self.seed,
@@ -77,6 +81,7 @@ class Task:
             "final": self.final,
             "final_on": self.final_on,
             "start": self.start,
+            **extra,
         }
 
     @classmethod
@@ -99,6 +104,7 @@ class Task:
             final=dict(data.get("final") or {}),
             final_on=dict(data.get("final_on") or {}),
             start=dict(data.get("start") or {}),
+            instructions=str(data.get("instructions", "ours")),
         )
         try:
             scene = task.scene_spec()
@@ -127,29 +133,24 @@ def read_suite(path: str | Path, *, limit: int | None = None) -> list[Task]:
 
 
 def _iter_suite(path: Path, limit: int | None) -> Iterator[Task]:
-    try:
-        fh = open(path)
-    except FileNotFoundError:
-        raise InputError(f"suite file not found: {path}") from None
-    except OSError as exc:
-        raise InputError(f"cannot read suite file {path}: {exc.strerror}") from None
+    from ..inputs import loads, read_lines
+
     seen: set[str] = set()
     n = 0
-    with fh:
-        for lineno, line in enumerate(fh, start=1):
-            if limit is not None and n >= limit:
-                return
-            if not line.strip():
-                continue
-            try:
-                data = json.loads(line)
-            except json.JSONDecodeError as exc:
-                raise InputError(f"{path} line {lineno} is not valid JSON: {exc.msg}") from None
-            task = Task.from_dict(data, where=f"{path} line {lineno}")
-            if task.id in seen:
-                raise InputError(f"{path} line {lineno}: duplicate task id {task.id}")
-            seen.add(task.id)
-            n += 1
-            yield task
+    for lineno, line in read_lines(path, "suite"):
+        if limit is not None and n >= limit:
+            return
+        if not line.strip():
+            continue
+        try:
+            data = loads(line, f"{path} line {lineno}")
+        except json.JSONDecodeError as exc:
+            raise InputError(f"{path} line {lineno} is not valid JSON: {exc.msg}") from None
+        task = Task.from_dict(data, where=f"{path} line {lineno}")
+        if task.id in seen:
+            raise InputError(f"{path} line {lineno}: duplicate task id {task.id}")
+        seen.add(task.id)
+        n += 1
+        yield task
     if n == 0:
         raise InputError(f"suite file {path} holds no tasks")

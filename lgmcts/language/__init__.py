@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..limits import MAX_INSTRUCTION, truncate
 from ..formats import GoalSpec, SceneSpec, load_scene
 
 __all__ = ["parse", "PARSERS"]
@@ -79,6 +80,8 @@ def parse(
     spec = _scene(scene)
     if not isinstance(text, str) or not text.strip():
         raise InputError("the instruction is empty")
+    if len(text) > MAX_INSTRUCTION:
+        raise InputError(f"the instruction is {len(text)} characters long; the limit is {MAX_INSTRUCTION}")
     if parser == "rules":
         from .matcher import default_matcher
         from .rules import parse_rules
@@ -89,4 +92,4 @@ def parse(
 
         opts = LLMOptions(model=llm_model, base_url=llm_base_url, api_key=api_key, timeout=timeout)
         return parse_llm(spec, text, options=opts)
-    raise InputError(f"unknown parser '{parser}' (use: {', '.join(PARSERS)})")
+    raise InputError(f"unknown parser '{truncate(str(parser), 40)}' (use: {', '.join(PARSERS)})")

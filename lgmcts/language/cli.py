@@ -10,7 +10,7 @@ from typing import Optional
 
 import typer
 
-from ..cli_util import fail, write_text
+from ..cli_util import check_output_file, fail, write_text
 from ..errors import InputError
 
 __all__ = ["register"]
@@ -28,6 +28,7 @@ def parse_cmd(
     from .. import formats
     from . import parse
 
+    check_output_file(output)
     try:
         spec = formats.load_scene(scene)
         goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
@@ -45,13 +46,16 @@ def eval_parse_cmd(
     min_accuracy: Optional[float] = typer.Option(None, "--min-accuracy", help="Exit 1 when accuracy is below this."),
     show: int = typer.Option(50, "--show", help="How many failures to list."),
     cold: bool = typer.Option(False, "--cold", help="Forget cached phrase embeddings before each case (timing)."),
+    split: Optional[str] = typer.Option(None, "--split", help="Only the cases of this split: dev or test."),
 ) -> None:
     """Exact-goal accuracy of a parser on CASES, per category, with failures and parse speed."""
     from . import parse
     from .evaluate import evaluate, load_cases
 
     try:
-        loaded = load_cases(cases)
+        if split is not None and split not in ("dev", "test"):
+            raise InputError(f"--split must be dev or test, not '{split}'")
+        loaded = load_cases(cases, split=split)
         load_s = None
         if parser == "rules":
             from .matcher import default_matcher
@@ -77,6 +81,14 @@ def eval_parse_cmd(
         typer.echo(json.dumps(data, indent=2))
     else:
         lines = [f"{data['correct']}/{data['cases']} correct: accuracy {100 * data['accuracy']:.1f}% ({parser} parser)"]
+        lines.append(
+            f"answered {data['answered']}, wrong goals {data['wrong_goals']} "
+            f"({100 * data['wrong_goal_rate']:.1f}% of answered); refused {data['refused']}, "
+            f"of which {data['wrongly_refused']} should have been answered"
+        )
+        if len(data["per_split"]) > 1 or "-" not in data["per_split"]:
+            for sp, v in data["per_split"].items():
+                lines.append(f"  split {sp:<16} {v['correct']:>4}/{v['total']:<4} {100 * v['accuracy']:6.1f}%")
         for cat, v in data["per_category"].items():
             lines.append(f"  {cat:<22} {v['correct']:>4}/{v['total']:<4} {100 * v['accuracy']:6.1f}%")
         t = data["parse_time"]

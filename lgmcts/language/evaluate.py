@@ -18,9 +18,25 @@ object lists as sets except for ordered patterns without anchor (towers);
 an expected goal may say ``"objects_from": [ids], "count": k`` (any k of
 those: "three blocks") and ``"anchor_any": [ids]`` (any one: "behind one
 block"); ``"disjoint": [[i, j]]`` at the top requires goals i and j to share
-no object ("another line"). A refusal case passes when the parser raises
+no object ("another line"). A tower goal with ``"unordered": true`` matches
+its objects in any order (a stack whose order the command leaves open).
+``{"any_of": [expect, expect, ...]}`` passes when any alternative matches
+(a place setting with the cutlery on either side). The optional pattern
+parameters ``region`` ("top left", "middle center": ``<row> <col>`` with
+row bottom|middle|top and col left|center|right), ``size``
+(small|medium|large) and ``facing`` (north|east|south|west) must be equal
+when either side names them. A refusal case passes when the parser raises
 :class:`~lgmcts.errors.InputError` (and its message contains ``refuse``
 when that is a non-empty string).
+
+A case may also carry ``family`` (its template family; used as the
+category when ``category`` is absent), ``split`` ("dev" or "test"; see
+``--split``) and ``needs`` (e.g. ``["params"]`` for cases whose goals use
+the optional parameters).
+
+A **wrong goal** is an answer (goals, not a refusal) that does not match:
+goals that differ from the label, or any goals for a command that must be
+refused. The wrong-goal rate is taken over the answered commands.
 """
 
 from __future__ import annotations
@@ -49,6 +65,9 @@ class Case:
     instruction: str
     expect: dict | None = None
     refuse: str | bool | None = None
+    family: str | None = None
+    split: str | None = None
+    needs: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -83,6 +102,31 @@ class EvalReport:
     def failures(self) -> list[CaseResult]:
         return [r for r in self.results if not r.ok]
 
+    def outcomes(self) -> dict[str, int]:
+        """Counts: answered, wrong goals among them, refused, refused wrongly (a correct command refused)."""
+        answered = [r for r in self.results if r.got is not None]
+        refused = [r for r in self.results if r.got is None]
+        return {
+            "answered": len(answered),
+            "wrong_goals": sum(not r.ok for r in answered),
+            "refused": len(refused),
+            "wrongly_refused": sum(not r.ok for r in refused),
+        }
+
+    @property
+    def wrong_goal_rate(self) -> float:
+        """Wrong goals over answered commands (0 when nothing was answered)."""
+        o = self.outcomes()
+        return o["wrong_goals"] / o["answered"] if o["answered"] else 0.0
+
+    def per_split(self) -> dict[str, tuple[int, int]]:
+        out: dict[str, list[int]] = {}
+        for r in self.results:
+            c = out.setdefault(r.case.split or "-", [0, 0])
+            c[0] += r.ok
+            c[1] += 1
+        return {k: (v[0], v[1]) for k, v in sorted(out.items())}
+
     def timing(self) -> dict[str, float]:
         ts = sorted(r.time_s for r in self.results)
         if not ts:
@@ -97,6 +141,9 @@ class EvalReport:
             "correct": sum(r.ok for r in self.results),
             "accuracy": self.accuracy,
             "per_category": {k: {"correct": a, "total": b, "accuracy": a / b} for k, (a, b) in self.per_category().items()},
+            "per_split": {k: {"correct": a, "total": b, "accuracy": a / b} for k, (a, b) in self.per_split().items()},
+            **self.outcomes(),
+            "wrong_goal_rate": self.wrong_goal_rate,
             "model_load_s": self.load_time_s,
             "parse_time": self.timing(),
             "failures": [
@@ -108,22 +155,22 @@ class EvalReport:
         }
 
 
-def load_cases(path: str | Path) -> list[Case]:
-    """Read a case file (or a benchmark task file); bad lines raise :class:`InputError`."""
+def load_cases(path: str | Path, *, split: str | None = None) -> list[Case]:
+    """Read a case file (or a benchmark task file); bad lines raise :class:`InputError`.
+
+    With ``split``, only the cases of that split ("dev" or "test").
+    """
     path = Path(path)
-    try:
-        lines = path.read_text().splitlines()
-    except FileNotFoundError:
-        raise InputError(f"case file not found: {path}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read case file {path}: {exc}") from None
+    from ..inputs import loads, read_text
+
+    lines = read_text(path, "case").splitlines()
     scenes: dict[str, SceneSpec] = {}
     cases: list[Case] = []
     for n, line in enumerate(lines, 1):
         if not line.strip() or line.lstrip().startswith("//"):
             continue
         try:
-            row = json.loads(line)
+            row = loads(line, f"{path}:{n}")
         except json.JSONDecodeError as exc:
             raise InputError(f"{path}:{n}: not valid JSON ({exc.msg})") from None
         if not isinstance(row, dict):
@@ -150,14 +197,22 @@ def load_cases(path: str | Path) -> list[Case]:
             refuse = row.get("refuse")
             if expect is None and refuse is None:
                 raise InputError("a case needs 'expect' (goals) or 'refuse'")
-            cases.append(Case(str(row.get("id", f"line-{n}")), str(row.get("category", "uncategorised")), scene,
-                              str(row["instruction"]), expect, refuse))
+            family = row.get("family")
+            category = row.get("category", family if family is not None else "uncategorised")
+            needs = row.get("needs") or ()
+            if isinstance(needs, str) or not all(isinstance(x, str) for x in needs):
+                raise InputError("'needs' must be a list of strings")
+            case = Case(str(row.get("id", f"line-{n}")), str(category), scene, str(row["instruction"]), expect, refuse,
+                        None if family is None else str(family), None if row.get("split") is None else str(row["split"]),
+                        tuple(needs))
+            if split is None or case.split == split:
+                cases.append(case)
         except KeyError as exc:
             raise InputError(f"{path}:{n}: missing field {exc.args[0]!r}") from None
         except InputError as exc:
             raise InputError(f"{path}:{n}: {exc}") from None
     if not cases:
-        raise InputError(f"{path}: no cases")
+        raise InputError(f"{path}: no cases" + (f" in split '{split}'" if split is not None else ""))
     return cases
 
 
@@ -167,12 +222,38 @@ def _ordered_patterns() -> frozenset[str]:
     return frozenset(n for n, i in pattern_infos().items() if i.ordered and not i.anchored)
 
 
+#: Optional pattern parameters compared when either side names them.
+PARAMS = ("region", "size", "facing")
+_ROWS, _COLS = ("bottom", "middle", "top"), ("left", "center", "right")
+
+
+def _norm_param(key: str, value: Any) -> Any:
+    if not isinstance(value, str):
+        return value
+    words = value.lower().replace("centre", "center").replace("-", " ").split()
+    if key != "region":
+        return " ".join(words)
+    row = next((w for w in words if w in _ROWS or w in ("front", "back")), None)
+    col = next((w for w in words if w in _COLS), None)
+    if row is None and col is None:
+        return " ".join(words)
+    row = {"front": "bottom", "back": "top"}.get(row, row) if row is not None else "middle"
+    if col is None:
+        col = "center"
+    if row == "center":
+        row = "middle"
+    return f"{row} {col}"
+
+
 def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
     if exp.get("pattern") != got.get("pattern"):
         return False
+    for key in PARAMS:
+        if _norm_param(key, exp.get(key)) != _norm_param(key, got.get(key)):
+            return False
     objs = list(got.get("objects", []))
     if "objects" in exp:
-        if exp["pattern"] in ordered:
+        if exp["pattern"] in ordered and not exp.get("unordered"):
             if list(exp["objects"]) != objs:
                 return False
         elif sorted(exp["objects"]) != sorted(objs):
@@ -197,6 +278,8 @@ def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
 def goals_match(expected: dict, got: GoalSpec | dict) -> bool:
     """Whether ``got`` equals the expected goals under the rules above."""
     data = to_dict(got) if isinstance(got, GoalSpec) else got
+    if "any_of" in expected:
+        return any(goals_match(alt, data) for alt in expected["any_of"])
     exp_goals, got_goals = list(expected.get("goals", [])), list(data.get("goals", []))
     if len(exp_goals) != len(got_goals):
         return False

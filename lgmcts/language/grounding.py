@@ -63,8 +63,33 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "flower": ("blossom",),
 }
 
+#: Group nouns: words for a kind of thing that is no object's name ("the
+#: silverware", "the dishes"). A group noun selects every scene object whose
+#: category is one of its members (and is refused when there is none); the
+#: scene's own names always win over this table.
+GROUPS: dict[str, tuple[str, ...]] = {
+    "silverware": ("fork", "knife", "spoon", "chopstick", "spatula", "ladle"),
+    "cutlery": ("fork", "knife", "spoon", "chopstick"),
+    "flatware": ("fork", "knife", "spoon"),
+    "utensil": ("fork", "knife", "spoon", "spatula", "ladle", "whisk", "chopstick"),
+    "dish": ("plate", "bowl", "saucer"),
+    "dishware": ("plate", "bowl", "saucer", "mug", "cup"),
+    "crockery": ("plate", "bowl", "saucer", "mug", "cup"),
+    "tableware": ("plate", "bowl", "saucer", "mug", "cup", "fork", "knife", "spoon", "glass"),
+    "drinkware": ("mug", "cup", "glass", "bottle", "can"),
+    "container": ("bowl", "mug", "cup", "bottle", "can", "box", "jar", "glass", "basket"),
+    "drink": ("bottle", "can"),
+    "beverage": ("bottle", "can"),
+    "letter": ("letter",),
+    "toy": ("block", "ball", "letter"),
+    "shape": ("triangle", "square", "pentagon", "hexagon", "heart", "star", "cross", "ring", "flower", "diamond",
+              "circle"),
+}
+
+_PLURAL_ONLY = frozenset({"shape", "letter", "toy"})
+
 #: Words that name an object without a category.
-GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "piece", "pieces", "one", "ones"})
+GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "piece", "pieces", "one", "ones", "stuff"})
 
 #: Colour and texture words used only to recognise a reference to an object
 #: the scene does not have ("the purple giraffe").
@@ -137,6 +162,31 @@ def _plural(word: str) -> str:
     return word + "s"
 
 
+def _measure(shape) -> tuple[float, float, float]:
+    """(height, volume, width) of a scene shape (m, m^3, m)."""
+    import math
+
+    t = getattr(shape, "type", "")
+    if t == "box":
+        x, y, z = shape.size
+        return z, x * y * z, max(x, y)
+    if t == "cylinder":
+        return shape.height, math.pi * shape.radius**2 * shape.height, 2 * shape.radius
+    pts = [(p[0], p[1]) for p in getattr(shape, "points", [])]
+    if pts:
+        from shapely import MultiPoint
+
+        hull = MultiPoint(pts).convex_hull
+        if t == "points":
+            zs = [p[2] for p in shape.points]
+            h = max(zs) - min(zs)
+        else:
+            h = float(shape.height)
+        x0, y0, x1, y1 = hull.bounds
+        return h, hull.area * h, max(x1 - x0, y1 - y0)
+    return 0.0, 0.0, 0.0
+
+
 def _words(text: str) -> tuple[str, ...]:
     return tuple(t.text for t in tokenize(text))
 
@@ -156,6 +206,9 @@ class Vocabulary:
     #: Single words of the scene's colours ("swirl", "polka", "dot"), normalised
     #: by :func:`colour_words`, for colours given in part ("the swirl flower").
     color_words: frozenset[str] = frozenset()
+    #: (height, volume, width) of each object's shape, by id, for "greater
+    #: height than the X" and "smaller than the X".
+    measures: tuple[tuple[int, float, float, float], ...] = ()
 
     @classmethod
     def from_scene(cls, scene: SceneSpec) -> "Vocabulary":
@@ -178,6 +231,9 @@ class Vocabulary:
                 add(w[:-1] + (_plural(w[-1]),), n, True)
             if len(w) > 1 and len(w[-1]) == 1:  # "letters" selects every "letter x"
                 add((_plural(w[0]),), n, True)
+                add((w[0],), n, False)  # "every letter" (the longest form still wins: "letter a")
+                if w[-1] not in ("a", "i", "u", "r", "n", "w", "o"):
+                    add((w[-1],), n, False)  # "the yellow T"
         real = set(cats)
         for canon, syns in SYNONYMS.items():
             if canon not in names:
@@ -202,10 +258,22 @@ class Vocabulary:
                 variants.add(tuple("gray" if x == "grey" else "grey" if x == "gray" else x for x in w))
             for v in variants:
                 colors.setdefault(v, c)
+        real = set(cats)
+        for group, members in GROUPS.items():
+            hit = {n for n in names if any(n == m or n.startswith(m + " ") for m in members)}
+            gw = _words(group)
+            if not hit or gw in real:
+                continue
+            # "shape" alone is a word of patterns ("in a star shape"): only "shapes" is a group.
+            forms = (gw[:-1] + (_plural(gw[-1]),),) if group in _PLURAL_ONLY else (gw, gw[:-1] + (_plural(gw[-1]),))
+            for form in forms:
+                if form not in real:
+                    add(form, next(iter(hit)), True)
+                    cats[form][0].update(hit)
         frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
         heads = {k[0] for k in frozen}
         cwords = frozenset(w for _, _, c in objs for w in colour_words(c) if w not in heads)
-        return cls(frozen, colors, objs, cwords)
+        return cls(frozen, colors, objs, cwords, tuple((o.id, *_measure(o.shape)) for o in scene.objects))
 
     def longest(self, table: dict, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
         """Longest key of ``table`` starting at ``words[i]``; returns (key, end)."""
@@ -248,6 +316,13 @@ class Mention:
     #: the blue blocks"); ``"one"``: "the red one". Both take the category of
     #: a coordinated neighbour (see :func:`find_mentions`).
     head: str = ""
+    #: Attribute filters ``(attribute, op, reference)``: attribute one of
+    #: ``color``, ``name``, ``height``, ``volume``, ``width`` or ``value``
+    #: (the reference is then a mention whose matches are kept or removed),
+    #: op one of ``eq``, ``ne``, ``lt``, ``gt``.
+    filters: tuple[tuple[str, str, "Mention"], ...] = ()
+    #: "two of the three cans": the number of matches the phrase states.
+    of_count: int | None = None
 
 
 @dataclass(frozen=True)
@@ -269,7 +344,9 @@ _DETS: tuple[tuple[tuple[str, ...], str], ...] = tuple(
             (("the", "rest", "of", "the"), "other"), (("all", "other"), "other"), (("all", "the", "other"), "other"),
             (("all", "remaining"), "other"), (("remaining",), "other"), (("other",), "other"), (("another",), "another"),
             (("the",), "the"), (("a",), "one"), (("an",), "one"), (("any",), "one"), (("one", "of", "the"), "one"),
-            (("any", "one", "of", "the"), "one"), (("a", "single"), "one"), (("one",), "one"), (("some",), "all"),
+            (("any", "one", "of", "the"), "one"), (("a", "single"), "one"), (("one",), "one"), (("some", "of", "the"), "vague"),
+            (("some",), "vague"), (("a", "few"), "vague"), (("several",), "vague"), (("most", "of", "the"), "vague"),
+            (("most",), "vague"), (("half", "of", "the"), "half"), (("half", "the"), "half"), (("half",), "half"),
             (("those",), "all"), (("these",), "all"),
         ],
         key=lambda kv: -len(kv[0]),
@@ -302,6 +379,144 @@ _EXCEPT = tuple(
         key=lambda s: -len(s),
     )
 )
+
+# ---------------------------------------------------------------- attributes
+#: Relative-clause openers before an attribute ("whose", "with", "that have").
+_REL_OPEN = frozenset({"whose", "with", "of", "that", "which", "having", "has", "have", "are", "is", "who"})
+_ATTRS = {"color": "color", "colour": "color", "colors": "color", "colours": "color", "shape": "name",
+          "type": "name", "kind": "name", "category": "name", "class": "name", "size": "volume",
+          "volume": "volume", "volumn": "volume", "shapes": "name", "sizes": "volume", "height": "height", "width": "width"}
+#: Comparison words: (words, op). "not" before any of them negates eq.
+_CMP = tuple(
+    (tuple(w.split()), op)
+    for w, op in sorted(
+        [
+            ("equal to", "eq"), ("equal", "eq"), ("the same as", "eq"), ("same as", "eq"), ("identical to", "eq"),
+            ("identical", "eq"), ("alike", "eq"), ("similar", "eq"), ("equivalent to", "eq"), ("similar to", "eq"), ("like", "eq"),
+            ("matching", "eq"), ("matches", "eq"), ("match", "eq"), ("the same", "eq"), ("same", "eq"),
+            ("different with", "ne"), ("different from", "ne"), ("different than", "ne"), ("different to", "ne"),
+            ("different", "ne"), ("unlike", "ne"), ("not alike", "ne"),
+            ("less than", "lt"), ("smaller than", "lt"), ("shorter than", "lt"), ("narrower than", "lt"),
+            ("lower than", "lt"), ("smaller in size than", "lt"), ("smaller", "lt"), ("less", "lt"),
+            ("greater than", "gt"), ("bigger than", "gt"), ("larger than", "gt"), ("taller than", "gt"),
+            ("wider than", "gt"), ("higher than", "gt"), ("bigger in size than", "gt"), ("greater", "gt"),
+            ("bigger", "gt"), ("larger", "gt"), ("more", "gt"),
+        ],
+        key=lambda x: -len(x[0].split()),
+    )
+)
+#: Comparatives that imply their attribute ("taller than the bowl").
+_IMPLIED = {"taller": "height", "shorter": "height", "higher": "height", "lower": "height", "wider": "width",
+            "narrower": "width", "bigger": "volume", "larger": "volume", "smaller": "volume"}
+_NEG = {"eq": "ne", "ne": "eq", "lt": "ge", "gt": "le"}
+_PREP = frozenset({"to", "as", "from", "than", "with", "of"})
+#: Relative tolerance within which two measures count as equal.
+MEASURE_TOL = 0.05
+
+
+def _skip(words: tuple[str, ...], i: int, vocab_words: frozenset[str]) -> int:
+    while i < len(words) and words[i] in vocab_words:
+        i += 1
+    return i
+
+
+def _cmp_at(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
+    neg = False
+    if i < len(words) and words[i] in ("not", "isn't", "aren't", "n't"):
+        neg, i = True, i + 1
+    for seq, op in _CMP:
+        if _starts(words, i, seq):
+            return (_NEG[op] if neg else op), i + len(seq)
+    return None
+
+
+def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern_words: frozenset[str]):
+    """An attribute clause after a noun: ``((attribute, op, reference), end)`` or None.
+
+    Shapes (LGMCTS-D and StructFormer wording and free variants)::
+
+        [whose|with|that have ...] [the|a] ATTR [is|are] [not] CMP [to|as|from|than] REF
+        [whose|with|that have ...] [the|a] CMP ATTR [as|to|from|than] REF
+        [that|which] [is|are] [not] CMP-ADJ than REF       ("that are taller than the mug")
+        [that|which] [is|are] [not] VALUE                   ("that are red", "that are mug", "that are not red")
+    """
+    n = len(words)
+    j = i
+    opened = 0
+    while j < n and words[j] in _REL_OPEN and opened < 3:
+        j, opened = j + 1, opened + 1
+    if not opened:
+        # "objects identical to color X", "objects different from color X"
+        # (older LGMCTS-D wording): a comparison right before an attribute.
+        # "objects smaller than the plate": a comparative with "than" right after the noun.
+        got = _cmp_at(words, j)
+        if got is None:
+            return None
+        implied = words[j] in _IMPLIED and words[got[1] - 1] == "than"
+        if not implied and (got[1] >= n or words[got[1]] not in _ATTRS):
+            return None
+    k = j
+    if k < n and words[k] in ("the", "a", "an"):
+        k += 1
+    op = attr = None
+    # ATTR first
+    if k < n and words[k] in _ATTRS:
+        attr = _ATTRS[words[k]]
+        k2 = k + 1
+        while k2 < n and words[k2] in ("is", "are", "being"):
+            k2 += 1
+        got = _cmp_at(words, k2)
+        if got is not None:
+            op, k = got[0], got[1]
+    else:
+        got = _cmp_at(words, k)
+        if got is not None:
+            op0, k2 = got
+            if k2 < n and words[k2] in _ATTRS:
+                op, attr, k = op0, _ATTRS[words[k2]], k2 + 1
+            elif words[k2 - 1] in _IMPLIED or (k2 >= 2 and words[k2 - 2] in _IMPLIED):
+                imp = words[k2 - 1] if words[k2 - 1] in _IMPLIED else words[k2 - 2]
+                op, attr, k = op0, _IMPLIED[imp], k2
+    if op is not None and attr is not None:
+        # StructFormer's "objects that have the same color as the X" / "equal
+        # height as the X" leave the X out (it is the anchor of the query);
+        # LGMCTS-D's "whose color is ... X", "with/of/has the same color as X"
+        # put it in.
+        if op == "eq" and words[i] in ("that", "which") and any(w in ("have", "has") for w in words[i:j]):
+            op = "eqx"
+        while k < n and words[k] in _PREP:
+            k += 1
+        ref = _mention_at(vocab, words, k, pattern_words, nested=True)
+        if ref is None:
+            raise InputError(f"'{' '.join(words[i:k + 2])}': the reference object names nothing in the scene")
+        return (attr, op, ref), ref.end
+    # [is|are] [not] VALUE: a colour or a category ("that are red", "that are mug").
+    if words[j - 1] in ("is", "are") or (j < n and words[j] in ("is", "are")):
+        k = j + (1 if j < n and words[j] in ("is", "are") else 0)
+        neg = False
+        if k < n and words[k] in ("not", "n't"):
+            neg, k = True, k + 1
+        if k < n and words[k] in ("a", "an"):
+            k += 1
+        cols = _colors(vocab, words, k)
+        cat = None
+        if cols is not None:
+            k = cols[1]
+        if k < n:
+            cat = vocab.longest(vocab.categories, words, k)
+        if cols is None and cat is None:
+            return None
+        names = None
+        if cat is not None:
+            names = vocab.categories[cat[0]][0]
+            k = cat[1]
+        elif k < n and words[k] in GENERIC:
+            k += 1
+        value = Mention(j, k, " ".join(words[j:k]), "all", True, names, cols[0] if cols else None,
+                        cols[0] if cols else ())
+        return ("value", "ne" if neg else "eq", value), k
+    return None
+
 
 _ID_HEADS = frozenset({"object", "objects", "obj", "id", "ids", "item", "items", "number", "no"})
 _PRONOUNS = frozenset({"them", "it", "they", "those", "these"})
@@ -406,17 +621,35 @@ def _mention_at(
     if got is not None:
         ids, j = got
         return Mention(i, j, " ".join(words[i:j]), "ids", len(ids) > 1, ids=ids)
+    if not nested and i + 2 < n and words[i + 1] == "of" and words[i + 2] in ("them", "those", "these") and (
+            words[i] == "one" or words[i] in NUMBERS):
+        # "one of them", "two of those": a choice among what the pronoun refers to.
+        k = 1 if words[i] == "one" else NUMBERS[words[i]]
+        return Mention(i, i + 3, " ".join(words[i : i + 3]), "pronoun", k > 1, count=k)
     det, j = "", i
     for seq, kind in _DETS:
         if _starts(words, i, seq):
             det, j = kind, i + len(seq)
             break
+    if det == "the" and j < n and words[j] == "same" and j + 1 < n and words[j + 1] not in ("color", "colour", "shape",
+                                                                                        "size", "as"):
+        j += 1  # "the same can": the can named before (resolved by the parser)
+    non = None
+    if j + 1 < n and words[j] == "non":
+        got_c = _colors(vocab, words, j + 1)
+        if got_c is not None:  # "the non-red cans": every can but the red ones
+            non = got_c[0]
+            j = got_c[1]
     count = None
     num = _number(words, j)
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
         count, j = num
+        of_count = None
         if _starts(words, j, ("of", "the")):
             j += 2
+            got_n = _number(words, j)
+            if got_n is not None:  # "two of the three cans"
+                of_count, j = got_n
         det = "count" if det in ("", "the", "one") else det
         if j < n and words[j] in ("other", "more", "additional", "different", "remaining", "new", "further"):
             j += 1  # "three other blocks": three not named before
@@ -427,6 +660,7 @@ def _mention_at(
             det = "fresh"
     if det == "" and j < n and words[j] in _PRONOUNS and not nested:
         return Mention(i, j + 1, words[j], "pronoun", True)
+
     if det in ("the", "all", "other") and j < n and words[j] in ("rest", "others", "remaining"):
         end = j + 1
         return Mention(i, end, " ".join(words[i:end]), "other", True)
@@ -454,9 +688,12 @@ def _mention_at(
     elif j < n and words[j] in GENERIC:
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None
-        names, plural, end = None, words[j].endswith("s"), j + 1
-        if words[j] in ("one", "ones") and colors is not None:
+        names, plural, end = None, words[j].endswith("s") or words[j] == "stuff", j + 1
+        if words[j] in ("one", "ones") and (colors is not None or det == "other"):
             head = "one"
+    elif colors is None and det == "other" and words[i] == "the" and not nested and (j >= n or words[j] not in _COORD):
+        # "the other" with no noun: the other one of a pair named before it.
+        names, plural, end, head = None, False, j, "one"
     elif colors is not None and det in ("all", "other"):
         names, plural, end = None, True, j
     elif colors is not None:
@@ -472,27 +709,50 @@ def _mention_at(
             # noun is shared with a coordinated neighbour (resolved in find_mentions).
             return Mention(i, j, " ".join(words[i:j]), det or "the", False, None, colors, color_order,
                            head="elided")
+        if k == j and det == "" and not nested and len(colors) > 1 and all(
+                sum(c == oc for _, _, oc in vocab.objects) == 1 for c in colors):
+            # "purple, orange, yellow": each colour is the one object that has it.
+            return Mention(i, j, " ".join(words[i:j]), "all", True, None, colors, color_order)
+        if k == j and det == "" and not nested and not (j < n and words[j] in _COORD):
+            # A bare colour standing for its object ("stack red on blue"): the
+            # one object of that colour, refused as ambiguous when there are more.
+            return Mention(i, j, " ".join(words[i:j]), "the", False, None, colors, color_order)
         phrase = " ".join(words[i:k])
         raise InputError(f"'{phrase}' names nothing in the scene")
     else:
         return None
+    if det == "vague":
+        raise InputError(f"'{' '.join(words[i:end])}' does not say how many; name them, give a number or say all")
     if det == "both" and not plural:
         det = "the"
     if det == "" or (det == "the" and plural):
         det = "all" if plural else "the"
     if det == "count" and count == 1:
         det = "one"
-    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head)
+    m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head,
+                of_count=locals().get("of_count"))
+    if non is not None:
+        m = replace(m, filters=(("value", "ne", Mention(i, end, "non " + " ".join(non), "all", True, None, non, non)),))
     # Qualifiers.
     while end < n:
+        if everything is not None and m.colors is None and not m.filters:
+            cols2 = _colors(vocab, words, end)  # "anything blue", "everything white"
+            if cols2 is not None:
+                end = cols2[1]
+                m = replace(m, end=end, text=" ".join(words[i:end]), colors=cols2[0], color_order=cols2[0])
+                continue
+        aq = _attr_qualifier(vocab, words, end, pattern_words) if not nested else None
+        if aq is not None:
+            f, end = aq
+            m = replace(m, end=end, text=" ".join(words[i:end]), filters=m.filters + (f,))
+            continue
         q = next((s for s in _SAME_COLOR if _starts(words, end, s)), None)
         if q is not None:
             ref = _mention_at(vocab, words, end + len(q), pattern_words, nested=True)
             if ref is None:
                 raise InputError(f"'{' '.join(words[i:end + len(q) + 2])}': the colour reference names nothing in the scene")
             end = ref.end
-            m = Mention(i, end, " ".join(words[i:end]), m.det, m.plural, m.names, m.colors, m.color_order,
-                        count=m.count, same_color_as=ref, excluding=m.excluding)
+            m = replace(m, end=end, text=" ".join(words[i:end]), same_color_as=ref)
             continue
         q = next((s for s in _EXCEPT if _starts(words, end, s)), None)
         if q is not None:
@@ -518,8 +778,7 @@ def _mention_at(
                     break
                 raise InputError(f"'{' '.join(words[i:k + 2])}': cannot tell what to leave out")
             end = k
-            m = Mention(i, end, " ".join(words[i:end]), m.det, m.plural, m.names, m.colors, m.color_order,
-                        count=m.count, same_color_as=m.same_color_as, excluding=m.excluding + tuple(excl))
+            m = replace(m, end=end, text=" ".join(words[i:end]), excluding=m.excluding + tuple(excl))
             continue
         break
     return m
@@ -573,6 +832,9 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             later = [mentions[x] for x in g[pos + 1 :] if not mentions[x].head and mentions[x].names is not None]
             earlier = [mentions[x] for x in reversed(g[:pos]) if not mentions[x].head and mentions[x].names is not None]
             order = later + earlier if m.head == "elided" else earlier + later
+            if not order and m.head == "one":
+                # "stack the red block on the blue one": the nearest noun before it.
+                order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
             if not order:
                 if m.head == "elided":
                     raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")
@@ -635,7 +897,11 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         if len(ref_colors) != 1:
             raise InputError(f"'{m.same_color_as.text}' has several colours ({', '.join(sorted(ref_colors))})")
         (rc,) = ref_colors
-        out = [i for i in out if i not in ref and any(c == rc for j, _, c in vocab.objects if j == i)]
+        # As in the peers' object selectors, the reference object itself is
+        # one of "the objects whose color is the same as X".
+        out = [i for i in out if any(c == rc for j, _, c in vocab.objects if j == i)]
+    for f in m.filters:
+        out = _apply_filter(vocab, f, out, named)
     for e in m.excluding:
         ex = candidates(vocab, e, named=named, inherit=names)
         out = [i for i in out if i not in ex]
@@ -646,6 +912,46 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         color = {i: c for i, _, c in vocab.objects}
         out.sort(key=lambda i: (rank.get(color[i], 99), i))
     return out
+
+
+def _apply_filter(vocab: Vocabulary, f: tuple, out: list[int], named: frozenset[int]) -> list[int]:
+    attr, op, ref = f
+    if attr == "value":
+        vals = set(candidates(vocab, ref, named=named)) if _any_match(vocab, ref) else set()
+        return [i for i in out if (i in vals) == (op == "eq")]
+    if attr in ("color", "name"):
+        # "the same shape as heart" with several hearts: they share the value.
+        col = 2 if attr == "color" else 1
+        refs = candidates(vocab, ref, named=named)
+        if not refs:
+            raise InputError(f"nothing in the scene matches '{ref.text}'")
+        values = {o[col] for o in vocab.objects if o[0] in refs}
+        if len(values) != 1:
+            raise InputError(f"'{ref.text}' is ambiguous: it matches objects {describe(vocab, refs)} "
+                             f"of different {'colours' if attr == 'color' else 'kinds'}")
+        (rv,) = values
+        same = {o[0] for o in vocab.objects if o[col] == rv}
+        if op == "eqx":
+            return [i for i in out if i in same and i not in refs]
+        return [i for i in out if (i in same) == (op == "eq")]
+    sel = select(vocab, ref, named=named)
+    if isinstance(sel, Choice) or len(sel) != 1:
+        raise InputError(f"'{ref.text}' must name one definite object to compare with")
+    (r,) = sel
+    if op == "eqx":
+        out = [i for i in out if i != r]
+        op = "eq"
+    k = {"height": 1, "volume": 2, "width": 3}[attr]
+    meas = {x[0]: x[k] for x in vocab.measures}
+    rv = meas.get(r, 0.0)
+
+    def rel(v: float) -> str:
+        if abs(v - rv) <= MEASURE_TOL * max(abs(v), abs(rv), 1e-9):
+            return "eq"
+        return "lt" if v < rv else "gt"
+
+    keep = {"eq": ("eq",), "ne": ("lt", "gt"), "lt": ("lt",), "gt": ("gt",), "le": ("lt", "eq"), "ge": ("gt", "eq")}[op]
+    return [i for i in out if rel(meas.get(i, 0.0)) in keep]
 
 
 def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()) -> list[int] | Choice:
@@ -662,6 +968,8 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
     ids = candidates(vocab, m, named=named)
     if not ids:
         raise InputError(f"nothing in the scene matches '{m.text}'")
+    if m.of_count is not None and len(ids) != m.of_count:
+        raise InputError(f"'{m.text}' speaks of {m.of_count}, but {len(ids)} objects match: {describe(vocab, ids)}")
     if m.det in ("all", "ids"):
         return ids
     if m.det == "other":
@@ -680,6 +988,10 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
         if len(ids) != 2:
             raise InputError(f"'{m.text}' says both, but {len(ids)} objects match: {describe(vocab, ids)}")
         return ids
+    if m.det == "half":
+        if len(ids) % 2:
+            raise InputError(f"'{m.text}': half of {len(ids)} objects is not a whole number")
+        return Choice(tuple(ids), len(ids) // 2, m.text)
     k = 1 if m.det in ("one", "another") else int(m.count or 1)
     fresh = m.det in ("another", "fresh")
     if k < 1:

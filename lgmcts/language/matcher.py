@@ -75,11 +75,31 @@ class MatcherOptions:
         rank keys; it separates near-synonymous keys such as "to the left and
         behind" and "to the right and behind", which Sentence-BERT ranks within
         a few hundredths of each other.
+    word_accept, word_margin : float
+        A content word that occurs in no key still names pattern P when its
+        own embedding is at least ``word_accept`` from a key of P and
+        ``word_margin`` above every other pattern ("file" -> line 0.76,
+        "perimeter" -> rectangle 0.80, "round" -> circle 0.82).
+    unsupported : float
+        A content word at least this close to an arrangement the database
+        lacks (:data:`UNSUPPORTED`: "spiral", "triangle", "semicircle" ...),
+        and closer to it than to any key, makes the phrase refused: the
+        nearest supported pattern would be a wrong goal.
+    phrase_accept, phrase_margin : float
+        With words left unexplained, the whole phrase is still accepted when
+        its best key is at least ``phrase_accept`` and ``phrase_margin`` above
+        the best key of any other pattern ("formulate into a line" -> line
+        0.75 against 0.41).
     """
 
     accept: float = 0.86
     floor: float = 0.55
     lexical_weight: float = 0.25
+    word_accept: float = 0.68
+    word_margin: float = 0.15
+    unsupported: float = 0.75
+    phrase_accept: float = 0.72
+    phrase_margin: float = 0.15
 
 
 @dataclass(frozen=True)
@@ -110,6 +130,16 @@ class Match:
     def __bool__(self) -> bool:
         return self.pattern is not None
 
+
+#: Arrangements the database does not have. They serve as negative
+#: prototypes: a word nearer to one of them than to any key is not read as
+#: the nearest supported pattern ("spiral" is not a circle). A name that a
+#: registered pattern uses (a plug-in "zigzag") is dropped from the list.
+UNSUPPORTED: tuple[str, ...] = (
+    "spiral", "triangle", "zigzag", "pyramid", "grid", "heap", "scattered", "cluster", "cross", "star shape",
+    "diagonal", "wave", "arc", "semicircle", "random", "next to", "between", "near", "around", "inside", "hexagon",
+    "pentagon", "letter shape", "ellipse", "oval", "curve", "checkerboard", "v shape", "x shape", "heart shape",
+)
 
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -284,6 +314,9 @@ class PatternMatcher:
     _emb: np.ndarray | None = None
     _vocab: frozenset[str] = frozenset()
     _infos: dict[str, PatternInfo] = field(default_factory=dict)
+    _neg: tuple[str, ...] = ()
+    _word_owner: dict = field(default_factory=dict)
+    _neg_emb: np.ndarray | None = None
 
     def infos(self) -> dict[str, PatternInfo]:
         self._refresh()
@@ -298,6 +331,15 @@ class PatternMatcher:
             self._emb = None
             self._vocab = key_vocabulary(infos)
             self._infos = infos
+            names = {n for n, _ in keys} | {k for _, k in keys}
+            owner: dict[str, set[str]] = {}
+            for n, k in keys:
+                for w in content_words(k):
+                    if w not in FILLERS:
+                        owner.setdefault(w, set()).add(n)
+            self._word_owner = {w: frozenset(v) for w, v in owner.items()}
+            self._neg = tuple(x for x in UNSUPPORTED if x not in names and not set(content_words(x)) <= self._vocab)
+            self._neg_emb = None
 
     @property
     def vocabulary(self) -> frozenset[str]:
@@ -310,6 +352,41 @@ class PatternMatcher:
         if self._emb is None:
             self._emb = self.encoder.encode([k for _, k in self._keys])
         return self._emb
+
+    def prefetch(self, words: list[str]) -> None:
+        """Encode the words of a command that may be read one by one, in one batch (cached)."""
+        if words:
+            self.encoder.encode(list(words))
+
+    def word_pattern(self, word: str, *, allowed: frozenset[str] | None = None) -> tuple[str | None, float, bool]:
+        """What one content word that occurs in no key names, by its own embedding.
+
+        Returns ``(pattern, cosine, unsupported)``: the pattern it names when
+        it is near enough to that pattern's keys and clearly nearer than to
+        any other (see :class:`MatcherOptions`), ``None`` otherwise; and
+        whether it is rather the name of an arrangement the database lacks.
+        """
+        self._refresh()
+        emb = self.key_embeddings()
+        if self._neg_emb is None:
+            self._neg_emb = self.encoder.encode(list(self._neg)) if self._neg else np.zeros((0, emb.shape[1]), np.float32)
+        q = self.encoder.encode([word])[0]
+        cos = emb @ q
+        best: dict[str, float] = {}
+        for i, (n, _) in enumerate(self._keys):
+            if allowed is not None and n not in allowed:
+                continue
+            best[n] = max(best.get(n, -1.0), float(cos[i]))
+        ranked = sorted(best.items(), key=lambda kv: -kv[1])
+        neg = float((self._neg_emb @ q).max()) if len(self._neg) else -1.0
+        top, c = ranked[0] if ranked else (None, -1.0)
+        second = ranked[1][1] if len(ranked) > 1 else -1.0
+        if neg >= self.options.unsupported and neg > c:
+            return None, c, True
+        o = self.options
+        if top is not None and c >= o.word_accept and c - second >= o.word_margin and c > neg:
+            return top, c, False
+        return None, c, False
 
     def match(self, phrase: str, *, allowed: frozenset[str] | None = None) -> Match:
         """Best pattern for ``phrase`` or a falsy :class:`Match` with a reason.
@@ -351,7 +428,39 @@ class PatternMatcher:
         if c < self.options.floor:
             return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
         if unexplained and c < self.options.accept:
-            return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
+            # Words no key contains: read each by its own embedding.
+            named: set[str] = set()
+            rest = []
+            self.encoder.encode(list(dict.fromkeys(unexplained)))  # one batch for every word
+            for w in dict.fromkeys(unexplained):
+                p, _, unsupported = self.word_pattern(w, allowed=allowed)
+                if unsupported:
+                    return Match(None, c, self._keys[i][1], top, c, unexplained,
+                                 reason=f"'{w}' names an arrangement the database does not have")
+                if p is None:
+                    rest.append(w)
+                else:
+                    named.add(p)
+            if len(named) > 1:
+                return Match(None, c, self._keys[i][1], top, c, unexplained, reason="the words name different patterns")
+            if named and top not in named:
+                p = next(iter(named))
+                if p in best and not rest:
+                    s2, c2, i2 = best[p]
+                    return Match(p, c2, self._keys[i2][1], top, c, unexplained)
+                return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
+            if rest:
+                o = self.options
+                others = [v[1] for n, v in best.items() if n != top]
+                margin = c - max(others) if others else 1.0
+                # A key word of exactly one pattern ("line" in "chain them into a
+                # line") with the rest naming no other pattern and no missing
+                # arrangement: the rest are modifiers.
+                own = {n for w in words if w not in rest for n in self._word_owner.get(w, ())}
+                if own == {top} and not named:
+                    return m
+                if not (c >= o.phrase_accept and margin >= o.phrase_margin):
+                    return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
         return m
 
 

@@ -36,10 +36,11 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
+from .shapes import normalise, stack_roles, take_params
 
-__all__ = ["RulesOptions", "parse_rules", "split_clauses"]
+__all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
 _STRONG_WORDS = frozenset({"then", "while", "also", "afterwards", "meanwhile", "additionally", "furthermore", "whereas"})
 _STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"))
@@ -50,6 +51,8 @@ _LEADING = frozenset(
      "you", "would", "will", "whereas", "while", "afterwards"}
 )
 _COORD = frozenset({"and", ",", "&", "plus"})
+#: Where a clause naming two arrangements may be cut ("a line but the bottle behind the plate").
+_CUT = _COORD | {"but"}
 #: Verbs that start a new command after "and" or a comma ("stack the blocks
 #: and put the bowls in a line"); a list of objects never continues with one.
 _FRONTED = frozenset(
@@ -59,8 +62,21 @@ _FRONTED = frozenset(
 _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
-     "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand"}
+     "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
+     "use", "find"}
 )
+#: Verbs of a selection clause: it names objects for the next clause ("select
+#: objects that are red. circle"; "take the red mug and put it ...").
+_SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch"})
+_VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
+                        "directly", "right", "just", "then", "lies", "ends", "up", "will", "must", "sitting",
+                        "resting", "standing", "lying", "stacked", "set", "neatly", "squarely", "centred", "centered"})
+_VERT_ON = frozenset({("on",), ("onto",), ("on", "top", "of"), ("atop",), ("upon",), ("above",), ("over",),
+                      ("on", "to"), ("top", "of")})
+_VERT_UNDER = frozenset({("under",), ("below",), ("beneath",), ("underneath",), ("under", "neath")})
+_VERT_WORDS = frozenset(w for s in _VERT_ON | _VERT_UNDER for w in s)
+_INVERSE = {"left": "right", "right": "left", "front": "behind", "behind": "front", "left_front": "right_behind",
+            "right_behind": "left_front", "left_behind": "right_front", "right_front": "left_behind"}
 _ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
 #: Words never counted as naming an arrangement when deciding where to split.
 _NOT_PATTERN = frozenset({"other", "top", "exactly", "position", "coordinate", "shape", "pose", "this", "single"})
@@ -93,14 +109,25 @@ class _Pending:
     anchor: int | Choice | None
     pose: tuple[float, float, float] | None
     clause: str
+    params: dict = field(default_factory=dict)
 
 
 @dataclass
 class _State:
     named: set[int] = field(default_factory=set)
     last: list[int | Choice] = field(default_factory=list)
+    #: The anchor of the previous clause's relation, if it had one.
+    last_anchor: "int | Choice | None" = None
     #: The previous clause built a tower: "it" then means its top object.
     last_tower: bool = False
+    #: Objects chosen by a selection clause ("select objects that are red.").
+    selection: list[int | Choice] | None = None
+    #: A pattern named before its objects ("make a tower: ...").
+    header: tuple[str, dict, str] | None = None
+    #: "one X" choices made so far ("the other one" takes the one left).
+    choices: list = field(default_factory=list)
+    #: The tower of the previous clause, which "then the red block" extends.
+    tower: "_Pending | None" = None
 
 
 def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
@@ -211,17 +238,17 @@ def _weak_split(
             continue  # "to the left of the bowl, line up A and B": a fronted relation, its targets follow
         cut = None
         _, hi = gaps[p]
-        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _COORD]
+        after = [k for k in range(ppos[-1] + 1, min(hi, qpos[0])) if words[k] in _CUT]
         if after:
             cut = after[0]
         else:
             qlo, _ = gaps[q]
-            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _COORD]
+            before = [k for k in range(max(qlo, ppos[-1] + 1), qpos[0]) if words[k] in _CUT]
             if before:
                 cut = before[-1]
             elif any(words[k] in rel_words for k in ppos) and q > p + 1:
                 alo, ahi = gaps[p + 1]
-                if ahi > alo and all(words[k] in _COORD for k in range(alo, ahi)):
+                if ahi > alo and all(words[k] in _CUT for k in range(alo, ahi)):
                     cut = alo
         if cut is not None and (not cuts or cut > cuts[-1]):
             cuts.append(cut)
@@ -238,9 +265,19 @@ def _weak_split(
 def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[str, ...]]:
     """Cut "A on B and C on D" into "A on B" and "C on D" (two stacking steps)."""
     cuts = []
+    if len(mentions) == 3:
+        # "the bowl on the plate, the forks lined up on the left": a stacking
+        # step, then a clause about the third object.
+        a, b, c = mentions
+        tail = [w for w in words[c.end:] if w not in _COORD]
+        if (words[a.end : b.start] in _ON_WORDS and b.end < c.start and tail
+                and all(w in _COORD for w in words[b.end : c.start])):
+            cuts.append((b.end, c.start))
     for k in range(1, len(mentions) - 2):
         a, b, c, d = mentions[k - 1], mentions[k], mentions[k + 1], mentions[k + 2]
-        if (words[a.end : b.start] in _ON_WORDS and words[c.end : d.start] in _ON_WORDS
+        # "A on B and C on D", "A on B and C behind D": C starts a second step.
+        if (words[a.end : b.start] in _ON_WORDS and c.end < d.start
+                and not all(w in _COORD for w in words[c.end : d.start])
                 and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
     if not cuts:
@@ -306,30 +343,255 @@ class _Parser:
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         m = self.matcher.match(phrase, allowed=allowed)
+        if m and m.pattern in RELATIONS:
+            # Directions compose: the direction words of the phrase fix the
+            # relation exactly ("at the back right of" is right_behind even
+            # where the sentence model puts it nearer "front right of").
+            d = _direction(phrase)
+            if d is not None and d != m.pattern and d in allowed:
+                m = replace(m, pattern=d)
         if not m:
             known = ", ".join(sorted(self.infos))
             if m.reason == "no arrangement is named":
                 raise InputError(f"'{text}' does not say how to arrange the objects (known patterns: {known})")
             hint = f"; closest is '{m.runner_up}' ({m.score:.2f})" if m.runner_up else ""
-            raise InputError(f"no pattern in the database matches '{phrase or text}'{hint}; known patterns: {known}")
+            why = f" ({m.reason})" if m.reason.startswith("'") else ""
+            raise InputError(f"no pattern in the database matches '{phrase or text}'{why}{hint}; known patterns: {known}")
         return m
+
+    def _free_word(self, w: str) -> bool:
+        """Whether ``w`` names a pattern that takes no anchor (a shape), by its keys or its embedding."""
+        rel, free = self._word_kinds()
+        st = _stem(w)
+        if st in free or (st in self.key_vocab and st not in rel and st not in FILLERS and st not in _NOT_PATTERN):
+            return True
+        if st in rel or st in STOPWORDS or st in FILLERS or not w.isalpha() or len(w) < 4:
+            return False
+        p, _, _ = self.matcher.word_pattern(w)
+        return p is not None and not self.infos[p].anchored
+
+    def _roles(self, words: tuple[str, ...], mentions: list[Mention]):
+        """Stack roles right after mentions ("the blue block as the base"); words without them.
+
+        Read only in a clause about stacking (a tower word, a tower named
+        before, or two role phrases): elsewhere "in the middle" is a place.
+        """
+        roles: dict[int, str] = {}
+        drop: set[int] = set()
+        for m in mentions:
+            if m.start in drop:
+                continue
+            got = stack_roles(words, m.end)
+            if got is None:
+                continue
+            role, end = got
+            roles[m.start] = role
+            drop.update(range(m.end, end))
+        if not drop:
+            return None, words
+        towerish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or len(roles) >= 2 \
+            or (self.state.header is not None and self.state.header[0] == "tower") or self.state.tower is not None
+        if not towerish:
+            return None, words
+        kept = [k for k in range(len(words)) if k not in drop]
+        new_pos = {k: n for n, k in enumerate(kept)}
+        return {new_pos[s]: r for s, r in roles.items()}, tuple(words[k] for k in kept)
+
+    _DETACHED_EXCEPT = (("except", "for"), ("except",), ("excluding",), ("apart", "from"), ("other", "than"),
+                        ("but", "not"), ("save", "for"), ("leaving", "out"), ("minus",))
+
+    def _detached_exception(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
+        """"put the red things in a line except the block": the exception moved next to its set."""
+        for k in range(1, len(mentions)):
+            m2, m1 = mentions[k], mentions[k - 1]
+            seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
+            if seq is None or m1.end >= m2.start - len(seq) or not m1.plural:
+                continue
+            try:
+                from .grounding import candidates as _cands
+
+                inner = set(_cands(self.vocab, m2)) & set(_cands(self.vocab, m1))
+            except InputError:
+                continue
+            if not inner:
+                continue
+            lo = m2.start - len(seq)
+            block = words[lo : m2.end]
+            rest = words[: m1.end] + block + words[m1.end : lo] + words[m2.end :]
+            return tuple(rest)
+        return None
+
+    def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
+        """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
+        main, sub = words[:k], words[k + n_skip :]
+        text = " ".join(words)
+        mentions = find_mentions(self.vocab, main, self.key_vocab)
+        if not mentions:
+            raise InputError(f"'{text}': say which object to move")
+        movers: list[int | Choice] = []
+        for m in mentions:
+            sel = self._select(m)
+            movers.extend(sel if isinstance(sel, list) else [sel])
+        self.state.last = list(movers)
+        self.state.last_tower = False
+        out = self.clause(sub)
+        res = []
+        for p in out:
+            if any(o in movers for o in p.objects):
+                res.append(p)
+            elif p.anchor is not None and p.anchor in movers and p.pattern in _INVERSE and len(p.objects) == 1:
+                res.append(_Pending(_INVERSE[p.pattern], [p.anchor], p.objects[0], None, text))
+            elif p.pattern == "tower" and any(o in movers for o in p.objects):
+                res.append(p)
+            else:
+                raise InputError(f"'{text}': the goal after 'so that' does not involve the object to move")
+        return res
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
         text = " ".join(words)
         if any(w in ("itself", "themselves", "himself", "herself") for w in words):
             raise InputError(f"'{text}': an object cannot be placed relative to itself")
+        for k in range(1, len(words) - 1):
+            if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
+                return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
         mentions = find_mentions(self.vocab, words, self.key_vocab)
+        role_at, reduced = self._roles(words, mentions)
+        if role_at is not None:
+            words = reduced
+            mentions = find_mentions(self.vocab, words, self.key_vocab)
+        moved = self._detached_exception(words, mentions)
+        if moved is not None:
+            words = moved
+            text = " ".join(words)
+            mentions = find_mentions(self.vocab, words, self.key_vocab)
+        params: dict = {}
+        inside = {k for m in mentions for k in range(m.start, m.end)}
+        if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
+            stackish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or (
+                self.state.header is not None and self.state.header[0] == "tower")
+            order_by = None
+            sup = re.search(r"\b(largest|biggest|widest|heaviest|tallest|smallest|lightest|narrowest)( one| ones)? "
+                            r"(at the bottom|on the bottom|at the base|as the base|on top|at the top)\b", " ".join(words))
+            if stackish and sup:
+                big = sup.group(1) in ("largest", "biggest", "widest", "heaviest", "tallest")
+                order_by = "desc" if big == ("bottom" in sup.group(3) or "base" in sup.group(3)) else "asc"
+                cut = set(range(len(" ".join(words)[: sup.start()].split()),
+                                len(" ".join(words)[: sup.end()].split())))
+                words = tuple(w for k, w in enumerate(words) if k not in cut)
+                mentions = find_mentions(self.vocab, words, self.key_vocab)
+            self._order_by = order_by
+            params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions}, stack=stackish)
+            if words2 != words:
+                words = words2
+                mentions = find_mentions(self.vocab, words, self.key_vocab)
+                if role_at is not None:
+                    role_at = None  # positions moved; roles and places are not mixed
+        roles = [role_at.get(m.start) for m in mentions] if role_at else None
+        text = " ".join(words)
         groups, gaps = _groups(words, mentions)
         rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
         while rest and words[rest[0]] in _LEADING:
             rest = rest[1:]
         phrase_words = [words[k] for k in rest]
         self._unknown_objects(words, rest, mentions)
+        for k in rest[:-1]:
+            nxt = words[k + 1] if k + 1 < len(words) else ""
+            if (words[k] in NUMBERS or words[k] in ("several", "multiple", "separate")) and nxt.endswith("s") \
+                    and self._free_word(nxt):
+                raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
+                                 f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
         if not mentions:
             if not meaningful:
                 return []  # a preamble such as "set the table" or "please"
+            if self.state.selection is not None:
+                # "select objects that are red. small circle in the top left": the
+                # structure sentence takes the objects selected before it.
+                sel = self.state.selection
+                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                     if not i.anchored and not i.needs_pose))
+                p = self._shape(m.pattern, [[sel]], words, [], text, phrase_words)
+                p.params = params
+                return [p]
+            if any(self._free_word(w) for w in meaningful):
+                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                     if not i.anchored and not i.needs_pose))
+                self.state.header = (m.pattern, params, text)
+                return []  # "make a tower:" names its objects in the next clause
             raise InputError(f"'{text}' names no object in the scene")
+        if words[0] in _SELECT_VERBS and roles is None and all(
+                w in _SELECT_VERBS or w in ("up", "out", "only", "just") for w in meaningful):
+            sel: list[int | Choice] = []
+            for g in groups:
+                for got in self._select_group(g):
+                    for x in got if isinstance(got, list) else [got]:
+                        if x not in sel:
+                            sel.append(x)
+            self.state.selection = sel
+            self.state.last = list(sel)
+            self.state.last_tower = False
+            if self.state.header is not None:
+                # "small line in the top left. select objects that are mug.": the
+                # structure sentence first, its objects selected after it.
+                pat, hparams, htext = self.state.header
+                self.state.header = None
+                p = self._shape(pat, [[sel]], words, [], htext, [])
+                p.params = dict(hparams)
+                return [p]
+            return []
+        if (roles is not None and self.state.tower is not None and self.state.header is None
+                and not any(self._free_word(w) for w in meaningful) and any(roles)):
+            # "...; the red one goes in between": a role for an object of the tower just built.
+            tower = self.state.tower.objects
+            for mm, r in zip(mentions, roles):
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x in tower:
+                        tower.remove(x)
+                    at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, len(tower))
+                    tower.insert(at, x)
+            return []
+        if roles is not None and not any(self._free_word(w) for w in meaningful):
+            phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
+            meaningful = ["stack"]
+            if self.state.header is not None and self.state.header[0] == "tower":
+                params = {**self.state.header[1], **params}
+                self.state.header = None
+        joined = " ".join(phrase_words)
+        if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
+                     joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
+            # "the cans behind each other", "next to one another": one after the other, a line.
+            phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
+            meaningful = ["line"]
+        vertical = None
+        if len(groups) == 2 and roles is None:
+            lo, hi = gaps[1]
+            between = tuple(w for w in words[lo:hi] if w not in _VERT_SKIP and w != "the")
+            if between in _VERT_ON or between in _VERT_UNDER:
+                others = [w for w in meaningful if w not in _VERT_WORDS and w not in _VERT_SKIP
+                          and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")]
+                if not others:
+                    vertical = "on" if between in _VERT_ON else "under"
+                    phrase_words = ["stack"]
+                    meaningful = ["stack"]
+        if not meaningful and self.state.header is not None:
+            pat, hparams, _ = self.state.header
+            self.state.header = None
+            sels = [self._select_group(g) for g in groups]
+            # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
+            p = self._shape(pat, sels, words, gaps, text, phrase_words, defer_min=True)
+            p.params = {**hparams, **params}
+            return [p]
+        if not meaningful and self.state.tower is not None and len(groups) == 1:
+            # "stack A as the base, then B, then C": each next clause goes on top.
+            tower = self.state.tower
+            for mm in groups[0]:
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x in tower.objects:
+                        tower.objects.remove(x)
+                    tower.objects.append(x)
+            return []
         # Order and emphasis words ("the first one at the bottom", "another")
         # carry no pattern meaning: leave them out of the phrase to match.
         phrase = " ".join(w for w in phrase_words if w not in _ALLOWED_EXTRA or _stem(w) in self.key_vocab)
@@ -345,7 +607,7 @@ class _Parser:
         rel_words, free_words = self._word_kinds()
         rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
         free_pos = [k for k in rest if _stem(words[k]) in free_words]
-        sels = [[self._select(mm) for mm in g] for g in groups]
+        sels = [self._select_group(g) for g in groups]
         if re.search(r"\b(another|second|new|separate|different)\b", phrase):
             # "another line": a second arrangement of objects no other goal uses.
             sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
@@ -364,6 +626,7 @@ class _Parser:
             out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
             targets = out[0].objects
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
+            out[-1].params = params
             return out
         m = self._match(phrase, text, usable)
         if infos[m.pattern].anchored:
@@ -372,7 +635,16 @@ class _Parser:
                 counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
             p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
             return self._relation(m.pattern, groups, sels, p, text)
-        return [self._shape(m.pattern, sels, words, gaps, text, phrase_words)]
+        role_of: dict = {}
+        if roles is not None:
+            for mm, r in zip(mentions, roles):
+                if r is not None:
+                    got = self._select(mm)
+                    for x in got if isinstance(got, list) else [got]:
+                        role_of[x] = r
+        shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of)
+        shape.params = params
+        return [shape]
 
     def _relation(self, pattern: str, groups, sels, p: int, text: str) -> list[_Pending]:
         words_rel = pattern.replace("_", " and ")
@@ -398,13 +670,17 @@ class _Parser:
             raise InputError(f"'{text}': an object cannot be {words_rel} of itself")
         self.state.last = targets
         self.state.last_tower = False
+        self.state.tower = None
+        self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
-    def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words) -> _Pending:
+    def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
+               roles: dict | None = None, defer_min: bool = False) -> _Pending:
         info = self.infos[pattern]
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
-            if any(tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1]):
+            if vertical == "on" or (vertical is None and any(
+                    tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1])):
                 order.reverse()
         objs: list[int | Choice] = []
         for g in order:
@@ -414,8 +690,18 @@ class _Parser:
                         objs.append(x)
         if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
             objs.reverse()
+        if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):
+            # "largest at the bottom": by volume, largest first (or smallest first).
+            vol = {x[0]: x[2] for x in self.vocab.measures}
+            objs = sorted(objs, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))
+            self._order_by = None
+        if roles:
+            # Stack roles: bottom first, then "goes on it"/"next" in order, the
+            # middle, the objects without a role, the top last.
+            rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
+            objs = sorted(objs, key=lambda x: rank[roles.get(x)])
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
-        if n < info.min_objects:
+        if n < info.min_objects and not (pattern == "tower" and defer_min):
             noun = "object" if n == 1 else "objects"
             raise InputError(f"'{text}': a {pattern} needs at least {info.min_objects} objects, this names {n} {noun}")
         pose = None
@@ -428,23 +714,78 @@ class _Parser:
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
         self.state.last_tower = pattern == "tower"
-        return _Pending(pattern, objs, None, pose, text)
+        self.state.last_anchor = None
+        out = _Pending(pattern, objs, None, pose, text)
+        self.state.tower = out if pattern == "tower" else None
+        return out
+
+    def _select_group(self, group: list[Mention]) -> list:
+        """Resolve a list of mentions; a description repeated in the list as many times as it has
+        matches names each of them once ("white triangle, blue triangle, white triangle" with two
+        white triangles)."""
+        out: list = []
+        done: set[str] = set()
+        for mm in group:
+            try:
+                out.append(self._select(mm))
+            except InputError as exc:
+                key = mm.text.removeprefix("the ").strip()
+                same = [x for x in group if x.text.removeprefix("the ").strip() == key]
+                if "ambiguous" not in str(exc) or len(same) < 2:
+                    raise
+                ids = candidates(self.vocab, mm)
+                if len(ids) != len(same):
+                    raise
+                if key not in done:
+                    done.add(key)
+                    self.state.named.update(ids)
+                    out.append(list(ids))
+        return out
 
     def _select(self, m: Mention) -> list[int] | Choice:
         if m.det == "pronoun":
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last
+            if m.count:
+                # "one of them": any one of the objects "them" refers to.
+                opts = tuple(x for x in last if isinstance(x, int))
+                if len(opts) < m.count or len(opts) != len(last):
+                    raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
+                return Choice(opts, m.count, m.text)
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
+            if m.text == "it" and len(last) > 1 and not self.state.last_tower:
+                # "it" is one object: with several placed before, it is the one they were placed by.
+                if isinstance(self.state.last_anchor, int):
+                    return [self.state.last_anchor]
+                raise InputError(f"'{m.text}' is unclear: the clause before it places {len(last)} objects")
             if len(last) == 1 and isinstance(last[0], Choice):
                 return last[0]
             if any(isinstance(x, Choice) for x in last):
                 raise InputError(f"'{m.text}' is unclear: the objects it refers to are not fixed yet")
             return [x for x in last if isinstance(x, int)]
-        sel = select(self.vocab, m, named=frozenset(self.state.named))
+        if m.det == "other" and m.names is None and not m.plural and self.state.choices:
+            # "one mug ... the other one": the one of two that the first did not take.
+            prev = self.state.choices[-1]
+            if prev.k == 1 and len(prev.options) == 2:
+                return Choice(prev.options, 1, m.text, fresh=True)
+        try:
+            sel = select(self.vocab, m, named=frozenset(self.state.named))
+        except InputError as exc:
+            # A definite reference that fits several objects but exactly one
+            # named before it in the command means that one ("move the red mug
+            # so that the plate ends up on the mug's right").
+            if m.det != "the" or "ambiguous" not in str(exc):
+                raise
+            earlier = [i for i in candidates(self.vocab, m) if i in self.state.named]
+            if len(earlier) != 1:
+                raise
+            sel = earlier
         if isinstance(sel, list):
             self.state.named.update(sel)
+        else:
+            self.state.choices.append(sel)
         return sel
 
     def _unknown_objects(self, words: tuple[str, ...], rest: list[int], mentions: list[Mention]) -> None:
@@ -452,10 +793,13 @@ class _Parser:
         restset = set(rest)
         for k in rest:
             w = words[k]
-            if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA:
+            if not w.isalpha() or w in STOPWORDS or w in FILLERS or w in _ALLOWED_EXTRA or w in NUMBERS:
                 continue
-            if _stem(w) in self.key_vocab:
+            if _stem(w) in self.key_vocab or self._pattern_word(w):
                 continue
+            nxt = [words[x] for x in range(k + 1, min(k + 4, len(words)))]
+            if nxt[:1] == ["of"] and any(_stem(x) in self.key_vocab or self._free_word(x) for x in nxt[1:]):
+                continue  # "each corner of a square", "the perimeter of a circle": a part of the shape
             j = k - 1
             while j >= 0 and j in restset and words[j] not in _DET_WORDS and words[j].isalpha() and words[j] not in STOPWORDS:
                 j -= 1
@@ -472,13 +816,32 @@ class _Parser:
                     raise InputError(f"nothing in the scene matches '{' '.join(words[j:end])}' (no {w} object)")
                 raise InputError(f"'{' '.join(words[j:end])}' names nothing in the scene")
 
+    def _pattern_word(self, w: str) -> bool:
+        """Whether ``w``, in no key, still names a pattern by its embedding ("perimeter")."""
+        if not w.isalpha() or len(w) < 3:
+            return False
+        p, _, unsupported = self.matcher.word_pattern(w)
+        return p is not None
+
     # ------------------------------------------------------------ the command
     def command(self, text: str) -> GoalSpec:
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
-        words = tuple(t.text for t in tokenize(text))
+        text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
+                      r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
+        words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
+        # Words that may be read by their own embedding, encoded in one batch
+        # (one forward pass for all of them instead of one per word).
+        cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
+                and _stem(w) not in STOPWORDS and _stem(w) not in FILLERS and w not in STOPWORDS
+                and (w,) not in self.vocab.categories and w not in self.vocab.color_words and w not in COLOUR_WORDS]
+        if cand:
+            self.matcher.prefetch(cand)
+        dinner = self._dinner(words)
+        if dinner is not None:
+            return self._finish(dinner)
         pending: list[_Pending] = []
         for clause in split_clauses(words):
             mentions = find_mentions(self.vocab, clause, self.key_vocab)
@@ -489,11 +852,83 @@ class _Parser:
                         sub = sub[1:]
                     if sub:
                         pending.extend(self.clause(sub))
+        if self.state.header is not None:
+            raise InputError(f"'{self.state.header[2]}' names no object in the scene")
         if not pending:
+            if self.state.selection is not None:
+                raise InputError("the instruction selects objects but does not say how to arrange them")
             raise InputError("the instruction names nothing to arrange")
         return self._finish(pending)
 
+    # ------------------------------------------------------------ dinner
+    _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
+               ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"))
+
+    def _dinner(self, words: tuple[str, ...]) -> list[_Pending] | None:
+        """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
+        lined up beside it (the StructFormer-style composite goal). Only when nothing else is asked.
+        """
+        k = next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
+        if k is None:
+            return None
+        seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
+        rest = words[:k] + words[k + len(seq):]
+        # Objects named along with it must be the setting's own (plate, bowls,
+        # cutlery: "set a place: bowl on the plate, silverware on the left");
+        # anything else ("Set the table: put the mugs ...") is read by the
+        # ordinary grammar.
+        plates = {"plate"}
+        cutlery = {"fork", "knife", "spoon", "chopstick", "chopsticks"}
+        own = plates | {"bowl"} | cutlery
+        named: dict[str, list[int]] = {"plate": [], "bowl": [], "cut": []}
+        for m in find_mentions(self.vocab, rest, self.key_vocab):
+            if m.names is None or not set(m.names) <= own or m.det == "pronoun":
+                return None
+            got = self._select(m)
+            for x in got if isinstance(got, list) else []:
+                nm = next(n for i, n, _ in self.vocab.objects if i == x)
+                named["plate" if nm in plates else "bowl" if nm == "bowl" else "cut"].append(x)
+        side = "left"
+        for w, sd in (("right", "right"), ("left", "left")):
+            if w in rest:
+                side = sd
+        params, rest2 = take_params(rest, lambda w: True) if any(
+            w in rest for w in ("small", "medium", "large", "big", "facing", "top", "bottom", "middle", "center")) else ({}, rest)
+        by = {n: [i for i, nn, _ in self.vocab.objects if nn == n] for n in ("plate", "bowl")}
+        cut = named["cut"] or [i for i, nn, _ in self.vocab.objects if nn in cutlery]
+        if named["plate"]:
+            by["plate"] = sorted(set(named["plate"]))
+        if named["bowl"]:
+            by["bowl"] = list(dict.fromkeys(named["bowl"]))
+        if len(by["plate"]) != 1:
+            raise InputError(f"'{' '.join(words)}': a dinner setting needs exactly one plate, the scene has {len(by['plate'])}")
+        if len(cut) < 2:
+            raise InputError(f"'{' '.join(words)}': a dinner setting needs at least two pieces of cutlery")
+        plate = by["plate"][0]
+        meas = {x[0]: x[2] for x in self.vocab.measures}
+        bowls = sorted(by["bowl"], key=lambda i: (-meas.get(i, 0.0), i))
+        text = " ".join(words)
+        out = []
+        # Where and which way the setting goes is said of the plate, its centre.
+        if bowls:
+            out.append(_Pending("tower", [plate, *bowls], None, None, text, dict(params)))
+        out.append(_Pending("line", list(cut), None, None, text, {} if bowls else dict(params)))
+        out.append(_Pending(side, list(cut), plate, None, text))
+        return out
+
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
+        for p in pending:
+            if p.pattern == "tower" and p.anchor is None:
+                n = sum(x.k if isinstance(x, Choice) else 1 for x in p.objects)
+                if n < self.infos["tower"].min_objects:
+                    raise InputError(f"'{p.clause}': a tower needs at least {self.infos['tower'].min_objects} objects, "
+                                     f"this names {n} object{'' if n == 1 else 's'}")
+            # "stack three blocks: red at the bottom, then blue, then green": the
+            # blocks named one by one are the three.
+            if p.pattern == "tower":
+                for c in [x for x in p.objects if isinstance(x, Choice)]:
+                    if sum(1 for x in p.objects if isinstance(x, int) and x in c.options) >= c.k:
+                        p.objects.remove(c)
         picked: dict[int, list[int]] = {}
         used: set[int] = set()
         for p in pending:
@@ -549,10 +984,17 @@ class _Parser:
                 g["anchor"] = anchor
             if p.pose is not None:
                 g["pose"] = list(p.pose)
+            if p.params and anchor is None and p.pose is None:
+                g.update(p.params)
             if g not in goals:
                 goals.append(g)
         goals = _chain_towers(goals)
+        goals = [g for k, g in enumerate(goals) if g not in goals[:k]]
+        goals = _merge_relations(goals)
         self._contradictions(goals)
+        self.goal_dicts = [dict(g) for g in goals]
+        if not _params_accepted():
+            goals = [{k: v for k, v in g.items() if k not in _PARAM_KEYS} for g in goals]
         spec = parse_goals({"goals": goals})
         try:
             spec.check_against(self.spec)
@@ -636,6 +1078,68 @@ def _chain_towers(goals: list[dict]) -> list[dict]:
                    for big in towers)
 
     return [g for g in goals if g["pattern"] != "tower" or not inside(g["objects"])]
+
+
+_PARAM_KEYS = ("region", "size", "facing")
+
+
+def _params_accepted() -> bool:
+    """Whether the goal format has the optional parameters region, size and facing."""
+    from ..formats import Goal
+
+    return all(k in Goal.model_fields for k in _PARAM_KEYS)
+
+
+def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: RulesOptions | None = None) -> list[dict]:
+    """The goals the parser reads, as dicts with their parameters (region, size, facing) even where the
+    goal format does not take them yet."""
+    p = _Parser(spec, matcher, options or RulesOptions())
+    p.command(text)
+    return p.goal_dicts
+
+
+def _merge_relations(goals: list[dict]) -> list[dict]:
+    """Relation goals with one relation and one anchor whose objects together are exactly the
+    objects of an arrangement of the same command become one goal: "put the spoon left of the plate;
+    put the fork left of the plate; put the fork and the spoon in a line" is the line left of the
+    plate (a relation holds object by object, so this changes nothing it asks). Other relation
+    goals stay one per clause."""
+    shapes = [set(g["objects"]) for g in goals if g["pattern"] not in RELATIONS]
+    groups: dict[tuple, list[int]] = {}
+    for k, g in enumerate(goals):
+        if g["pattern"] in RELATIONS and "anchor" in g:
+            groups.setdefault((g["pattern"], g["anchor"], tuple(sorted(set(g) - {"objects"}))), []).append(k)
+    drop: set[int] = set()
+    merged: dict[int, dict] = {}
+    for ks in groups.values():
+        if len(ks) < 2:
+            continue
+        union: list[int] = []
+        for k in ks:
+            union += [o for o in goals[k]["objects"] if o not in union]
+        if set(union) in shapes:
+            merged[ks[0]] = dict(goals[ks[0]], objects=union)
+            drop.update(ks[1:])
+    return [merged.get(k, g) for k, g in enumerate(goals) if k not in drop]
+
+
+_DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
+              "rear": (0, 1)}
+
+
+def _direction(phrase: str) -> str | None:
+    """The relation the direction words of ``phrase`` compose to, or None."""
+    words = set(re.findall(r"[a-z]+", phrase.lower()))
+    hit = [_DIR_WORDS[w] for w in words if w in _DIR_WORDS]
+    if not hit:
+        return None
+    xs, ys = {h[0] for h in hit if h[0]}, {h[1] for h in hit if h[1]}
+    if len(xs) > 1 or len(ys) > 1:
+        return None  # "left and right": a contradiction, left to the checks
+    x, y = (xs.pop() if xs else 0), (ys.pop() if ys else 0)
+    name = {(-1, 0): "left", (1, 0): "right", (0, -1): "front", (0, 1): "behind", (-1, -1): "left_front",
+            (-1, 1): "left_behind", (1, -1): "right_front", (1, 1): "right_behind"}[(x, y)]
+    return name if name in RELATIONS else None
 
 
 def _is_number(w: str) -> bool:

@@ -15,7 +15,10 @@ from dataclasses import dataclass, replace
 from typing import Any, ClassVar, Protocol
 
 import numpy as np
+import shapely
 
+from ..params import GoalParams
+from ..params import resolve as resolve_params
 from ..scene import TABLE, Scene, State
 
 __all__ = [
@@ -24,6 +27,7 @@ __all__ = [
     "MODULES_ENV",
     "GoalProgress",
     "CompiledGoal",
+    "compile_params",
     "Context",
     "register",
     "registry",
@@ -46,13 +50,31 @@ EDGE_EPS = 1e-9
 
 @dataclass(frozen=True)
 class CompiledGoal:
-    """A goal with object ids replaced by scene indices."""
+    """A goal with object ids replaced by scene indices; ``params`` are its
+    region, size and facing in numbers (:func:`compile_params`)."""
 
     k: int
     pattern: str
     objects: tuple[int, ...]
     anchor: int | None = None
     pose: tuple[float, float, float] | None = None
+    params: GoalParams = GoalParams()
+
+
+#: How far the priors let centres go outside a goal's region box (m), a
+#: third of the validator's 0.015 m tolerance: small regions hold more.
+REGION_SLACK = 0.005
+
+
+def compile_params(goal: Any, scene: Scene) -> GoalParams:
+    """A format goal's region, size and facing resolved for ``scene``, as the
+    priors use them (the region box grown by :data:`REGION_SLACK`)."""
+    gp = resolve_params(goal, scene.bounds, scene.radii[[scene.index[i] for i in goal.objects]])
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        e = REGION_SLACK
+        gp = replace(gp, box=(x0 - e, x1 + e, y0 - e, y1 + e))
+    return gp
 
 
 @dataclass(frozen=True)
@@ -239,6 +261,72 @@ def uniform_poses(scene: Scene, obj: int, rng: np.random.Generator, n: int, marg
     out[:, 1] = rng.uniform(lo_y, hi_y, n)
     out[:, 2] = rng.uniform(-np.pi, np.pi, n)
     return out
+
+
+#: Share of a facing's tolerance within which the priors let an object that
+#: already stands there keep its yaw; new placements take the heading exactly.
+YAW_SHARE = 0.5
+
+
+def room(ctx: "Context", obj: int, margin: float = 0.0) -> tuple[float, float, float, float]:
+    """Box where ``obj``'s centre may go: the workspace shrunk by its radius
+    (plus ``margin``), cut to the goal's region. Empty when min > max."""
+    xmin, xmax, ymin, ymax = ctx.scene.bounds
+    r = float(ctx.scene.radii[obj]) + margin
+    box = (xmin + r, xmax - r, ymin + r, ymax - r)
+    reg = ctx.goal.params.box
+    if reg is not None:
+        box = (max(box[0], reg[0]), min(box[1], reg[1]), max(box[2], reg[2]), min(box[3], reg[3]))
+    return box
+
+
+def start_poses(ctx: "Context", obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+    """``(n, 3)`` poses for a goal's first object: uniform over the workspace
+    (as :func:`uniform_poses`) or, with a region, over the part of it that
+    ``obj`` fits in; the yaw is the goal's heading when it has one."""
+    gp = ctx.goal.params
+    if gp.box is None:
+        out = uniform_poses(ctx.scene, obj, rng, n)
+    else:
+        x0, x1, y0, y1 = room(ctx, obj)
+        if x0 > x1 or y0 > y1:
+            return np.empty((0, 3))
+        out = np.column_stack([rng.uniform(x0, x1, n), rng.uniform(y0, y1, n), rng.uniform(-np.pi, np.pi, n)])
+    return with_heading(ctx, out)
+
+
+def with_heading(ctx: "Context", poses: np.ndarray) -> np.ndarray:
+    """``poses`` with their yaw set to the goal's heading, when it has one."""
+    h = ctx.goal.params.heading
+    if h is not None and len(poses):
+        poses = np.array(poses, dtype=float)
+        poses[:, 2] = h
+    return poses
+
+
+def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
+    """Whether each of ``(m, 3)`` poses keeps ``obj`` in the goal's region
+    (centre in the box) and facing its heading (yaw within :data:`YAW_SHARE`
+    of the facing's tolerance: pi/16 for a named facing, 0.05 rad for an angle)."""
+    poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+    gp = ctx.goal.params
+    ok = np.ones(len(poses), dtype=bool)
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        e = EDGE_EPS
+        ok &= (poses[:, 0] >= x0 - e) & (poses[:, 0] <= x1 + e) & (poses[:, 1] >= y0 - e) & (poses[:, 1] <= y1 + e)
+    if gp.heading is not None:
+        d = np.abs((poses[:, 2] - gp.heading + np.pi) % (2 * np.pi) - np.pi)
+        ok &= d <= YAW_SHARE * gp.heading_tol
+    return ok
+
+
+def box_region(ctx: "Context") -> Any:
+    """The goal's region box as a shapely polygon (``None`` without one)."""
+    reg = ctx.goal.params.box
+    if reg is None:
+        return None
+    return shapely.box(reg[0], reg[2], reg[1], reg[3])
 
 
 def in_bounds(scene: Scene, xy: np.ndarray, margin: float = 0.0) -> np.ndarray:

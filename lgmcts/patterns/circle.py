@@ -9,6 +9,10 @@ adapts to the objects' sizes (neighbouring slots must not collide) and a
 circle is only proposed where it fits in the workspace. Because the second
 object may be anywhere at an admissible distance from the first, two objects
 that already stand at such a distance can both stay where they are.
+
+A goal's size narrows the radius range to its band, a region keeps the
+circle (with its band) inside it and starts the first object on a circle
+that fits there, and a facing sets every object's yaw.
 """
 
 from __future__ import annotations
@@ -19,28 +23,99 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .base import BAND, CLEARANCE, EDGE_EPS, BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import (
+    BAND,
+    CLEARANCE,
+    EDGE_EPS,
+    BasePattern,
+    Context,
+    GoalProgress,
+    box_region,
+    params_mask,
+    register,
+    start_poses,
+    uniform_poses,
+    with_heading,
+)
 
 #: Largest angular deviation from a slot, as a fraction of half the slot pitch.
 SLOT_SPREAD = 0.3
+#: How far inside a named size band the proposed radii stay (m).
+SIZE_MARGIN = 0.004
+
+
+def _band(ctx: Context) -> float:
+    """Radial noise of the slots (m): :data:`BAND`, a quarter of it in a region
+    (small regions then hold more objects)."""
+    return BAND if ctx.goal.params.box is None else BAND / 4
+
+
+def _spread(ctx: Context, r: float, k: float) -> float:
+    """Angular noise of the slots (rad); in a region at most 2 band widths along the circle."""
+    spread = SLOT_SPREAD * math.pi / k
+    return spread if ctx.goal.params.box is None else min(spread, 2 * _band(ctx) / max(r, 1e-9))
 
 
 def radius_range(ctx: Context) -> tuple[float, float]:
-    """Smallest radius at which neighbours clear each other, and the largest proposed (m)."""
+    """Smallest radius at which neighbours clear each other, and the largest proposed (m).
+
+    A goal's size narrows the range to its band (kept :data:`SIZE_MARGIN`
+    inside a named band); a region caps it at what the region holds.
+    """
     n, rmax = ctx.n, ctx.max_radius
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    lo = max(0.06, (2 * rmax + 2 * CLEARANCE + 2 * BAND) / (2 * math.sin(math.pi / n)))
-    hi = min(xmax - xmin, ymax - ymin) / 2 - rmax - 0.002
-    hi = min(hi, 1.5 * lo + 0.05)
-    return lo, max(lo, hi)
+    lo = max(0.06, (2 * rmax + 2 * CLEARANCE + 2 * _band(ctx)) / (2 * math.sin(math.pi / n)))
+    top = min(xmax - xmin, ymax - ymin) / 2 - rmax - 0.002
+    gp = ctx.goal.params
+    if gp.box is not None:
+        x0, x1, y0, y1 = gp.box
+        top = min(top, min(x1 - x0, y1 - y0) / 2 - _band(ctx) - 0.001)
+    if gp.size is None:
+        hi = min(top, 1.5 * lo + 0.05)
+        return lo, max(lo, hi)
+    blo, bhi = gp.size
+    m = 0.0 if blo == bhi else min(SIZE_MARGIN, (bhi - blo) / 4)
+    lo2, hi2 = max(lo, blo + m), min(top, bhi - m)
+    if lo2 > hi2:  # the band and what fits do not meet: the nearest that fits
+        lo2 = hi2 = max(lo, min(blo, top))
+    return lo2, hi2
 
 
 def _fits(ctx: Context, c: np.ndarray, r: np.ndarray | float) -> np.ndarray:
-    """Whether circles of centres ``c`` (``(m, 2)``) and radii ``r`` fit in the workspace."""
+    """Whether circles of centres ``c`` (``(m, 2)``) and radii ``r`` fit in the workspace
+    (and their centres, with the band around them, in the goal's region)."""
     xmin, xmax, ymin, ymax = ctx.scene.bounds
-    m = np.asarray(r) + ctx.max_radius + BAND
+    m = np.asarray(r) + ctx.max_radius + _band(ctx)
     c = np.asarray(c).reshape(-1, 2)
-    return (xmin + m <= c[:, 0]) & (c[:, 0] <= xmax - m) & (ymin + m <= c[:, 1]) & (c[:, 1] <= ymax - m)
+    ok = (xmin + m <= c[:, 0]) & (c[:, 0] <= xmax - m) & (ymin + m <= c[:, 1]) & (c[:, 1] <= ymax - m)
+    box = ctx.goal.params.box
+    if box is not None:
+        e = np.asarray(r) + _band(ctx)
+        ok &= (box[0] + e <= c[:, 0]) & (c[:, 0] <= box[1] - e) & (box[2] + e <= c[:, 1]) & (c[:, 1] <= box[3] - e)
+    return ok
+
+
+def _first(ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+    """Poses for the first object of a goal with a region or size: on a circle
+    of an admissible radius whose centre lets it fit."""
+    lo, hi = radius_range(ctx)
+    r = rng.uniform(lo, hi, n)
+    xmin, xmax, ymin, ymax = ctx.scene.bounds
+    m = r + ctx.max_radius + _band(ctx)
+    x0, x1, y0, y1 = xmin + m, xmax - m, ymin + m, ymax - m
+    box = ctx.goal.params.box
+    if box is not None:
+        e = r + _band(ctx)
+        x0, x1 = np.maximum(x0, box[0] + e), np.minimum(x1, box[1] - e)
+        y0, y1 = np.maximum(y0, box[2] + e), np.minimum(y1, box[3] - e)
+    ok = (x0 <= x1) & (y0 <= y1)
+    if not ok.any():
+        return start_poses(ctx, obj, rng, n)
+    r, x0, x1, y0, y1 = r[ok], x0[ok], x1[ok], y0[ok], y1[ok]
+    c = np.column_stack([rng.uniform(x0, x1), rng.uniform(y0, y1)])
+    a = rng.uniform(-math.pi, math.pi, len(r))
+    out = np.column_stack([c[:, 0] + r * np.cos(a), c[:, 1] + r * np.sin(a), rng.uniform(-math.pi, math.pi, len(r))])
+    return with_heading(ctx, out)
 
 
 def _centres(p0: np.ndarray, p1: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -97,24 +172,31 @@ class Circle(BasePattern):
         c = np.where(ok1[:, None], c1, c2)
         p1, c = p1[keep][:n], c[keep][:n]
         theta = np.arctan2(p1[:, 1] - c[:, 1], p1[:, 0] - c[:, 0]) + math.pi / 2
-        return np.column_stack([p1, theta])
+        return with_heading(ctx, np.column_stack([p1, theta]))
 
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
         if not ctx.progress.placed:
-            return uniform_poses(ctx.scene, obj, rng, n)
+            if ctx.goal.params.box is None and ctx.goal.params.size is None:
+                return with_heading(ctx, uniform_poses(ctx.scene, obj, rng, n))
+            return _first(ctx, obj, rng, n)
         if ctx.progress.params is None:
             return self._second(ctx, rng, n)
         cx, cy, r, a0, k = ctx.progress.params
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.empty((0, 3))
-        spread = SLOT_SPREAD * math.pi / k
+        spread, band = _spread(ctx, r, k), _band(ctx)
         a = rng.choice(angles, n) + np.clip(rng.normal(0, spread / 2, n), -spread, spread)
-        rr = r + np.clip(rng.normal(0, BAND / 2, n), -BAND, BAND)
-        return np.column_stack([cx + rr * np.cos(a), cy + rr * np.sin(a), a + math.pi / 2])
+        rr = r + np.clip(rng.normal(0, band / 2, n), -band, band)
+        return with_heading(ctx, np.column_stack([cx + rr * np.cos(a), cy + rr * np.sin(a), a + math.pi / 2]))
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        if ctx.goal.params.empty:
+            return self._density(ctx, obj, poses)
+        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
+
+    def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:
             return np.ones(len(poses))
         if ctx.progress.params is None:
@@ -137,9 +219,9 @@ class Circle(BasePattern):
         d = np.hypot(poses[:, 0] - cx, poses[:, 1] - cy) - r
         a = np.arctan2(poses[:, 1] - cy, poses[:, 0] - cx)
         da = np.abs((a[:, None] - angles[None, :] + math.pi) % (2 * math.pi) - math.pi).min(axis=1)
-        spread = SLOT_SPREAD * math.pi / k
-        ok = (np.abs(d) <= BAND + EDGE_EPS) & (da <= spread + EDGE_EPS)
-        return np.where(ok, np.exp(-0.5 * (d / (BAND / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
+        spread, band = _spread(ctx, r, k), _band(ctx)
+        ok = (np.abs(d) <= band + EDGE_EPS) & (da <= spread + EDGE_EPS)
+        return np.where(ok, np.exp(-0.5 * (d / (band / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         prog = ctx.progress
@@ -174,7 +256,7 @@ class Circle(BasePattern):
 
     def region(self, ctx: Context):
         if ctx.progress.params is None:
-            return None
+            return box_region(ctx)
         cx, cy, r, _, _ = ctx.progress.params
         w = ctx.max_radius + BAND
         return shapely.Point(cx, cy).buffer(r + w).difference(shapely.Point(cx, cy).buffer(max(r - w, 0.0)))

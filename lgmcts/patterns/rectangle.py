@@ -10,6 +10,11 @@ minimum-area rectangle around the centres is this one) and any further
 objects go along the sides, pulled inwards by at most :data:`BAND` so they
 never widen it. Sides adapt to the object sizes so that the perimeter holds
 every object.
+
+A goal's facing sets every object's yaw and turns the first side along or
+across the heading; a size draws the first side from its band (the other
+side no longer than it, so the first is the longer); a region keeps the
+corners inside it.
 """
 
 from __future__ import annotations
@@ -20,7 +25,25 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .base import BAND, CLEARANCE, EDGE_EPS, BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import (
+    BAND,
+    CLEARANCE,
+    EDGE_EPS,
+    BasePattern,
+    Context,
+    GoalProgress,
+    box_region,
+    params_mask,
+    register,
+    start_poses,
+    uniform_poses,
+    with_heading,
+)
+
+#: How far inside a named size band the longer side stays (m).
+SIZE_MARGIN = 0.004
+#: Largest angle off the heading's axes of the second object's direction, for an object already there (rad).
+DIR_EPS = 0.02
 
 #: Corner positions in units of (w/2, h/2), counter-clockwise from front-left.
 _CORNERS = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
@@ -61,20 +84,101 @@ class Rectangle(BasePattern):
         xmin, xmax, ymin, ymax = ctx.scene.bounds
         room = max(xmax - xmin, ymax - ymin) - 2 * ctx.max_radius
         side_max = min(max(1.5 * side_min + 0.05, per_min / 2 - side_min), room)
+        gp = ctx.goal.params
+        if gp.box is not None:
+            x0, x1, y0, y1 = gp.box
+            side_max = min(side_max, max(x1 - x0, y1 - y0))
+        if gp.size is not None:
+            # The first side is the longer one: drawn from the size band.
+            blo, bhi = gp.size
+            m = 0.0 if blo == bhi else min(SIZE_MARGIN, (bhi - blo) / 4) if math.isfinite(bhi) else SIZE_MARGIN
+            top = min(max(x1 - x0, y1 - y0) if gp.box is not None else room, room)
+            lo2, hi2 = max(side_min, blo + m), min(top, bhi - m)
+            if lo2 > hi2:
+                lo2 = hi2 = max(side_min, min(blo, top))
+            return lo2, hi2, per_min
         return side_min, max(side_min, side_max), per_min
 
+    def _fits_second(self, ctx: Context, p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
+        """Whether, with the first corner at ``p0`` and the second at each of
+        ``p1`` (``(m, 2)``), the rectangle of least other side fits in the
+        room on one side of that edge (used with a region)."""
+        lo, hi, per_min = self._sizes(ctx)
+        side_min = max(0.06, 2 * ctx.max_radius + CLEARANCE + 2 * BAND + 0.004)
+        x0, x1, y0, y1 = self._room(ctx)
+        e = p1 - p0
+        w = np.hypot(e[:, 0], e[:, 1])
+        u = e / np.maximum(w, 1e-12)[:, None]
+        h = np.maximum(side_min, per_min / 2 - w)
+        ok = np.zeros(len(p1), dtype=bool)
+        for side in (1.0, -1.0):
+            v = side * np.stack([-u[:, 1], u[:, 0]], axis=1)
+            cs = np.stack([p0 + h[:, None] * v, p1 + h[:, None] * v], axis=1)
+            ok |= ((cs[..., 0] >= x0 - EDGE_EPS) & (cs[..., 0] <= x1 + EDGE_EPS)
+                   & (cs[..., 1] >= y0 - EDGE_EPS) & (cs[..., 1] <= y1 + EDGE_EPS)).all(axis=1)
+        return ok
+
+    def _room(self, ctx: Context) -> tuple[float, float, float, float]:
+        """Where corners may go: the workspace less the largest radius, cut to the region."""
+        xmin, xmax, ymin, ymax = ctx.scene.bounds
+        m = ctx.max_radius + 0.001
+        x0, x1, y0, y1 = xmin + m, xmax - m, ymin + m, ymax - m
+        box = ctx.goal.params.box
+        if box is not None:
+            x0, x1, y0, y1 = max(x0, box[0]), min(x1, box[1]), max(y0, box[2]), min(y1, box[3])
+        return x0, x1, y0, y1
+
+    def _first(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+        """Poses for the first object of a goal with a region or size: a corner
+        of a rectangle of admissible sides that fits in the room."""
+        lo, hi, per_min = self._sizes(ctx)
+        side_min = max(0.06, 2 * ctx.max_radius + CLEARANCE + 2 * BAND + 0.004)
+        x0, x1, y0, y1 = self._room(ctx)
+        heading = ctx.goal.params.heading
+        w = rng.uniform(lo, hi, n)
+        h = np.maximum(side_min, per_min / 2 - w)
+        if heading is not None:
+            phi = heading + rng.integers(0, 4, n) * (math.pi / 2)
+        else:
+            phi = np.where(rng.random(n) < 0.5, rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
+        side = np.where(rng.random(n) < 0.5, 1.0, -1.0)
+        u = np.stack([np.cos(phi), np.sin(phi)], axis=1)
+        v = side[:, None] * np.stack([-u[:, 1], u[:, 0]], axis=1)
+        offs = np.stack([np.zeros_like(u), w[:, None] * u, w[:, None] * u + h[:, None] * v, h[:, None] * v], axis=1)
+        sx0, sx1 = x0 - offs[:, :, 0].min(axis=1), x1 - offs[:, :, 0].max(axis=1)
+        sy0, sy1 = y0 - offs[:, :, 1].min(axis=1), y1 - offs[:, :, 1].max(axis=1)
+        ok = (sx0 <= sx1) & (sy0 <= sy1)
+        if not ok.any():
+            return start_poses(ctx, obj, rng, n)
+        xy = np.column_stack([rng.uniform(sx0[ok], sx1[ok]), rng.uniform(sy0[ok], sy1[ok])])
+        return with_heading(ctx, np.column_stack([xy, phi[ok]]))
+
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+        gp = ctx.goal.params
         if not ctx.progress.placed:
-            out = uniform_poses(ctx.scene, obj, rng, n)
-            out[rng.random(n) < 0.5, 2] = 0.0
+            if gp.box is not None or gp.size is not None:
+                return self._first(ctx, obj, rng, n)
+            if gp.empty:
+                out = uniform_poses(ctx.scene, obj, rng, n)
+                out[rng.random(n) < 0.5, 2] = 0.0
+                return out
+            out = start_poses(ctx, obj, rng, n)
+            if gp.heading is None:
+                out[rng.random(len(out)) < 0.5, 2] = 0.0
             return out
         if ctx.progress.params is None:
             first = ctx.state.poses[ctx.progress.placed[0]]
             lo, hi, _ = self._sizes(ctx)
             d = rng.uniform(lo, hi, n)
-            a = np.where(rng.random(n) < 0.5, first[2] + rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
+            if gp.heading is not None:
+                a = gp.heading + rng.integers(0, 4, n) * (math.pi / 2)
+            else:
+                a = np.where(rng.random(n) < 0.5, first[2] + rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
             xy = first[:2] + d[:, None] * np.stack([np.cos(a), np.sin(a)], axis=1)
-            return np.column_stack([xy, a])
+            out = with_heading(ctx, np.column_stack([xy, a]))
+            if gp.box is None:
+                return out
+            return out[params_mask(ctx, obj, out) & self._fits_second(ctx, first[:2], out[:, :2])]
         cx, cy, w, h, phi = ctx.progress.params
         free, extras = self._state(ctx)
         rows = []
@@ -100,7 +204,7 @@ class Rectangle(BasePattern):
                     local = (-w / 2 + inset, t)
                 xy = np.array([cx, cy]) + _rot(phi) @ np.asarray(local)
                 rows.append([*xy, phi + (0.0 if side % 2 == 0 else math.pi / 2)])
-        return np.asarray(rows, dtype=float).reshape(-1, 3)
+        return with_heading(ctx, np.asarray(rows, dtype=float).reshape(-1, 3))
 
     def _local(self, ctx: Context, poses: np.ndarray) -> np.ndarray:
         cx, cy, w, h, phi = ctx.progress.params  # type: ignore[misc]
@@ -108,12 +212,26 @@ class Rectangle(BasePattern):
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        if ctx.goal.params.empty:
+            return self._density(ctx, obj, poses)
+        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
+
+    def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:
             return np.ones(len(poses))
         if ctx.progress.params is None:
             lo, hi, _ = self._sizes(ctx)
-            d = np.hypot(*(poses[:, :2] - ctx.state.poses[ctx.progress.placed[0], :2]).T)
-            return ((d >= lo - EDGE_EPS) & (d <= hi + EDGE_EPS)).astype(float)
+            v = poses[:, :2] - ctx.state.poses[ctx.progress.placed[0], :2]
+            d = np.hypot(*v.T)
+            ok = (d >= lo - EDGE_EPS) & (d <= hi + EDGE_EPS)
+            heading = ctx.goal.params.heading
+            if heading is not None:
+                a = np.arctan2(v[:, 1], v[:, 0])
+                off = (a - heading) % (math.pi / 2)
+                ok &= np.minimum(off, math.pi / 2 - off) <= DIR_EPS
+            if ctx.goal.params.box is not None:
+                ok &= self._fits_second(ctx, ctx.state.poses[ctx.progress.placed[0], :2], poses[:, :2])
+            return ok.astype(float)
         cx, cy, w, h, phi = ctx.progress.params
         free, extras = self._state(ctx)
         out = np.zeros(len(poses))
@@ -139,13 +257,21 @@ class Rectangle(BasePattern):
             w = float(np.clip(np.hypot(*(p1 - p0)), lo, hi))
             u = (p1 - p0) / max(float(np.hypot(*(p1 - p0))), 1e-12)
             phi = math.atan2(u[1], u[0])
-            h_lo = max(lo, per_min / 2 - w)
+            side_min = max(0.06, 2 * ctx.max_radius + CLEARANCE + 2 * BAND + 0.004)
+            h_lo = max(side_min if ctx.goal.params.size is not None else lo, per_min / 2 - w)
+            h_hi = min(h_lo + 0.05, w) if ctx.goal.params.size is not None else h_lo + 0.05
             xmin, xmax, ymin, ymax = ctx.scene.bounds
             m = ctx.max_radius + 0.001
+            box = ctx.goal.params.box
+            if box is not None:
+                xmin, xmax = max(xmin, box[0] - m), min(xmax, box[1] + m)
+                ymin, ymax = max(ymin, box[2] - m), min(ymax, box[3] + m)
             best = None
-            for attempt in range(24):
-                h = rng.uniform(h_lo, h_lo + 0.05) if attempt < 16 else h_lo
+            for attempt in range(26):
+                h = rng.uniform(h_lo, max(h_lo, h_hi)) if attempt < 16 else h_lo
                 side = 1.0 if rng.random() < 0.5 else -1.0
+                if attempt >= 24:  # last, both sides at the least other side
+                    side = 1.0 if attempt == 24 else -1.0
                 v = side * np.array([-u[1], u[0]])
                 c = p0 + (w / 2) * u + (h / 2) * v
                 params = (float(c[0]), float(c[1]), float(w), float(h), float(phi))
@@ -165,7 +291,7 @@ class Rectangle(BasePattern):
 
     def region(self, ctx: Context):
         if ctx.progress.params is None:
-            return None
+            return box_region(ctx)
         ring = shapely.LinearRing(corners(ctx.progress.params))
         return ring.buffer(ctx.max_radius + BAND)
 

@@ -2,7 +2,8 @@
 
 Ordered: the objects are placed after their anchor has settled. The prior is
 a sector around the relation's direction (narrower than the 45 degree
-acceptance half-angle) between touching distance and 0.29 m.
+acceptance half-angle) between touching distance and 0.29 m, cut to the
+goal's region when it has one; a facing sets the objects' yaw.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import numpy as np
 import shapely
 
 from ..formats import RELATIONS
-from .base import CLEARANCE, BasePattern, Context, GoalProgress, register
+from .base import CLEARANCE, BasePattern, Context, GoalProgress, params_mask, register, with_heading
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
 HALF_ANGLE = math.pi / 4 - 0.06
@@ -70,14 +71,20 @@ class Relation(BasePattern):
         ang = self.direction + rng.uniform(-HALF_ANGLE, HALF_ANGLE, n)
         xy = base + rho[:, None] * np.stack([np.cos(ang), np.sin(ang)], axis=1)
         theta = np.full(n, ctx.state.poses[obj, 2])
-        return np.column_stack([xy, theta])
+        out = with_heading(ctx, np.column_stack([xy, theta]))
+        if ctx.goal.params.box is not None:
+            out = out[params_mask(ctx, obj, out)]
+        return out
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         v = poses[:, :2] - ctx.state.poses[ctx.goal.anchor, :2]
         rho = np.hypot(v[:, 0], v[:, 1])
         ang = np.abs((np.arctan2(v[:, 1], v[:, 0]) - self.direction + math.pi) % (2 * math.pi) - math.pi)
-        return ((rho > 1e-6) & (rho <= MAX_DIST) & (ang <= HALF_ANGLE)).astype(float)
+        ok = (rho > 1e-6) & (rho <= MAX_DIST) & (ang <= HALF_ANGLE)
+        if not ctx.goal.params.empty:
+            ok &= params_mask(ctx, obj, poses)
+        return ok.astype(float)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         return ctx.progress.add(obj)

@@ -1,7 +1,9 @@
 """Tower: objects[0] on the table, each next object centred on the previous.
 
 An ordered pattern: object k may only be placed once object k-1 is placed
-in this branch; its pose is the support's centre and heading.
+in this branch; its pose is the support's centre and heading. A region
+holds the base's centre (and so the tower's); a facing is the base's yaw,
+which every object above takes from its support. A tower has no size.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..scene import TABLE
-from .base import BasePattern, Context, GoalProgress, register, uniform_poses
+from .base import BasePattern, Context, GoalProgress, box_region, params_mask, register, start_poses
 
 #: How far off the support's centre an object may already rest and still
 #: count as stacked (m); the acceptance rule allows 0.02 m. New placements
@@ -45,19 +47,25 @@ class Tower(BasePattern):
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
         k = self._position(ctx, obj)
         if k == 0:
-            return uniform_poses(ctx.scene, obj, rng, n)
+            return start_poses(ctx, obj, rng, n)
         return np.asarray(ctx.state.poses[ctx.goal.objects[k - 1]], dtype=float).reshape(1, 3).copy()
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         k = self._position(ctx, obj)
         if k == 0:
-            return np.ones(len(poses))
+            return params_mask(ctx, obj, poses).astype(float)
         base = ctx.state.poses[ctx.goal.objects[k - 1], :2]
-        return (np.hypot(*(poses[:, :2] - base).T) <= CENTRE_TOL).astype(float)
+        ok = np.hypot(*(poses[:, :2] - base).T) <= CENTRE_TOL
+        if ctx.goal.params.heading is not None:
+            ok &= params_mask(ctx, obj, poses)
+        return ok.astype(float)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
         return ctx.progress.add(obj)
+
+    def region(self, ctx: Context):
+        return box_region(ctx) if not ctx.progress.placed else None
 
 
 register(Tower())

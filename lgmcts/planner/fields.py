@@ -61,6 +61,10 @@ def _params(problem: Problem, k: int, final: np.ndarray, order: list[int]) -> tu
     return None
 
 
+#: Most grid cells along a side of the workspace in :func:`pose_fields`.
+MAX_FIELD_CELLS = 400
+
+
 def pose_fields(scene: Scene, goals: GoalSpec, actions: list[Action], step: int, *, resolution: float = 0.005) -> Fields:
     """Fields for the object moved by ``actions[step]`` (0-based), in the state before it."""
     if not 0 <= step < len(actions):
@@ -76,6 +80,8 @@ def pose_fields(scene: Scene, goals: GoalSpec, actions: list[Action], step: int,
     act = actions[step]
     o = scene.index[act.object]
     xmin, xmax, ymin, ymax = scene.bounds
+    # At most MAX_FIELD_CELLS cells a side: a huge workspace gets coarser cells, not a huge grid.
+    resolution = max(resolution, max(xmax - xmin, ymax - ymin) / MAX_FIELD_CELLS)
     xs = np.arange(xmin + resolution / 2, xmax, resolution)
     ys = np.arange(ymin + resolution / 2, ymax, resolution)
     gx, gy = np.meshgrid(xs, ys)

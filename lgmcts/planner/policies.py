@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -19,6 +20,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import InputError
+from ..feasibility import precheck
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..scene import Scene
 from .polish import polished
@@ -128,13 +130,15 @@ def plan(
         raise InputError("max_iter must be at least 1")
     if seed < 0:
         raise InputError("seed must be a non-negative integer")
-    if time_limit is not None and time_limit <= 0:
-        raise InputError("time_limit must be positive")
+    if time_limit is not None and not (math.isfinite(time_limit) and time_limit > 0):
+        raise InputError("time_limit must be a positive finite number of seconds")
     spec = scene if isinstance(scene, SceneSpec) else load_scene(scene if isinstance(scene, dict) else Path(scene))
     gspec = goals if isinstance(goals, GoalSpec) else load_goals(
         {"goals": goals} if isinstance(goals, list) else goals if isinstance(goals, dict) else Path(goals)
     )
     sc = Scene.from_spec(spec)
+    gspec.check_against(spec)
+    precheck(sc, gspec)
     problem = Problem.build(sc, gspec)
     opts = options or SearchOptions()
     opts = replace(opts, max_iter=max_iter, time_limit=time_limit, anytime=anytime or opts.anytime)

@@ -15,8 +15,10 @@ replayed on the planner's own states from the first action it changes,
 until it rejoins a state of the plan being rewritten with the same actions
 still to come (the rest is unchanged). The replay checks every
 pick of a clear object, every table placement inside the workspace and
-keeping the search's clearance from every other footprint (the acceptance
-rules alone would allow objects to touch), every stacking onto a clear
+keeping the search's clearance from every other footprint (or, for a goal
+placement on a fixed target, at most touching it: the contact that the
+search itself allows, see :func:`lgmcts.planner.step.touching_only`), every
+stacking onto a clear
 support over its footprint, and every goal met at the end (firmly, still
 met when every centre moves by up to 2 mm, for a goal whose objects no
 longer end where the search put them). The polished
@@ -36,7 +38,7 @@ from ..patterns import CLEARANCE
 from ..scene import TABLE
 from ..validate import goal_satisfied
 from .search import valid_plan
-from .step import Problem
+from .step import CONTACT_AREA, Problem, touching_only
 
 __all__ = ["polished"]
 
@@ -83,8 +85,12 @@ def _replay(problem: Problem, actions: list[Action], start: int, world, ref: np.
                 return None
             world = world.moved(i, pose, TABLE)
             _, near = geo.colliding_near(world.poly_array[i : i + 1], pose[:2], scene.radii[i], world.poly_array,
-                                         world.poses[:, :2], scene.radii, CLEARANCE * 0.99)
-            if (near != i).any():
+                                         world.poses[:, :2], scene.radii, CLEARANCE * 0.99,
+                                         cand_disc=scene.discs[i], obs_disc=scene.discs)
+            near = near[near != i]
+            # Closer than the clearance only where the search allows it: a
+            # fixed target (pose goal) placed in contact.
+            if len(near) and not (_contact_ok(problem, a, i) and touching_only(scene, world, i, near)):
                 return None
         else:
             j = scene.index[a.on]
@@ -135,7 +141,24 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
         return False
     placed = np.empty(len(ks), dtype=object)
     placed[:] = [worlds[k + 1].polys[sc.index[actions[k].object]] for k in ks]
-    return bool(shapely.dwithin(poly, placed, CLEARANCE * 0.99).any())
+    near = np.flatnonzero(shapely.dwithin(poly, placed, CLEARANCE * 0.99))
+    if not len(near):
+        return False
+    # A fixed target placed in contact is no conflict (the search allows that, see step.touching_only).
+    a = sc.index[obj]
+    b = np.array([sc.index[actions[ks[t]].object] for t in near])
+    xy_a = np.array(shapely.get_coordinates(shapely.centroid(poly)))[0] if sc.discs[a] > 0 else np.zeros(2)
+    xy_b = np.array([worlds[ks[t] + 1].poses[sc.index[actions[ks[t]].object], :2] for t in near])
+    over = geo.overlapping(np.full(len(near), poly, dtype=object), np.repeat(xy_a[None], len(near), axis=0),
+                           np.full(len(near), sc.discs[a]), placed[near], xy_b, sc.discs[b], CONTACT_AREA)
+    forgiven = np.array([_contact_ok(problem, actions[ks[t]], int(bb)) for t, bb in zip(near, b)]) & ~over
+    return not bool(forgiven.all())
+
+
+def _contact_ok(problem: Problem, action: Action, i: int) -> bool:
+    """Whether the search may place ``action``'s object ``i`` closer than the
+    clearance: a goal placement on a fixed target (see step._to_table)."""
+    return action.purpose == "goal" and i in problem.fixed
 
 
 def _merge(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray) -> tuple[list[Action], list]:

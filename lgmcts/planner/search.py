@@ -1,5 +1,6 @@
 """Search loops: Monte-Carlo tree search (paper, "MCTS for TAMP") and the
-greedy sequential sampler, both over the same simulation step."""
+greedy sequential sampler, both over the same simulation step
+(:mod:`.step`) and default rollout policy (:mod:`.rollout`)."""
 
 from __future__ import annotations
 
@@ -14,8 +15,8 @@ import numpy as np
 from ..formats import Action, PlanSpec
 from ..validate import check
 from .selection import select_child
-from .step import (Problem, SearchState, StepOptions, Transition, attempt, clear_way, fixed_obstacles, place_fixed, probe,
-                   stay)
+from .rollout import default_step, rollout
+from .step import Problem, SearchState, StepOptions, attempt, stay
 from .tree import Node
 
 __all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan", "validated"]
@@ -82,161 +83,6 @@ class SearchResult:
     found: int = 0
 
 
-class _BlockMemo:
-    """Within one rollout, what blocks each object with a fixed target, and
-    which of them do not stand on their target.
-
-    A blockers entry holds until an object moves into reach of that target
-    or away from among its obstacles, so a crowded scene does not test every
-    goal pose against every footprint at every step; "not on its target" holds
-    until the object itself moves. Skipping a test does not change the
-    random stream: fixed targets are drawn without it.
-    """
-
-    def __init__(self, problem: Problem, clearance: float) -> None:
-        self.problem = problem
-        self.clearance = clearance
-        self.known: dict[int, tuple[int, ...]] = {}
-        #: Objects with a fixed target that do not stand on it (until they move).
-        self.unmet: set[int] = set()
-        self.last = -1
-
-    def get(self, o: int) -> tuple[int, ...] | None:
-        return self.known.get(o)
-
-    def put(self, o: int, blockers: tuple[int, ...]) -> None:
-        if o in self.problem.fixed:
-            self.known[o] = blockers
-
-    def moved(self, action: Action | None) -> None:
-        if action is None:
-            return
-        sc = self.problem.scene
-        m = self.last = sc.index[action.object]
-        self.unmet.discard(m)
-        if not self.known:
-            return
-        self.known.pop(m, None)
-        if action.on is not None:
-            self.known.pop(sc.index[action.on], None)
-        x, y = action.to[0], action.to[1]
-        for o in list(self.known):
-            t = self.problem.fixed[o]
-            near = math.hypot(t[0] - x, t[1] - y) <= sc.radii[o] + sc.radii[m] + self.clearance + 1e-9
-            if near or m in self.known[o]:
-                del self.known[o]
-
-
-def _step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions,
-          memo: _BlockMemo | None = None) -> tuple[int, Transition | None]:
-    """One default-policy step: commit an object where it stands if one can
-    (a free step); else place one of the ready objects (in random order)
-    whose prior has a free pose; else move the obstacle that blocks the most
-    of their placements (:func:`_most_blocking`); else clear the way for a
-    random ready object as the simulation step does. ``memo`` carries what
-    earlier steps of the same rollout learnt (:class:`_BlockMemo`)."""
-    order = [ready[k] for k in rng.permutation(len(ready))]
-    for o in order:
-        if memo is not None and o in memo.unmet:
-            continue
-        tr = stay(problem, ss, o, rng)
-        if tr is not None:
-            return o, tr
-        if memo is not None and o in problem.fixed:
-            memo.unmet.add(o)
-    blocks: dict[int, tuple[int, ...]] = {}
-    tries = order[: opts.direct_tries]
-    # Fixed targets not yet known to be blocked: one query for all (with
-    # every object an obstacle; "placed" leaves that to the probe).
-    fresh = {}
-    if opts.step.obstacles == "all":
-        fresh = fixed_obstacles(problem, ss, [o for o in tries if memo is None or memo.get(o) is None], opts.step)
-    for o in tries:
-        known = memo.get(o) if memo is not None else None
-        if known is not None:
-            blocks[o] = known
-            continue
-        if o in fresh:
-            if not fresh[o]:
-                return o, place_fixed(problem, ss, o, rng)
-            blocks[o] = fresh[o]
-            if memo is not None:
-                memo.put(o, fresh[o])
-            continue
-        tr, blockers = probe(problem, ss, o, rng, opts.step)
-        if tr is not None:
-            return o, tr
-        if blockers:
-            blocks[o] = blockers
-            if memo is not None:
-                memo.put(o, blockers)
-    pick = _most_blocking(problem, ss, blocks, rng, memo.last if memo is not None else -1)
-    if pick is not None:
-        o, b = pick
-        tr = clear_way(problem, ss, b, rng, opts.step, o)
-        if tr is not None:
-            return o, tr
-    return order[0], attempt(problem, ss, order[0], rng, opts.step, placed_anchors=False)
-
-
-def _most_blocking(problem: Problem, ss: SearchState, blocks: dict[int, tuple[int, ...]],
-                   rng: np.random.Generator, last: int = -1) -> tuple[int, int] | None:
-    """The obstacle whose move frees the most goal placements: (an object it
-    blocks, the obstacle), or ``None``.
-
-    Scored by the objects it alone blocks, then by all it blocks; objects a
-    goal has already placed are left alone, and ties are broken at random.
-    """
-    sole: dict[int, int] = {}
-    total: dict[int, int] = {}
-    first: dict[int, int] = {}
-    for o, bs in blocks.items():
-        for b in bs:
-            if b == o or ss.committed(problem, b):
-                continue
-            total[b] = total.get(b, 0) + 1
-            sole[b] = sole.get(b, 0) + (len(bs) == 1)
-            first.setdefault(b, o)
-    if not total:
-        return None
-    if len(total) > 1:
-        # The object just moved is not moved straight back out of the way.
-        total.pop(last, None)
-    best = max((sole[b], total[b]) for b in total)
-    ties = sorted(b for b in total if (sole[b], total[b]) == best)
-    b = ties[int(rng.integers(len(ties)))]
-    return first[b], b
-
-
-def _rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions,
-             depth: int) -> tuple[float, list[Action] | None, int, list]:
-    """Random sequential placements from ``ss``: (reward, actions if solved,
-    steps, the world after each action)."""
-    actions: list[Action] = []
-    worlds: list = []
-    steps = 0
-    memo = _BlockMemo(problem, opts.step.clearance) if opts.step.obstacles == "all" else None
-    for _ in range(depth):
-        if ss.done(problem):
-            return 1.0, actions, steps, worlds
-        ready = ss.ready(problem)
-        if not ready:
-            break
-        steps += 1
-        _, tr = _step(problem, ss, ready, rng, opts, memo)
-        if tr is None:
-            break
-        if memo is not None:
-            memo.moved(tr.action)
-        ss = tr.state
-        if tr.action is not None:
-            actions.append(tr.action)
-            worlds.append(ss.world)
-    if ss.done(problem):
-        return 1.0, actions, steps, worlds
-    return ss.reward(problem), None, steps, worlds
-
-
 def valid_plan(problem: Problem, actions: list[Action]) -> bool:
     """Whether ``actions`` meet the acceptance rules for ``problem`` (a replay by the validator)."""
     plan = PlanSpec(solved=True, actions=actions, goals=problem.spec)
@@ -265,7 +111,7 @@ def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: Search
     if not node.attempts:
         # The first child follows the default policy (a free or direct move when
         # there is one), so the tree's first path is as good as a rollout's.
-        o, tr = _step(problem, node.state, open_, rng, opts)
+        o, tr = default_step(problem, node.state, open_, rng, opts)
         node.attempts[o] = 1
     else:
         fewest = min(node.attempts.get(o, 0) for o in open_)
@@ -304,7 +150,33 @@ def _descend(problem: Problem, node: Node, opts: SearchOptions) -> bool:
     return tried >= math.ceil((node.visits + 1) ** opts.widening)
 
 
-def _backprop(node: Node | None, reward: float) -> None:
+def _select(problem: Problem, root: Node, rng: np.random.Generator, opts: SearchOptions) -> Node:
+    """Selection: descend from ``root`` by UCB through nodes that should not be expanded now."""
+    node = root
+    while not node.dead and _descend(problem, node, opts):
+        live = [c for c in node.children if not c.dead]
+        if not live:
+            break
+        k = select_child(
+            np.array([c.value for c in live]), np.array([c.visits for c in live]), node.visits, opts.c_ucb, rng
+        )
+        node = live[k]
+    return node
+
+
+def _simulate(problem: Problem, child: Node, rng: np.random.Generator, opts: SearchOptions,
+              max_depth: int) -> tuple[float, list[Action] | None, list, int]:
+    """Simulation: the value of a new child (its reward, or a default-policy
+    rollout's), the rollout's actions when it reached every goal, the world
+    after each of them, and the rollout's length."""
+    if not opts.rollout:
+        return child.reward, None, [], 0
+    value, tail, steps, tail_worlds = rollout(problem, child.state, rng, opts, max_depth - child.depth)
+    return value, tail, tail_worlds, steps
+
+
+def _backup(node: Node | None, reward: float) -> None:
+    """Back-up: add ``reward`` to the statistics of ``node`` and its ancestors."""
     while node is not None:
         node.visits += 1
         node.value += reward
@@ -319,18 +191,48 @@ def _mark_dead(node: Node | None) -> None:
         node = node.parent
 
 
+@dataclass
+class Incumbent:
+    """The best the search has found so far.
+
+    ``plan`` is the shortest accepted plan (``None`` until one is found) and
+    ``found`` its length before ``accept`` rewrote it; ``partial`` ranks the
+    best node by (reward, fewer actions) for an unsolved search's answer.
+    """
+
+    partial: tuple[float, int, Node]
+    plan: list[Action] | None = None
+    found: int = 0
+    solutions: int = 0
+    rejected: int = 0
+
+    def offer_node(self, node: Node) -> None:
+        if (node.reward, -node.n_actions) > self.partial[:2]:
+            self.partial = (node.reward, -node.n_actions, node)
+
+    def improves(self, kept: list[Action]) -> bool:
+        return self.plan is None or len(kept) < len(self.plan)
+
+    def record(self, kept: list[Action], found: int) -> None:
+        self.plan, self.found = kept, found
+
+
 def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
          accept: Accept = validated) -> SearchResult:
-    """Monte-Carlo tree search for a plan reaching every goal (as ``accept`` returns it)."""
+    """Monte-Carlo tree search for a plan reaching every goal (as ``accept`` returns it).
+
+    Each iteration runs four phases: select a node (:func:`_select`),
+    expand one child there (:func:`_expand`), simulate from it
+    (:func:`_simulate`, a default-policy rollout) and back up the value
+    (:func:`_backup`). Accepted plans go to the :class:`Incumbent`.
+    """
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
     max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
     root = Node(problem.root())
     root.reward = root.state.reward(problem)
-    best: list[Action] | None = None
-    found = 0
-    best_partial: tuple[float, int, Node] = (root.reward, 0, root)
-    nodes, rejected, solutions, it, rollout_steps, restarts = 1, 0, 0, 0, 0, 0
+    inc = Incumbent(partial=(root.reward, 0, root))
+    nodes, it, rollout_steps, restarts = 1, 0, 0, 0
     if root.state.done(problem) and accept(problem, [], None) is not None:
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
@@ -342,20 +244,11 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             root.dead = False
             root.attempts.clear()
             restarts += 1
-        node = root
-        # Selection: descend through fully expanded nodes by UCB.
-        while not node.dead and _descend(problem, node, opts):
-            live = [c for c in node.children if not c.dead]
-            if not live:
-                break
-            k = select_child(
-                np.array([c.value for c in live]), np.array([c.visits for c in live]), node.visits, opts.c_ucb, rng
-            )
-            node = live[k]
+        node = _select(problem, root, rng, opts)
         if node.dead:
             _mark_dead(node)
             continue
-        if node.depth >= max_depth or (best is not None and node.n_actions >= len(best)):
+        if node.depth >= max_depth or (inc.plan is not None and node.n_actions >= len(inc.plan)):
             node.dead = True
             _mark_dead(node.parent)
             continue
@@ -365,56 +258,55 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             if _fully_expanded(problem, node, opts) and all(c.dead for c in node.children):
                 node.dead = True
                 _mark_dead(node.parent)
-            _backprop(node, node.reward)
+            _backup(node, node.reward)
             continue
         nodes += 1
-        if (child.reward, -child.n_actions) > best_partial[:2]:
-            best_partial = (child.reward, -child.n_actions, child)
+        inc.offer_node(child)
         if child.state.done(problem):
             actions = child.path()
             child.dead = True
             kept = accept(problem, actions, child.worlds())
             if kept is not None:
-                solutions += 1
-                if best is None or len(kept) < len(best):
-                    best, found = kept, len(actions)
+                inc.solutions += 1
+                if inc.improves(kept):
+                    inc.record(kept, len(actions))
                     log.info("solution with %d actions after %d iterations", len(kept), it)
-                _backprop(child, 1.0)
+                _backup(child, 1.0)
                 if not opts.anytime:
                     break
                 continue
-            rejected += 1
+            inc.rejected += 1
             _mark_dead(child.parent)
             continue
         if log.isEnabledFor(logging.DEBUG) and it % 500 == 0:
-            log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, best_partial[0], best_partial[2].depth)
-        value = child.reward
-        if opts.rollout:
-            value, tail, steps, tail_worlds = _rollout(problem, child.state, rng, opts, max_depth - child.depth)
-            rollout_steps += steps
-            if tail is not None:
-                actions = child.path() + tail
-                kept = accept(problem, actions, child.worlds() + tail_worlds)
-                if kept is not None and (best is None or len(kept) < len(best)):
-                    solutions += 1
-                    best, found = kept, len(actions)
-                    log.info("rollout solution with %d actions after %d iterations", len(kept), it)
-                    if not opts.anytime:
-                        break
-        _backprop(child, value)
+            log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, inc.partial[0], inc.partial[2].depth)
+        value, tail, tail_worlds, steps = _simulate(problem, child, rng, opts, max_depth)
+        rollout_steps += steps
+        if tail is not None:
+            actions = child.path() + tail
+            kept = accept(problem, actions, child.worlds() + tail_worlds)
+            if kept is not None and inc.improves(kept):
+                inc.solutions += 1
+                inc.record(kept, len(actions))
+                log.info("rollout solution with %d actions after %d iterations", len(kept), it)
+                if not opts.anytime:
+                    break
+        _backup(child, value)
     elapsed = time.perf_counter() - t0
+    best = inc.plan
     if log.isEnabledFor(logging.INFO):
-        shown = best if best is not None else best_partial[2].path()
+        shown = best if best is not None else inc.partial[2].path()
         log.info(
             "mcts: %d iterations, %d nodes, %d rollout steps, %d root restarts, best partial depth %d (reward %.2f), "
             "%s with %d actions (%d relocations, %d unstacks), %.3f s",
-            it, nodes, rollout_steps, restarts, best_partial[2].depth, best_partial[0], "solved" if best is not None else "unsolved",
+            it, nodes, rollout_steps, restarts, inc.partial[2].depth, inc.partial[0], "solved" if best is not None else "unsolved",
             len(shown), sum(a.purpose == "relocate" for a in shown), sum(a.purpose == "unstack" for a in shown), elapsed,
         )
     if best is not None:
-        return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=rejected, solutions=solutions, found=found)
+        return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=inc.rejected, solutions=inc.solutions,
+                            found=inc.found)
     reason = "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
-    return SearchResult(False, tuple(best_partial[2].path()), it, nodes, elapsed, reason=reason, rejected=rejected)
+    return SearchResult(False, tuple(inc.partial[2].path()), it, nodes, elapsed, reason=reason, rejected=inc.rejected)
 
 
 def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
@@ -443,7 +335,7 @@ def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Sea
             if not ready or it >= opts.max_iter:
                 break
             it += 1
-            _, tr = _step(problem, ss, ready, rng, opts)
+            _, tr = default_step(problem, ss, ready, rng, opts)
             if tr is None:
                 break
             ss = tr.state

@@ -21,10 +21,17 @@ from .. import geometry as geo
 from ..errors import InputError
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, CompiledGoal, Context, GoalProgress, Pattern, registry
-from ..patterns.base import BasePattern
+from ..patterns.base import BasePattern, compile_params
 from ..scene import TABLE, Scene, State
+from .relocate import clear_centres, region_scores, snuggest
 
-__all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions"]
+__all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "StepOptions", "CONTACT_AREA", "touching_only"]
+
+#: Largest footprint intersection (m²) the planner counts as contact rather
+#: than overlap where a goal leaves no room for its clearance: half the
+#: validator's tolerance (:data:`lgmcts.validate.OVERLAP_AREA`). Two
+#: cylinders are judged on their true circles (they may touch, not overlap).
+CONTACT_AREA = 0.5e-6
 
 
 @dataclass(frozen=True)
@@ -62,7 +69,8 @@ class Problem:
         for k, g in enumerate(spec.goals):
             idx = tuple(scene.index[i] for i in g.objects)
             anchor = None if g.anchor is None else scene.index[g.anchor]
-            goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose)))
+            goals.append(CompiledGoal(k, g.pattern, idx, anchor, None if g.pose is None else tuple(g.pose),
+                                      compile_params(g, scene)))
             if g.pattern not in reg:
                 raise InputError(f"pattern '{g.pattern}' has no prior (lgmcts.patterns.register)")
             patterns.append(reg[g.pattern])
@@ -105,13 +113,14 @@ class Problem:
     @cached_property
     def fixed_footprints(self) -> dict[int, Any]:
         """Footprint polygon of each :attr:`fixed` object at its target, for
-        those whose target lies inside the workspace (with half the clearance)."""
+        those whose target lies inside the workspace (a fixed target may touch
+        the edge: the goal leaves no other choice)."""
         objs = list(self.fixed)
         if not objs:
             return {}
         verts, polys = geo.place_each([self.scene.local[o] for o in objs], np.array([self.fixed[o] for o in objs]))
         return {o: polys[j] for j, o in enumerate(objs)
-                if geo.inside_workspace(verts[j][None], self.scene.bounds, margin=CLEARANCE / 2)[0]}
+                if geo.inside_workspace(verts[j][None], self.scene.bounds)[0]}
 
     @cached_property
     def gates(self) -> dict[int, tuple[int, ...]]:
@@ -135,6 +144,11 @@ class Problem:
         root = self.root()
         return {k: self.patterns[k].region(root.ctx(self, k)) for k in range(len(self.goals))
                 if getattr(self.patterns[k], "deterministic", False)}
+
+    @cached_property
+    def all_discs(self) -> bool:
+        """Whether every object is a cylinder (collisions are then circle tests)."""
+        return bool((self.scene.discs > 0).all())
 
     @cached_property
     def targets(self) -> tuple[int, ...]:
@@ -309,29 +323,99 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     return np.empty((0, 3))
 
 
-def _collisions(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions) -> tuple[np.ndarray, list[list[int]]]:
-    """Inside-workspace mask and, per candidate, the objects its footprint comes too close to.
+def _pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
+           opts: StepOptions) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
+    """Inside-workspace mask, the colliding pairs (candidate indices,
+    obstacle indices) that count, the candidates' footprint polygons
+    (``None`` when only discs are involved) and vertices.
 
-    Tests every footprint (bounding circles first, then exactly) and drops the hits
-    that do not count (the moving object itself; with ``obstacles="placed"``,
-    objects not yet committed to a goal). Stacked objects count too, although
-    the acceptance rules only compare table-level footprints: an object put
-    under the overhang of a wide object resting on a narrow one would strike
-    it when lowered.
+    Tests every footprint (bounding circles first, then exactly: circles for
+    two cylinders, polygons otherwise) against the clearance and drops the
+    hits that do not count (the moving object itself; with
+    ``obstacles="placed"``, objects not yet committed to a goal). Stacked
+    objects count too, although the acceptance rules only compare
+    table-level footprints: an object put under the overhang of a wide
+    object resting on a narrow one would strike it when lowered.
     """
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
+    # Disc against discs is decided on circles: no polygons needed then.
+    polys = None if scene.discs[o] > 0 and problem.all_discs else shapely.polygons(verts)
+    if scene.n <= 1:
+        return inside, np.empty(0, dtype=int), np.empty(0, dtype=int), polys, verts
+    ci, oi = geo.colliding_near(polys, poses[:, :2], scene.radii[o], world.poly_array,
+                                world.poses[:, :2], scene.radii, opts.clearance,
+                                cand_disc=scene.discs[o], obs_disc=scene.discs)
+    keep = oi != o
+    if opts.obstacles == "placed":
+        counts = np.array([ss.committed(problem, int(b)) or int(b) in problem.standing_anchors for b in oi], dtype=bool)
+        keep &= counts if len(oi) else keep
+    return inside, ci[keep], oi[keep], polys, verts
+
+
+def _collisions_full(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
+                     opts: StepOptions) -> tuple[np.ndarray, list[list[int]], np.ndarray | None, np.ndarray]:
+    """Inside-workspace mask and, per candidate, the objects its footprint
+    comes too close to (see :func:`_pairs`); also the candidates' footprint
+    polygons (``None`` when only discs are involved) and vertices."""
+    inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
     hits: list[list[int]] = [[] for _ in range(len(poses))]
-    if scene.n > 1:
-        ci, oi = geo.colliding_near(shapely.polygons(verts), poses[:, :2], scene.radii[o], world.poly_array,
-                                    world.poses[:, :2], scene.radii, opts.clearance)
-        placed_only = opts.obstacles == "placed"
-        for a, b in zip(ci.tolist(), oi.tolist()):
-            if b == o or (placed_only and not ss.committed(problem, b) and b not in problem.standing_anchors):
-                continue
-            hits[a].append(int(b))
-    return inside, hits
+    for a, b in zip(ci.tolist(), oi.tolist()):
+        hits[a].append(b)
+    return inside, hits, polys, verts
+
+
+def _free(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: StepOptions,
+          contact: bool = False) -> np.ndarray:
+    """Mask of the candidate poses of ``o`` that are free: inside the
+    workspace and clear of every obstacle by the clearance or, with
+    ``contact``, inside and at most touching (see :func:`touching_only`)."""
+    inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
+    if contact:
+        inside = geo.inside_workspace(verts, problem.scene.bounds)
+        if len(ci):
+            world, scene = ss.world, problem.scene
+            mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
+            over = geo.overlapping(mine, poses[ci, :2], np.full(len(ci), scene.discs[o]), world.poly_array[oi],
+                                   world.poses[oi, :2], scene.discs[oi], CONTACT_AREA)
+            ci = ci[over]
+    return inside & (np.bincount(ci, minlength=len(poses)) == 0)
+
+
+def touching_only(scene: Scene, world: State, i: int, near: np.ndarray, polys: np.ndarray | None = None,
+                  xy: np.ndarray | None = None) -> bool:
+    """Whether object ``i`` (at its pose in ``world``, or at footprint
+    ``polys``/centre ``xy``) at most touches the objects ``near``: no
+    polygon intersection above :data:`CONTACT_AREA`, no overlap of two
+    cylinders' circles."""
+    near = np.asarray(near, dtype=int)
+    if not len(near):
+        return True
+    a_poly = world.poly_array[i] if polys is None else polys
+    a_xy = world.poses[i, :2] if xy is None else xy
+    over = geo.overlapping(np.full(len(near), a_poly, dtype=object), np.repeat(np.asarray(a_xy, dtype=float)[None], len(near), 0),
+                           np.full(len(near), scene.discs[i]), world.poly_array[near], world.poses[near, :2],
+                           scene.discs[near], CONTACT_AREA)
+    return not bool(over.any())
+
+
+def _hard(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, polys: np.ndarray, hits: list[list[int]],
+          cands: np.ndarray) -> list[list[int]]:
+    """Per candidate, its obstacles (among ``hits``) that it overlaps beyond
+    contact; only the candidates ``cands`` are tested, the others get none."""
+    scene, world = problem.scene, ss.world
+    ci = [a for a in cands.tolist() for _ in hits[a]]
+    oi = [b for a in cands.tolist() for b in hits[a]]
+    out: list[list[int]] = [[] for _ in hits]
+    if ci:
+        mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
+        over = geo.overlapping(mine, poses[ci, :2], np.full(len(ci), scene.discs[o]), world.poly_array[oi],
+                               world.poses[oi, :2], scene.discs[oi], CONTACT_AREA)
+        for a, b, v in zip(ci, oi, over.tolist()):
+            if v:
+                out[a].append(b)
+    return out
 
 
 def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int = -1) -> tuple[np.ndarray, np.ndarray]:
@@ -355,41 +439,6 @@ def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int
     return out, np.asarray(theirs, dtype=bool)
 
 
-#: Spacing of the grid on which :func:`_clear_centres` looks for room (m).
-GRID_STEP = 0.01
-
-
-def _clear_centres(problem: Problem, ss: SearchState, b: int, clearance: float) -> np.ndarray:
-    """Grid points where ``b`` fits at any yaw, judged by circumscribed circles.
-
-    Conservative: a point is kept only when ``b``'s circumscribed circle
-    clears every other object's by ``clearance`` (and the workspace edge by
-    half of it), so the footprints there are free without an exact test. On
-    a crowded table this finds room that uniform sampling over the workspace
-    rarely hits.
-    """
-    scene, world = problem.scene, ss.world
-    xmin, xmax, ymin, ymax = scene.bounds
-    r = float(scene.radii[b]) + clearance / 2
-    if xmax - xmin < 2 * r or ymax - ymin < 2 * r:
-        return np.empty((0, 2))
-    gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
-    gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
-    others = np.flatnonzero(np.arange(scene.n) != b)
-    cx, cy = world.poses[others, 0], world.poses[others, 1]
-    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
-    dx2 = (gx[None, :] - cx[:, None]) ** 2
-    dy2 = (gy[None, :] - cy[:, None]) ** 2
-    free = np.ones((len(gy), len(gx)), dtype=bool)
-    # All objects at once, in chunks that keep the temporary under ~2 MB.
-    step = max(1, 250_000 // max(1, free.size))
-    for k in range(0, len(others), step):
-        s = slice(k, k + step)
-        free &= ((dy2[s, :, None] + dx2[s, None, :]) > reach2[s, None, None]).all(axis=0)
-    jj, ii = np.nonzero(free)
-    return np.stack([gx[ii], gy[jj]], axis=1)
-
-
 def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str,
              avoid: int = -1) -> Transition | None:
     """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible.
@@ -401,9 +450,10 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
     check = StepOptions(opts.samples, opts.clearance, "all")
+    off = _off_target(problem, b, avoid)
     # Candidates from the grid of clear centres first, then, if it has none
     # (elongated neighbours make it pessimistic), larger uniform batches.
-    room = _clear_centres(problem, ss, b, opts.clearance)
+    room = clear_centres(scene, world, b, opts.clearance)
     batches = [2 * opts.samples, 16 * opts.samples]
     if len(room):
         batches.insert(0, -1)
@@ -422,45 +472,76 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
         poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
         if grid:
             # Circumscribed circles apart by the clearance: free at any yaw.
-            free = np.ones(n, dtype=bool)
-            break
-        inside, hits = _collisions(problem, ss, b, poses, check)
-        free = inside & np.array([not h for h in hits])
+            free = off(poses)
+            if free.any():
+                break
+            continue
+        free = _free(problem, ss, b, poses, check) & off(poses)
         if free.any():
             break
     else:
-        return None
+        # No room with the clearance anywhere: park touching neighbours.
+        poses = _contact_spots(problem, ss, b, rng, check, off)
+        if not len(poses):
+            return None
+        free = np.ones(len(poses), dtype=bool)
     idx = np.flatnonzero(free)
     regions, theirs = _goal_regions(problem, ss, b, avoid)
     if len(regions):
         # The free pose that overlaps the fewest regions still to be filled
         # (none, when there is one), so the obstacle is not in the way again;
         # above all not in the way of the object it makes room for.
-        # Each candidate is judged by its circumscribed circle, whatever its yaw.
-        xy, rr = poses[idx, :2], r + 1e-9
-        rb = shapely.bounds(regions)
-        near = ((xy[:, None, 0] + rr >= rb[None, :, 0]) & (xy[:, None, 0] - rr <= rb[None, :, 2])
-                & (xy[:, None, 1] + rr >= rb[None, :, 1]) & (xy[:, None, 1] - rr <= rb[None, :, 3]))
-        hit = np.zeros(near.shape, dtype=bool)
-        pi, ri = np.nonzero(near)
-        if len(pi):
-            hit[pi, ri] = shapely.dwithin(regions[ri], shapely.points(xy[pi]), rr)
-        score = hit.sum(axis=1) + len(regions) * hit[:, theirs].any(axis=1)
+        score = region_scores(regions, theirs, poses[idx, :2], r)
         idx = idx[score == score.min()]
     if len(idx) > 1:
-        # Of the best, the snuggest: nearest to a neighbour or the workspace
-        # edge, so the free space left stays in one piece (two objects on
-        # each other's targets then find room to pass).
-        others = np.flatnonzero(np.arange(scene.n) != b)
-        px, py = poses[idx, 0], poses[idx, 1]
-        gap = np.hypot(px[:, None] - world.poses[others, 0][None, :], py[:, None] - world.poses[others, 1][None, :])
-        slack = (gap - scene.radii[others][None, :]).min(axis=1, initial=np.inf)
-        slack = np.minimum.reduce([slack, px - xmin, xmax - px, py - ymin, ymax - py])
-        idx = idx[[int(np.argmin(slack))]]
+        # Of the best, the snuggest (see :func:`.relocate.snuggest`).
+        idx = idx[[snuggest(scene, world, b, poses[idx, :2])]]
     pose = _wrapped(poses[idx[0]])
     new_world = world.moved(b, pose, TABLE)
     act = _action(scene, b, pose, None, purpose)
     return Transition(act, SearchState(new_world, _uncommit(problem, ss.progress, b)))
+
+
+def _off_target(problem: Problem, b: int, avoid: int):
+    """A mask function over poses ``(k, 3)`` of ``b``: whether ``b`` there
+    leaves ``avoid``'s fixed target free (its circle, or its circumscribed
+    circle for other shapes, at most touching the target's). All true when
+    ``avoid`` has no fixed target: parking on a fixed target would not make
+    the room the move is for, so such a spot is never taken."""
+    if avoid not in problem.fixed:
+        return lambda poses: np.ones(len(poses), dtype=bool)
+    sc = problem.scene
+    t = problem.fixed[avoid][:2]
+    both = sc.discs[b] > 0 and sc.discs[avoid] > 0
+    reach = float(sc.discs[b] + sc.discs[avoid]) if both else float(sc.radii[b] + sc.radii[avoid])
+    return lambda poses: np.hypot(poses[:, 0] - t[0], poses[:, 1] - t[1]) >= reach - 1e-9
+
+
+def _contact_spots(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions,
+                   keep) -> np.ndarray:
+    """Poses ``(k, 3)`` where ``b`` fits at most touching other objects and
+    the workspace edge, and that pass the mask function ``keep``: grid
+    centres whose circumscribed circles do not overlap, else uniform draws
+    that pass the contact test."""
+    scene, world = problem.scene, ss.world
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b])
+    room = clear_centres(scene, world, b, 0.0)
+    if len(room):
+        poses = np.empty((len(room), 3))
+        poses[:, :2] = room
+        poses[:, 2] = world.poses[b, 2]
+        poses = poses[keep(poses)]
+        if len(poses):
+            return poses[rng.choice(len(poses), size=min(len(poses), 4 * opts.samples), replace=False)]
+    n = 16 * opts.samples
+    poses = np.empty((n, 3))
+    poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
+    poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
+    poses[:, 2] = world.poses[b, 2]
+    keep_mask = keep(poses)
+    poses = poses[keep_mask]
+    return poses[_free(problem, ss, b, poses, opts, contact=True)] if len(poses) else poses
 
 
 def _clear_top(world: State, i: int, rng: np.random.Generator, exclude: int = -2) -> int:
@@ -504,11 +585,21 @@ def _move_anchor(problem: Problem, ss: SearchState, o: int, rng: np.random.Gener
 def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: np.random.Generator,
               opts: StepOptions) -> tuple[Transition | None, np.ndarray, list[list[int]]]:
     """Place ``o`` at the first free candidate; also the inside mask and each candidate's obstacles."""
-    inside, hits = _collisions(problem, ss, o, cand, opts)
+    inside, hits, polys, verts = _collisions_full(problem, ss, o, cand, opts)
     ok = inside & np.array([not h for h in hits])
-    if not ok.any():
+    if ok.any():
+        return _place(problem, ss, o, _wrapped(cand[int(np.flatnonzero(ok)[0])]), TABLE, rng), inside, hits
+    if o not in problem.fixed:
         return None, inside, hits
-    return _place(problem, ss, o, _wrapped(cand[int(np.flatnonzero(ok)[0])]), TABLE, rng), inside, hits
+    # A fixed target (a pose goal) has no other pose: where it lies closer
+    # than the clearance to a neighbour or the edge, contact is allowed.
+    # Obstacles are then only what it would overlap.
+    edge = geo.inside_workspace(verts, problem.scene.bounds)
+    hard = _hard(problem, ss, o, cand, polys, hits, np.flatnonzero(edge))
+    touch = edge & np.array([not h for h in hard])
+    if touch.any():
+        return _place(problem, ss, o, _wrapped(cand[int(np.flatnonzero(touch)[0])]), TABLE, rng), edge, hard
+    return None, edge, hard
 
 
 def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: StepOptions) -> dict[int, tuple[int, ...]]:
@@ -526,10 +617,18 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
         polys = np.empty(len(objs), dtype=object)
         polys[:] = [feet[o] for o in objs]
         xy = np.array([problem.fixed[o][:2] for o in objs])
-        ci, oi = geo.colliding_near(polys, xy, problem.scene.radii[objs], world.poly_array, world.poses[:, :2],
-                                    problem.scene.radii, opts.clearance)
-        for a, b in zip(ci.tolist(), oi.tolist()):
-            if b != objs[a]:
+        sc = problem.scene
+        # Only overlaps block a fixed target (it may touch, see _to_table):
+        # pairs that meet at all, then those that overlap beyond contact.
+        ci, oi = geo.colliding_near(polys, xy, sc.radii[objs], world.poly_array, world.poses[:, :2],
+                                    sc.radii, 0.0, cand_disc=sc.discs[objs], obs_disc=sc.discs)
+        keep = oi != np.asarray(objs)[ci]
+        ci, oi = ci[keep], oi[keep]
+        if len(ci):
+            mover = np.asarray(objs)[ci]
+            over = geo.overlapping(polys[ci], xy[ci], sc.discs[mover], world.poly_array[oi], world.poses[oi, :2],
+                                   sc.discs[oi], CONTACT_AREA)
+            for a, b in zip(ci[over].tolist(), oi[over].tolist()):
                 out[objs[a]].append(int(b))
     return {o: tuple(v) for o, v in out.items()}
 

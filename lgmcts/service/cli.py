@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import errno
+import ipaddress
+import math
 import os
 import socket
+from typing import Optional
 
 import typer
 
@@ -29,6 +32,16 @@ def _check_port(host: str, port: int) -> None:
             if exc.errno == errno.EADDRINUSE:
                 fail(f"port {port} on {host} is already in use")
             fail(f"cannot listen on {host}:{port}: {exc.strerror}")
+
+
+def _loopback(host: str) -> bool:
+    """Whether ``host`` names only this machine (127.0.0.0/8, ::1, localhost)."""
+    if host.lower() == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
 
 
 def default_workers() -> int:
@@ -59,6 +72,28 @@ def register(app: typer.Typer) -> None:
         max_iter: int = typer.Option(10_000, "--max-iter", help="Cap on a request's planner iteration budget."),
         grace: float = typer.Option(5.0, help="Seconds a job may overrun its timeout before its worker is replaced."),
         log_level: str = typer.Option("info", "--log-level", help="critical, error, warning, info or debug."),
+        token: Optional[str] = typer.Option(
+            None,
+            "--token",
+            envvar="LGMCTS_SERVICE_TOKEN",
+            show_envvar=True,
+            help="Require 'Authorization: Bearer TOKEN' on every POST (at least 16 characters). "
+            "Prefer the environment variable: a command line is visible to other users.",
+        ),
+        read_timeout: float = typer.Option(
+            10.0, "--read-timeout", help="Longest wait in seconds for the next piece of a request body (408 past it)."
+        ),
+        header_timeout: float = typer.Option(
+            10.0, "--header-timeout", help="Seconds a connection may take to send its request headers before it is closed."
+        ),
+        llm_base_url: Optional[str] = typer.Option(
+            None, "--llm-base-url", help="OpenAI-compatible endpoint of the llm parser (the key: OPENAI_API_KEY)."
+        ),
+        allow_client_llm_url: bool = typer.Option(
+            False,
+            "--allow-client-llm-url",
+            help="Accept llm_base_url in requests; such requests never receive the server's API key.",
+        ),
     ) -> None:
         """Serve POST /plan, /parse, /check, GET /healthz, the API docs at /docs and a viewer at /.
 
@@ -80,17 +115,32 @@ def register(app: typer.Typer) -> None:
                 timeout=timeout,
                 max_iter=max_iter,
                 grace=grace,
+                token=token or None,
+                read_timeout=read_timeout,
+                header_timeout=header_timeout,
+                llm_base_url=llm_base_url,
+                allow_client_llm_url=allow_client_llm_url,
             )
         except InputError as exc:
             fail(str(exc))
         _check_port(host, port)
+        if opts.token is None and not _loopback(host):
+            typer.echo(
+                f"WARNING: serving on {host}, reachable from other machines, with no authentication: anyone who "
+                "can reach this port can make it plan (use --token or LGMCTS_SERVICE_TOKEN, or a proxy with "
+                "authentication; see docs/service.md, Security)",
+                err=True,
+            )
 
         import uvicorn
+
+        from .guard import protocol_with_header_timeout
 
         uvicorn.run(
             create_app(opts),
             host=host,
             port=port,
             log_level=log_level,
-            timeout_graceful_shutdown=5,
+            http=protocol_with_header_timeout(opts.header_timeout),
+            timeout_graceful_shutdown=max(1, math.ceil(opts.grace)),
         )

@@ -68,6 +68,8 @@ class ParseJob:
     llm_model: str | None = None
     llm_base_url: str | None = None
     deadline: float = float("inf")
+    #: Key for the LLM endpoint; ``None``: the server's own (``OPENAI_API_KEY``).
+    api_key: str | None = None
 
 
 @dataclass(frozen=True)
@@ -160,6 +162,7 @@ def run_parse(job: ParseJob) -> dict:
         parser=job.parser,
         llm_model=job.llm_model,
         llm_base_url=job.llm_base_url,
+        api_key=job.api_key,
         timeout=max(1.0, min(remaining, 60.0)),
     )
     return to_dict(goals)

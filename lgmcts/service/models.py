@@ -10,6 +10,7 @@ from __future__ import annotations
 from pydantic import BaseModel, ConfigDict, Field
 
 from ..formats import GoalSpec, PlanSpec, SceneSpec
+from ..limits import MAX_INSTRUCTION, MAX_TEXT
 
 __all__ = ["PlanOptions", "ParseRequest", "PlanRequest", "CheckRequest", "VerdictOut", "ErrorOut", "HealthOut"]
 
@@ -21,7 +22,7 @@ class _Body(BaseModel):
 class PlanOptions(_Body):
     """Planner settings; the same meaning as the options of ``lgmcts plan``."""
 
-    method: str = Field("lgmcts", description="lgmcts, greedy or pmcts.")
+    method: str = Field("lgmcts", max_length=MAX_TEXT, description="lgmcts, greedy or pmcts.")
     seed: int = Field(0, description="Random seed; the same seed gives the same plan.")
     max_iter: int = Field(10_000, description="Iteration budget; the server caps it (see /healthz).")
     time_limit: float | None = Field(None, description="Planning budget in seconds (wall clock).")
@@ -35,10 +36,15 @@ class ParseRequest(_Body):
     """Turn a plain-language instruction into goals for a scene."""
 
     scene: SceneSpec
-    instruction: str = Field(..., description="Plain-language command.")
-    parser: str = Field("rules", description="Instruction parser: rules or llm.")
-    llm_model: str | None = Field(None, description="Model name for the llm parser.")
-    llm_base_url: str | None = Field(None, description="OpenAI-compatible endpoint for the llm parser.")
+    instruction: str = Field(..., max_length=MAX_INSTRUCTION, description="Plain-language command.")
+    parser: str = Field("rules", max_length=MAX_TEXT, description="Instruction parser: rules or llm.")
+    llm_model: str | None = Field(None, max_length=MAX_TEXT, description="Model name for the llm parser.")
+    llm_base_url: str | None = Field(
+        None,
+        max_length=MAX_TEXT,
+        description="OpenAI-compatible endpoint for the llm parser: refused (422) unless the server allows "
+        "client-chosen endpoints; such a request never gets the server's API key.",
+    )
     timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
 
 
@@ -46,11 +52,15 @@ class PlanRequest(_Body):
     """Plan for a scene towards ``goals`` or towards the goals of ``instruction`` (exactly one)."""
 
     scene: SceneSpec
-    instruction: str | None = Field(None, description="Plain-language command (instead of goals).")
+    instruction: str | None = Field(
+        None, max_length=MAX_INSTRUCTION, description="Plain-language command (instead of goals)."
+    )
     goals: GoalSpec | None = Field(None, description="Goal specification (instead of an instruction).")
-    parser: str = Field("rules", description="Instruction parser: rules or llm.")
-    llm_model: str | None = None
-    llm_base_url: str | None = None
+    parser: str = Field("rules", max_length=MAX_TEXT, description="Instruction parser: rules or llm.")
+    llm_model: str | None = Field(None, max_length=MAX_TEXT)
+    llm_base_url: str | None = Field(
+        None, max_length=MAX_TEXT, description="As for /parse: refused unless the server allows it."
+    )
     options: PlanOptions = Field(default_factory=PlanOptions)
 
 

@@ -155,7 +155,10 @@ _PAGE = """<!DOCTYPE html>
   }
 
   async function post(path, body) {
-    var r = await fetch(path, { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+    // A server started with --token: open the page as /#token=<token>.
+    var m = location.hash.match(/token=([^&]+)/), headers = { "Content-Type": "application/json" };
+    if (m) headers["Authorization"] = "Bearer " + decodeURIComponent(m[1]);
+    var r = await fetch(path, { method: "POST", headers: headers, body: JSON.stringify(body) });
     var data = null;
     try { data = await r.json(); } catch (e) { data = { detail: r.statusText }; }
     if (!r.ok) throw new Error(r.status + ": " + (data && data.detail ? data.detail : r.statusText));

@@ -9,7 +9,7 @@ from typing import Optional
 
 import typer
 
-from ..cli_util import fail, write_text
+from ..cli_util import check_output_file, fail, write_text
 from ..errors import InputError
 
 
@@ -63,6 +63,7 @@ def observe(
 
     if width < 16 or height < 16:
         fail("image width and height must be at least 16 pixels")
+    check_output_file(output)
     try:
         seen = run_observe(scene, options=CameraOptions(width=width, height=height))
         iou = footprint_iou(scene, seen)

@@ -50,7 +50,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--observe", action="store_true", help="also observe each scene, plan on it and execute")
     ap.add_argument("--no-example", action="store_true", help="leave out examples/tabletop.json")
     ap.add_argument("--suite", default=None, help="use the first --n tasks of a benchmark suite (elgr, structformer) with their ground-truth goals instead of random cases")
-    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --suite)")
+    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --suite), or of configurations per N (with --labbe)")
+    ap.add_argument("--labbe", default=None,
+                    help="use --n Labbé protocol configurations (lgmcts.casegen.labbe_protocol_case, discs that may touch) "
+                         "for each N in this list, e.g. 10,25, instead of random cases")
+    ap.add_argument("--dense", action="store_true", help="the dense variant of the random cases (packed clutter)")
     ap.add_argument("--case-timeout", type=float, default=20.0, help="skip a seed whose case takes longer to build (s)")
     args = ap.parse_args(argv)
 
@@ -60,6 +64,14 @@ def main(argv: list[str] | None = None) -> int:
 
         for t in generate(args.suite, n=args.n, seed=0):
             cases.append((f"{t.id} ({t.category})", t.scene_spec(), t.goal_spec()))
+        args.no_example, args.seeds = True, ""
+    if args.labbe is not None:
+        from ..casegen import labbe_protocol_case
+
+        for n_disc in _seeds(args.labbe):
+            for k in range(args.n):
+                c = labbe_protocol_case(n_disc, 1000 * n_disc + k)
+                cases.append((f"labbe N={n_disc} #{k}", c.scene, c.goals))
         args.no_example, args.seeds = True, ""
     if not args.no_example:
         from pathlib import Path
@@ -71,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
     for s in _seeds(args.seeds) if args.seeds else []:
         signal.setitimer(signal.ITIMER_REAL, args.case_timeout)
         try:
-            c = random_case(s)
+            c = random_case(s, dense=args.dense)
         except _Timeout:
             skipped.append(s)
             continue

@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from ..cli_util import fail
+from ..cli_util import check_output_dir, check_output_file, fail, write_text
 from ..errors import InputError
 
 
@@ -30,6 +30,8 @@ def viz(
         fail("nothing to write: give -o DIR for pictures and/or --html FILE for the viewer")
     if step is not None and output is None:
         fail("--step chooses the heatmap step of the pictures; give -o DIR as well")
+    check_output_dir(output)
+    check_output_file(html, make_parents=False)
     try:
         spec = formats.load_scene(scene)
         pl = formats.load_plan(plan_file)
@@ -43,10 +45,7 @@ def viz(
             from .html import render_html
 
             page = render_html(spec, pl, instruction=instruction, goals=goals)
-            try:
-                html.write_text(page, encoding="utf-8")
-            except OSError as exc:
-                fail(f"cannot write {html}: {exc.strerror}")
+            write_text(page.removesuffix("\n"), str(html))
             typer.echo(f"wrote {html}", err=True)
     except InputError as exc:
         fail(str(exc))

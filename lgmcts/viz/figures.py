@@ -49,6 +49,9 @@ class FigureOptions:
     frame_s : how long each animation frame shows (seconds).
     last_frame_s : how long the last frame shows (seconds).
     heatmap_resolution : grid cell of the pose fields (metres).
+    max_step_pictures : most ``step_XX.png`` pictures (and animation frames
+        after the first); a longer plan gets this many, evenly spaced, the
+        last action always among them.
     """
 
     dpi: int = 110
@@ -58,7 +61,15 @@ class FigureOptions:
     frame_s: float = 1.2
     last_frame_s: float = 3.0
     heatmap_resolution: float = 0.005
+    max_step_pictures: int = 12
 
+
+#: Scenes with more objects than this draw no name labels beside objects.
+MAX_NAME_LABELS = 60
+#: Scenes with more objects than this draw no ids inside objects either.
+MAX_ID_LABELS = 150
+#: Earlier moves drawn as curved arrows; more are drawn as plain lines.
+MAX_ARROWS = 60
 
 # ----------------------------------------------------------------- helpers
 
@@ -138,7 +149,7 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
     ax.add_patch(Rectangle((xmin, ymin), w, h, facecolor=_TABLE_FILL, edgecolor=_TABLE_EDGE, lw=1.2, zorder=0))
     from matplotlib.collections import LineCollection
 
-    step = 0.1 if max(w, h) <= 2.0 else 0.5
+    step = 0.1 if max(w, h) <= 2.0 else 0.5 if max(w, h) <= 20.0 else 10.0 ** math.ceil(math.log10(max(w, h) / 40))
     segs = [[(gx, ymin), (gx, ymax)] for gx in np.arange(math.ceil(xmin / step) * step, xmax, step)]
     segs += [[(xmin, gy), (xmax, gy)] for gy in np.arange(math.ceil(ymin / step) * step, ymax, step)]
     ax.add_collection(LineCollection(segs, colors="#e2dacb", linewidths=0.6, zorder=0.5))
@@ -177,6 +188,14 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
         ax.text(ax_x, ax_y + a * 1.1, "y", ha="center", va="bottom", fontsize=fontsize - 1.5, color="#444444")
 
 
+def _add(ax: Any, patch: Any) -> None:
+    """``ax.add_patch`` without the data-limit update (the limits are set by
+    :func:`_draw_table` before objects are drawn); much faster for hundreds of objects."""
+    patch.set_transform(ax.transData)
+    patch.set_clip_path(ax.patch)
+    ax.add_artist(patch)
+
+
 def _draw_object(ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, lw: float = 1.0, alpha: float = 1.0, z: float = 2.0) -> None:
     from matplotlib.patches import Polygon
 
@@ -187,13 +206,13 @@ def _draw_object(ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, 
     if lvl:
         # A drop shadow, offset down-right, tells a stacked object from one on the table.
         off = np.array([0.006, -0.006]) * min(lvl, 3)
-        ax.add_patch(Polygon(verts + off, closed=True, facecolor=(0, 0, 0, 0.28 * alpha), edgecolor="none", zorder=zz - 0.01))
-    ax.add_patch(Polygon(verts, closed=True, facecolor=_rgba(pt.fill, alpha), edgecolor="none", zorder=zz))
+        _add(ax, Polygon(verts + off, closed=True, facecolor=(0, 0, 0, 0.28 * alpha), edgecolor="none", zorder=zz - 0.01))
+    _add(ax, Polygon(verts, closed=True, facecolor=_rgba(pt.fill, alpha), edgecolor="none", zorder=zz))
     if pt.texture:
-        ax.add_patch(
+        _add(ax, 
             Polygon(verts, closed=True, fill=False, hatch=_HATCH.get(pt.texture, "//"), edgecolor=_rgba(pt.mark, alpha), lw=0, zorder=zz + 0.01)
         )
-    ax.add_patch(
+    _add(ax, 
         Polygon(verts, closed=True, fill=False, edgecolor=edge if edge is not None else _rgba(pt.edge, alpha), lw=lw, zorder=zz + 0.02)
     )
 
@@ -226,9 +245,13 @@ def _label_positions(ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], f
         h = np.clip(np.minimum(b[3], others[:, 3]) - np.maximum(b[1], others[:, 1]), 0, None)
         return float((w * h).sum())
 
+    # The stack each object stands in (its base), found once: a label may
+    # cover its own stack but not other objects.
+    bases = np.array([_base(state, j) for j in range(ctx.scene.n)])
+
     def cost(b: np.ndarray, k: int) -> float:
         area = (b[2] - b[0]) * (b[3] - b[1])
-        mine = [j for j in range(ctx.scene.n) if j != k and not _same_stack(state, j, k)]
+        mine = bases != bases[k]
         c = 3.0 * overlap(b, placed) / area + 1.5 * overlap(b, feet[mine]) / area
         if b[0] < xl[0] or b[2] > xl[1] or b[1] < yl[0] or b[3] > yl[1]:
             c += 5.0
@@ -260,15 +283,16 @@ def _label_positions(ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], f
     return out
 
 
+def _base(state: State, i: int) -> int:
+    """The object at the bottom of the stack that object ``i`` stands in."""
+    while state.on[i] != TABLE:
+        i = state.on[i]
+    return i
+
+
 def _same_stack(state: State, a: int, b: int) -> bool:
     """Whether objects ``a`` and ``b`` stand in the same stack."""
-
-    def base(i: int) -> int:
-        while state.on[i] != TABLE:
-            i = state.on[i]
-        return i
-
-    return base(a) == base(b)
+    return _base(state, a) == _base(state, b)
 
 
 def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str] | None = None, rings: bool = False, fontsize: float = 7.0, dim: set[int] | None = None) -> None:
@@ -295,18 +319,23 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
             ax, ctx, state, k, edge=highlight.get(k), lw=2.6 if k in highlight else 0.9, alpha=0.35 if k in dim else 1.0
         )
     # Labels: the id inside the object; name (and what it rests on) beside it.
+    # Crowded scenes keep fewer words: beyond MAX_NAME_LABELS objects the
+    # names go, beyond MAX_ID_LABELS the ids too (text is most of the drawing
+    # time, and hundreds of labels are unreadable anyway).
     labels: dict[int, str] = {}
+    names = scene.n <= MAX_NAME_LABELS
+    ids = scene.n <= MAX_ID_LABELS
     for k in range(scene.n):
         pt = ctx.paints[k]
         x, y, _ = state.poses[k]
         covered = bool(state.holding[k])
-        if not covered:
+        if ids and not covered:
             ax.text(
                 x, y, str(scene.ids[k]), ha="center", va="center", fontsize=fontsize + 0.5, fontweight="bold",
                 color=pt.ink, zorder=4 + _level(state, k) * 0.1,
                 path_effects=[pe.withStroke(linewidth=1.6, foreground=pt.fill)],
             )
-        if state.on[k] == TABLE:
+        if names and state.on[k] == TABLE:
             stack = [k]
             while state.holding[stack[-1]]:
                 stack.append(state.holding[stack[-1]][0])
@@ -330,7 +359,7 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
 
 
 def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: bool = False, only_met: bool = False) -> None:
-    from matplotlib.patches import Circle, FancyArrowPatch, Polygon
+    from matplotlib.patches import Circle, FancyArrowPatch, Polygon, Rectangle
 
     for s in shapes:
         if only_met and not s.met:
@@ -339,6 +368,15 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
         alpha = 0.55 if faint else 0.95
         style = dict(edgecolor=_rgba(col, alpha), facecolor="none", lw=1.6 if faint else 2.2, ls=(0, (5, 3)), zorder=1.5)
         g = s.geometry
+        if "region" in g:
+            x0, x1, y0, y1 = g["region"]
+            ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, edgecolor=_rgba(col, 0.5 * alpha), facecolor=_rgba(col, 0.06),
+                                   lw=1.0, ls=(0, (1, 2)), zorder=0.6))
+        if "heading" in g:
+            c, h = np.asarray(g["anchor_point"], dtype=float), g["heading"]
+            tip = c + 0.06 * np.array([math.cos(h), math.sin(h)])
+            ax.add_patch(FancyArrowPatch(tuple(c), tuple(tip), arrowstyle="-|>", mutation_scale=12, color=_rgba(col, alpha),
+                                         lw=1.6, zorder=4.4))
         if s.kind == "line":
             p = g["points"]
             d = p[1] - p[0]
@@ -398,6 +436,22 @@ def _draw_path(ax: Any, a: Sequence[float], b: Sequence[float], color: Any, *, l
             shrinkA=2, shrinkB=4, alpha=1.0 if not faint else 0.45,
         )
     )
+
+
+def _draw_faint_paths(ax: Any, moves: list[tuple[Sequence[float], Sequence[float], Any]], *, lw: float) -> None:
+    """Faint arrows for earlier moves; beyond MAX_ARROWS moves, straight lines in one collection.
+
+    Curved arrows cost milliseconds each to lay out; a plan of thousands of
+    actions would take minutes to draw with them.
+    """
+    if len(moves) <= MAX_ARROWS:
+        for a, b, color in moves:
+            _draw_path(ax, a, b, color, lw=lw, faint=True)
+        return
+    from matplotlib.collections import LineCollection
+
+    segs = [[(float(a[0]), float(a[1])), (float(b[0]), float(b[1]))] for a, b, _ in moves]
+    ax.add_collection(LineCollection(segs, colors=[c for _, _, c in moves], linewidths=lw * 0.6, alpha=0.3, zorder=1.6))
 
 
 def _panel(ax: Any, ctx: _Ctx, shapes: list[GoalShape], step: int | None, *, fontsize: float = 8.0) -> None:
@@ -531,10 +585,11 @@ def render_state(ctx: _Ctx, step: int, *, goals_drawn: str = "met") -> np.ndarra
         title = f"Step {step} of {n} · {_PURPOSE_WORD[a.purpose]}: {ctx.scene.label(ctx.scene.index[a.object])}"
     # Earlier moves as faint arrows, the current one bold with its old pose dashed.
     if 0 < step and goals_drawn != "all":
+        moves = []
         for j in range(step - 1):
             a = ctx.plan.actions[j]
-            k = ctx.scene.index[a.object]
-            _draw_path(ax, ctx.states[j].poses[k], a.to, "#8d8d8d", lw=1.0, faint=True)
+            moves.append((ctx.states[j].poses[ctx.scene.index[a.object]], a.to, "#8d8d8d"))
+        _draw_faint_paths(ax, moves, lw=1.0)
     if goals_drawn != "none":
         _draw_goal_shapes(ax, ctx, shapes, faint=goals_drawn == "met", only_met=goals_drawn == "met")
     if 0 < step and goals_drawn != "all":
@@ -565,9 +620,11 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
     for ax, st, name in ((a0, ctx.states[0], "before"), (a1, final, f"after {n} action{'s' if n != 1 else ''}")):
         _draw_table(ax, ctx.scene)
         ax.set_title(name, fontsize=10, fontweight="bold", loc="center", pad=3)
-    for j, a in enumerate(ctx.plan.actions):
-        k = ctx.scene.index[a.object]
-        _draw_path(a1, ctx.states[j].poses[k], a.to, PURPOSE_COLORS[a.purpose], lw=1.2, faint=True)
+    moves = [
+        (ctx.states[j].poses[ctx.scene.index[a.object]], a.to, PURPOSE_COLORS[a.purpose])
+        for j, a in enumerate(ctx.plan.actions)
+    ]
+    _draw_faint_paths(a1, moves, lw=1.2)
     _draw_objects(a0, ctx, ctx.states[0], rings=True)
     _draw_goal_shapes(a1, ctx, shapes)
     _draw_objects(a1, ctx, final, rings=True)
@@ -722,6 +779,15 @@ def step_name(step: int, n_actions: int) -> str:
     return f"{step:0{max(2, len(str(n_actions)))}d}"
 
 
+def pictured_steps(n: int, most: int) -> list[int]:
+    """The actions (counted from 1) of an ``n``-action plan that get a picture: all, or ``most`` evenly spaced."""
+    if n <= most:
+        return list(range(1, n + 1))
+    if most < 1:
+        return []
+    return sorted({int(round(v)) for v in np.linspace(n / most, n, most)})
+
+
 def write_plan_figures(
     scene: SceneSpec | Scene | dict | str | Path,
     plan: PlanSpec | dict | str | Path,
@@ -750,9 +816,10 @@ def write_plan_figures(
     Returns
     -------
     list of Path
-        In order: ``initial.png``, ``step_01.png`` … one per action,
+        In order: ``initial.png``, ``step_01.png`` … one per action (at most
+        ``options.max_step_pictures``, evenly spaced),
         ``final.png``, ``before_after.png``, ``plan.gif`` (one frame for the
-        initial scene and one per action), and ``heatmaps_step_XX.png`` when
+        initial scene and one per pictured action), and ``heatmaps_step_XX.png`` when
         goals are known and the plan has a goal placement (or ``heatmap_step``).
 
     Raises
@@ -777,7 +844,7 @@ def write_plan_figures(
     written.append(_save_png(img, out / "initial.png", options.dpi))
     from ..progress import progress
 
-    for s in progress(range(1, n + 1), desc="drawing steps"):
+    for s in progress(pictured_steps(n, options.max_step_pictures), desc="drawing steps"):
         img = render_state(ctx, s)
         frames.append(img)
         written.append(_save_png(img, out / f"step_{step_name(s, n)}.png", options.dpi))

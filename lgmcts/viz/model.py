@@ -17,6 +17,7 @@ import shapely
 
 from ..errors import InputError
 from ..formats import RELATIONS, Action, Goal, GoalSpec, PlanSpec
+from ..params import resolve as resolve_params
 from ..scene import TABLE, Scene, State
 from ..validate import fit_circle, goal_satisfied
 
@@ -47,7 +48,10 @@ class GoalShape:
         relation: ``arrows`` list of ((2,), (2,)) anchor-to-object segments,
         ``direction`` (2,) the relation's unit direction;
         tower: ``centre`` (2,) of the base, ``levels`` object ids bottom-up;
-        pose: ``target`` (3,) the goal pose.
+        pose: ``target`` (3,) the goal pose;
+        and, for a goal with parameters, ``region`` ``[xmin, xmax, ymin,
+        ymax]`` (its box in the scene's workspace) and ``heading`` (rad,
+        with ``anchor_point`` (2,) where to draw it: the centres' mean).
     """
 
     index: int
@@ -144,12 +148,37 @@ def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[Goal
             kind, geom = "tower", {"centre": xy[0], "levels": list(g.objects)}
         else:
             kind, geom = "pose", {"target": np.asarray(g.pose, dtype=float)}
+        if g.region is not None or g.facing is not None:
+            gp = resolve_params(g, scene.bounds, scene.radii[idx])
+            if gp.box is not None:
+                geom["region"] = np.asarray(gp.box, dtype=float)
+            if gp.heading is not None:
+                geom["heading"] = float(gp.heading)
+                geom["anchor_point"] = xy.mean(axis=0)
         out.append(GoalShape(k, g, problem, kind, geom))
     return out
 
 
 def describe_goal(goal: Goal) -> str:
-    """One short line: ``"circle of 1, 2, 3, 4"``, ``"5 behind 1"``."""
+    """One short line: ``"circle of 1, 2, 3, 4"``, ``"5 behind 1"``,
+    ``"large circle of 1, 2, 3 in top left, facing north"``."""
+    text = _describe_shape(goal)
+    if isinstance(goal.size, str):
+        text = f"{goal.size} {text}"
+    elif goal.size is not None:
+        text = f"{text}, size {goal.size:.2f} m"
+    if isinstance(goal.region, str):
+        text += f" in {goal.region}"
+    elif goal.region is not None:
+        text += " in [" + ", ".join(f"{v:.2f}" for v in goal.region) + "]"
+    if isinstance(goal.facing, str):
+        text += f", facing {goal.facing}"
+    elif goal.facing is not None:
+        text += f", facing {goal.facing:.2f} rad"
+    return text
+
+
+def _describe_shape(goal: Goal) -> str:
     objs = ", ".join(str(i) for i in goal.objects)
     p = goal.pattern
     if p in RELATIONS:

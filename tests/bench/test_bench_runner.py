@@ -152,3 +152,11 @@ def test_bench_cli_writes_results_and_summaries(tmp_path):
         args = cmd[:4] + ["--suite", "elgr", "--n", "1", "-o", str(tmp_path / "bad")] + bad
         r = subprocess.run(args, capture_output=True, text=True, cwd=REPO, timeout=120)
         assert r.returncode == 2 and msg in r.stderr and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
+
+
+def test_ray_failures_are_one_line_with_an_auth_hint():
+    from lgmcts.bench.runner import _ray_failure
+
+    line = _ray_failure("ray://head:10001", RuntimeError("UNAUTHENTICATED: invalid\nauthentication token"))
+    assert "\n" not in line and "RAY_AUTH_TOKEN" in line and "UNAUTHENTICATED" in line
+    assert "RAY_AUTH_TOKEN" not in _ray_failure("ray://head:10001", ConnectionError("refused"))

@@ -115,7 +115,8 @@ def test_reference_ambiguity_is_detected():
     assert not unambiguous(("one", "red", "block"), objs, {1})
     assert unambiguous(("one", "blue", "heart"), objs, {4})
     assert unambiguous(("all_name", "heart"), objs, {3, 4})
-    assert resolve(("same_color", ("one", "blue", "heart")), objs) == set()
+    # The reference belongs to its "same colour" set (the peers' reading): alone here.
+    assert resolve(("same_color", ("one", "blue", "heart")), objs) == {4}
     assert not unambiguous(("one", None, "heart"), objs, {3})
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from core_helpers import box, can, goals, scene
@@ -151,3 +153,71 @@ def test_anchor_that_a_goal_places_can_move():
     assert p.solved, p.stats
     assert check(t.scene, t.goals, p).valid
     assert any(a.object == 7 for a in p.actions)  # the plate moved
+
+
+def test_pose_targets_in_contact_are_reached():
+    # Three discs whose targets touch in a row (closer than the planner's
+    # 2 mm clearance), and a fourth standing against the last target. The
+    # targets leave no other choice, so the planner places them in contact.
+    r = 0.0375
+    sc = scene(can(1, -0.3, 0.2, r=r), can(2, -0.3, 0.0, r=r), can(3, -0.3, -0.2, r=r), can(4, 0.2 + 2 * r, 0.0, r=r))
+    gs = goals(*[{"pattern": "pose", "objects": [i + 1], "pose": [x, 0.0, 0.0]} for i, x in enumerate([0.2 - 4 * r, 0.2 - 2 * r, 0.2])])
+    for seed in range(3):
+        p = _solved(sc, gs, seed=seed)
+        assert len(p.actions) == 3  # contact needs no relocation
+
+
+def test_pose_target_touching_the_workspace_edge():
+    r = 0.02
+    sc = scene(can(1, 0.0, 0.0, r=r), x=(-0.2, 0.2), y=(-0.2, 0.2))
+    edge = 0.2 - r / math.cos(math.pi / 24)  # the footprint's vertices on the edge
+    p = _solved(sc, goals({"pattern": "pose", "objects": [1], "pose": [edge, 0.0, 0.0]}), seed=0)
+    assert len(p.actions) == 1
+
+
+def test_swap_in_a_tight_workspace_uses_one_buffer():
+    # Two discs on each other's targets, a third parked between them, and
+    # room for one buffer spot only (1 cm of play along x, none along y):
+    # the plan needs exactly one relocation.
+    r = 0.0375
+    w = 2 * r / math.cos(math.pi / 24)  # the 24-gon footprint's width across its corners
+    sc = scene(can(1, 0.0, 0.0, r=r), can(2, 2 * r, 0.0, r=r), can(3, 4 * r, 0.0, r=r),
+               x=(-w / 2, 6 * r + w / 2 + 0.01), y=(-w / 2, w / 2))
+    gs = goals({"pattern": "pose", "objects": [1], "pose": [2 * r, 0.0, 0.0]},
+               {"pattern": "pose", "objects": [2], "pose": [0.0, 0.0, 0.0]},
+               {"pattern": "pose", "objects": [3], "pose": [4 * r, 0.0, 0.0]})
+    for seed in range(3):
+        p = _solved(sc, gs, seed=seed, max_iter=500)
+        assert len(p.actions) == 3
+        assert sum(a.purpose == "relocate" for a in p.actions) == 1
+
+
+def test_relocation_never_parks_on_the_target_it_clears():
+    import numpy as np
+
+    from lgmcts.planner.step import Problem, StepOptions, relocate
+    from lgmcts.scene import Scene
+
+    c = labbe_case(30, 30003, variant="protocol")
+    problem = Problem.build(Scene.from_spec(c.scene), c.goals)
+    ss = problem.root()
+    rng = np.random.default_rng(0)
+    moved = 0
+    for o in range(problem.scene.n):
+        t = problem.fixed[o][:2]
+        d = np.hypot(*(ss.world.poses[:, :2] - t).T)
+        for b in np.flatnonzero(d < 2 * 0.0375):
+            if b == o:
+                continue
+            tr = relocate(problem, ss, int(b), rng, StepOptions(), "relocate", o)
+            if tr is not None:
+                moved += 1
+                assert np.hypot(*(tr.state.world.poses[b, :2] - t)) >= 2 * 0.0375 - 1e-9
+    assert moved > 0
+
+
+@pytest.mark.parametrize("n,k", [(37, 0), (36, 5)])
+def test_dense_protocol_cases_are_solved(n, k):
+    c = labbe_case(n, 1000 * n + k, variant="protocol")
+    p = _solved(c.scene, c.goals, seed=k, max_iter=3000)
+    assert len(p.actions) <= 2 * n

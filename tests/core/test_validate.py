@@ -128,3 +128,27 @@ def test_verdict_reports_each_goal():
     g = goals({"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4], "anchor": 1})
     v = check(sc, g, plan())
     assert v.goals == (True, False) and not v.valid
+
+
+@pytest.mark.parametrize("yaw", [0.0, math.pi / 24, 0.3])
+@pytest.mark.parametrize("gap,valid", [(0.0, True), (1e-5, True), (-0.001, False)])
+def test_cylinders_may_touch_whatever_their_yaw(yaw, gap, valid):
+    # Two discs of radius 3.75 cm: their 24-gons overlap by up to ~1.6 mm^2 when
+    # the circles just touch, so contact is judged on the circles.
+    r = 0.0375
+    sc = scene(can(1, -0.2, 0.0, r=r), can(2, 0.0, 0.0, r=r))
+    d = 2 * r + gap
+    p = plan(act(1, d * math.cos(1.3), d * math.sin(1.3), yaw))
+    g = goals({"pattern": "pose", "objects": [1], "pose": [d * math.cos(1.3), d * math.sin(1.3), yaw]})
+    v = check(sc, g, p)
+    assert v.valid is valid, v.reasons
+
+
+def test_lens_area_matches_polygons():
+    from lgmcts.geometry import lens_area as _lens_area
+    import shapely
+
+    for r1, r2, d in [(0.03, 0.03, 0.05), (0.02, 0.04, 0.05), (0.03, 0.01, 0.025), (0.02, 0.02, 0.05)]:
+        a = shapely.Point(0, 0).buffer(r1, 512)
+        b = shapely.Point(d, 0).buffer(r2, 512)
+        assert _lens_area(r1, r2, d) == pytest.approx(a.intersection(b).area, rel=1e-3, abs=1e-9)

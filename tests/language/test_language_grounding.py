@@ -45,9 +45,12 @@ def test_colour_list_keeps_the_order_it_was_named_in(tabletop):
     assert _resolve(tabletop, "the yellow, red and blue blocks") == [4, 1, 2]
 
 
-def test_same_colour_reference_excludes_the_reference_object(scenes):
+def test_same_colour_set_holds_its_reference_in_lgmcts_wording_not_in_structformer_wording(scenes):
     # vima_b: the triangle is red; the red pentagon and red hexagon share its colour.
-    assert _resolve(scenes["vima_b"], "objects whose color is the same as the triangle") == [1, 11]
+    # LGMCTS-D's selector puts the reference in its "equal" set ...
+    assert _resolve(scenes["vima_b"], "objects whose color is the same as the triangle") == [1, 3, 11]
+    # ... StructFormer's "objects that have the same color as the X" leaves the X out.
+    assert _resolve(scenes["vima_b"], "objects that have the same color as the triangle") == [1, 11]
     # "red" does not select "red swirl" while some object is plain red.
     assert 5 not in _resolve(scenes["vima_b"], "all red objects")
 

@@ -282,10 +282,36 @@
     return best.corners;
   }
 
-  function fitGoals(goals, frame) {
+  // A goal's region and facing for drawing, as lgmcts.params defines them
+  // (the page given only a scene and a plan computes them itself).
+  var ROWS = ["bottom", "middle", "top"], COLS = ["left", "center", "right"];
+  var HEADINGS = { east: 0, north: Math.PI / 2, west: Math.PI, south: -Math.PI / 2 };
+
+  function regionBox(region, ws) {
+    if (Array.isArray(region)) return region.slice(0, 4);
+    if (typeof region !== "string") return null;
+    var w = region.toLowerCase().split(/\s+/).filter(Boolean);
+    if (w.length === 1 && (w[0] === "center" || w[0] === "middle")) w = ["middle", "center"];
+    if (w.length === 2 && (w[1] === "row" || w[1] === "column")) w = [w[0]];
+    var row = null, col = null;
+    if (w.length === 2) { row = w[0]; col = w[1]; }
+    else if (ROWS.indexOf(w[0]) >= 0) row = w[0];
+    else col = w[0];
+    var ri = ROWS.indexOf(row), ci = COLS.indexOf(col);
+    var dx = (ws.x[1] - ws.x[0]) / 3, dy = (ws.y[1] - ws.y[0]) / 3;
+    return [ci < 0 ? ws.x[0] : ws.x[0] + ci * dx, ci < 0 || ci === 2 ? ws.x[1] : ws.x[0] + (ci + 1) * dx,
+            ri < 0 ? ws.y[0] : ws.y[0] + ri * dy, ri < 0 || ri === 2 ? ws.y[1] : ws.y[0] + (ri + 1) * dy];
+  }
+
+  function fitGoals(goals, frame, ws) {
     return goals.map(function (g, k) {
       var xy = g.objects.map(function (i) { return frame.poses[i].slice(0, 2); });
       var out = { index: k, met: null, problem: null };
+      if (g.region !== undefined && g.region !== null && ws) out.region = regionBox(g.region, ws);
+      if (g.facing !== undefined && g.facing !== null) {
+        out.heading = typeof g.facing === "number" ? g.facing : HEADINGS[String(g.facing).toLowerCase()];
+        out.anchor_point = [0, 1].map(function (c) { return xy.reduce(function (s, p) { return s + p[c]; }, 0) / xy.length; });
+      }
       if (g.pattern === "line") { out.kind = "line"; out.points = lineFit(xy); }
       else if (g.pattern === "circle") {
         var c = xy.length >= 3 ? circleFit(xy) : null;
@@ -302,6 +328,17 @@
   }
 
   function describeGoal(g) {
+    var text = describeShape(g);
+    if (typeof g.size === "string") text = g.size + " " + text;
+    else if (typeof g.size === "number") text += ", size " + fmt(g.size) + " m";
+    if (typeof g.region === "string") text += " in " + g.region;
+    else if (g.region) text += " in [" + g.region.map(fmt).join(", ") + "]";
+    if (typeof g.facing === "string") text += ", facing " + g.facing;
+    else if (typeof g.facing === "number") text += ", facing " + fmt(g.facing) + " rad";
+    return text;
+  }
+
+  function describeShape(g) {
     var objs = g.objects.join(", ");
     if (RELATIONS[g.pattern]) return objs + " " + (g.pattern === "behind" ? "behind" : g.pattern.replace("_", "-") + " of") + " " + g.anchor;
     if (g.pattern === "tower") return "tower " + g.objects.join(" < ");
@@ -374,7 +411,7 @@
     var frames = replay(objects, actions);
     var goalFrames = frames.map(function (f, k) {
       var given = data.frames && data.frames[k] && data.frames[k].goals;
-      return given || fitGoals(goals, f);
+      return given || fitGoals(goals, f, scene.workspace);
     });
     var member = {};
     goals.forEach(function (g, k) { g.objects.forEach(function (i) { (member[i] = member[i] || []).push(k); }); });
@@ -547,6 +584,16 @@
         // Relation arrows go above the objects so their heads stay visible.
         var layer = s.kind === "relation" ? gRel : gGoals;
         var g = el(doc, "g", { class: "lgv-goal lgv-goal-" + s.index, opacity: op, fill: "none", stroke: col, "stroke-width": fs * 0.22, "stroke-dasharray": fs * 0.7 + " " + fs * 0.45 }, layer);
+        if (s.region) {
+          var rb = s.region;
+          el(doc, "rect", { x: X(rb[0]), y: Y(rb[3]), width: (rb[1] - rb[0]) * MM, height: (rb[3] - rb[2]) * MM,
+            fill: col, "fill-opacity": 0.06, "stroke-opacity": 0.5, "stroke-dasharray": fs * 0.15 + " " + fs * 0.3, class: "lgv-region" }, g);
+        }
+        if (s.heading !== undefined && s.anchor_point) {
+          var hc = s.anchor_point, hl = 0.06, hx = hc[0] + hl * Math.cos(s.heading), hy = hc[1] + hl * Math.sin(s.heading);
+          el(doc, "line", { x1: X(hc[0]), y1: Y(hc[1]), x2: X(hx), y2: Y(hy), "stroke-dasharray": "none", class: "lgv-heading",
+            "marker-end": "url(#" + uid + "-garrow-" + (s.index % GOAL_COLORS.length) + ")" }, g);
+        }
         if (s.kind === "line") {
           var p = s.points, d = [p[1][0] - p[0][0], p[1][1] - p[0][1]], L = Math.hypot(d[0], d[1]) || 1, e = 0.03;
           el(doc, "line", { x1: X(p[0][0] - d[0] / L * e), y1: Y(p[0][1] - d[1] / L * e), x2: X(p[1][0] + d[0] / L * e), y2: Y(p[1][1] + d[1] / L * e) }, g);

@@ -1,0 +1,322 @@
+"""Sentence shapes around the object references: register, parameters, roles.
+
+The offline parser reads a command as a few sentence shapes (selection,
+pattern, relation, stacking, parameters); this module holds the closed-class
+parts of that grammar, the words that are not matched against the scene or
+the pattern database:
+
+* :func:`normalise`: casual register (abbreviations, greetings, trailing
+  politeness, "could you", "would you mind") and possessive relations ("on
+  the mug's right" -> "on the right of the mug", "on its left" -> "on the
+  left of it");
+* :func:`take_params`: where, how big and facing ("a large circle in the
+  top left of the table facing north", "a short line near the front edge");
+* :func:`stack_roles`: the place of an object in a stack ("as the base",
+  "at the bottom", "on top", "in the middle").
+
+Every function works on lower-cased token tuples (:func:`.grounding.tokenize`).
+"""
+
+from __future__ import annotations
+
+from ..errors import InputError
+
+__all__ = ["normalise", "take_params", "stack_roles", "SIZES", "ROWS", "COLS", "FACINGS", "REGION_NOUNS"]
+
+# ---------------------------------------------------------------- register
+_ABBREV = {
+    "u": ("you",), "pls": ("please",), "plz": ("please",), "pleas": ("please",), "thx": ("thanks",),
+    "ty": ("thanks",), "r": ("are",), "ur": ("your",), "wanna": ("want", "to"), "gonna": ("going", "to"),
+    "gimme": ("give", "me"), "lemme": ("let", "me"), "n": ("and",), "w": ("with",), "btw": (), "asap": (),
+    "thru": ("through",), "obj": ("object",), "objs": ("objects",), "that's": ("that", "is"),
+    "it's": ("it", "is"), "they're": ("they", "are"), "aren't": ("are", "not"), "isn't": ("is", "not"),
+    "don't": ("do", "not"), "doesn't": ("does", "not"), "what's": ("what", "is"), "there's": ("there", "is"),
+}
+#: Words of greeting, politeness and hesitation that never carry an
+#: arrangement or an object (dropped anywhere in the command).
+_CHATTER = frozenset(
+    """hey hi hello yo hiya howdy ok okay alright basically thanks thank cheers please kindly robot buddy mate pal
+    um uh hmm er erm oh great awesome cool nice-to-have lol appreciated sir""".split()
+)
+_CHATTER_SEQ = (
+    ("would", "you", "mind"), ("do", "you", "mind"), ("thank", "you"), ("if", "you", "can"), ("if", "you", "could"),
+    ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),
+    ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("how", "about"),
+    ("is", "it", "possible", "to"), ("are", "you", "able", "to"), ("you", "should"), ("let's",), ("we", "need", "to"),
+    ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
+    ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
+    ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
+)
+_SIDES = frozenset({"left", "right", "front", "back", "top"})
+
+
+def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
+    """Casual register and possessive relations, token by token."""
+    out: list[str] = []
+    for k, w in enumerate(words):
+        # "letter R", "letter U": a one-letter word after "letter" is a name.
+        out.extend(_ABBREV.get(w, (w,)) if not (k and words[k - 1] == "letter") else (w,))
+    words = tuple(out)
+    out = []
+    i = 0
+    while i < len(words):
+        seq = next((s for s in _CHATTER_SEQ if words[i : i + len(s)] == s), None)
+        if seq is not None:
+            i += len(seq)
+            continue
+        w = words[i]
+        if w in _CHATTER or (w == "so" and i + 1 < len(words) and words[i + 1] not in ("that", "it", "the", "they")):
+            i += 1
+            continue
+        out.append(w)
+        i += 1
+    # Distributive "one X at each corner": every X, one per place.
+    for k in range(len(out) - 3):
+        if out[k] == "one" and any(out[m : m + 2] in (["at", "each"], ["at", "every"], ["on", "each"], ["in", "each"])
+                                   for m in range(k + 2, min(k + 5, len(out) - 1))):
+            out[k] = "every"
+    # Possessive relations: "on the mug's right (side)" -> "on the right of the mug";
+    # "on its left" -> "on the left of it".
+    res: list[str] = []
+    i = 0
+    while i < len(out):
+        w = out[i]
+        if w.endswith("'s") and i + 1 < len(out) and out[i + 1] in _SIDES:
+            # find the start of the possessor's noun phrase in res
+            head = w[:-2]
+            k = len(res)
+            while k > 0 and res[k - 1] not in ("on", "to", "at", "in", "is", "be", "up", "ends", "sits", "lies", ","):
+                k -= 1
+            np_words = res[k:] + [head]
+            side = out[i + 1]
+            j = i + 2
+            if j < len(out) and out[j] in ("side", "hand"):
+                j += 1
+            res = res[:k] + ["the", side, "of"] + (np_words if np_words[0] in ("the", "a", "an") else ["the"] + np_words)
+            i = j
+            continue
+        if w in ("its", "their") and i + 1 < len(out) and out[i + 1] in _SIDES:
+            side = out[i + 1]
+            j = i + 2
+            if j < len(out) and out[j] in ("side", "hand"):
+                j += 1
+            res += ["the", side, "of", "it" if w == "its" else "them"]
+            i = j
+            continue
+        res.append(w)
+        i += 1
+    return tuple(res)
+
+
+# ---------------------------------------------------------------- parameters
+#: Size words -> the goal's ``size``.
+SIZES = {
+    "small": "small", "little": "small", "tiny": "small", "short": "small", "compact": "small", "tight": "small",
+    "smaller": "small", "shorter": "small", "mini": "small",
+    "medium": "medium", "moderate": "medium", "average": "medium", "mid": "medium", "midsize": "medium",
+    "large": "large", "big": "large", "huge": "large", "long": "large", "wide": "large", "giant": "large",
+    "bigger": "large", "larger": "large", "longer": "large", "broad": "large", "spacious": "large",
+}
+#: Row words (the table's y direction: bottom is the side nearest the robot's
+#: viewer, "front") and column words.
+ROWS = {"top": "top", "back": "top", "upper": "top", "far": "top", "rear": "top", "bottom": "bottom",
+        "front": "bottom", "lower": "bottom", "near": "bottom", "middle": "middle", "center": "middle",
+        "centre": "middle", "central": "middle"}
+COLS = {"left": "left", "right": "right", "center": "center", "centre": "center", "middle": "center",
+        "central": "center", "leftmost": "left", "rightmost": "right"}
+FACINGS = {"north": "north", "east": "east", "south": "south", "west": "west", "up": "north", "down": "south",
+           "northward": "north", "eastward": "east", "southward": "south", "westward": "west",
+           "northwards": "north", "eastwards": "east", "southwards": "south", "westwards": "west"}
+REGION_NOUNS = frozenset({"corner", "edge", "side", "part", "area", "half", "end", "region", "portion", "section",
+                          "quadrant", "zone", "spot", "border"})
+_TABLE = frozenset({"table", "workspace", "tabletop", "desk", "surface", "board"})
+_REGION_PREP = frozenset({"in", "at", "on", "near", "along", "toward", "towards", "by", "to", "into", "onto",
+                          "around", "over", "across", "within", "against", "close"})
+_FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face"})
+
+
+def _region_run(words: tuple[str, ...], i: int, stack: bool = False):
+    """A region phrase starting at ``i``: ``(row, col, end)`` or None."""
+    n = len(words)
+    j = i
+    if j < n and words[j] in _REGION_PREP:
+        j += 1
+        if j < n and words[j] in ("to", "the"):
+            j += 1
+    if j < n and words[j] == "the":
+        j += 1
+    pos: list[str] = []
+    while j < n and (words[j] in ROWS or words[j] in COLS) and len(pos) < 2:
+        pos.append(words[j])
+        j += 1
+    if not pos:
+        return None
+    noun = j < n and words[j] in REGION_NOUNS
+    if noun:
+        j += 1
+    of_table = False
+    if j + 1 < n and words[j] == "of" and (words[j + 1] in _TABLE or (words[j + 1] == "the" and j + 2 < n and words[j + 2] in _TABLE)):
+        of_table = True
+        j += 3 if words[j + 1] == "the" else 2
+    elif j < n and words[j] == "of":
+        return None  # "left of the plate", "the left side of the plate": a relation
+    if not (of_table or noun or len(pos) == 2 or pos[0] in ("middle", "center", "centre", "central")
+            or (i < j and words[i] in _REGION_PREP)):
+        return None
+    if stack and not (of_table or noun or len(pos) == 2):
+        return None  # "at the bottom", "on top", "in the middle" of a stack are places in it
+    row = col = None
+    for p in pos:
+        if len(pos) == 2 and p in ("middle", "center", "centre", "central"):
+            if row is None and pos.index(p) == 0:
+                row = "middle"
+            else:
+                col = "center"
+        elif p in ("left", "right", "leftmost", "rightmost"):
+            col = COLS[p]
+        elif p in ROWS and p not in ("middle", "center", "centre", "central"):
+            row = ROWS[p]
+        elif p in ("middle", "center", "centre", "central"):
+            row, col = row or "middle", col or "center"
+    if j < n and words[j] == "of" and j + 1 < n and words[j + 1] in _TABLE:
+        j += 2
+    return row, col, j
+
+
+def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int] | None = None,
+                stack: bool = False) -> tuple[dict, tuple[str, ...]]:
+    """Pull where / how big / facing out of a clause that names an arrangement.
+
+    ``pattern_nouns(word)`` says whether a word names a pattern (a size word
+    counts only right before one: "a large circle", not "the large bowl").
+    ``stack``: the clause is about a stack, whose "bottom", "top" and
+    "middle" are places in the stack, not on the table (only "of the table",
+    a corner or a two-word place is a region then).
+    ``protected`` maps the start of each object reference to its end: those
+    words are kept as they are, and a place named right after an object
+    listed after the arrangement ("a line and the phone in the middle") is
+    that object's place, not the arrangement's, and is left in the clause.
+    Returns the parameters (``region`` "<row> <col>", ``size``, ``facing``)
+    and the clause without their words. Two different values of one
+    parameter are refused.
+    """
+    protected = dict(protected or {})
+    for k in range(len(words)):
+        # "from top to bottom", "bottom up": an order along a stack, not a place.
+        for seq in (("top", "to", "bottom"), ("bottom", "to", "top"), ("bottom", "up"), ("top", "down"),
+                    ("the", "top", "down"), ("from", "the", "top"), ("from", "the", "bottom")):
+            if words[k : k + len(seq)] == seq:
+                protected[k] = max(protected.get(k, k), k + len(seq))
+    seen_pattern = False
+    blocked = False
+    params: dict[str, str] = {}
+    keep: list[str] = []
+    row = col = None
+    n = len(words)
+    i = 0
+
+    def put(key: str, val: str, text: str) -> None:
+        if key in params and params[key] != val:
+            raise InputError(f"'{text}': two different {key}s ({params[key]}, {val}) for one arrangement")
+        params[key] = val
+
+    while i < n:
+        w = words[i]
+        if i in protected:
+            end = protected[i]
+            if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
+                blocked = True
+            if seen_pattern and i > 0 and words[i - 1] == "with" and end < n and _region_run(words, end) is not None \
+                    and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))):
+                blocked = True  # "a circle with the plate in the middle": the plate's place, not the circle's
+            keep.extend(words[i:end])
+            i = end
+            continue
+        if pattern_nouns(w):
+            seen_pattern, blocked = True, False
+        if w in _FACE_VERBS:
+            j = i + 1
+            while j < n and words[j] in ("to", "the", "toward", "towards", "in", "direction", "of"):
+                j += 1
+            if j < n and words[j] in FACINGS:
+                put("facing", FACINGS[words[j]], " ".join(words))
+                i = j + 1
+                if i < n and words[i] == "direction":
+                    i += 1
+                continue
+            raise InputError(
+                f"'{' '.join(words[i:j + 2])}': facing can be north, east, south or west only, not towards an object")
+        if w in SIZES and i + 1 < n:
+            j = i + 1
+            while j < n and (words[j] in ("straight", "neat", "tidy", "nice", "single", "round", "and", ",", "sized",
+                                          "size", "scale", "scaled")
+                             or words[j] in SIZES):
+                j += 1
+            if j < n and pattern_nouns(words[j]):
+                put("size", SIZES[w], " ".join(words))
+                i += 1
+                continue
+        got = None if blocked else _region_run(words, i, stack)
+        if got is not None and any(k in protected for k in range(i, got[2])):
+            got = None
+        if got is not None:
+            r, c, j = got
+            if r is not None:
+                if row is not None and row != r:
+                    raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
+                row = r
+            if c is not None:
+                if col is not None and col != c:
+                    raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
+                col = c
+            i = j
+            continue
+        keep.append(w)
+        i += 1
+    if row is not None and col is not None:
+        params["region"] = f"{row} {col}"
+    elif row is not None or col is not None:
+        params["region"] = row or col  # one band of the table: "bottom", "left"
+    return params, tuple(keep)
+
+
+# ---------------------------------------------------------------- stacking
+#: Role phrases after an object in a stack, longest first: where it goes.
+_ROLES = tuple(
+    (tuple(p.split()), r)
+    for p, r in sorted(
+        [
+            ("as the base", "bottom"), ("as a base", "bottom"), ("as the foundation", "bottom"),
+            ("as the bottom", "bottom"), ("at the bottom", "bottom"), ("on the bottom", "bottom"),
+            ("at the base", "bottom"), ("as the bottom layer", "bottom"), ("goes first", "bottom"),
+            ("as the top", "top"), ("on top", "top"), ("at the top", "top"), ("on the top", "top"),
+            ("goes on top", "top"), ("goes last", "top"), ("as the cap", "top"), ("in the middle", "middle"),
+            ("in between", "middle"), ("in the centre", "middle"), ("in the center", "middle"),
+            ("between them", "middle"), ("goes on it", "next"), ("goes on that", "next"), ("goes next", "next"),
+            ("goes above", "next"), ("goes on top of it", "next"), ("goes on top of that", "next"),
+            ("bottom", "bottom"), ("top", "top"), ("lowest", "bottom"), ("highest", "top"),
+            ("goes in between", "middle"), ("goes in the middle", "middle"),
+        ],
+        key=lambda pr: -len(pr[0].split()),
+    )
+)
+
+
+def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
+    """The role phrase at ``i`` (right after an object reference) and its end."""
+    j = i
+    if j < len(words) and words[j] == ",":
+        j += 1
+    # "goes"/"should go"/"sits" before a role phrase are one verb: "goes on it".
+    k = j
+    while k < len(words) and words[k] in ("should", "will", "must", "can"):
+        k += 1
+    if k < len(words) and words[k] in ("go", "sits", "sit", "comes", "come", "is", "be", "stands"):
+        cand = ("goes",) + words[k + 1 :]
+        for seq, role in _ROLES:
+            if seq[0] == "goes" and cand[: len(seq)] == seq:
+                return role, k + len(seq)
+    for seq, role in _ROLES:
+        if words[j : j + len(seq)] == seq:
+            return role, j + len(seq)
+    return None
