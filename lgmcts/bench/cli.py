@@ -54,7 +54,7 @@ def bench_generate(
 
 def bench(
     suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense, structformer, or a suite JSONL file."),
-    method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, or module:function (your planner)."),
+    method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, lfsp (the LLM proposes the poses; needs --llm-model), or module:function (your planner)."),
     parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
     seed: int = typer.Option(0, "--seed", help="Suite seed when --suite names a suite."),
@@ -97,7 +97,10 @@ def bench(
     except OSError as exc:
         fail(f"cannot write to {output}: {exc.strerror}")
     rows = summarise(records)
-    title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
+    if opts.method == "lfsp":
+        title = f"{suite_name}: lfsp (the language model places the objects), model {opts.llm_model}"
+    else:
+        title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
     md = to_markdown(rows, title=title)
     (output / "summary.md").write_text(md + "\n" + _provenance() + "\n")
     (output / "summary.csv").write_text(to_csv(rows))

@@ -7,13 +7,21 @@
   :func:`footprint_iou` scores the result against the true footprints.
 
 The design and its numbers are described in ``docs/sim.md``.
+
+The names below load on first use, so that ``lgmcts`` commands that do not
+simulate (``parse``, ``plan``) never import MuJoCo.
 """
 
-# The render module picks the OpenGL backend (MUJOCO_GL) and must run before
-# anything imports mujoco, so it is imported first.
-from .render import CameraOptions, VideoRecorder, footprint_iou, observe  # isort: skip
-from .executor import ExecOptions, Execution, Executor, StepOutcome, execute_plan
-from .model import ModelOptions, SimModel, build_model
+from __future__ import annotations
+
+import os
+from importlib import import_module
+from typing import Any
+
+# MUJOCO_GL is read when mujoco is first imported: choose the OpenGL backend
+# here, before any module of this package can import it.
+os.environ.setdefault("MUJOCO_GL", "osmesa")
+os.environ.setdefault("PYOPENGL_PLATFORM", os.environ["MUJOCO_GL"])
 
 __all__ = [
     "CameraOptions",
@@ -29,3 +37,19 @@ __all__ = [
     "footprint_iou",
     "observe",
 ]
+
+_WHERE = {
+    **dict.fromkeys(["CameraOptions", "VideoRecorder", "footprint_iou", "observe"], ".render"),
+    **dict.fromkeys(["ExecOptions", "Execution", "Executor", "StepOutcome", "execute_plan"], ".executor"),
+    **dict.fromkeys(["ModelOptions", "SimModel", "build_model"], ".model"),
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(import_module(_WHERE[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
