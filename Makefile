@@ -3,19 +3,26 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
+# Optional parts installed by `make install`: every extra (README, "Installing
+# parts"). llm-local builds llama-cpp-python from source the first time (about
+# 8 minutes on 2 cores; pip caches the wheel); `make install
+# EXTRAS=test,language,llm,sim,viz,service,ray` leaves it out (its tests then skip).
+EXTRAS ?= all,test
 export HF_HUB_OFFLINE := 1
 export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo test golden bench bench-suites clean
+.PHONY: install system-deps demo test golden bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 	# The CPU build of PyTorch first, so nothing pulls the multi-GB CUDA build.
 	$(PY) -m pip install -q torch==2.13.0
-	$(PY) -m pip install -q -e ".[all,test]"
+	$(PY) -m pip install -q -e ".[$(EXTRAS)]"
+	# The sentence model to ONNX, once (the only use of torch; see lgmcts/language/export.py).
+	$(PY) -m lgmcts.language.export --quiet
 	@rm -f $(VENV)/.installed-*
 	@touch $(STAMP)
 
@@ -47,6 +54,17 @@ bench: install
 
 bench-suites: install system-deps
 	$(PY) benchmarks/suite_figures.py
+
+# Cold start and parse time of the offline parser (docs/benchmarks.md).
+bench-language: install
+	$(PY) benchmarks/language_runtime.py --runs 5
+
+# The LLM parser and LFSP on a local server (llama-cpp-python + Gemma 3 270M on
+# 127.0.0.1): every language evaluation set through --parser llm, and LFSP on
+# both suites. LLM_EVAL_ARGS="--every 10 --lfsp-n 10" for a quicker sample.
+LLM_EVAL_ARGS ?=
+llm-eval: install
+	$(PY) benchmarks/llm_eval.py $(LLM_EVAL_ARGS)
 
 clean:
 	rm -rf out .pytest_cache

@@ -12,9 +12,8 @@ from typing import Optional
 
 import typer
 
-from .cli_util import check_output_dir, check_output_file, configure_logging, fail, write_text
+from .cli_util import check_output_dir, check_output_file, configure_logging, fail, run_app, write_text
 from .errors import InputError
-from .extras import missing_extra
 
 app = typer.Typer(
     add_completion=False,
@@ -138,46 +137,9 @@ def _register_plugins() -> None:
 _register_plugins()
 
 
-def _click_exceptions():
-    """The exception classes of the click that typer runs on (newer typer vendors its own copy)."""
-    try:
-        from typer._click import exceptions as cx
-    except ImportError:  # pragma: no cover - typer on the public click
-        from click import exceptions as cx
-    return cx
-
-
 def main() -> None:
-    """Entry point: run the app; usage errors, stray bad input and a missing optional extra become one line and exit 2."""
-    cx = _click_exceptions()
-    command = typer.main.get_command(app)
-    try:
-        code = command.main(prog_name="lgmcts", standalone_mode=False)
-    except cx.NoArgsIsHelpError as exc:
-        typer.echo(exc.ctx.get_help() if exc.ctx is not None else str(exc), err=True)
-        sys.exit(2)
-    except cx.UsageError as exc:
-        where = f"{exc.ctx.command_path}: " if exc.ctx is not None else ""
-        typer.echo(" ".join(f"{where}{exc.format_message()}".split()) + " (see --help)", err=True)
-        sys.exit(2)
-    except cx.ClickException as exc:
-        typer.echo(" ".join(exc.format_message().split()), err=True)
-        sys.exit(exc.exit_code)
-    except typer.Exit as exc:
-        sys.exit(exc.exit_code)
-    except InputError as exc:  # pragma: no cover - commands catch their own
-        typer.echo(str(exc), err=True)
-        sys.exit(2)
-    except ModuleNotFoundError as exc:  # an optional extra that is not installed
-        message = missing_extra(exc)
-        if message is None:
-            raise
-        typer.echo(message, err=True)
-        sys.exit(2)
-    except (typer.Abort, KeyboardInterrupt):
-        typer.echo("interrupted", err=True)
-        sys.exit(130)
-    sys.exit(code if isinstance(code, int) else 0)
+    """Entry point: run the app; usage errors and stray bad input become one line and exit 2."""
+    run_app(app)
 
 
 if __name__ == "__main__":

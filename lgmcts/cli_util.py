@@ -19,6 +19,52 @@ def fail(message: str, code: int = 2) -> NoReturn:
     raise typer.Exit(code)
 
 
+def _click_exceptions():
+    """The exception classes of the click that typer runs on (newer typer vendors its own copy)."""
+    try:
+        from typer._click import exceptions as cx
+    except ImportError:  # pragma: no cover - typer on the public click
+        from click import exceptions as cx
+    return cx
+
+
+def run_app(app: typer.Typer, prog_name: str = "lgmcts") -> NoReturn:
+    """Run a typer app as a program: usage errors, stray bad input and a missing
+    optional extra (:mod:`lgmcts.extras`) are one line and exit 2, never a boxed panel."""
+    from .errors import InputError
+    from .extras import missing_extra
+
+    cx = _click_exceptions()
+    command = typer.main.get_command(app)
+    try:
+        code = command.main(prog_name=prog_name, standalone_mode=False)
+    except cx.NoArgsIsHelpError as exc:
+        typer.echo(exc.ctx.get_help() if exc.ctx is not None else str(exc), err=True)
+        sys.exit(2)
+    except cx.UsageError as exc:
+        where = f"{exc.ctx.command_path}: " if exc.ctx is not None else ""
+        typer.echo(" ".join(f"{where}{exc.format_message()}".split()) + " (see --help)", err=True)
+        sys.exit(2)
+    except cx.ClickException as exc:
+        typer.echo(" ".join(exc.format_message().split()), err=True)
+        sys.exit(exc.exit_code)
+    except typer.Exit as exc:
+        sys.exit(exc.exit_code)
+    except InputError as exc:  # pragma: no cover - commands catch their own
+        typer.echo(str(exc), err=True)
+        sys.exit(2)
+    except ModuleNotFoundError as exc:  # an optional extra that is not installed
+        message = missing_extra(exc)
+        if message is None:
+            raise
+        typer.echo(message, err=True)
+        sys.exit(2)
+    except (typer.Abort, KeyboardInterrupt):
+        typer.echo("interrupted", err=True)
+        sys.exit(130)
+    sys.exit(code if isinstance(code, int) else 0)
+
+
 def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> None:
     """Fail (exit 2) unless ``path`` can be written as a file; ``None`` and ``-`` mean stdout.
 

@@ -21,7 +21,9 @@ EXTRAS: dict[str, str] = {
     "sentence_transformers": "language",
     "transformers": "language",
     "torch": "language",
+    "onnx": "language",
     "openai": "llm",
+    "llama_cpp": "llm-local",
     "mujoco": "sim",
     "imageio": "viz",
     "imageio_ffmpeg": "viz",
@@ -37,6 +39,7 @@ EXTRAS: dict[str, str] = {
 PURPOSE: dict[str, str] = {
     "language": "the language parser",
     "llm": "the LLM parser",
+    "llm-local": "the local LLM server",
     "sim": "the physics executor",
     "viz": "pictures",
     "service": "the planning service",

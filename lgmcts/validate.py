@@ -228,18 +228,21 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
     pl = load_plan(plan)
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
-    state = sc.initial
+    poses = np.array(sc.initial.poses, dtype=float)
+    # Supports as an array: each action's tests are vectorised over the
+    # objects, so a long plan on a large scene replays in seconds.
+    on = np.array(sc.initial.on, dtype=np.int64)
+    index = np.arange(sc.n)
+    polys = list(sc.initial.polys)
     reasons: list[str] = []
     for step, act in enumerate(pl.actions, start=1):
-        # The state steps as in lgmcts.scene.replay, judged before each move.
-        poses, on, polys = state.poses, state.on, state.polys
         if act.object not in sc.index:
             reasons.append(f"action {step}: unknown object {act.object}")
             break
         i = sc.index[act.object]
-        if any(s == i for s in on):
-            top = [sc.ids[k] for k, s in enumerate(on) if s == i]
-            reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
+        above = np.flatnonzero(on == i)
+        if len(above):
+            reasons.append(f"action {step}: object {act.object} is not clear (object {sc.ids[above[0]]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
         bad = _pose_out_of_bounds(new_pose)
         if bad is not None:
@@ -264,7 +267,7 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             # Only footprints whose circumscribed circles meet can overlap.
             reach = sc.radii[i] + sc.radii + 1e-9
             close = np.hypot(poses[:, 0] - new_pose[0], poses[:, 1] - new_pose[1]) <= reach
-            others = [k for k, s in enumerate(on) if k != i and s == TABLE and close[k]]
+            others = [int(k) for k in np.flatnonzero(close & (on == TABLE) & (index != i))]
             if others:
                 arr = np.empty(len(others), dtype=object)
                 arr[:] = [polys[k] for k in others]
@@ -293,16 +296,18 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             if j == i:
                 reasons.append(f"action {step}: object {act.object} placed on itself")
                 break
-            if any(s == j for k, s in enumerate(on) if k != i):
+            if np.any((on == j) & (index != i)):
                 reasons.append(f"action {step}: support {act.on} is not clear")
             if not shapely.contains_xy(polys[j], new_pose[0], new_pose[1]):
                 reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
             new_on = j
-        state = state.moved(i, new_pose, new_on)
-    poses, on = state.poses, state.on
+        poses[i] = new_pose
+        on[i] = new_on
+        polys[i] = poly
     results = []
+    final_on = tuple(int(x) for x in on)
     for k, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, tuple(on))
+        why = goal_satisfied(g, sc, poses, final_on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {k} ({g.pattern} {g.objects}): {why}")

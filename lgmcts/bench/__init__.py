@@ -13,10 +13,8 @@ See ``docs/bench.md``.
 
 from __future__ import annotations
 
-from .report import Row, summarise, to_csv, to_markdown
-from .runner import CAUSES, RunOptions, canonical_goals, load_results, run_suite, run_task
-from .suites import SUITES, Suite, generate, iter_generate, suite
-from .tasks import Task, read_suite, task_seed, write_suite
+from importlib import import_module
+from typing import Any
 
 __all__ = [
     "CAUSES",
@@ -39,3 +37,21 @@ __all__ = [
     "to_markdown",
     "write_suite",
 ]
+
+# Loaded on first use, so that other ``lgmcts`` commands import none of it.
+_WHERE = {
+    **dict.fromkeys(["Row", "summarise", "to_csv", "to_markdown"], ".report"),
+    **dict.fromkeys(["CAUSES", "RunOptions", "canonical_goals", "load_results", "run_suite", "run_task"], ".runner"),
+    **dict.fromkeys(["SUITES", "Suite", "generate", "iter_generate", "suite"], ".suites"),
+    **dict.fromkeys(["Task", "read_suite", "task_seed", "write_suite"], ".tasks"),
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(import_module(_WHERE[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -54,7 +54,7 @@ def bench_generate(
 
 def bench(
     suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense, structformer, or a suite JSONL file."),
-    method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, or module:function (your planner)."),
+    method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, lfsp (the LLM proposes the poses; needs --llm-model), or module:function (your planner)."),
     parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
     seed: int = typer.Option(0, "--seed", help="Suite seed when --suite names a suite."),
@@ -79,7 +79,9 @@ def bench(
     from .tasks import write_suite
 
     try:
-        if instructions != "ours" and suite not in ("elgr", "structformer"):
+        from .suites import SUITES
+
+        if instructions != "ours" and suite not in SUITES:
             raise InputError("--instructions applies to a suite name; a suite file carries its own instructions")
         tasks, source, suite_name = _tasks(suite, n, seed, instructions)
         chosen = parser or ("gt" if suite_name == "structformer" else "rules")
@@ -87,7 +89,7 @@ def bench(
                           execute=not no_exec, llm_model=llm_model, llm_base_url=llm_base_url)
         opts.check()
         output.mkdir(parents=True, exist_ok=True)
-        if suite in ("elgr", "elgr-dense", "structformer") and not (output / "suite.jsonl").exists():
+        if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")
         records = run_suite(tasks, output, options=opts, workers=workers, ray_address=ray, source=source)
     except InputError as exc:
@@ -95,7 +97,10 @@ def bench(
     except OSError as exc:
         fail(f"cannot write to {output}: {exc.strerror}")
     rows = summarise(records)
-    title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
+    if opts.method == "lfsp":
+        title = f"{suite_name}: lfsp (the language model places the objects), model {opts.llm_model}"
+    else:
+        title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
     md = to_markdown(rows, title=title)
     (output / "summary.md").write_text(md + "\n" + _provenance() + "\n")
     (output / "summary.csv").write_text(to_csv(rows))

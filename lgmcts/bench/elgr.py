@@ -19,6 +19,10 @@ Start state
     move are scattered, at least one object is stacked on an object that must
     move, and at least one other object lies where a goal object ends in that
     arrangement.
+Dense variant (suite ``elgr-dense``)
+    The same task (same scene objects, poses, instruction and goals) plus
+    6-12 extra objects packed edge to edge around the goal region, touching
+    within micrometres and overlapping nothing (:func:`_densify`).
 Success
     The ground-truth goals hold after the plan (validator) and after its
     execution in physics (SR_p and SR_ep).
@@ -40,7 +44,7 @@ from .layout import Layout, pattern_poses, relation_pose, scene_of
 from .refs import phrase, resolve, unambiguous
 from .tasks import Task
 
-__all__ = ["CATEGORIES", "WORKSPACE", "generate_task", "generate_dense_task"]
+__all__ = ["CATEGORIES", "WORKSPACE", "generate_task"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _KINDS = ("line", "circle", "rectangle", "spatial")
@@ -75,8 +79,13 @@ _PLURAL_KINDS = tuple(k.name for k in VIMA_KINDS if k.plural)
 _ALL_NAMES = tuple(k.name for k in VIMA_KINDS)
 
 
-def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Task:
-    """Build the ELGR-style task of ``category`` from ``seed`` (deterministic)."""
+def generate_task(category: str, seed: int, *, task_id: str | None = None, dense: bool = False) -> Task:
+    """Build the ELGR-style task of ``category`` from ``seed`` (deterministic).
+
+    ``dense=True`` gives the task of the dense variant (suite ``elgr-dense``):
+    the same task plus touching clutter packed around the goal region
+    (:func:`_densify`).
+    """
     if category not in CATEGORIES:
         raise ValueError(f"unknown ELGR category {category}")
     rng = np.random.default_rng(seed)
@@ -84,11 +93,14 @@ def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Ta
     for _ in range(400):
         t = _attempt(kinds, rng)
         if t is not None:
-            scene, instruction, goals, final, start = t
+            scene, instruction, goals, final, start, meanings = t
+            if dense:
+                scene, final, start = _densify(scene, goals, final, start, meanings, np.random.default_rng([seed, 1]))
+            name = "elgr-dense" if dense else "elgr"
             return Task(
-                id=task_id or f"elgr-{seed}",
+                id=task_id or f"{name}-{seed}",
                 seed=seed,
-                suite="elgr",
+                suite=name,
                 category=category,
                 scene=scene,
                 instruction=instruction,
@@ -97,6 +109,88 @@ def generate_task(category: str, seed: int, *, task_id: str | None = None) -> Ta
                 start=start,
             )
     raise RuntimeError(f"could not build an ELGR task for seed {seed}")  # pragma: no cover
+
+
+#: Extra objects the dense variant tries to pack (it keeps those that find a
+#: spot in contact and leave every reference of the instruction unchanged).
+DENSE_EXTRA = (6, 12)
+#: Packings drawn per extra object (see :func:`_densify`).
+_DENSE_TRIES = 6
+
+
+def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list, rng: np.random.Generator):
+    """Add clutter packed edge to edge around the goal region of a task.
+
+    Between 6 and 12 extra VIMA-like objects (their number, kinds, colours,
+    sizes and yaws drawn from ``rng``) are slid, each from the final centre
+    of a random goal object along a random ray, to the first pose where they
+    overlap nothing, then bisected to within micrometres of contact
+    (:func:`lgmcts.casegen.pack_clutter`). Of up to six such packings per
+    object, the first that touches both a table-level object of the start scene and
+    the spot of a goal object is kept, else the best drawn (touching the
+    start scene counts more than touching a goal spot). They keep clear of every final
+    footprint (so the arrangement the task was built from stays legal with
+    the extras where they start, which is also their final pose) and of
+    every start footprint, stacked objects' included (no extra stands under
+    the overhang of an object resting on another). An extra whose name and colour would
+    change what a reference of the instruction means is redrawn. The start
+    state lists the extras under ``"packed"``.
+    """
+    from ..casegen import pack_clutter
+
+    objects = [dict(o) for o in scene["objects"]]
+    st = Scene.from_spec(parse_scene(scene))
+    goal_ids = {i for g in goals["goals"] for i in g["objects"]}
+    goal_feet: list = []
+    other_feet: list = []
+    start_feet: list = []
+    table_feet: list = []
+    for k, i in enumerate(st.ids):
+        fp = shapely.polygons(st.footprint(k, np.asarray(final[str(i)], dtype=float)))
+        (goal_feet if i in goal_ids else other_feet).append(fp)
+        # Every start footprint, stacked ones too: an extra taller than a
+        # base would otherwise stand under the overhang of the object on it.
+        start_feet.append(st.initial.polys[k])
+        if st.initial.on[k] == TABLE:
+            table_feet.append(st.initial.polys[k])
+    other_feet += start_feet
+
+    def st_one(o: dict) -> shapely.Polygon:
+        one = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": [o]}))
+        return one.initial.polys[0]
+
+    specs: list[dict] = []
+    next_id = max(o["id"] for o in objects) + 1
+    for _ in range(int(rng.integers(DENSE_EXTRA[0], DENSE_EXTRA[1] + 1))):
+        for _try in range(30):
+            name, color = _pick(rng, _ALL_NAMES), _pick(rng, VIMA_COLORS)
+            cand = {"id": next_id, "name": name, "color": color}
+            pool = objects + specs + [cand]
+            if all(unambiguous(ref, pool, want) for ref, want in meanings):
+                specs.append({**cand, "shape": kind(name).make(scale(rng))})
+                next_id += 1
+                break
+    bounds = (WORKSPACE["x"][0], WORKSPACE["x"][1], WORKSPACE["y"][0], WORKSPACE["y"][1])
+    packed: list[dict] = []
+    real = list(table_feet)  # table-level footprints of the start scene
+    for spec in specs:
+        best, best_score = None, -1
+        for _ in range(_DENSE_TRIES):
+            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(table_feet):], rng)
+            if not got:
+                continue
+            k = st_one(got[0])
+            score = 2 * (min(shapely.distance(k, q) for q in real) <= 1e-4) + (min(shapely.distance(k, q) for q in goal_feet) <= 1e-4)
+            if score > best_score:
+                best, best_score = (got[0], k), score
+            if score == 3:
+                break
+        if best is not None:
+            packed.append(best[0])
+            real.append(best[1])
+    out_scene = {**scene, "objects": objects + packed}
+    out_final = {**final, **{str(o["id"]): list(o["pose"]) for o in packed}}
+    return out_scene, out_final, {**start, "packed": [o["id"] for o in packed]}
 
 
 def _pick(rng: np.random.Generator, pool: list[str] | tuple[str, ...]) -> str:
@@ -365,49 +459,14 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         "blockers": [[ids[t], ids[b]] for t, b in tops],
         "clutter": [[ids[c], ids[t]] for c, t in clutter_pairs],
     }
-    return scene_dict, instruction, {"goals": goal_list}, final_d, start_d
-
-
-def generate_dense_task(category: str, seed: int, *, task_id: str | None = None) -> Task:
-    """The dense variant of the ELGR-style task of ``category`` and ``seed``.
-
-    Task, start state, instruction and goals are those of
-    :func:`generate_task` for the same arguments, plus 4-8 clutter objects
-    packed edge to edge around the goal region
-    (:func:`lgmcts.casegen.pack_clutter`): clear of the goal objects' final
-    footprints and of every object's start and final footprint, so the
-    final arrangement (with the clutter where it stands) still meets every
-    goal. The clutter's categories and colours occur nowhere else in the
-    scene (no colour word shared either), so the instruction means exactly
-    what it meant without it. ``start["packed"]`` lists the clutter's ids.
-    """
-    from ..casegen import pack_clutter
-
-    base = generate_task(category, seed, task_id=task_id or f"elgr-dense-{seed}")
-    rng = np.random.default_rng([seed, 2])
-    objs = base.scene["objects"]
-    names = {o["name"] for o in objs}
-    words = set().union(*(color_words(o["color"]) for o in objs))
-    kinds = [k for k in VIMA_KINDS if k.name not in names]
-    colors = [c for c in VIMA_COLORS if not color_words(c) & words]
-    spec = parse_scene(base.scene)
-    sc = Scene.from_spec(spec)
-    goal_ids = {i for g in base.goals["goals"] for i in [*g["objects"], *([g["anchor"]] if g.get("anchor") is not None else [])]}
-    table = [k for k in range(sc.n) if sc.initial.on[k] == TABLE]
-    final = {int(i): np.asarray(p, dtype=float) for i, p in base.final.items()}
-    final_on = {int(i) for i in base.final_on}
-    goal_feet = [shapely.polygons(sc.footprint(sc.index[i], final[i])) for i in sorted(goal_ids) if i not in final_on]
-    other_feet = [sc.initial.polys[k] for k in table]
-    other_feet += [shapely.polygons(sc.footprint(sc.index[i], final[i])) for i in sorted(final) if i not in goal_ids and i not in final_on]
-    specs = []
-    if kinds and colors:
-        first = max(o["id"] for o in objs) + 1
-        for e in range(int(rng.integers(4, 9))):
-            k = kinds[int(rng.integers(len(kinds)))]
-            specs.append({"id": first + e, "name": k.name, "color": _pick(rng, colors), "shape": k.make(scale(rng))})
-    packed = pack_clutter(sc.bounds, specs, goal_feet, other_feet, rng)
-    scene = {**base.scene, "objects": [*objs, *packed]}
-    final_d = {**base.final, **{str(o["id"]): list(o["pose"]) for o in packed}}
-    start = {**base.start, "packed": [o["id"] for o in packed]}
-    return Task(id=base.id, seed=seed, suite="elgr-dense", category=category, scene=scene, instruction=base.instruction,
-                goals=base.goals, final=final_d, final_on=base.final_on, start=start)
+    # What each reference must keep meaning when objects are added (dense variant).
+    meanings: list[tuple[tuple, frozenset[int]]] = []
+    for g, spec in enumerate(goals):
+        if spec["kind"] == "spatial":
+            ra, rb = refs[g]
+            meanings += [(ra, frozenset({ids[spec["target"]]})), (rb, frozenset({ids[spec["anchor"]]}))]
+        else:
+            meanings.append((refs[g], sets[g]))
+            if spec["mode"] == "same_color":
+                meanings.append((refs[g][1], frozenset({ids[extra[g]]})))
+    return scene_dict, instruction, {"goals": goal_list}, final_d, start_d, meanings

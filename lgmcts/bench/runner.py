@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import math
 import os
 import sys
 import time
@@ -45,6 +46,8 @@ __all__ = [
 RESULTS_FILE = "results.jsonl"
 CONFIG_FILE = "run.json"
 BUILTIN_METHODS = ("lgmcts", "greedy", "pmcts")
+#: Methods that plan from the instruction itself with a language model (no goals parsed).
+LLM_METHODS = ("lfsp",)
 PARSERS = ("rules", "llm", "gt")
 
 #: Failure causes, in the order a task meets them.
@@ -66,12 +69,14 @@ class RunOptions:
 
     Attributes
     ----------
-    method : ``lgmcts``, ``greedy``, ``pmcts`` or ``module:function`` (a plug-in planner).
+    method : ``lgmcts``, ``greedy``, ``pmcts``, ``lfsp`` (the language model proposes the
+        poses itself from the instruction; ``parser`` is not used) or ``module:function``
+        (a plug-in planner).
     parser : ``rules`` (offline parser), ``llm`` or ``gt`` (the ground-truth goals).
     max_iter : planner iteration budget per task.
     time_limit : optional planner wall-clock budget per task (s).
     execute : run solved plans in physics (SR_ep); off gives SR_p only.
-    llm_model, llm_base_url : passed to the LLM parser.
+    llm_model, llm_base_url : passed to the LLM parser and to ``lfsp``.
     """
 
     method: str = "lgmcts"
@@ -88,9 +93,11 @@ class RunOptions:
             raise InputError(f"unknown parser '{self.parser}' (known: {', '.join(PARSERS)})")
         if self.max_iter < 1:
             raise InputError("--max-iter must be at least 1")
-        if self.time_limit is not None and self.time_limit <= 0:
-            raise InputError("--time-limit must be positive")
+        if self.time_limit is not None and not (math.isfinite(self.time_limit) and self.time_limit > 0):
+            raise InputError("--time-limit must be a positive finite number of seconds")
         resolve_method(self.method)
+        if self.method in LLM_METHODS and not (self.llm_model or os.environ.get("LGMCTS_LLM_MODEL")):
+            raise InputError(f"--method {self.method} needs --llm-model NAME (or LGMCTS_LLM_MODEL)")
 
 
 def resolve_method(method: str) -> Callable[..., Any] | str:
@@ -99,10 +106,11 @@ def resolve_method(method: str) -> Callable[..., Any] | str:
     The current directory is importable, so a planner in ``./my_planner.py``
     is ``my_planner:plan``.
     """
-    if method in BUILTIN_METHODS:
+    if method in BUILTIN_METHODS or method in LLM_METHODS:
         return method
     if ":" not in method:
-        raise InputError(f"unknown method '{method}' (use {', '.join(BUILTIN_METHODS)} or module:function)")
+        known = ", ".join(BUILTIN_METHODS + LLM_METHODS)
+        raise InputError(f"unknown method '{method}' (use {known} or module:function)")
     mod_name, _, fn_name = method.partition(":")
     if not mod_name or not fn_name:
         raise InputError(f"method '{method}' must be module:function")
@@ -170,7 +178,10 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     t0 = time.perf_counter()
     goals: GoalSpec | None = None
     parse_correct: bool | None = None
-    if options.parser == "gt":
+    lfsp = options.method in LLM_METHODS
+    if lfsp:
+        rec["parser"] = None  # the model reads the instruction itself
+    elif options.parser == "gt":
         goals = gt
     else:
         try:
@@ -194,10 +205,10 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     plan: PlanSpec | None = None
     rec["plan"] = None
     rec["planning"] = {"solved": False, "valid": False, "reasons": [], "time_s": None, "iterations": None, "actions": None}
-    if goals is not None:
+    if goals is not None or lfsp:
         t0 = time.perf_counter()
         try:
-            plan = _plan(scene, goals, t.seed, options)
+            plan = _lfsp(scene, t.instruction, options) if lfsp else _plan(scene, goals, t.seed, options)
         except Exception as exc:
             cause, detail = "planner error", f"{type(exc).__name__}: {exc}"
         wall = time.perf_counter() - t0
@@ -267,6 +278,19 @@ def _plan(scene, goals: GoalSpec, seed: int, options: RunOptions) -> PlanSpec:
     if isinstance(out, dict):
         return parse_plan(out)
     raise TypeError(f"plug-in planner returned {type(out).__name__}, not a PlanSpec or dict")
+
+
+def _lfsp(scene, instruction: str, options: RunOptions) -> PlanSpec:
+    """The language model's own plan; a refusal or unusable answer is an unsolved plan."""
+    from ..language.lfsp import plan_lfsp
+    from ..language.llm import LLMOptions
+
+    t0 = time.perf_counter()
+    try:
+        return plan_lfsp(scene, instruction, options=LLMOptions(model=options.llm_model, base_url=options.llm_base_url))
+    except InputError as exc:
+        dt = round(time.perf_counter() - t0, 6)
+        return PlanSpec(solved=False, actions=[], stats={"method": "lfsp", "reason": str(exc), "iterations": 0, "time_s": dt})
 
 
 def _safe(task: dict, options: RunOptions) -> dict[str, Any]:

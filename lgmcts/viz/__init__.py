@@ -13,8 +13,24 @@ a picture is drawn.
 
 from __future__ import annotations
 
-from .figures import FigureOptions, heatmap_fields, write_plan_figures
-from .html import render_html, viewer_data, viewer_js
-from .paint import Paint, paint
+from importlib import import_module
+from typing import Any
 
 __all__ = ["FigureOptions", "Paint", "heatmap_fields", "paint", "render_html", "viewer_data", "viewer_js", "write_plan_figures"]
+
+# Loaded on first use, so that commands without pictures import none of it.
+_WHERE = {
+    **dict.fromkeys(["FigureOptions", "heatmap_fields", "write_plan_figures"], ".figures"),
+    **dict.fromkeys(["render_html", "viewer_data", "viewer_js"], ".html"),
+    **dict.fromkeys(["Paint", "paint"], ".paint"),
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(import_module(_WHERE[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -304,6 +304,19 @@ def _same_stack(state: State, a: int, b: int) -> bool:
     return _base(state, a) == _base(state, b)
 
 
+def _draw_plain(ax: Any, ctx: _Ctx, state: State, ks: list[int], dim: set[int]) -> None:
+    """Objects ``ks`` (on the table, untextured) as one filled and edged polygon collection."""
+    if not ks:
+        return
+    from matplotlib.collections import PolyCollection
+
+    verts = [_footprint(ctx, state, k) for k in ks]
+    alpha = [0.35 if k in dim else 1.0 for k in ks]
+    faces = [_rgba(ctx.paints[k].fill, a) for k, a in zip(ks, alpha)]
+    edges = [_rgba(ctx.paints[k].edge, a) for k, a in zip(ks, alpha)]
+    ax.add_collection(PolyCollection(verts, closed=True, facecolors=faces, edgecolors=edges, linewidths=0.9, zorder=2.0))
+
+
 def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str] | None = None, rings: bool = False, fontsize: float = 7.0, dim: set[int] | None = None) -> None:
     """All objects of ``state``, lowest first, with their labels and stack marks."""
     import matplotlib.patheffects as pe
@@ -314,6 +327,13 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
     scene = ctx.scene
     order = sorted(range(scene.n), key=lambda k: (_level(state, k), k))
     member = ctx.goal_membership() if rings else {}
+    if scene.n > MAX_NAME_LABELS:
+        # Crowded: plain objects (on the table, untextured, not highlighted) in
+        # one collection, which draws in a fraction of the time of one patch each.
+        plain = [k for k in order if _level(state, k) == 0 and k not in highlight and not ctx.paints[k].texture]
+        _draw_plain(ax, ctx, state, plain, dim)
+        done = set(plain)
+        order = [k for k in order if k not in done]
     for k in order:
         if k in member:
             # Goal objects get a ring in the colour of (each of) their goal(s).

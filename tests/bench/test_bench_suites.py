@@ -183,29 +183,3 @@ def test_generate_cli_writes_the_same_file_for_the_same_seed(tmp_path):
         capture_output=True, text=True, cwd=REPO, timeout=120,
     )
     assert r.returncode == 2 and r.stderr.strip().count("\n") == 0 and "unknown suite" in r.stderr
-
-
-@pytest.mark.parametrize("k", range(4))
-def test_dense_elgr_is_the_same_task_with_packed_clutter(k):
-    from lgmcts.bench.catalog import color_words
-
-    cat = SUITES["elgr"].categories[k % 10]
-    base = SUITES["elgr"].build(cat, task_seed(7, k))
-    dense = SUITES["elgr-dense"].build(cat, task_seed(7, k))
-    assert dense.instruction == base.instruction and dense.goals == base.goals
-    objs = dense.scene["objects"]
-    n0 = len(base.scene["objects"])
-    assert objs[:n0] == base.scene["objects"]
-    extra = objs[n0:]
-    assert len(extra) >= 3 and [o["id"] for o in extra] == dense.start["packed"]
-    # The clutter shares no category and no colour word with the task's objects,
-    # so every reference in the instruction means what it meant.
-    words = set().union(*(color_words(o["color"]) for o in objs[:n0]))
-    names = {o["name"] for o in objs[:n0]}
-    assert all(o["name"] not in names and not color_words(o["color"]) & words for o in extra)
-    # No start overlap; clutter touches the goal region or a neighbour.
-    scene = Scene.from_spec(parse_scene(dense.scene))
-    table = [i for i in range(scene.n) if scene.initial.on[i] == TABLE]
-    polys = scene.initial.polys
-    for e in range(n0, scene.n):
-        assert max(polys[e].intersection(polys[i]).area for i in table if i != e) < 1e-9

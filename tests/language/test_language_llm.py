@@ -76,10 +76,16 @@ def test_valid_answer_and_the_prompt(tabletop):
     assert req["path"] == "/v1/chat/completions" and req["auth"] == "Bearer k"
     body = req["body"]
     assert body["model"] == "test-model" and body["response_format"]["type"] == "json_schema"
-    system, user = body["messages"][0]["content"], body["messages"][1]["content"]
+    system, user = body["messages"][0]["content"], body["messages"][-1]["content"]
     for name, info in pattern_infos().items():  # the same database as the offline parser
         assert f"- {name}: {info.description}" in system
     assert "- id 8: red and green polka dot letter A" in user and user.endswith("behind one block")
+    # Constrained to the scene's ids and the database's patterns; worked examples first.
+    schema = body["response_format"]["json_schema"]["schema"]
+    item = schema["properties"]["goals"]["items"]["properties"]
+    assert item["objects"]["items"]["enum"] == list(range(1, 10))
+    assert item["pattern"]["enum"] == sorted(pattern_infos())
+    assert body["max_tokens"] > 0 and [m["role"] for m in body["messages"][1:3]] == ["user", "assistant"]
 
 
 def test_malformed_json_is_retried_once(tabletop):
@@ -115,9 +121,21 @@ def test_invalid_twice_or_reported_failure_is_one_clear_error(tabletop, answers,
 
 
 def test_server_without_structured_output_is_asked_plainly(tabletop):
-    with _Server([400, CIRCLE]) as srv:
+    with _Server([400, 422, CIRCLE, CIRCLE]) as srv:
         _llm(tabletop, srv.url)
-    assert "response_format" in srv.requests[0]["body"] and "response_format" not in srv.requests[1]["body"]
+        _llm(tabletop, srv.url)  # the endpoint's answer is remembered
+    kinds = [(r["body"].get("response_format") or {}).get("type") for r in srv.requests]
+    assert kinds == ["json_schema", "json_object", None, None]
+    # The llama-cpp-python form carries the same schema.
+    assert srv.requests[1]["body"]["response_format"]["schema"]["required"] == ["goals", "error"]
+
+
+def test_server_with_the_json_object_form_keeps_it(tabletop):
+    with _Server([422, CIRCLE, CIRCLE]) as srv:
+        _llm(tabletop, srv.url)
+        _llm(tabletop, srv.url)
+    kinds = [(r["body"].get("response_format") or {}).get("type") for r in srv.requests]
+    assert kinds == ["json_schema", "json_object", "json_object"]
 
 
 def test_unreachable_endpoint_and_missing_model(tabletop, monkeypatch):
@@ -128,3 +146,35 @@ def test_unreachable_endpoint_and_missing_model(tabletop, monkeypatch):
     monkeypatch.delenv("LGMCTS_LLM_MODEL", raising=False)
     with pytest.raises(InputError, match="--llm-model"):
         parse(tabletop, "line up the blocks", parser="llm", llm_base_url=url)
+
+
+def test_transient_server_errors_are_retried(tabletop):
+    with _Server([503, 500, CIRCLE]) as srv:
+        goals = _llm(tabletop, srv.url)
+    assert to_dict(goals) == json.loads(CIRCLE) and len(srv.requests) == 3
+
+
+def test_json_inside_prose_is_read(tabletop):
+    with _Server(["Here are the goals: " + CIRCLE + " Hope this helps."]) as srv:
+        goals = _llm(tabletop, srv.url)
+    assert to_dict(goals) == json.loads(CIRCLE)
+
+
+@pytest.mark.parametrize(
+    "answer, needle",
+    [
+        ({"goals": [{"pattern": "left", "objects": [1, 2], "anchor": 2}]}, "cannot also be"),
+        ({"goals": [{"pattern": "line", "objects": [1, 1, 2]}]}, "listed twice"),
+        ({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.1, "x", 0]}]}, "three finite numbers"),
+        ({"goals": [{"pattern": "left", "objects": [1], "anchor": True}]}, "anchor"),
+        ([1, 2], "JSON object"),
+        ("", "empty"),
+    ],
+)
+def test_answers_that_break_the_schema_or_the_scene(tabletop, answer, needle):
+    text = answer if isinstance(answer, str) else json.dumps(answer)
+    with _Server([text, text]) as srv:
+        with pytest.raises(InputError) as err:
+            _llm(tabletop, srv.url)
+    assert needle in str(err.value) and "\n" not in str(err.value)
+    assert "no valid goals after 2 tries" in str(err.value)
