@@ -42,7 +42,8 @@ def example_goals() -> Path:
 #: physics, the service (a server in a subprocess), headless browsers, Ray, a
 #: fresh install, and tests that pay a start-up cost of seconds each: running
 #: the `lgmcts` command in a subprocess, loading the sentence model (the
-#: `matcher` fixture), drawing pictures with matplotlib.
+#: `matcher` fixture), drawing pictures with matplotlib, generating suites of
+#: packed scenes.
 SLOW_PARTS = (
     "sim",
     "service",
@@ -51,6 +52,9 @@ SLOW_PARTS = (
     "test_viz_cli.py",
     "test_viz_figures.py",
     "test_cli.py",
+    "test_cli_hardening.py",
+    "test_viz_limits.py",
+    "test_bench_dense.py",
 )
 SLOW_TESTS = {
     "test_cli_plans_and_checks_goals_with_params",
@@ -62,6 +66,8 @@ SLOW_TESTS = {
     "test_bar_on_a_terminal_unless_switched_off",
     "test_no_bar_when_piped",
     "test_cli_verbose_shows_the_search_log",
+    "test_bundled_and_generated_scenes_pass_the_start_rules_and_precheck",
+    "test_cli_parse_runs_without_torch_or_transformers",
 }
 SLOW_FIXTURES = {"matcher"}
 
