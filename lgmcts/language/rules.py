@@ -122,6 +122,18 @@ class _Pending:
     params: dict = field(default_factory=dict)
 
 
+#: Words of pattern keys too general to name one arrangement by themselves.
+_GENERIC_KEY_WORDS = frozenset({"arrange", "form", "formation", "shape", "put", "build", "another", "other", "top",
+                                "around", "single", "border", "file", "round", "straight", "vertical", "box"})
+
+#: A stacking order given by an attribute or a sort, which the parser does not read.
+_ORDER_BY = re.compile(
+    r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
+    r"in (size|height|colou?r|alphabetical) order|by (size|height|colou?r|volume|weight)|"
+    r"(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest) to (the )?"
+    r"(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest))\b")
+
+
 @dataclass
 class _State:
     named: set[int] = field(default_factory=set)
@@ -350,6 +362,31 @@ class _Parser:
             skip = FILLERS | _NOT_PATTERN
             self._kinds = (frozenset(rel - free - skip), frozenset(free - rel - skip))
         return self._kinds
+
+    def _arrangements_named(self, phrase_words) -> set[str]:
+        """The arrangements that words of the clause name outright: a word found
+        in the keys of exactly one arrangement (not a generic word such as
+        "arrange" or "shape"), and "on top of each other" for a tower."""
+        if not hasattr(self, "_own_words"):
+            from .matcher import content_words
+
+            owner: dict[str, set[str]] = {}
+            for name, info in self.infos.items():
+                if info.anchored or info.needs_pose:
+                    continue
+                for k in info.keys:
+                    for w in content_words(k):
+                        owner.setdefault(w, set()).add(name)
+            self._own_words = {w: next(iter(ps)) for w, ps in owner.items()
+                               if len(ps) == 1 and w not in _GENERIC_KEY_WORDS}
+        found = set()
+        for w in phrase_words:
+            p = self._own_words.get(w) or self._own_words.get(_stem(w))
+            if p is not None:
+                found.add(p)
+        if re.search(r"\b(on top of|atop) (each other|one another)\b", " ".join(phrase_words)):
+            found.add("tower")
+        return found
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         m = self.matcher.match(phrase, allowed=allowed)
@@ -642,6 +679,10 @@ class _Parser:
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
             out[-1].params = params
             return out
+        named = self._arrangements_named(phrase_words)
+        if len(named) >= 2:
+            raise InputError(f"'{text}' names more than one arrangement ({' and '.join(sorted(named))}) "
+                             f"for the same objects")
         m = self._match(phrase, text, usable)
         if infos[m.pattern].anchored:
             counts = [len([k for k in rel_pos if lo <= k < hi]) for lo, hi in gaps]
@@ -853,6 +894,9 @@ class _Parser:
 
     # ------------------------------------------------------------ the command
     def command(self, text: str) -> GoalSpec:
+        # A stack ordered by an attribute ("in order of size"): which object goes
+        # lowest is not fixed by the words read here; refused below if a stack results.
+        order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
@@ -882,6 +926,9 @@ class _Parser:
                         pending.extend(self.clause(sub))
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
+        if order_by is not None and any(p.pattern == "tower" for p in pending):
+            raise InputError(f"'{order_by.group(0)}': a stacking order by size, colour or sorting is not read; "
+                             f"name the objects from the bottom up")
         if not pending:
             if self.state.selection is not None:
                 raise InputError("the instruction selects objects but does not say how to arrange them")
