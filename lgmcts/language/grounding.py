@@ -835,6 +835,13 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             if not order and m.head == "one":
                 # "stack the red block on the blue one": the nearest noun before it.
                 order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
+            if not order and m.head == "elided":
+                # "the red, green and blue blocks with red at the bottom and blue on
+                # top": a bare colour takes the noun of the nearest mention before it
+                # that has one (else after it), when some object has both.
+                order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None] + [
+                    x for x in mentions[k + 1:] if not x.head and x.names is not None]
+                order = [x for x in order if _any_match(vocab, replace(m, names=x.names))][:1]
             if not order:
                 if m.head == "elided":
                     raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")

@@ -508,6 +508,11 @@ class _Parser:
         if role_at is not None:
             words = reduced
             mentions = find_mentions(self.vocab, words, self.key_vocab)
+            if any(m.start < s < m.end for m in mentions for s in role_at):
+                # Without their role words two references ran together ("red at the
+                # bottom and blue on top" -> "red and blue"): which role is whose is lost.
+                raise InputError(f"'{text}': cannot tell which object each stack position belongs to; "
+                                 f"name each object with its noun (\"the red block at the bottom\")")
         moved = self._detached_exception(words, mentions)
         if moved is not None:
             words = moved

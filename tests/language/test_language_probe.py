@@ -68,3 +68,23 @@ def test_unsure_commands_are_refused_with_the_reason(scene, text, why, matcher):
 def test_one_arrangement_still_read(scene, text, pattern, matcher):
     got = goal_dicts(_scene(scene), text, matcher=matcher)
     assert [g["pattern"] for g in got] == [pattern]
+
+
+def test_stack_roles_that_run_together_are_refused(matcher):
+    # Without its role words "red at the bottom and blue on top" reads "red and
+    # blue", one reference: both would get the bottom role. Refused instead.
+    with pytest.raises(InputError, match="stack position"):
+        goal_dicts(_scene("blocks"), "stack the red, green and blue blocks with red at the bottom and blue on top",
+                   matcher=matcher)
+    got = goal_dicts(_scene("blocks"), "stack the red, green and blue blocks with the red one at the bottom and "
+                                       "the blue one on top", matcher=matcher)
+    assert got == [{"pattern": "tower", "objects": [1, 3, 2]}]
+
+
+def test_bare_colour_takes_the_noun_of_an_earlier_reference(matcher):
+    got = goal_dicts(_scene("blocks"), "put the red block in front of the white bowl and blue behind the black bowl",
+                     matcher=matcher)
+    assert {"pattern": "behind", "objects": [2], "anchor": 8} in got
+    # A colour that several kinds of object share stays ambiguous.
+    with pytest.raises(InputError, match="ambiguous"):
+        goal_dicts(_scene("home"), "put the red mug left of the plate and blue behind the plate", matcher=matcher)
