@@ -650,6 +650,8 @@ def _mention_at(
             got_n = _number(words, j)
             if got_n is not None:  # "two of the three cans"
                 of_count, j = got_n
+        elif det == "the" and not nested:
+            of_count = count  # "the three cans" presupposes exactly three: refused when four match
         det = "count" if det in ("", "the", "one") else det
         if j < n and words[j] in ("other", "more", "additional", "different", "remaining", "new", "further"):
             j += 1  # "three other blocks": three not named before

@@ -126,6 +126,11 @@ class _Pending:
 _GENERIC_KEY_WORDS = frozenset({"arrange", "form", "formation", "shape", "put", "build", "another", "other", "top",
                                 "around", "single", "border", "file", "round", "straight", "vertical", "box"})
 
+#: Direction words left in a clause once its facing has been read.
+_COMPASS_LEFT = frozenset({"north", "south", "east", "west", "northward", "southward", "eastward", "westward",
+                           "northwards", "southwards", "eastwards", "westwards", "northeast", "northwest",
+                           "southeast", "southwest", "diagonal", "diagonally"})
+
 #: A stacking order given by an attribute or a sort, which the parser does not read.
 _ORDER_BY = re.compile(
     r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
@@ -555,6 +560,12 @@ class _Parser:
                 raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
                                  f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
+        loose = [w for w in phrase_words if w in _COMPASS_LEFT]
+        if loose:
+            # A compass direction that is no "facing ..." ("running north to south",
+            # "diagonally"): a direction the goal would silently drop.
+            raise InputError(f"'{text}': the direction '{loose[0]}' is not read; a pattern can only be "
+                             f"'facing north', 'east', 'south' or 'west'")
         if any(w in ("except", "excluding", "minus") for w in phrase_words):
             raise InputError(f"'{text}': cannot tell what to leave out")
         if not mentions:

@@ -88,3 +88,30 @@ def test_bare_colour_takes_the_noun_of_an_earlier_reference(matcher):
     # A colour that several kinds of object share stays ambiguous.
     with pytest.raises(InputError, match="ambiguous"):
         goal_dicts(_scene("home"), "put the red mug left of the plate and blue behind the plate", matcher=matcher)
+
+
+def test_a_definite_count_must_match_the_scene(matcher):
+    # "the three cans" with four cans: which three is not said.
+    with pytest.raises(InputError, match="speaks of 3"):
+        goal_dicts(_scene("pantry"), "put the three cans in a line", matcher=matcher)
+    assert goal_dicts(_scene("pantry"), "put the four cans in a line", matcher=matcher) == [
+        {"pattern": "line", "objects": [1, 2, 3, 4]}]
+    got = goal_dicts(_scene("pantry"), "put three cans in a line", matcher=matcher)  # any three
+    assert got[0]["pattern"] == "line" and len(got[0]["objects"]) == 3
+
+
+@pytest.mark.parametrize("text", ["put the cans in a line running north to south", "put the cans in a diagonal line"])
+def test_a_direction_that_is_no_facing_is_refused(text, matcher):
+    with pytest.raises(InputError, match="direction"):
+        goal_dicts(_scene("pantry"), text, matcher=matcher)
+    got = goal_dicts(_scene("pantry"), "put the cans in a line facing north", matcher=matcher)
+    assert got == [{"pattern": "line", "objects": [1, 2, 3, 4], "facing": "north"}]
+
+
+@pytest.mark.parametrize("text, goal", [
+    ("have the phone to the left of the plate", {"pattern": "left", "objects": [15], "anchor": 8}),
+    ("make sure the red mug is behind the plate", {"pattern": "behind", "objects": [1], "anchor": 8}),
+    ("ensure the green can is in front of the phone", {"pattern": "front", "objects": [14], "anchor": 15}),
+])
+def test_register_verbs_that_ask_for_an_outcome(text, goal, matcher):
+    assert goal_dicts(_scene("home"), text, matcher=matcher) == [goal]
