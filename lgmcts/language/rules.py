@@ -126,6 +126,10 @@ class _Pending:
 _GENERIC_KEY_WORDS = frozenset({"arrange", "form", "formation", "shape", "put", "build", "another", "other", "top",
                                 "around", "single", "border", "file", "round", "straight", "vertical", "box"})
 
+#: Size adjectives that, right before an object reference, would pick objects by size.
+_OBJECT_SIZE_WORDS = frozenset({"big", "bigger", "large", "larger", "small", "smaller", "little", "tiny", "huge",
+                                "tall", "taller", "short", "shorter", "long", "wide", "giant", "mini", "medium"})
+
 #: Direction words left in a clause once its facing has been read.
 _COMPASS_LEFT = frozenset({"north", "south", "east", "west", "northward", "southward", "eastward", "westward",
                            "northwards", "southwards", "eastwards", "westwards", "northeast", "northwest",
@@ -545,6 +549,11 @@ class _Parser:
                 mentions = find_mentions(self.vocab, words, self.key_vocab)
                 if role_at is not None:
                     role_at = None  # positions moved; roles and places are not mixed
+        for mm in mentions:
+            if mm.start > 0 and words[mm.start - 1] in _OBJECT_SIZE_WORDS:
+                # "the large cans": a size that picks objects, which no selection here reads.
+                raise InputError(f"'{words[mm.start - 1]} {mm.text}': objects are not told apart by a size word; "
+                                 f"name them by colour or id")
         roles = [role_at.get(m.start) for m in mentions] if role_at else None
         text = " ".join(words)
         groups, gaps = _groups(words, mentions)

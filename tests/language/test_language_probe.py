@@ -115,3 +115,12 @@ def test_a_direction_that_is_no_facing_is_refused(text, matcher):
 ])
 def test_register_verbs_that_ask_for_an_outcome(text, goal, matcher):
     assert goal_dicts(_scene("home"), text, matcher=matcher) == [goal]
+
+
+@pytest.mark.parametrize("text", ["put the large cans in a line", "put a small can behind the box"])
+def test_a_size_word_that_picks_objects_is_refused(text, matcher):
+    with pytest.raises(InputError, match="size word"):
+        goal_dicts(_scene("pantry"), text, matcher=matcher)
+    # Before the arrangement's noun it is the arrangement's size.
+    got = goal_dicts(_scene("pantry"), "make a large circle of the cans", matcher=matcher)
+    assert got == [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "large"}]
