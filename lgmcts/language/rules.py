@@ -782,6 +782,11 @@ class _Parser:
                 for x in s if isinstance(s, list) else [s]:
                     if x not in objs:
                         objs.append(x)
+                    elif info.ordered and isinstance(x, int) and not (roles and x in roles) and len(objs) > 1:
+                        # "stack the red, blue and green blocks starting with green": a
+                        # second mention whose part in the order is not read.
+                        raise InputError(f"'{text}': object {x} is named twice and its place in the stack is "
+                                         f"unclear; list the objects from the bottom up")
         if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
             objs.reverse()
         if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):

@@ -336,5 +336,7 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
                 return role, k + len(seq)
     for seq, role in _ROLES:
         if words[j : j + len(seq)] == seq:
+            if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
+                return None  # "top to bottom", "bottom up": an order of the list, not a role
             return role, j + len(seq)
     return None

@@ -124,3 +124,13 @@ def test_a_size_word_that_picks_objects_is_refused(text, matcher):
     # Before the arrangement's noun it is the arrangement's size.
     got = goal_dicts(_scene("pantry"), "make a large circle of the cans", matcher=matcher)
     assert got == [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "large"}]
+
+
+def test_stack_order_words(matcher):
+    b = _scene("blocks")
+    # "top to bottom" lists the top first; "top" here is no role of "green".
+    assert goal_dicts(b, "stack red, blue, green top to bottom", matcher=matcher) == [
+        {"pattern": "tower", "objects": [3, 2, 1]}]
+    # A second mention whose place in the order is not read is refused, not dropped.
+    with pytest.raises(InputError, match="named twice"):
+        goal_dicts(b, "stack the red, blue and green blocks starting with green", matcher=matcher)
