@@ -650,6 +650,8 @@ def _mention_at(
             got_n = _number(words, j)
             if got_n is not None:  # "two of the three cans"
                 of_count, j = got_n
+        elif det == "the" and not nested:
+            of_count = count  # "the three cans" presupposes exactly three: refused when four match
         det = "count" if det in ("", "the", "one") else det
         if j < n and words[j] in ("other", "more", "additional", "different", "remaining", "new", "further"):
             j += 1  # "three other blocks": three not named before
@@ -835,6 +837,13 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             if not order and m.head == "one":
                 # "stack the red block on the blue one": the nearest noun before it.
                 order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
+            if not order and m.head == "elided":
+                # "the red, green and blue blocks with red at the bottom and blue on
+                # top": a bare colour takes the noun of the nearest mention before it
+                # that has one (else after it), when some object has both.
+                order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None] + [
+                    x for x in mentions[k + 1:] if not x.head and x.names is not None]
+                order = [x for x in order if _any_match(vocab, replace(m, names=x.names))][:1]
             if not order:
                 if m.head == "elided":
                     raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")

@@ -55,7 +55,7 @@ STOPWORDS = frozenset(
 _FILLER_WORDS = """put place move arrange set position make form get bring organize organise lay rearrange sort order
     reorder create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
     want need like would table workspace tabletop please group go goes going should must end ends stand stands sit
-    sits located placed positioned moved put arranged use using like""".split()
+    sits located placed positioned moved put arranged use using like have has ensure sure""".split()
 
 
 @dataclass(frozen=True)

@@ -122,6 +122,27 @@ class _Pending:
     params: dict = field(default_factory=dict)
 
 
+#: Words of pattern keys too general to name one arrangement by themselves.
+_GENERIC_KEY_WORDS = frozenset({"arrange", "form", "formation", "shape", "put", "build", "another", "other", "top",
+                                "around", "single", "border", "file", "round", "straight", "vertical", "box"})
+
+#: Size adjectives that, right before an object reference, would pick objects by size.
+_OBJECT_SIZE_WORDS = frozenset({"big", "bigger", "large", "larger", "small", "smaller", "little", "tiny", "huge",
+                                "tall", "taller", "short", "shorter", "long", "wide", "giant", "mini", "medium"})
+
+#: Direction words left in a clause once its facing has been read.
+_COMPASS_LEFT = frozenset({"north", "south", "east", "west", "northward", "southward", "eastward", "westward",
+                           "northwards", "southwards", "eastwards", "westwards", "northeast", "northwest",
+                           "southeast", "southwest", "diagonal", "diagonally"})
+
+#: A stacking order given by an attribute or a sort, which the parser does not read.
+_ORDER_BY = re.compile(
+    r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
+    r"in (size|height|colou?r|alphabetical) order|by (size|height|colou?r|volume|weight)|"
+    r"(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest) to (the )?"
+    r"(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest))\b")
+
+
 @dataclass
 class _State:
     named: set[int] = field(default_factory=set)
@@ -351,6 +372,31 @@ class _Parser:
             self._kinds = (frozenset(rel - free - skip), frozenset(free - rel - skip))
         return self._kinds
 
+    def _arrangements_named(self, phrase_words) -> set[str]:
+        """The arrangements that words of the clause name outright: a word found
+        in the keys of exactly one arrangement (not a generic word such as
+        "arrange" or "shape"), and "on top of each other" for a tower."""
+        if not hasattr(self, "_own_words"):
+            from .matcher import content_words
+
+            owner: dict[str, set[str]] = {}
+            for name, info in self.infos.items():
+                if info.anchored or info.needs_pose:
+                    continue
+                for k in info.keys:
+                    for w in content_words(k):
+                        owner.setdefault(w, set()).add(name)
+            self._own_words = {w: next(iter(ps)) for w, ps in owner.items()
+                               if len(ps) == 1 and w not in _GENERIC_KEY_WORDS}
+        found = set()
+        for w in phrase_words:
+            p = self._own_words.get(w) or self._own_words.get(_stem(w))
+            if p is not None:
+                found.add(p)
+        if re.search(r"\b(on top of|atop) (each other|one another)\b", " ".join(phrase_words)):
+            found.add("tower")
+        return found
+
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         m = self.matcher.match(phrase, allowed=allowed)
         if m and m.pattern in RELATIONS:
@@ -471,6 +517,11 @@ class _Parser:
         if role_at is not None:
             words = reduced
             mentions = find_mentions(self.vocab, words, self.key_vocab)
+            if any(m.start < s < m.end for m in mentions for s in role_at):
+                # Without their role words two references ran together ("red at the
+                # bottom and blue on top" -> "red and blue"): which role is whose is lost.
+                raise InputError(f"'{text}': cannot tell which object each stack position belongs to; "
+                                 f"name each object with its noun (\"the red block at the bottom\")")
         moved = self._detached_exception(words, mentions)
         if moved is not None:
             words = moved
@@ -498,6 +549,11 @@ class _Parser:
                 mentions = find_mentions(self.vocab, words, self.key_vocab)
                 if role_at is not None:
                     role_at = None  # positions moved; roles and places are not mixed
+        for mm in mentions:
+            if mm.start > 0 and words[mm.start - 1] in _OBJECT_SIZE_WORDS:
+                # "the large cans": a size that picks objects, which no selection here reads.
+                raise InputError(f"'{words[mm.start - 1]} {mm.text}': objects are not told apart by a size word; "
+                                 f"name them by colour or id")
         roles = [role_at.get(m.start) for m in mentions] if role_at else None
         text = " ".join(words)
         groups, gaps = _groups(words, mentions)
@@ -513,6 +569,12 @@ class _Parser:
                 raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
                                  f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
+        loose = [w for w in phrase_words if w in _COMPASS_LEFT]
+        if loose:
+            # A compass direction that is no "facing ..." ("running north to south",
+            # "diagonally"): a direction the goal would silently drop.
+            raise InputError(f"'{text}': the direction '{loose[0]}' is not read; a pattern can only be "
+                             f"'facing north', 'east', 'south' or 'west'")
         if any(w in ("except", "excluding", "minus") for w in phrase_words):
             raise InputError(f"'{text}': cannot tell what to leave out")
         if not mentions:
@@ -642,6 +704,10 @@ class _Parser:
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
             out[-1].params = params
             return out
+        named = self._arrangements_named(phrase_words)
+        if len(named) >= 2:
+            raise InputError(f"'{text}' names more than one arrangement ({' and '.join(sorted(named))}) "
+                             f"for the same objects")
         m = self._match(phrase, text, usable)
         if infos[m.pattern].anchored:
             counts = [len([k for k in rel_pos if lo <= k < hi]) for lo, hi in gaps]
@@ -716,6 +782,11 @@ class _Parser:
                 for x in s if isinstance(s, list) else [s]:
                     if x not in objs:
                         objs.append(x)
+                    elif info.ordered and isinstance(x, int) and not (roles and x in roles) and len(objs) > 1:
+                        # "stack the red, blue and green blocks starting with green": a
+                        # second mention whose part in the order is not read.
+                        raise InputError(f"'{text}': object {x} is named twice and its place in the stack is "
+                                         f"unclear; list the objects from the bottom up")
         if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
             objs.reverse()
         if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):
@@ -853,6 +924,9 @@ class _Parser:
 
     # ------------------------------------------------------------ the command
     def command(self, text: str) -> GoalSpec:
+        # A stack ordered by an attribute ("in order of size"): which object goes
+        # lowest is not fixed by the words read here; refused below if a stack results.
+        order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
@@ -882,6 +956,9 @@ class _Parser:
                         pending.extend(self.clause(sub))
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
+        if order_by is not None and any(p.pattern == "tower" for p in pending):
+            raise InputError(f"'{order_by.group(0)}': a stacking order by size, colour or sorting is not read; "
+                             f"name the objects from the bottom up")
         if not pending:
             if self.state.selection is not None:
                 raise InputError("the instruction selects objects but does not say how to arrange them")

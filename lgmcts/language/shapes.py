@@ -132,6 +132,9 @@ REGION_NOUNS = frozenset({"corner", "edge", "side", "part", "area", "half", "end
 _TABLE = frozenset({"table", "workspace", "tabletop", "desk", "surface", "board"})
 _REGION_PREP = frozenset({"in", "at", "on", "near", "along", "toward", "towards", "by", "to", "into", "onto",
                           "around", "over", "across", "within", "against", "close"})
+_VIEWER = frozenset({"me", "us", "viewer", "camera", "you", "robot"})
+_SIDE_FACINGS = {"left": "west", "right": "east", "leftward": "west", "rightward": "east", "leftwards": "west",
+                 "rightwards": "east"}
 _FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face"})
 
 
@@ -244,6 +247,21 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 if i < n and words[i] == "direction":
                     i += 1
                 continue
+            # The viewer stands at the table's south edge: "facing me" is south,
+            # "pointing away from us" north, "turned left" west.
+            k = j + 1
+            if j < n and words[j] == "away":
+                while k < n and words[k] in ("from", "the"):
+                    k += 1
+                if k < n and words[k] in _VIEWER:
+                    k += 1
+                put("facing", "north", " ".join(words))
+                i = k
+                continue
+            if j < n and (words[j] in _VIEWER or words[j] in _SIDE_FACINGS):
+                put("facing", "south" if words[j] in _VIEWER else _SIDE_FACINGS[words[j]], " ".join(words))
+                i = j + 1
+                continue
             raise InputError(
                 f"'{' '.join(words[i:j + 2])}': facing can be north, east, south or west only, not towards an object")
         if w in SIZES and i + 1 < n:
@@ -318,5 +336,7 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
                 return role, k + len(seq)
     for seq, role in _ROLES:
         if words[j : j + len(seq)] == seq:
+            if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
+                return None  # "top to bottom", "bottom up": an order of the list, not a role
             return role, j + len(seq)
     return None
