@@ -12,7 +12,10 @@ the scene. Each action runs the same primitive:
 4. carry horizontally to above the target while turning to the target yaw;
 5. lower, fast to ``approach_height`` above the planned height, then slowly
    until the object's bottom touches something (or ``overshoot`` below the
-   planned height: then the object is dropped where it is);
+   planned height: then the object is dropped where it is); when what it
+   touches is an object other than the planned support (the rim of a
+   neighbour it touches), lift a little, step ``nudge_step`` away from that
+   contact and lower again, up to ``nudge_tries`` times;
 6. release and let the scene settle until every object is still.
 
 The final state is judged by :func:`lgmcts.validate.goal_satisfied` for every
@@ -61,6 +64,14 @@ class ExecOptions:
     approach_speed : speed of the final descent (m/s).
     overshoot : how far below the planned height the descent may go without a
         contact before the object is released anyway (m).
+    nudge_step : when the lowered object lands on an object other than its
+        planned support (the rim of a neighbour it touches or overlaps by a
+        sliver the acceptance rules tolerate), it is lifted by
+        ``nudge_lift``, moved this far away from that contact and lowered
+        again (m).
+    nudge_lift : lift before a nudge (m).
+    nudge_tries : most nudges per placement; after the last the object is
+        released where it is.
     settle_min : time always simulated after a release (s).
     settle_max : longest settling time after a release (s).
     settle_speed : the scene counts as still once every object moves slower
@@ -80,6 +91,9 @@ class ExecOptions:
     approach_height: float = 0.015
     approach_speed: float = 0.08
     overshoot: float = 0.02
+    nudge_step: float = 0.001
+    nudge_lift: float = 0.003
+    nudge_tries: int = 4
     settle_min: float = 0.06
     settle_max: float = 2.0
     settle_speed: float = 0.003
@@ -290,6 +304,27 @@ class Executor:
             o.approach_speed,
             stop=lambda: physics.bottom_contact(sim, d, k),
         )
+        want = TABLE if on is None else on
+        xy = np.array(to[:2], dtype=float)
+        for _ in range(o.nudge_tries if landed else 0):
+            # Landed on something other than the planned support: step away from it.
+            wrong = [p for j, p in physics.landing(sim, d, k) if j != want and j >= 0]
+            if not wrong or any(j == want for j, _ in physics.landing(sim, d, k)):
+                break
+            away = d.xpos[body, :2] - np.mean(wrong, axis=0)[:2]
+            norm = float(np.hypot(*away))
+            if norm < 1e-9:
+                break
+            xy = xy + o.nudge_step * away / norm
+            here = d.mocap_pos[mi].copy()
+            self._move(here + np.array([0.0, 0.0, o.nudge_lift]), target_q, o.approach_speed)
+            self._move(np.array([xy[0], xy[1], here[2] + o.nudge_lift]), target_q, o.approach_speed)
+            landed = self._move(
+                np.array([xy[0], xy[1], z_place - o.overshoot]),
+                target_q,
+                o.approach_speed,
+                stop=lambda: physics.bottom_contact(sim, d, k),
+            )
         d.eq_active[sim.weld[k]] = 0
         d.mocap_pos[mi] = d.mocap_pos[mi] + np.array([0.0, 0.0, 0.05])
         self.settle()
@@ -302,7 +337,6 @@ class Executor:
             problems.append("released without touching a support")
         if tilt > o.max_tilt_deg:
             problems.append(f"toppled ({tilt:.0f} deg)")
-        want = TABLE if on is None else on
         if sup != want:
             problems.append(f"ended on {self._name(sup)}, planned on {self._name(want)}")
         if err > o.place_tol:

@@ -13,7 +13,7 @@ import numpy as np
 from ..scene import TABLE
 from .model import SimModel
 
-__all__ = ["poses", "tilts", "tops", "supports", "bottom_contact", "speeds", "FLOOR"]
+__all__ = ["poses", "tilts", "tops", "supports", "bottom_contact", "landing", "speeds", "FLOOR"]
 
 #: Support value meaning "lying on the floor, off the table".
 FLOOR = -2
@@ -86,6 +86,28 @@ def bottom_contact(sim: SimModel, data: mujoco.MjData, k: int) -> bool:
         if j in (TABLE, FLOOR) or (j >= 0 and data.xpos[sim.body[j], 2] < zk):
             return True
     return False
+
+
+def landing(sim: SimModel, data: mujoco.MjData, k: int) -> list[tuple[int, np.ndarray]]:
+    """What object index ``k`` touches below it through a roughly horizontal
+    contact surface: ``(partner, contact point)`` pairs, the partner an object
+    index, :data:`TABLE` or :data:`FLOOR` (the contacts that make
+    :func:`bottom_contact` true)."""
+    c = data.contact
+    if data.ncon == 0:
+        return []
+    keep = np.flatnonzero(c.dist <= 1e-3)
+    who = sim.geom_who
+    zk = data.xpos[sim.body[k], 2]
+    out = []
+    for i in keep.tolist():
+        a, b = int(who[c.geom1[i]]), int(who[c.geom2[i]])
+        if abs(c.frame[i, 2]) < _VERTICAL or k not in (a, b):
+            continue
+        j = b if a == k else a
+        if j in (TABLE, FLOOR) or (j >= 0 and data.xpos[sim.body[j], 2] < zk):
+            out.append((j, np.array(c.pos[i], dtype=float)))
+    return out
 
 
 def supports(sim: SimModel, data: mujoco.MjData) -> tuple[int, ...]:

@@ -13,7 +13,7 @@ import pytest
 
 from lgmcts import check, plan
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
-from lgmcts.sim import execute_plan
+from lgmcts.sim import ExecOptions, execute_plan
 
 R = 0.0375
 WS = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
@@ -94,3 +94,24 @@ def test_planned_protocol_cases_with_touching_placements_execute():
         res = execute_plan(c.scene, p, c.goals)
         assert res.success, res.reasons
         assert max(s.error for s in res.steps) < 1e-3
+
+
+@pytest.mark.parametrize("depth", [0.0003, 0.0006, 0.0009])
+def test_a_corner_poking_into_a_neighbour_by_a_tolerated_sliver_lands_on_the_table(depth):
+    # A block turned 45 degrees is placed with its corner 0.3-0.9 mm into the
+    # side of an equally tall block: an overlap of 0.09-0.81 mm^2, which the
+    # acceptance rules tolerate (1 mm^2). Lowered straight down, its corner
+    # used to land on the neighbour's top edge and stay there (0.36 and
+    # 0.81 mm^2 failed); the executor now steps it off that rim.
+    w, h = 0.04, 0.013
+    to = [w / 2 + w / math.sqrt(2) - depth, 0.0, math.pi / 4]
+    objs = [{"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [w, w, h]}, "pose": [0, 0, 0], "on": None},
+            {"id": 2, "name": "block", "color": "blue", "shape": {"type": "box", "size": [w, w, h]}, "pose": [*PARK, 0], "on": None}]
+    scene = parse_scene({"workspace": WS, "objects": objs})
+    goals = parse_goals({"goals": [{"pattern": "pose", "objects": [2], "pose": to}]})
+    p = parse_plan({"solved": True, "actions": [{"object": 2, "to": to}]})
+    assert check(scene, goals, p).valid
+    res = execute_plan(scene, p, goals)
+    assert res.success, res.reasons
+    assert res.steps[0].error <= ExecOptions().nudge_step * ExecOptions().nudge_tries + 1e-4
+    assert _pushes(scene, res, {2}) < 1e-3
