@@ -83,6 +83,31 @@ def _torch_embed(model, tokenizer, sentences) -> np.ndarray:
     return mean_pool(hidden, batch["attention_mask"].numpy())
 
 
+def _registry_keys() -> list[str]:
+    from .matcher import pattern_infos
+
+    return sorted({k for info in pattern_infos().values() for k in info.keys})
+
+
+def _refresh_known(folder: Path) -> bool:
+    """Recompute the stored key embeddings when the built-in keys changed
+    (onnxruntime only); returns whether it did."""
+    keys = _registry_keys()
+    try:
+        with np.load(folder / KNOWN_FILE, allow_pickle=False) as z:
+            if [str(t) for t in z["texts"]] == keys:
+                return False
+    except (OSError, KeyError, ValueError):
+        pass
+    from .embed import OnnxEncoder
+
+    vecs = OnnxEncoder(folder, precomputed=False).encode(keys)
+    tmp = folder / (".tmp-" + KNOWN_FILE)
+    np.savez(tmp, texts=np.array(keys, dtype=str), vectors=vecs)
+    os.replace(tmp, folder / KNOWN_FILE)
+    return True
+
+
 def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = False) -> Path:
     """Write the ONNX encoder and its metadata; returns the folder.
 
@@ -103,8 +128,10 @@ def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = Fa
         except (OSError, json.JSONDecodeError):
             meta = {}
         if meta.get("source") == src:
+            fresh = _refresh_known(out)
             if not quiet:
-                print(f"sentence model: ONNX export up to date in {out}", file=sys.stderr)
+                what = "key embeddings recomputed" if fresh else "up to date"
+                print(f"sentence model: ONNX export in {out}, {what}", file=sys.stderr)
             return out
 
     t0 = time.perf_counter()
@@ -169,9 +196,7 @@ def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = Fa
             )
         # The built-in pattern keys, embedded once here; the runtime reads them instead of
         # running the model for them on every cold start.
-        from .matcher import pattern_infos
-
-        keys = sorted({k for info in pattern_infos().values() for k in info.keys})
+        keys = _registry_keys()
         np.savez(tmp / KNOWN_FILE, texts=np.array(keys, dtype=str), vectors=runtime.encode(keys))
         meta = {
             "model": "sentence-transformers/all-MiniLM-L6-v2",
