@@ -83,16 +83,20 @@ def main() -> int:
     ap.add_argument("--limit", type=int, default=None, help="at most this many cases per set (after --every)")
     ap.add_argument("--lfsp-n", type=int, default=20, help="tasks per suite for LFSP (0: skip)")
     ap.add_argument("--sets", nargs="*", default=None, help="case files (default: those of the project that exist)")
+    ap.add_argument("--no-sets", action="store_true", help="LFSP only")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "llm-eval")
     ap.add_argument("--base-url", default=None, help="an endpoint of your own instead of the local server")
     ap.add_argument("--model", default=None)
     a = ap.parse_args()
+    import signal
+
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # stop the server on kill, too
     from lgmcts.language.llm import LLMOptions
     from lgmcts.language.local_llm import MODEL_ALIAS, LocalServer, available
 
     a.out.mkdir(parents=True, exist_ok=True)
     sets = [Path(p) for p in (a.sets or [ROOT / s for s in SETS])]
-    sets = [p for p in sets if p.is_file()]
+    sets = [p for p in sets if p.is_file() and not a.no_sets]
     server = None
     if a.base_url is None:
         why = available()
