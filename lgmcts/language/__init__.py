@@ -11,8 +11,10 @@ Two parsers share one pattern database (:func:`lgmcts.patterns.registry`):
 
 Both return a :class:`lgmcts.formats.GoalSpec` or raise
 :class:`lgmcts.errors.InputError` with one line saying what was not
-understood. Importing this package does not import torch; the sentence model
-is loaded on the first parse that needs it.
+understood. Nothing here imports torch: the sentence model runs in
+onnxruntime (:mod:`.embed`) and is loaded on the first parse that needs it.
+The LFSP baseline (:mod:`.lfsp`), in which the language model proposes the
+poses itself, uses the same client as the LLM parser.
 """
 
 from __future__ import annotations
