@@ -3,10 +3,11 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
-# Optional parts installed by `make install`. llm-local builds llama-cpp-python
-# from source the first time (about 8 minutes on 2 cores; pip caches the wheel);
-# `make install EXTRAS=test,ray,language` leaves it out (its tests then skip).
-EXTRAS ?= test,ray,language,llm-local
+# Optional parts installed by `make install`: every extra (README, "Installing
+# parts"). llm-local builds llama-cpp-python from source the first time (about
+# 8 minutes on 2 cores; pip caches the wheel); `make install
+# EXTRAS=test,language,llm,sim,viz,service,ray` leaves it out (its tests then skip).
+EXTRAS ?= all,test
 export HF_HUB_OFFLINE := 1
 export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa

@@ -18,8 +18,9 @@ plan in MuJoCo one action at a time and records, besides the verdict of
 
 * ``contacts``: the placements the plan makes within 1 mm of another
   table-level footprint (so the figures are about touching placements);
-* ``push``: the largest displacement, during one action, of an object the
-  action did not pick (objects resting on the picked one excluded);
+* ``push``: the largest displacement, while the start scene settles or
+  during one action, of an object the action did not pick (objects resting
+  on the picked one excluded);
 * ``penetration``: the deepest object-object contact (MuJoCo's negative
   contact distance) after any action has settled.
 
@@ -93,8 +94,11 @@ def physics_probe(scene, p) -> tuple[float, float]:
     sc = Scene.from_spec(scene)
     sim = build_model(sc)
     ex = Executor(sim)
+    before = physics.poses(sim, ex.data)
     ex.settle()
-    push = pen = 0.0
+    # Settling the start scene counts too: a start whose objects move by themselves is not at rest.
+    push = float(np.hypot(*(physics.poses(sim, ex.data)[:, :2] - before[:, :2]).T).max())
+    pen = 0.0
     who = sim.geom_who
     for a in p.actions:
         k = sc.index[a.object]

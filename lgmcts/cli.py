@@ -12,7 +12,7 @@ from typing import Optional
 
 import typer
 
-from .cli_util import check_output_dir, check_output_file, fail, write_text
+from .cli_util import check_output_dir, check_output_file, configure_logging, fail, run_app, write_text
 from .errors import InputError
 
 app = typer.Typer(
@@ -48,17 +48,6 @@ def _root(
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 
-def _verbosity(verbose: int) -> None:
-    try:
-        from .progress import configure_logging
-    except ModuleNotFoundError:  # pragma: no cover - progress helpers always ship
-        import logging
-
-        logging.basicConfig(level=logging.WARNING - 10 * min(verbose, 2), stream=sys.stderr)
-        return
-    configure_logging(verbose)
-
-
 @app.command()
 def plan(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
@@ -83,7 +72,7 @@ def plan(
     from . import formats
     from .planner import plan as run_plan
 
-    _verbosity(verbose)
+    configure_logging(verbose)
     check_output_file(output)
     check_output_dir(viz)
     try:
@@ -139,53 +128,18 @@ def check(
 
 
 def _register_plugins() -> None:
+    # The plug-in modules import only typer; what a command needs beyond the
+    # base install loads when it runs (see main() for a missing extra).
     for name in _PLUGINS:
-        try:
-            mod = importlib.import_module(name)
-        except ModuleNotFoundError as exc:
-            if exc.name is not None and name.startswith(exc.name):
-                continue  # that part is not installed
-            raise
-        mod.register(app)
+        importlib.import_module(name).register(app)
 
 
 _register_plugins()
 
 
-def _click_exceptions():
-    """The exception classes of the click that typer runs on (newer typer vendors its own copy)."""
-    try:
-        from typer._click import exceptions as cx
-    except ImportError:  # pragma: no cover - typer on the public click
-        from click import exceptions as cx
-    return cx
-
-
 def main() -> None:
     """Entry point: run the app; usage errors and stray bad input become one line and exit 2."""
-    cx = _click_exceptions()
-    command = typer.main.get_command(app)
-    try:
-        code = command.main(prog_name="lgmcts", standalone_mode=False)
-    except cx.NoArgsIsHelpError as exc:
-        typer.echo(exc.ctx.get_help() if exc.ctx is not None else str(exc), err=True)
-        sys.exit(2)
-    except cx.UsageError as exc:
-        where = f"{exc.ctx.command_path}: " if exc.ctx is not None else ""
-        typer.echo(" ".join(f"{where}{exc.format_message()}".split()) + " (see --help)", err=True)
-        sys.exit(2)
-    except cx.ClickException as exc:
-        typer.echo(" ".join(exc.format_message().split()), err=True)
-        sys.exit(exc.exit_code)
-    except typer.Exit as exc:
-        sys.exit(exc.exit_code)
-    except InputError as exc:  # pragma: no cover - commands catch their own
-        typer.echo(str(exc), err=True)
-        sys.exit(2)
-    except (typer.Abort, KeyboardInterrupt):
-        typer.echo("interrupted", err=True)
-        sys.exit(130)
-    sys.exit(code if isinstance(code, int) else 0)
+    run_app(app)
 
 
 if __name__ == "__main__":

@@ -533,6 +533,9 @@ class PlanSpec(_Model):
     actions: list[Action] = Field(max_length=limits.MAX_ACTIONS)
     goals: GoalSpec | None = None
     stats: dict[str, Any] = Field(default_factory=dict)
+    #: Per goal, its pattern's parameters fitted to the plan's final state
+    #: (docs/formats.md, "Plan"); ``None`` for a goal whose pattern fits none.
+    fits: list[dict[str, Any] | None] | None = None
 
 
 def _one_line(err: ValidationError, what: str) -> str:

@@ -22,10 +22,13 @@ __all__ = [
     "circle_footprint",
     "convex_footprint",
     "transform",
+    "place_each",
     "polygons",
     "inside_workspace",
     "lens_area",
     "overlapping",
+    "colliding",
+    "colliding_near",
     "radius_of",
     "wrap_angle",
 ]
@@ -99,10 +102,7 @@ def place_each(local: Sequence[np.ndarray], poses: np.ndarray) -> tuple[list[np.
 
 def polygons(vertices: np.ndarray) -> np.ndarray:
     """Shapely polygons from ``(m, k, 2)`` vertex arrays (one call)."""
-    v = np.asarray(vertices, dtype=float)
-    if v.ndim == 2:
-        return shapely.polygons(v)
-    return shapely.polygons(v)
+    return shapely.polygons(np.asarray(vertices, dtype=float))
 
 
 def inside_workspace(vertices: np.ndarray, bounds: Sequence[float], margin: float = 0.0) -> np.ndarray:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any, Sequence
 
 import numpy as np
 import shapely
@@ -20,7 +21,7 @@ from . import limits
 from .errors import InputError
 from .formats import ObjectSpec, SceneSpec, Workspace
 
-__all__ = ["Scene", "State", "TABLE"]
+__all__ = ["Scene", "State", "TABLE", "replay"]
 
 #: Support index meaning "on the table".
 TABLE = -1
@@ -172,11 +173,6 @@ class Scene:
         """
         return np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in self.spec.objects], dtype=float)
 
-    @property
-    def workspace_area(self) -> float:
-        xmin, xmax, ymin, ymax = self.bounds
-        return (xmax - xmin) * (ymax - ymin)
-
     def footprint(self, i: int, pose: np.ndarray) -> np.ndarray:
         """Table-frame vertices of object index ``i`` at ``pose`` (``(3,)`` or ``(m, 3)``)."""
         return geo.transform(self.local[i], pose)
@@ -293,6 +289,28 @@ class State:
         out[:] = self._polys
         return out
 
-    def key(self) -> tuple:
-        """Hashable summary of the state (poses rounded to 0.1 mm)."""
-        return (tuple(np.round(self.poses, 4).ravel().tolist()), self.on)
+
+def replay(scene: Scene, actions: Sequence[Any]) -> list[State]:
+    """The states a plan passes through: before the first action and after
+    each one (``len(actions) + 1``). The one replay of the package: the
+    validator, polishing, the pose fields, the pictures and the service's
+    viewer all step through :meth:`State.moved` this way.
+
+    Raises
+    ------
+    InputError
+        When an action names an object the scene does not have, or places an
+        object on itself. Illegal but well-formed actions (picking a covered
+        object) are replayed as given: the validator judges them.
+    """
+    states = [scene.initial]
+    for k, a in enumerate(actions):
+        if a.object not in scene.index:
+            raise InputError(f"action {k + 1} moves unknown object id {a.object}")
+        if a.on is not None and a.on not in scene.index:
+            raise InputError(f"action {k + 1} places object {a.object} on unknown object id {a.on}")
+        if a.on == a.object:
+            raise InputError(f"action {k + 1} places object {a.object} on itself")
+        sup = TABLE if a.on is None else scene.index[a.on]
+        states.append(states[-1].moved(scene.index[a.object], np.asarray(a.to, dtype=float), sup))
+    return states

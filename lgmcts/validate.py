@@ -1,8 +1,11 @@
-"""The acceptance rules, implemented once and independently of the planner.
+"""The acceptance rules, implemented once and independently of the search.
 
 :func:`check` replays a plan on a scene with exact polygon geometry (shapely)
-and judges the final state against every goal. It shares no code with the
-samplers or the search: only the footprint definitions of :mod:`lgmcts.scene`.
+and judges the final state against every goal. Each pattern's own rule is the
+``accept`` method of its module in :mod:`lgmcts.patterns` (with its fit, in
+the module's "finished arrangement" section, written apart from its sampler);
+this module applies the rules common to all goals and the optional region,
+size and facing. It shares no code with the search.
 
 Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
@@ -33,8 +36,8 @@ Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
   line's or rectangle's direction within pi/8 of a named facing or 0.1 rad
   of an angle).
 
-A pattern added outside this module brings its own rule
-(:func:`register_rule`), written apart from its sampler.
+A pattern added outside the package brings its rule in its own module
+(``accept``, registered with the pattern by :func:`lgmcts.patterns.register`).
 """
 
 from __future__ import annotations
@@ -51,7 +54,6 @@ from . import limits
 from .errors import InputError
 from .formats import (
     PATTERN_NAMES,
-    RELATIONS,
     Goal,
     GoalSpec,
     PlanSpec,
@@ -63,18 +65,28 @@ from .formats import (
 )
 from .params import REGION_TOL, SIZE_TOL
 from .params import resolve as resolve_params
+from .patterns import registry
+from .patterns.base import wrap_off
+from .patterns.circle import fit_circle
+from .patterns.line import line_residuals
 from .scene import TABLE, Scene
+from .tolerances import (
+    MAX_RELATION_DIST,
+    MIN_CIRCLE_RADIUS,
+    MIN_RECT_SIDE,
+    OVERLAP_AREA,
+    POSE_ANGLE_TOL,
+    RELATION_HALF_ANGLE,
+    TOL,
+    TOWER_TOL,
+)
 
 __all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
 
-TOL = 0.015
-OVERLAP_AREA = 1e-6
-TOWER_TOL = 0.02
-MAX_RELATION_DIST = 0.30
-RELATION_HALF_ANGLE = math.pi / 4
-POSE_ANGLE_TOL = 0.1
-MIN_CIRCLE_RADIUS = 0.05
-MIN_RECT_SIDE = 0.05
+# Re-exported for callers of this module: fit_circle, line_residuals and the
+# tolerances (defined in lgmcts.patterns and lgmcts.tolerances).
+_REEXPORTED = (fit_circle, line_residuals, MAX_RELATION_DIST, MIN_CIRCLE_RADIUS, MIN_RECT_SIDE, POSE_ANGLE_TOL,
+               RELATION_HALF_ANGLE, TOL, TOWER_TOL)
 #: A footprint vertex this far (m) outside the workspace is a violation
 #: whatever the area outside.
 EDGE_TOL = 1e-3
@@ -102,12 +114,13 @@ _RULES: dict[str, Rule] = {}
 
 
 def register_rule(name: str, rule: Rule) -> Rule:
-    """Give declared pattern ``name`` its acceptance rule.
+    """Give declared pattern ``name`` an acceptance rule apart from a prior.
 
-    The pattern must first be declared with
-    :func:`lgmcts.formats.declare_pattern`; the built-in rules cannot be
-    replaced. The on-table requirement of the pattern's format is checked
-    before ``rule`` is called.
+    A pattern module needs none of this (its ``accept`` is its rule); this is
+    for a goal format declared with :func:`lgmcts.formats.declare_pattern` and
+    judged without a prior. The built-in rules cannot be replaced; a rule
+    given here takes precedence over the prior's ``accept``. The on-table
+    requirement of the pattern's format is checked before ``rule`` is called.
     """
     if pattern_format(name) is None:
         raise ValueError(f"declare pattern '{name}' (lgmcts.formats.declare_pattern) before its rule")
@@ -134,89 +147,14 @@ class Verdict:
         return self.valid
 
 
-# ---------------------------------------------------------------- shape fits
+# ---------------------------------------------------------------- goal rules
 
 
-def line_residuals(xy: np.ndarray) -> np.ndarray:
-    """Distances of points to their total-least-squares line."""
-    c = xy - xy.mean(axis=0)
-    if len(xy) < 3:
-        return np.zeros(len(xy))
-    _, _, vt = np.linalg.svd(c, full_matrices=False)
-    normal = vt[-1]
-    return np.abs(c @ normal)
-
-
-def fit_circle(xy: np.ndarray) -> tuple[np.ndarray, float]:
-    """Geometric least-squares circle: centre ``(2,)`` and radius (m)."""
-    x, y = xy[:, 0], xy[:, 1]
-    a = np.stack([2 * x, 2 * y, np.ones_like(x)], axis=1)
-    b = x**2 + y**2
-    sol, *_ = np.linalg.lstsq(a, b, rcond=None)
-    c0 = sol[:2]
-    r0 = math.sqrt(max(sol[2] + c0 @ c0, 1e-12))
-
-    from scipy.optimize import least_squares  # imported on first use: it costs 0.6 s at start-up
-
-    def resid(p: np.ndarray) -> np.ndarray:
-        return np.hypot(x - p[0], y - p[1]) - p[2]
-
-    res = least_squares(resid, np.array([c0[0], c0[1], r0]), method="lm")
-    cx, cy, r = res.x
-    return np.array([cx, cy]), abs(float(r))
-
-
-def _circle_ok(xy: np.ndarray) -> str | None:
-    if len(xy) < 3:
-        return "a circle needs at least 3 objects"
-    centre, r = fit_circle(xy)
-    if not math.isfinite(r) or r < MIN_CIRCLE_RADIUS:
-        return f"fitted radius {r:.3f} m is below {MIN_CIRCLE_RADIUS} m"
-    err = np.abs(np.hypot(*(xy - centre).T) - r)
-    if err.max() > TOL:
-        return f"a centre is {err.max():.3f} m off the fitted circle"
-    ang = np.sort(np.arctan2(xy[:, 1] - centre[1], xy[:, 0] - centre[0]))
-    gaps = np.diff(np.concatenate([ang, ang[:1] + 2 * math.pi]))
-    if gaps.max() >= math.pi:
-        return f"largest angular gap {math.degrees(gaps.max()):.0f} deg is not below 180 deg"
-    return None
-
-
-def _rectangle_ok(xy: np.ndarray) -> str | None:
-    if len(xy) < 4:
-        return "a rectangle needs at least 4 objects"
-    rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
-    if rect.geom_type != "Polygon":
-        return "centres are collinear"
-    corners = np.asarray(rect.exterior.coords)[:4]
-    sides = np.linalg.norm(np.roll(corners, -1, axis=0) - corners, axis=1)
-    if sides.min() < MIN_RECT_SIDE:
-        return f"rectangle side {sides.min():.3f} m is below {MIN_RECT_SIDE} m"
-    segs = [shapely.LineString([corners[k], corners[(k + 1) % 4]]) for k in range(4)]
-    pts = shapely.points(xy)
-    d = np.stack([shapely.distance(pts, s) for s in segs], axis=1)  # (n, 4)
-    if d.min(axis=1).max() > TOL:
-        return f"a centre is {d.min(axis=1).max():.3f} m off the rectangle's perimeter"
-    if not (d <= TOL).any(axis=0).all():
-        return "a side of the rectangle holds no object"
-    return None
-
-
-def _line_direction(xy: np.ndarray) -> np.ndarray:
-    """Unit direction of the total-least-squares line through ``xy``."""
-    c = xy - xy.mean(axis=0)
-    _, _, vt = np.linalg.svd(c, full_matrices=False)
-    return vt[0]
-
-
-def _off(a: float, b: float, period: float) -> float:
-    """Distance between angles ``a`` and ``b`` modulo ``period`` (rad)."""
-    d = (a - b) % period
-    return min(d, period - d)
 
 
 def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> str | None:
-    """Why ``goal``'s region, size or facing does not hold, or ``None`` (rules in :mod:`lgmcts.params`)."""
+    """Why ``goal``'s region, size or facing does not hold, or ``None`` (rules in :mod:`lgmcts.params`;
+    the pattern says what its size measures and which way it runs)."""
     if goal.region is None and goal.size is None and goal.facing is None:
         return None
     gp = resolve_params(goal, scene.bounds, scene.radii[idx])
@@ -228,41 +166,26 @@ def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> s
         if out[k] > REGION_TOL:
             where = f"'{goal.region}'" if isinstance(goal.region, str) else f"box {list(goal.region)}"
             return f"object {scene.ids[idx[k]]} is {out[k]:.3f} m outside region {where}"
-    p = goal.pattern
+    pattern = registry()[goal.pattern]
+    fitted = pattern.fit(xy) if gp.size is not None or gp.heading is not None else None
     if gp.heading is not None:
         h, tol = gp.heading, gp.heading_tol
         for i in idx:
-            d = _off(float(poses[i, 2]), h, 2 * math.pi)
+            d = wrap_off(float(poses[i, 2]), h, 2 * math.pi)
             if d > tol + 1e-9:
                 return f"object {scene.ids[i]} faces {math.degrees(d):.0f} deg off facing '{goal.facing}'"
-        if p == "line" and len(xy) >= 2:
-            u = _line_direction(xy)
-            d = _off(math.atan2(u[1], u[0]), h + math.pi / 2, math.pi)
+        axis = pattern.facing_axis(fitted) if len(xy) >= 2 else None
+        if axis is not None:
+            angle, period, message = axis
+            d = wrap_off(angle, h, period)
             if d > tol + 1e-9:
-                return f"the line runs {math.degrees(d):.0f} deg off across facing '{goal.facing}'"
-        if p == "rectangle":
-            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
-            if rect.geom_type == "Polygon":
-                cs = np.asarray(rect.exterior.coords)[:2]
-                e = cs[1] - cs[0]
-                d = _off(math.atan2(e[1], e[0]), h, math.pi / 2)
-                if d > tol + 1e-9:
-                    return f"the rectangle's sides are {math.degrees(d):.0f} deg off facing '{goal.facing}'"
-    if gp.size is not None:
-        if p == "circle":
-            length = fit_circle(xy)[1]
-        elif p == "line":
-            t = (xy - xy.mean(axis=0)) @ _line_direction(xy)
-            length = float(t.max() - t.min())
-        else:
-            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
-            cs = np.asarray(rect.exterior.coords)[:4] if rect.geom_type == "Polygon" else xy[:1]
-            length = float(np.linalg.norm(np.roll(cs, -1, axis=0) - cs, axis=1).max(initial=0.0))
+                return message.format(deg=math.degrees(d), facing=goal.facing)
+    if gp.size is not None and pattern.size_word is not None:
+        length = pattern.size(fitted)
         lo, hi = gp.size
         if not lo - SIZE_TOL <= length <= hi + SIZE_TOL:
-            what = {"circle": "radius", "line": "length", "rectangle": "longer side"}[p]
             want = f"{lo:.3f}..{hi:.3f}" if hi < math.inf else f">= {lo:.3f}"
-            return f"{what} {length:.3f} m is not {goal.size!r} ({want} m, tolerance {SIZE_TOL} m)"
+            return f"{pattern.size_word} {length:.3f} m is not {goal.size!r} ({want} m, tolerance {SIZE_TOL} m)"
     return None
 
 
@@ -275,57 +198,19 @@ def goal_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, .
 
 
 def _shape_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
-    idx = [scene.index[i] for i in goal.objects]
-    xy = poses[idx, :2]
     p = goal.pattern
     fmt = pattern_format(p)
     if fmt is not None and fmt.on_table:
-        for i in idx:
+        for i in (scene.index[o] for o in goal.objects):
             if on[i] != TABLE:
                 return f"object {scene.ids[i]} is not on the table"
-    if p == "line":
-        r = line_residuals(xy)
-        if r.max(initial=0.0) > TOL:
-            return f"a centre is {r.max():.3f} m off the fitted line"
-        return None
-    if p == "circle":
-        return _circle_ok(xy)
-    if p == "rectangle":
-        return _rectangle_ok(xy)
-    if p == "tower":
-        if on[idx[0]] != TABLE:
-            return f"tower base {goal.objects[0]} is not on the table"
-        for a, b in zip(idx, idx[1:]):
-            if on[b] != a:
-                return f"object {scene.ids[b]} is not on object {scene.ids[a]}"
-            if math.hypot(*(poses[b, :2] - poses[a, :2])) > TOWER_TOL:
-                return f"object {scene.ids[b]} is off-centre on object {scene.ids[a]}"
-        return None
-    if p in RELATIONS:
-        d = np.asarray(RELATIONS[p])
-        a = poses[scene.index[goal.anchor], :2]  # type: ignore[index]
-        for i in idx:
-            v = poses[i, :2] - a
-            n = float(np.hypot(*v))
-            if n <= 0 or n > MAX_RELATION_DIST:
-                return f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
-            ang = math.acos(max(-1.0, min(1.0, float(v @ d) / n)))
-            if ang > RELATION_HALF_ANGLE + 1e-9:
-                return f"object {scene.ids[i]} is {math.degrees(ang):.0f} deg off '{p}' of anchor {goal.anchor}"
-        return None
-    if p == "pose":
-        tgt = np.asarray(goal.pose)
-        cur = poses[idx[0]]
-        if math.hypot(*(cur[:2] - tgt[:2])) > TOL:
-            return f"object {goal.objects[0]} is {math.hypot(*(cur[:2] - tgt[:2])):.3f} m from its goal pose"
-        dth = (cur[2] - tgt[2] + math.pi) % (2 * math.pi) - math.pi
-        if abs(dth) > POSE_ANGLE_TOL:
-            return f"object {goal.objects[0]} is {abs(dth):.2f} rad off its goal yaw"
-        return None
     rule = _RULES.get(p)
     if rule is not None:
         return rule(goal, scene, poses, on)
-    raise InputError(f"pattern '{p}' has no acceptance rule (lgmcts.validate.register_rule)")
+    pattern = registry().get(p)
+    if pattern is None:
+        raise InputError(f"pattern '{p}' has no acceptance rule (register it: lgmcts.patterns.register)")
+    return pattern.accept(goal, scene, poses, on)
 
 
 # ---------------------------------------------------------------- replay
@@ -344,7 +229,10 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
     poses = np.array(sc.initial.poses, dtype=float)
-    on = list(sc.initial.on)
+    # Supports as an array: each action's tests are vectorised over the
+    # objects, so a long plan on a large scene replays in seconds.
+    on = np.array(sc.initial.on, dtype=np.int64)
+    index = np.arange(sc.n)
     polys = list(sc.initial.polys)
     reasons: list[str] = []
     for step, act in enumerate(pl.actions, start=1):
@@ -352,9 +240,9 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             reasons.append(f"action {step}: unknown object {act.object}")
             break
         i = sc.index[act.object]
-        if any(s == i for s in on):
-            top = [sc.ids[k] for k, s in enumerate(on) if s == i]
-            reasons.append(f"action {step}: object {act.object} is not clear (object {top[0]} rests on it)")
+        above = np.flatnonzero(on == i)
+        if len(above):
+            reasons.append(f"action {step}: object {act.object} is not clear (object {sc.ids[above[0]]} rests on it)")
         new_pose = np.asarray(act.to, dtype=float)
         bad = _pose_out_of_bounds(new_pose)
         if bad is not None:
@@ -379,7 +267,7 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             # Only footprints whose circumscribed circles meet can overlap.
             reach = sc.radii[i] + sc.radii + 1e-9
             close = np.hypot(poses[:, 0] - new_pose[0], poses[:, 1] - new_pose[1]) <= reach
-            others = [k for k, s in enumerate(on) if k != i and s == TABLE and close[k]]
+            others = [int(k) for k in np.flatnonzero(close & (on == TABLE) & (index != i))]
             if others:
                 arr = np.empty(len(others), dtype=object)
                 arr[:] = [polys[k] for k in others]
@@ -408,7 +296,7 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             if j == i:
                 reasons.append(f"action {step}: object {act.object} placed on itself")
                 break
-            if any(s == j for k, s in enumerate(on) if k != i):
+            if np.any((on == j) & (index != i)):
                 reasons.append(f"action {step}: support {act.on} is not clear")
             if not shapely.contains_xy(polys[j], new_pose[0], new_pose[1]):
                 reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
@@ -417,8 +305,9 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
         on[i] = new_on
         polys[i] = poly
     results = []
+    final_on = tuple(int(x) for x in on)
     for k, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, tuple(on))
+        why = goal_satisfied(g, sc, poses, final_on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {k} ({g.pattern} {g.objects}): {why}")

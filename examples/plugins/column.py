@@ -8,9 +8,10 @@ planner and the language matcher to know the pattern::
 
     lgmcts.plan(scene, {"goals": [{"pattern": "column", "objects": [1, 2, 3]}]})
 
-The module makes three registrations: the goal format (how many objects, no
-anchor), the acceptance rule (written apart from the sampler, as the
-validator's own rules are) and the prior.
+The module makes one registration, ``register(Column())``: from the class
+it derives the goal format (``min_objects``, no anchor, on the table), the
+validator's rule (``accept``, written apart from the sampler, as the built-in
+rules are), the drawing (``shape``) and the language keys (``keys``).
 """
 
 from __future__ import annotations
@@ -20,24 +21,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from lgmcts.formats import PatternFormat, declare_pattern
 from lgmcts.patterns import register
-from lgmcts.patterns.base import BAND, EDGE_EPS, BasePattern, Context, GoalProgress, uniform_poses
-from lgmcts.validate import TOL, register_rule
-
-declare_pattern(PatternFormat("column", min_objects=2))
-
-
-def column_rule(goal, scene, poses, on) -> str | None:
-    """Every centre within TOL of the mean x of the goal's centres."""
-    xs = poses[[scene.index[i] for i in goal.objects], 0]
-    off = float(np.abs(xs - xs.mean()).max())
-    if off > TOL:
-        return f"a centre is {off:.3f} m off the column"
-    return None
-
-
-register_rule("column", column_rule)
+from lgmcts.patterns.base import BAND, EDGE_EPS, BasePattern, Context, GoalProgress, goal_xy, uniform_poses
+from lgmcts.tolerances import TOL
 
 
 @dataclass(frozen=True)
@@ -79,6 +65,26 @@ class Column(BasePattern):
         _, _, ymin, ymax = ctx.scene.bounds
         half = ctx.max_radius + BAND
         return shapely.box(x0 - half, ymin, x0 + half, ymax)
+
+    # The finished arrangement: the acceptance rule and what to draw.
+
+    def fit(self, xy: np.ndarray) -> float:
+        """The column's x (the mean of the centres' x)."""
+        return float(np.mean(xy[:, 0]))
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        """Every centre within TOL of the mean x of the goal's centres."""
+        xs = goal_xy(goal, scene, poses)[:, 0]
+        off = float(np.abs(xs - xs.mean()).max())
+        if off > TOL:
+            return f"a centre is {off:.3f} m off the column"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        """Drawn as a line at the column's x, from the front-most centre to the back-most."""
+        xy = goal_xy(goal, scene, poses)
+        x = self.fit(xy)
+        return "line", {"points": np.array([[x, xy[:, 1].min()], [x, xy[:, 1].max()]])}
 
 
 register(Column())

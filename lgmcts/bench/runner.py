@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import math
 import os
 import sys
 import time
@@ -92,8 +93,8 @@ class RunOptions:
             raise InputError(f"unknown parser '{self.parser}' (known: {', '.join(PARSERS)})")
         if self.max_iter < 1:
             raise InputError("--max-iter must be at least 1")
-        if self.time_limit is not None and self.time_limit <= 0:
-            raise InputError("--time-limit must be positive")
+        if self.time_limit is not None and not (math.isfinite(self.time_limit) and self.time_limit > 0):
+            raise InputError("--time-limit must be a positive finite number of seconds")
         resolve_method(self.method)
         if self.method in LLM_METHODS and not (self.llm_model or os.environ.get("LGMCTS_LLM_MODEL")):
             raise InputError(f"--method {self.method} needs --llm-model NAME (or LGMCTS_LLM_MODEL)")

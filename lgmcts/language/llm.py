@@ -277,8 +277,8 @@ def validate_answer(content: str | None, spec: SceneSpec, infos: dict[str, Patte
 def _client(options: LLMOptions) -> Any:
     try:
         import openai
-    except ModuleNotFoundError:  # pragma: no cover - a declared dependency
-        raise InputError("the 'openai' package is needed for --parser llm") from None
+    except ModuleNotFoundError:
+        raise InputError("the LLM parser needs the 'llm' extra (openai is not installed): pip install 'lgmcts[llm]'") from None
     base_url = options.base_url or os.environ.get("OPENAI_BASE_URL")
     key = options.api_key or os.environ.get("OPENAI_API_KEY")
     if not key:

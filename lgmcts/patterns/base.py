@@ -17,6 +17,7 @@ from typing import Any, ClassVar, Protocol
 import numpy as np
 import shapely
 
+from ..geometry import wrap_angle
 from ..params import GoalParams
 from ..params import resolve as resolve_params
 from ..scene import TABLE, Scene, State
@@ -31,7 +32,6 @@ __all__ = [
     "Context",
     "register",
     "registry",
-    "get",
     "CLEARANCE",
     "BAND",
     "EDGE_EPS",
@@ -83,14 +83,16 @@ class GoalProgress:
 
     ``placed`` are the object indices committed so far in commit order,
     ``slots`` their slot numbers (pattern-specific, -1 when unused), and
-    ``params`` the curve parameters kappa once they are known.
+    ``params`` the curve parameters kappa once they are known: the pattern
+    module's frozen record (``LineParams``, ``CircleParams``,
+    ``RectangleParams``), the same type its ``fit`` returns.
     """
 
     placed: tuple[int, ...] = ()
     slots: tuple[int, ...] = ()
-    params: tuple[float, ...] | None = None
+    params: Any = None
 
-    def add(self, obj: int, slot: int = -1, params: tuple[float, ...] | None = None) -> "GoalProgress":
+    def add(self, obj: int, slot: int = -1, params: Any = None) -> "GoalProgress":
         return GoalProgress(self.placed + (obj,), self.slots + (slot,), self.params if params is None else params)
 
     def without(self, obj: int) -> "GoalProgress":
@@ -136,6 +138,10 @@ class Pattern(Protocol):
     ordered : whether objects must be placed in list order (tower) or after
         an anchor (relations).
     on_table : whether the goal's objects must end on the table.
+    anchored : whether a goal names an ``anchor`` (relations).
+    needs_pose : whether a goal gives a ``pose`` (and one object).
+    size_word : what a goal's ``size`` measures ("radius", "length"...), or
+        ``None`` when the pattern has no size of its own.
     deterministic : whether ``sample`` returns the same poses whatever the
         branch and the random generator (a fixed target), and ``region`` the
         same region for as long as the goal is unfinished; the planner may
@@ -167,12 +173,63 @@ class Pattern(Protocol):
     def region(self, ctx: Context) -> Any:
         """Shapely geometry where the unplaced objects will go, or ``None`` if unknown."""
 
+    def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
+        """Order among the priors ``obj`` is in: the lowest ranked samples, the others filter."""
+
+    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+        """The search progress of ``goal`` whose ``placed`` objects stand at
+        ``poses``, in a plan that ends at ``final`` (plans do not record kappa;
+        the pose-field pictures rebuild it from the plan)."""
+
+    def fit(self, xy: np.ndarray) -> Any:
+        """The pattern's parameter record fitted to final centres ``(n, 2)``
+        (a frozen dataclass of floats, or ``None`` when there is nothing to fit)."""
+
+    def accept(self, goal: Any, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
+        """The acceptance rule: ``None`` when ``goal`` (a format goal) holds for
+        ``poses``/``on``, else why not. The on-table requirement is checked before."""
+
+    def shape(self, goal: Any, scene: Scene, poses: np.ndarray) -> tuple[str, dict]:
+        """What to draw for ``goal`` at ``poses``: a kind and its geometry (see
+        :class:`lgmcts.viz.model.GoalShape`)."""
+
+    def describe(self, goal: Any) -> str:
+        """A few words for a format goal, as pictures and the viewer list it."""
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        """What to draw from a fitted record in its JSON form (as plans carry
+        it, :func:`fit_json`), or ``None`` when the record alone does not say."""
+
+    def size(self, fitted: Any) -> float:
+        """The characteristic length a goal's ``size`` is compared with (m)."""
+
+    def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
+        """The arrangement's own direction for a ``facing``: ``(angle, period,
+        what)``, the angle compared with the heading modulo ``period``, or ``None``."""
+
 
 _REGISTRY: dict[str, Pattern] = {}
 
 
 def register(pattern: Pattern) -> Pattern:
-    """Add a pattern instance to the database (keyed by its name)."""
+    """Add a pattern instance to the database (keyed by its name).
+
+    This one call is all a pattern module makes: it declares the pattern in
+    the goal format (from ``min_objects``, ``anchored``, ``needs_pose`` and
+    ``on_table``), gives the validator its rule (``accept``), the pictures its
+    shape and the language parser its keys (read from this registry).
+    """
+    from ..formats import PatternFormat, declare_pattern
+
+    declare_pattern(
+        PatternFormat(
+            pattern.name,
+            min_objects=pattern.min_objects,
+            anchor=bool(getattr(pattern, "anchored", False)),
+            pose=bool(getattr(pattern, "needs_pose", False)),
+            on_table=pattern.on_table,
+        )
+    )
     _REGISTRY[pattern.name] = pattern
     return pattern
 
@@ -237,10 +294,6 @@ def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None)
             raise InputError(f"pattern module {spec} failed to load: {type(exc).__name__}: {exc}") from None
         loaded.append(name)
     return loaded
-
-
-def get(name: str) -> Pattern:
-    return registry()[name]
 
 
 # ---------------------------------------------------------------- helpers
@@ -316,7 +369,7 @@ def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
         e = EDGE_EPS
         ok &= (poses[:, 0] >= x0 - e) & (poses[:, 0] <= x1 + e) & (poses[:, 1] >= y0 - e) & (poses[:, 1] <= y1 + e)
     if gp.heading is not None:
-        d = np.abs((poses[:, 2] - gp.heading + np.pi) % (2 * np.pi) - np.pi)
+        d = np.abs(wrap_angle(poses[:, 2] - gp.heading))
         ok &= d <= YAW_SHARE * gp.heading_tol
     return ok
 
@@ -329,11 +382,6 @@ def box_region(ctx: "Context") -> Any:
     return shapely.box(reg[0], reg[2], reg[1], reg[3])
 
 
-def in_bounds(scene: Scene, xy: np.ndarray, margin: float = 0.0) -> np.ndarray:
-    xmin, xmax, ymin, ymax = scene.bounds
-    return (xy[..., 0] >= xmin + margin) & (xy[..., 0] <= xmax - margin) & (xy[..., 1] >= ymin + margin) & (xy[..., 1] <= ymax - margin)
-
-
 @dataclass(frozen=True)
 class BasePattern:
     """Defaults shared by the pattern classes."""
@@ -344,6 +392,9 @@ class BasePattern:
     min_objects: ClassVar[int] = 1
     ordered: ClassVar[bool] = False
     on_table: ClassVar[bool] = True
+    anchored: ClassVar[bool] = False
+    needs_pose: ClassVar[bool] = False
+    size_word: ClassVar[str | None] = None
     deterministic: ClassVar[bool] = False
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
@@ -354,3 +405,82 @@ class BasePattern:
 
     def region(self, ctx: Context) -> Any:
         return None
+
+    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        # A pattern may define only _density (its own support); a goal's
+        # region and facing then narrow it here.
+        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
+        if ctx.goal.params.empty:
+            return self._density(ctx, obj, poses)
+        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
+
+    def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
+        # Priors whose kappa is fixed sample best, then relations, then the rest.
+        if progress.params is not None:
+            return 2
+        return 3 if goal.anchor is not None else 4
+
+    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), None)
+
+    def fit(self, xy: np.ndarray) -> Any:
+        return None
+
+    def accept(self, goal: Any, scene: Scene, poses: np.ndarray, on: tuple[int, ...]) -> str | None:
+        from ..errors import InputError
+
+        raise InputError(f"pattern '{self.name}' has no acceptance rule (define accept in its module)")
+
+    def shape(self, goal: Any, scene: Scene, poses: np.ndarray) -> tuple[str, dict]:
+        return "points", {"points": goal_xy(goal, scene, poses)}
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        return None
+
+    def describe(self, goal: Any) -> str:
+        """A few words for ``goal`` (a format goal): ``"circle of 1, 2, 3"``."""
+        return f"{self.name} of " + ", ".join(str(i) for i in goal.objects)
+
+    def size(self, fitted: Any) -> float:
+        raise NotImplementedError(f"pattern '{self.name}' has no size")
+
+    def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
+        return None
+
+
+def fit_json(fitted: Any) -> dict | None:
+    """A fitted record (a frozen dataclass of numbers and tuples) as JSON-ready
+    lists and floats, or ``None`` when there is none or it is not finite."""
+    import dataclasses
+
+    if fitted is None or not dataclasses.is_dataclass(fitted):
+        return None
+
+    def conv(v: Any) -> Any:
+        if isinstance(v, (tuple, list, np.ndarray)):
+            return [conv(x) for x in v]
+        if isinstance(v, (bool, np.bool_)):
+            return bool(v)
+        if isinstance(v, (int, np.integer)):
+            return int(v)
+        if isinstance(v, (float, np.floating)):
+            if not np.isfinite(v):
+                raise ValueError
+            return float(v)
+        return v
+
+    try:
+        return {f.name: conv(getattr(fitted, f.name)) for f in dataclasses.fields(fitted)}
+    except ValueError:
+        return None
+
+
+def goal_xy(goal: Any, scene: Scene, poses: np.ndarray) -> np.ndarray:
+    """``(n, 2)`` centres of a format goal's objects at ``poses``."""
+    return np.asarray(poses[[scene.index[i] for i in goal.objects], :2], dtype=float)
+
+
+def wrap_off(a: float, b: float, period: float) -> float:
+    """Distance between angles ``a`` and ``b`` modulo ``period`` (rad)."""
+    d = (a - b) % period
+    return min(d, period - d)

@@ -23,15 +23,18 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..tolerances import MIN_CIRCLE_RADIUS, TOL
+from ..geometry import wrap_angle
 from .base import (
     BAND,
     CLEARANCE,
     EDGE_EPS,
     BasePattern,
     Context,
+    fit_json,
+    goal_xy,
     GoalProgress,
     box_region,
-    params_mask,
     register,
     start_poses,
     uniform_poses,
@@ -140,6 +143,53 @@ def _chord_ks(ctx: Context, d: float, lo: float, hi: float) -> list[tuple[int, f
     return out
 
 
+# ---------------------------------------------------------------- kappa and the finished circle
+
+
+@dataclass(frozen=True)
+class CircleParams:
+    """kappa of a circle: ``centre``, ``radius``, the angle about the centre
+    of slot 0 (the first object placed, ``start_angle``) and the number of
+    evenly spaced slots (``count``, the goal's object count). Fitted to final
+    centres it is the least-squares circle, slot 0 at the first object."""
+
+    centre: tuple[float, float]
+    radius: float
+    start_angle: float
+    count: int
+
+
+def fit_circle(xy: np.ndarray) -> tuple[np.ndarray, float]:
+    """Geometric least-squares circle: centre ``(2,)`` and radius (m)."""
+    x, y = xy[:, 0], xy[:, 1]
+    a = np.stack([2 * x, 2 * y, np.ones_like(x)], axis=1)
+    b = x**2 + y**2
+    sol, *_ = np.linalg.lstsq(a, b, rcond=None)
+    c0 = sol[:2]
+    r0 = math.sqrt(max(sol[2] + c0 @ c0, 1e-12))
+
+    from scipy.optimize import least_squares  # imported on first use: it costs 0.6 s at start-up
+
+    def resid(p: np.ndarray) -> np.ndarray:
+        return np.hypot(x - p[0], y - p[1]) - p[2]
+
+    res = least_squares(resid, np.array([c0[0], c0[1], r0]), method="lm")
+    cx, cy, r = res.x
+    return np.array([cx, cy]), abs(float(r))
+
+
+def circle_params(xy: np.ndarray) -> CircleParams:
+    """:class:`CircleParams` of ``(n, 2)`` centres (radius 0 at their mean for fewer than 3)."""
+    xy = np.asarray(xy, dtype=float)
+    if len(xy) >= 3:
+        c, r = fit_circle(xy)
+        r = r if math.isfinite(r) else 0.0
+    else:
+        c, r = xy.mean(axis=0), 0.0
+    a0 = math.atan2(xy[0, 1] - c[1], xy[0, 0] - c[0]) if len(xy) else 0.0
+    return CircleParams((float(c[0]), float(c[1])), float(r), a0, len(xy))
+
+
 @dataclass(frozen=True)
 class Circle(BasePattern):
     name = "circle"
@@ -151,7 +201,8 @@ class Circle(BasePattern):
     min_objects = 3
 
     def _slot_angles(self, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
-        cx, cy, r, a0, n = ctx.progress.params  # type: ignore[misc]
+        kappa = ctx.progress.params
+        a0, n = kappa.start_angle, kappa.count
         used = set(ctx.progress.slots)
         free = np.array([s for s in range(int(n)) if s not in used], dtype=int)
         return free, a0 + 2 * math.pi * free / n
@@ -181,7 +232,8 @@ class Circle(BasePattern):
             return _first(ctx, obj, rng, n)
         if ctx.progress.params is None:
             return self._second(ctx, rng, n)
-        cx, cy, r, a0, k = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), r, k = kappa.centre, kappa.radius, kappa.count
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.empty((0, 3))
@@ -189,12 +241,6 @@ class Circle(BasePattern):
         a = rng.choice(angles, n) + np.clip(rng.normal(0, spread / 2, n), -spread, spread)
         rr = r + np.clip(rng.normal(0, band / 2, n), -band, band)
         return with_heading(ctx, np.column_stack([cx + rr * np.cos(a), cy + rr * np.sin(a), a + math.pi / 2]))
-
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
 
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:
@@ -212,13 +258,14 @@ class Circle(BasePattern):
                     c1, c2 = _centres(p0, poses[:, :2], r)
                     ok |= inside & (_fits(ctx, c1, r) | _fits(ctx, c2, r))
             return ok.astype(float)
-        cx, cy, r, a0, k = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), r, k = kappa.centre, kappa.radius, kappa.count
         free, angles = self._slot_angles(ctx)
         if len(free) == 0:
             return np.zeros(len(poses))
         d = np.hypot(poses[:, 0] - cx, poses[:, 1] - cy) - r
         a = np.arctan2(poses[:, 1] - cy, poses[:, 0] - cx)
-        da = np.abs((a[:, None] - angles[None, :] + math.pi) % (2 * math.pi) - math.pi).min(axis=1)
+        da = np.abs(wrap_angle(a[:, None] - angles[None, :])).min(axis=1)
         spread, band = _spread(ctx, r, k), _band(ctx)
         ok = (np.abs(d) <= band + EDGE_EPS) & (da <= spread + EDGE_EPS)
         return np.where(ok, np.exp(-0.5 * (d / (band / 2)) ** 2 - 0.5 * (da / (spread / 2)) ** 2), 0.0)
@@ -246,20 +293,68 @@ class Circle(BasePattern):
             a0 = math.atan2(p0[1] - c[1], p0[0] - c[0])
             a1 = math.atan2(p1[1] - c[1], p1[0] - c[0])
             step = round(((a1 - a0) % (2 * math.pi)) / (2 * math.pi / ctx.n)) % ctx.n
-            params = (float(c[0]), float(c[1]), float(r), float(a0), float(ctx.n))
+            params = CircleParams((float(c[0]), float(c[1])), float(r), float(a0), ctx.n)
             return GoalProgress((first, obj), (0, int(step)), params)
         free, angles = self._slot_angles(ctx)
-        cx, cy = prog.params[0], prog.params[1]
+        cx, cy = prog.params.centre
         a = math.atan2(pose[1] - cy, pose[0] - cx)
-        da = np.abs((a - angles + math.pi) % (2 * math.pi) - math.pi)
+        da = np.abs(wrap_angle(a - angles))
         return prog.add(obj, slot=int(free[int(np.argmin(da))]))
 
     def region(self, ctx: Context):
         if ctx.progress.params is None:
             return box_region(ctx)
-        cx, cy, r, _, _ = ctx.progress.params
+        (cx, cy), r = ctx.progress.params.centre, ctx.progress.params.radius
         w = ctx.max_radius + BAND
         return shapely.Point(cx, cy).buffer(r + w).difference(shapely.Point(cx, cy).buffer(max(r - w, 0.0)))
+
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa fitted to the goal's final centres, slots read from the positions.
+        if not placed:
+            return GoalProgress()
+        c, r = fit_circle(final[list(goal.objects), :2])
+        n = len(goal.objects)
+        a0 = math.atan2(final[placed[0], 1] - c[1], final[placed[0], 0] - c[0])
+        slots = []
+        for p in placed:
+            a = math.atan2(poses[p, 1] - c[1], poses[p, 0] - c[0])
+            slots.append(int(round(((a - a0) % (2 * math.pi)) / (2 * math.pi / n))) % n)
+        return GoalProgress(tuple(placed), tuple(slots), CircleParams((float(c[0]), float(c[1])), float(r), float(a0), n))
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "radius"
+
+    def fit(self, xy: np.ndarray) -> CircleParams:
+        return circle_params(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        xy = goal_xy(goal, scene, poses)
+        if len(xy) < 3:
+            return "a circle needs at least 3 objects"
+        centre, r = fit_circle(xy)
+        if not math.isfinite(r) or r < MIN_CIRCLE_RADIUS:
+            return f"fitted radius {r:.3f} m is below {MIN_CIRCLE_RADIUS} m"
+        err = np.abs(np.hypot(*(xy - centre).T) - r)
+        if err.max() > TOL:
+            return f"a centre is {err.max():.3f} m off the fitted circle"
+        ang = np.sort(np.arctan2(xy[:, 1] - centre[1], xy[:, 0] - centre[0]))
+        gaps = np.diff(np.concatenate([ang, ang[:1] + 2 * math.pi]))
+        if gaps.max() >= math.pi:
+            return f"largest angular gap {math.degrees(gaps.max()):.0f} deg is not below 180 deg"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        xy = goal_xy(goal, scene, poses)
+        fitted = fit_json(circle_params(xy))
+        if fitted is None:  # a fit that did not converge: nothing to draw but the centres' mean
+            return "circle", {"centre": xy.mean(axis=0), "radius": 0.0}
+        return self.draw(fitted)
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        return "circle", {"centre": np.asarray(fitted["centre"], dtype=float), "radius": float(fitted["radius"])}
+
+    def size(self, fitted: CircleParams) -> float:
+        return fitted.radius
 
 
 register(Circle())

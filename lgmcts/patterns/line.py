@@ -14,11 +14,13 @@ distance and keeps the spread of the centres along the line in its band
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
+from ..tolerances import TOL
 from .base import (
     BAND,
     CLEARANCE,
@@ -27,6 +29,8 @@ from .base import (
     Context,
     GoalProgress,
     box_region,
+    fit_json,
+    goal_xy,
     params_mask,
     register,
     room,
@@ -66,6 +70,52 @@ def _chord(ctx: Context, obj: int, p0: np.ndarray, u: np.ndarray) -> tuple[float
     return lo, hi
 
 
+# ---------------------------------------------------------------- kappa and the finished line
+
+
+@dataclass(frozen=True)
+class LineParams:
+    """kappa of a line: a ``point`` on it and its unit ``direction``; in the
+    search the first object and the direction to the second. Fitted to final
+    centres: through their mean along the total-least-squares direction, with
+    ``ends``, the extreme centres projected on it."""
+
+    point: tuple[float, float]
+    direction: tuple[float, float]
+    ends: tuple[tuple[float, float], tuple[float, float]] | None = None
+
+    @property
+    def length(self) -> float:
+        """Spread of the centres along the line (m); 0 before the line is finished."""
+        if self.ends is None:
+            return 0.0
+        (x0, y0), (x1, y1) = self.ends
+        return float(np.hypot(x1 - x0, y1 - y0))
+
+
+def fit_line(xy: np.ndarray) -> LineParams:
+    """Total-least-squares line through ``(n, 2)`` centres (any ``n >= 1``)."""
+    xy = np.asarray(xy, dtype=float)
+    c = xy.mean(axis=0)
+    if len(xy) < 2:
+        u = np.array([1.0, 0.0])
+    else:
+        _, _, vt = np.linalg.svd(xy - c, full_matrices=False)
+        u = vt[0]
+    t = (xy - c) @ u
+    a, b = c + u * t.min(), c + u * t.max()
+    return LineParams((float(c[0]), float(c[1])), (float(u[0]), float(u[1])), ((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))))
+
+
+def line_residuals(xy: np.ndarray) -> np.ndarray:
+    """Distances of points to their total-least-squares line."""
+    c = xy - xy.mean(axis=0)
+    if len(xy) < 3:
+        return np.zeros(len(xy))
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    return np.abs(c @ vt[-1])
+
+
 @dataclass(frozen=True)
 class Line(BasePattern):
     name = "line"
@@ -79,8 +129,8 @@ class Line(BasePattern):
     def _params(self, ctx: Context) -> tuple[np.ndarray, np.ndarray] | None:
         if ctx.progress.params is None:
             return None
-        x, y, ux, uy = ctx.progress.params
-        return np.array([x, y]), np.array([ux, uy])
+        kappa = ctx.progress.params
+        return np.array(kappa.point), np.array(kappa.direction)
 
     def _reach(self, ctx: Context, obj: int) -> tuple[float, float]:
         """Distances the second object may take from the first (m)."""
@@ -204,12 +254,6 @@ class Line(BasePattern):
         out = with_heading(ctx, np.column_stack([xy, theta]))
         return out if ctx.goal.params.box is None else out[params_mask(ctx, obj, out)]
 
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
-
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         placed = ctx.progress.placed
         if not placed:
@@ -245,7 +289,7 @@ class Line(BasePattern):
             p0 = ctx.state.poses[prog.placed[0], :2]
             v = np.asarray(pose[:2]) - p0
             norm = float(np.hypot(*v)) or 1.0
-            return prog.add(obj, params=(float(p0[0]), float(p0[1]), float(v[0] / norm), float(v[1] / norm)))
+            return prog.add(obj, params=LineParams((float(p0[0]), float(p0[1])), (float(v[0] / norm), float(v[1] / norm))))
         return prog.add(obj)
 
     def region(self, ctx: Context):
@@ -258,6 +302,42 @@ class Line(BasePattern):
             return None
         seg = shapely.LineString([p0 + lo * u, p0 + hi * u])
         return seg.buffer(ctx.max_radius + BAND)
+
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa is the first two placed objects' point and direction.
+        if len(placed) < 2:
+            return super().recover(goal, placed, poses, final)
+        p0, p1 = poses[placed[0], :2], poses[placed[1], :2]
+        u = (p1 - p0) / (np.hypot(*(p1 - p0)) or 1.0)
+        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), LineParams((float(p0[0]), float(p0[1])), (float(u[0]), float(u[1]))))
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "length"
+
+    def fit(self, xy: np.ndarray) -> LineParams:
+        return fit_line(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        r = line_residuals(goal_xy(goal, scene, poses))
+        if r.max(initial=0.0) > TOL:
+            return f"a centre is {r.max():.3f} m off the fitted line"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        return self.draw(fit_json(fit_line(goal_xy(goal, scene, poses))))
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        if fitted.get("ends") is None:
+            return None
+        return "line", {"points": np.asarray(fitted["ends"], dtype=float)}
+
+    def size(self, fitted: LineParams) -> float:
+        return fitted.length
+
+    def facing_axis(self, fitted: LineParams) -> tuple[float, float, str]:
+        # A row facing north runs east-west: its direction is across the heading.
+        ux, uy = fitted.direction
+        return math.atan2(uy, ux) - math.pi / 2, math.pi, "the line runs {deg:.0f} deg off across facing '{facing}'"
 
 
 register(Line())

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 import shapely
 
+from ..geometry import wrap_angle
+from ..tolerances import POSE_ANGLE_TOL, TOL
 from .base import BasePattern, Context, GoalProgress, register
 
 #: How close to the target the planner's placement must be (m, rad); the
@@ -31,6 +34,8 @@ class Pose(BasePattern):
     keys = ("at the pose", "at exactly this position", "move to the coordinates", "place at position")
     description = "one object at a given pose [x, y, theta]"
     min_objects = 1
+    on_table = False
+    needs_pose = True
     deterministic = True
 
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
@@ -39,7 +44,7 @@ class Pose(BasePattern):
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         t = np.asarray(ctx.goal.pose)
-        dth = np.abs((poses[:, 2] - t[2] + np.pi) % (2 * np.pi) - np.pi)
+        dth = np.abs(wrap_angle(poses[:, 2] - t[2]))
         return ((np.hypot(*(poses[:, :2] - t[:2]).T) <= XY_TOL) & (dth <= YAW_TOL)).astype(float)
 
     def commit(self, ctx: Context, obj: int, pose: np.ndarray, rng: np.random.Generator) -> GoalProgress:
@@ -50,6 +55,27 @@ class Pose(BasePattern):
             return None
         x, y, _ = ctx.goal.pose  # type: ignore[misc]
         return _disc(float(x), float(y), ctx.max_radius)
+
+    def describe(self, goal) -> str:
+        x, y, t = goal.pose
+        return f"{goal.objects[0]} to ({x:.2f}, {y:.2f}, {t:.2f})"
+
+    def rank(self, goal, progress, obj) -> int:
+        return 0  # a fixed target: it samples, the other priors filter
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    def accept(self, goal, scene, poses, on) -> str | None:
+        tgt = np.asarray(goal.pose)
+        cur = poses[scene.index[goal.objects[0]]]
+        if math.hypot(*(cur[:2] - tgt[:2])) > TOL:
+            return f"object {goal.objects[0]} is {math.hypot(*(cur[:2] - tgt[:2])):.3f} m from its goal pose"
+        dth = wrap_angle(cur[2] - tgt[2])
+        if abs(dth) > POSE_ANGLE_TOL:
+            return f"object {goal.objects[0]} is {abs(dth):.2f} rad off its goal yaw"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        return "pose", {"target": np.asarray(goal.pose, dtype=float)}
 
 
 register(Pose())

@@ -25,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..tolerances import MIN_RECT_SIDE, TOL
+from .line import fit_line
 from .base import (
     BAND,
     CLEARANCE,
@@ -33,6 +35,7 @@ from .base import (
     Context,
     GoalProgress,
     box_region,
+    goal_xy,
     params_mask,
     register,
     start_poses,
@@ -54,10 +57,46 @@ def _rot(phi: float) -> np.ndarray:
     return np.array([[c, -s], [s, c]])
 
 
-def corners(params: tuple[float, ...]) -> np.ndarray:
-    """``(4, 2)`` corner positions of rectangle ``params = (cx, cy, w, h, phi)``."""
-    cx, cy, w, h, phi = params[:5]
+def corners(params: "RectangleParams") -> np.ndarray:
+    """``(4, 2)`` corner positions of rectangle ``params``, counter-clockwise from corner 0."""
+    (cx, cy), w, h, phi = params.centre, params.width, params.height, params.angle
     return np.array([cx, cy]) + (_CORNERS * [w / 2, h / 2]) @ _rot(phi).T
+
+
+# ---------------------------------------------------------------- kappa and the finished rectangle
+
+
+@dataclass(frozen=True)
+class RectangleParams:
+    """kappa of a rectangle: its ``centre``, ``width`` (the first side, from
+    corner 0 to corner 1), ``height`` and the first side's ``angle`` (rad)."""
+
+    centre: tuple[float, float]
+    width: float
+    height: float
+    angle: float
+
+    @property
+    def corners(self) -> np.ndarray:
+        return corners(self)
+
+
+def _shapely_corners(xy: np.ndarray) -> np.ndarray | None:
+    """``(4, 2)`` corners of the minimum-area rectangle around ``xy``, ``None`` when collinear."""
+    rect = shapely.MultiPoint(np.asarray(xy, dtype=float)).minimum_rotated_rectangle
+    if rect.geom_type != "Polygon":
+        return None
+    return np.asarray(rect.exterior.coords)[:4]
+
+
+def fit_rectangle(xy: np.ndarray) -> RectangleParams | None:
+    """The minimum-area rectangle around ``(n, 2)`` centres, ``None`` when they are collinear."""
+    cs = _shapely_corners(xy)
+    if cs is None:
+        return None
+    e1, e2 = cs[1] - cs[0], cs[2] - cs[1]
+    ctr = cs.mean(axis=0)
+    return RectangleParams((float(ctr[0]), float(ctr[1])), float(np.hypot(*e1)), float(np.hypot(*e2)), math.atan2(e1[1], e1[0]))
 
 
 @dataclass(frozen=True)
@@ -179,7 +218,8 @@ class Rectangle(BasePattern):
             if gp.box is None:
                 return out
             return out[params_mask(ctx, obj, out) & self._fits_second(ctx, first[:2], out[:, :2])]
-        cx, cy, w, h, phi = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), w, h, phi = kappa.centre, kappa.width, kappa.height, kappa.angle
         free, extras = self._state(ctx)
         rows = []
         cs = corners(ctx.progress.params)
@@ -207,14 +247,9 @@ class Rectangle(BasePattern):
         return with_heading(ctx, np.asarray(rows, dtype=float).reshape(-1, 3))
 
     def _local(self, ctx: Context, poses: np.ndarray) -> np.ndarray:
-        cx, cy, w, h, phi = ctx.progress.params  # type: ignore[misc]
+        kappa = ctx.progress.params
+        (cx, cy), phi = kappa.centre, kappa.angle
         return (poses[:, :2] - [cx, cy]) @ _rot(phi)
-
-    def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
-        poses = np.asarray(poses, dtype=float).reshape(-1, 3)
-        if ctx.goal.params.empty:
-            return self._density(ctx, obj, poses)
-        return self._density(ctx, obj, poses) * params_mask(ctx, obj, poses)
 
     def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         if not ctx.progress.placed:
@@ -232,7 +267,8 @@ class Rectangle(BasePattern):
             if ctx.goal.params.box is not None:
                 ok &= self._fits_second(ctx, ctx.state.poses[ctx.progress.placed[0], :2], poses[:, :2])
             return ok.astype(float)
-        cx, cy, w, h, phi = ctx.progress.params
+        kappa = ctx.progress.params
+        (cx, cy), w, h, phi = kappa.centre, kappa.width, kappa.height, kappa.angle
         free, extras = self._state(ctx)
         out = np.zeros(len(poses))
         cs = corners(ctx.progress.params)
@@ -274,7 +310,7 @@ class Rectangle(BasePattern):
                     side = 1.0 if attempt == 24 else -1.0
                 v = side * np.array([-u[1], u[0]])
                 c = p0 + (w / 2) * u + (h / 2) * v
-                params = (float(c[0]), float(c[1]), float(w), float(h), float(phi))
+                params = RectangleParams((float(c[0]), float(c[1])), float(w), float(h), float(phi))
                 cs = corners(params)
                 slots = (0, 1) if side > 0 else (3, 2)
                 best = (params, slots)
@@ -294,6 +330,64 @@ class Rectangle(BasePattern):
             return box_region(ctx)
         ring = shapely.LinearRing(corners(ctx.progress.params))
         return ring.buffer(ctx.max_radius + BAND)
+
+    def recover(self, goal, placed, poses, final) -> GoalProgress:
+        # kappa fitted to the goal's final centres; a placed object near a corner holds it.
+        params = fit_rectangle(final[list(goal.objects), :2])
+        if not placed or params is None:
+            return super().recover(goal, placed, poses, final)
+        at = corners(params)
+        slots = []
+        for j, p in enumerate(placed):
+            d = np.hypot(*(at - poses[p, :2]).T)
+            slots.append(int(np.argmin(d)) if d.min() <= 0.01 else 4 + j)
+        return GoalProgress(tuple(placed), tuple(slots), params)
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    size_word = "longer side"
+
+    def fit(self, xy: np.ndarray) -> RectangleParams | None:
+        return fit_rectangle(xy)
+
+    def accept(self, goal, scene, poses, on) -> str | None:
+        xy = goal_xy(goal, scene, poses)
+        if len(xy) < 4:
+            return "a rectangle needs at least 4 objects"
+        cs = _shapely_corners(xy)
+        if cs is None:
+            return "centres are collinear"
+        sides = np.linalg.norm(np.roll(cs, -1, axis=0) - cs, axis=1)
+        if sides.min() < MIN_RECT_SIDE:
+            return f"rectangle side {sides.min():.3f} m is below {MIN_RECT_SIDE} m"
+        segs = [shapely.LineString([cs[k], cs[(k + 1) % 4]]) for k in range(4)]
+        pts = shapely.points(xy)
+        d = np.stack([shapely.distance(pts, s) for s in segs], axis=1)  # (n, 4)
+        if d.min(axis=1).max() > TOL:
+            return f"a centre is {d.min(axis=1).max():.3f} m off the rectangle's perimeter"
+        if not (d <= TOL).any(axis=0).all():
+            return "a side of the rectangle holds no object"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        xy = goal_xy(goal, scene, poses)
+        cs = _shapely_corners(xy)
+        if cs is not None:
+            return "rectangle", {"corners": cs}
+        # Collinear centres: the degenerate rectangle drawn as their segment.
+        a, b = np.asarray(fit_line(xy).ends)
+        return "rectangle", {"corners": np.stack([a, b, b, a])}
+
+    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+        p = RectangleParams(tuple(fitted["centre"]), fitted["width"], fitted["height"], fitted["angle"])
+        return "rectangle", {"corners": corners(p)}
+
+    def size(self, fitted: RectangleParams | None) -> float:
+        return 0.0 if fitted is None else max(fitted.width, fitted.height)
+
+    def facing_axis(self, fitted: RectangleParams | None) -> tuple[float, float, str] | None:
+        if fitted is None:
+            return None
+        return fitted.angle, math.pi / 2, "the rectangle's sides are {deg:.0f} deg off facing '{facing}'"
 
 
 register(Rectangle())

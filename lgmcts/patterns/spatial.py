@@ -15,7 +15,9 @@ import numpy as np
 import shapely
 
 from ..formats import RELATIONS
-from .base import CLEARANCE, BasePattern, Context, GoalProgress, params_mask, register, with_heading
+from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
+from ..geometry import wrap_angle
+from .base import CLEARANCE, BasePattern, Context, GoalProgress, goal_xy, params_mask, register, with_heading
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
 HALF_ANGLE = math.pi / 4 - 0.06
@@ -41,6 +43,7 @@ class Relation(BasePattern):
     relation: str = "left"
     ordered = True
     min_objects = 1
+    anchored = True
 
     @property
     def name(self) -> str:  # type: ignore[override]
@@ -80,7 +83,7 @@ class Relation(BasePattern):
         poses = np.asarray(poses, dtype=float).reshape(-1, 3)
         v = poses[:, :2] - ctx.state.poses[ctx.goal.anchor, :2]
         rho = np.hypot(v[:, 0], v[:, 1])
-        ang = np.abs((np.arctan2(v[:, 1], v[:, 0]) - self.direction + math.pi) % (2 * math.pi) - math.pi)
+        ang = np.abs(wrap_angle(np.arctan2(v[:, 1], v[:, 0]) - self.direction))
         ok = (rho > 1e-6) & (rho <= MAX_DIST) & (ang <= HALF_ANGLE)
         if not ctx.goal.params.empty:
             ok &= params_mask(ctx, obj, poses)
@@ -94,6 +97,29 @@ class Relation(BasePattern):
         arc = self.direction + np.linspace(-math.pi / 4, math.pi / 4, 9)
         pts = [(x, y)] + [(x + 0.30 * math.cos(t), y + 0.30 * math.sin(t)) for t in arc]
         return shapely.Polygon(pts).buffer(ctx.max_radius)
+
+    def describe(self, goal) -> str:
+        word = "behind" if self.relation == "behind" else f"{self.relation.replace('_', '-')} of"
+        return ", ".join(str(i) for i in goal.objects) + f" {word} {goal.anchor}"
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    def accept(self, goal, scene, poses, on) -> str | None:
+        d = np.asarray(RELATIONS[self.relation])
+        a = poses[scene.index[goal.anchor], :2]
+        for i in (scene.index[o] for o in goal.objects):
+            v = poses[i, :2] - a
+            n = float(np.hypot(*v))
+            if n <= 0 or n > MAX_RELATION_DIST:
+                return f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
+            ang = math.acos(max(-1.0, min(1.0, float(v @ d) / n)))
+            if ang > RELATION_HALF_ANGLE + 1e-9:
+                return f"object {scene.ids[i]} is {math.degrees(ang):.0f} deg off '{self.relation}' of anchor {goal.anchor}"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        a = np.asarray(poses[scene.index[goal.anchor], :2], dtype=float)
+        xy = goal_xy(goal, scene, poses)
+        return "relation", {"anchor": a, "arrows": [(a, xy[j]) for j in range(len(xy))], "direction": np.asarray(RELATIONS[self.relation])}
 
 
 for _rel in RELATIONS:

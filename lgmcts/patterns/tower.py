@@ -8,12 +8,14 @@ which every object above takes from its support. A tower has no size.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..scene import TABLE
-from .base import BasePattern, Context, GoalProgress, box_region, params_mask, register, start_poses
+from ..tolerances import TOWER_TOL
+from .base import BasePattern, Context, GoalProgress, box_region, goal_xy, params_mask, register, start_poses
 
 #: How far off the support's centre an object may already rest and still
 #: count as stacked (m); the acceptance rule allows 0.02 m. New placements
@@ -66,6 +68,28 @@ class Tower(BasePattern):
 
     def region(self, ctx: Context):
         return box_region(ctx) if not ctx.progress.placed else None
+
+    def describe(self, goal) -> str:
+        return "tower " + " < ".join(str(i) for i in goal.objects)
+
+    def rank(self, goal, progress, obj) -> int:
+        # An upper level's pose is its support's; a base goes after the other priors.
+        return 1 if goal.objects.index(obj) > 0 else 5
+
+    # The finished arrangement (the acceptance rule and what to draw).
+    def accept(self, goal, scene, poses, on) -> str | None:
+        idx = [scene.index[i] for i in goal.objects]
+        if on[idx[0]] != TABLE:
+            return f"tower base {goal.objects[0]} is not on the table"
+        for a, b in zip(idx, idx[1:]):
+            if on[b] != a:
+                return f"object {scene.ids[b]} is not on object {scene.ids[a]}"
+            if math.hypot(*(poses[b, :2] - poses[a, :2])) > TOWER_TOL:
+                return f"object {scene.ids[b]} is off-centre on object {scene.ids[a]}"
+        return None
+
+    def shape(self, goal, scene, poses) -> tuple[str, dict]:
+        return "tower", {"centre": goal_xy(goal, scene, poses)[0], "levels": list(goal.objects)}
 
 
 register(Tower())

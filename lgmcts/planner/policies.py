@@ -22,7 +22,9 @@ import numpy as np
 from ..errors import InputError
 from ..feasibility import precheck
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
-from ..scene import Scene
+from ..patterns import registry
+from ..patterns.base import fit_json, goal_xy
+from ..scene import Scene, replay
 from .polish import polished
 from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
 from .step import Problem
@@ -46,8 +48,8 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     scene = problem.scene
     goals: list[Goal] = []
     fixed: set[int] = set()
-    for g in problem.spec.goals:
-        if g.pattern == "tower":
+    for g, pattern in zip(problem.spec.goals, problem.patterns):
+        if _stacks(pattern):
             goals.append(g)
             fixed.update(g.objects[1:])
     for o in [*problem.targets, *sorted(problem.standing_anchors)]:
@@ -57,6 +59,11 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
         pose = final.get(oid, tuple(float(v) for v in scene.initial.poses[o]))
         goals.append(Goal(pattern="pose", objects=[oid], pose=pose))
     return GoalSpec(goals=goals)
+
+
+def _stacks(pattern) -> bool:
+    """Whether a pattern stacks its objects (a tower): PMCTS keeps such goals as they are."""
+    return not pattern.on_table and not getattr(pattern, "needs_pose", False)
 
 
 def _accept(opts: SearchOptions) -> Accept:
@@ -73,7 +80,7 @@ def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions)
 
 
 def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    if all(g.pattern in ("pose", "tower") for g in problem.spec.goals):
+    if all(p.needs_pose or _stacks(p) for p in problem.patterns):
         return mcts(problem, rng, opts, _accept(opts)), {}
     t0 = time.perf_counter()
     poses = goal_poses(problem, rng, opts)
@@ -166,4 +173,14 @@ def plan(
     if not res.solved:
         stats["reason"] = res.reason
     stats.update(extra)
-    return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats)
+    return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
+                    fits=final_fits(sc, gspec, res.actions))
+
+
+def final_fits(scene: Scene, goals: GoalSpec, actions: list) -> list[dict | None]:
+    """Each goal's pattern parameters fitted to the state ``actions`` end in
+    (JSON-ready; ``None`` for patterns without a fit): what a plan carries so
+    that viewers draw the arrangement without fitting it again."""
+    reg = registry()
+    final = replay(scene, actions)[-1]
+    return [fit_json(reg[g.pattern].fit(goal_xy(g, scene, final.poses))) for g in goals.goals]

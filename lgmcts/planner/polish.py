@@ -35,7 +35,7 @@ import shapely
 from .. import geometry as geo
 from ..formats import Action
 from ..patterns import CLEARANCE
-from ..scene import TABLE
+from ..scene import TABLE, replay
 from ..validate import goal_satisfied
 from .search import valid_plan
 from .step import CONTACT_AREA, Problem, touching_only
@@ -45,14 +45,7 @@ __all__ = ["polished"]
 
 def _worlds(problem: Problem, actions: list[Action]) -> list:
     """States of the planner's world before each action and after the last."""
-    scene = problem.scene
-    world = scene.initial
-    out = [world]
-    for a in actions:
-        on = TABLE if a.on is None else scene.index[a.on]
-        world = world.moved(scene.index[a.object], np.asarray(a.to, dtype=float), on)
-        out.append(world)
-    return out
+    return replay(problem.scene, actions)
 
 
 def _same(a, b) -> bool:

@@ -299,17 +299,7 @@ def _sample(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     """Candidate poses for ``o`` from the product of the priors it is in."""
     goals = list(problem.member[o])
 
-    def rank(k: int) -> int:
-        g, p = problem.goals[k], ss.progress[k]
-        if g.pattern == "pose":
-            return 0
-        if g.pattern == "tower":
-            return 1 if g.objects.index(o) > 0 else 5
-        if p.params is not None:
-            return 2
-        return 3 if g.anchor is not None else 4
-
-    goals.sort(key=rank)
+    goals.sort(key=lambda k: problem.patterns[k].rank(problem.goals[k], ss.progress[k], o))
     for driver in goals:
         cand = problem.patterns[driver].sample(ss.ctx(problem, driver), o, rng, n)
         if len(cand) == 0:

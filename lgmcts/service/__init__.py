@@ -11,8 +11,7 @@ The names below load on first use, so that ``lgmcts`` commands other than
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import Any
+from ..lazy import lazy_names
 
 __all__ = ["ServiceOptions", "create_app", "WorkerPool", "JobTimeout", "WorkerCrashed", "LoadReport", "fire"]
 
@@ -27,11 +26,4 @@ _WHERE = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        return getattr(import_module(_WHERE[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_names(__name__, _WHERE)

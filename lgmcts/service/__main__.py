@@ -6,10 +6,11 @@ The same options as ``lgmcts serve``; useful where only the service is wanted
 
 import typer
 
+from ..cli_util import run_app
 from .cli import register
 
 app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
 register(app)
 
 if __name__ == "__main__":
-    app()
+    run_app(app, prog_name="python -m lgmcts.service")

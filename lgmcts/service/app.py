@@ -9,7 +9,7 @@ status     meaning
 413        the request body is larger than ``max_body`` bytes
 422        bad input; ``detail`` is the one-line message the CLI prints
 500        the planner crashed (its worker died); the service goes on
-501        the language parser is not installed
+501        an extra the request needs is not installed
 503        the service is shutting down (retry on another instance)
 504        the request ran past its wall-clock timeout
 =========  ==============================================================
@@ -47,7 +47,7 @@ from ..errors import InputError
 from ..formats import GoalSpec
 from ..limits import truncate
 from . import jobs
-from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut
+from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut, ViewRequest
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
 from .viewer import EXAMPLE_GOALS, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE, page
 
@@ -593,7 +593,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             return app.openapi_schema
         schema = get_openapi(title=app.title, version=app.version, description=app.description, routes=app.routes)
         _, defs = models_json_schema(
-            [(m, "validation") for m in (ParseRequest, PlanRequest, CheckRequest)],
+            [(m, "validation") for m in (ParseRequest, PlanRequest, CheckRequest, ViewRequest)],
             ref_template="#/components/schemas/{model}",
         )
         schema.setdefault("components", {}).setdefault("schemas", {}).update(defs.get("$defs", {}))
@@ -601,6 +601,27 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         return schema
 
     app.openapi = openapi  # type: ignore[method-assign]
+
+    @app.post(
+        "/view",
+        response_model=None,
+        responses={200: {"description": "Viewer data."}, **_ERRORS},
+        tags=["viewer"],
+        openapi_extra=_body_doc(ViewRequest),
+    )
+    async def view(request: Request) -> Any:
+        """What the viewer draws for the plan: each state's poses, footprints, paints and goal shapes
+        (``lgmcts.viz.viewer_data``); the page's script draws only this."""
+        arrived = arrival(request)
+
+        async def work() -> Any:
+            raw = await request.body()
+            req = await off_loop(parse_body, ViewRequest, raw, deadline=arrived + opts.timeout)
+            deadline = deadline_of(req.timeout, arrived)
+            job = jobs.ViewJob(req.scene, req.plan, req.goals, req.instruction)
+            return await pool.run(jobs.run_view, job, deadline=deadline)
+
+        return await guarded(work, "drawing")
 
     @app.get("/", response_class=HTMLResponse, tags=["viewer"])
     async def viewer() -> HTMLResponse:

@@ -5,7 +5,8 @@ JSON-ready dict. They run in a process of :class:`lgmcts.service.pool.WorkerPool
 never in the process that serves HTTP, so a slow or crashing planner cannot
 stall the event loop. Bad input raises :class:`lgmcts.errors.InputError`
 (pickled back to the server, which answers 422); a missing optional part of
-the package raises :class:`Unavailable` (answered 501).
+the package (an extra that is not installed, see :mod:`lgmcts.extras`)
+raises :class:`Unavailable` (answered 501).
 
 The language parser (and with it torch) is imported lazily, only by the jobs
 that need it.
@@ -20,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from ..errors import InputError
+from ..extras import missing_extra
 from ..formats import GoalSpec, PlanSpec, SceneSpec, to_dict
 
 __all__ = [
@@ -144,27 +146,26 @@ def tracked(fn: Callable[[Any], Any], job_id: int, job: Any) -> Any:
 
 def run_parse(job: ParseJob) -> dict:
     """Goal JSON (a dict) for ``job.instruction``."""
-    try:
-        from ..language import parse
-    except ImportError as exc:
-        # Absent, or present without its parse() (a partial install): a 501,
-        # not a planner failure. Errors inside its own imports still surface.
-        missing = getattr(exc, "name", None) or ""
-        if missing and not "lgmcts.language".startswith(missing):
-            raise
-        raise Unavailable("the language parser (lgmcts.language) is not installed") from None
+    from ..language import parse
+
     remaining = job.deadline - time.time()
     if remaining <= 0:
         raise DeadlinePassed("the request's deadline passed before parsing started")
-    goals = parse(
-        job.scene,
-        job.instruction,
-        parser=job.parser,
-        llm_model=job.llm_model,
-        llm_base_url=job.llm_base_url,
-        api_key=job.api_key,
-        timeout=max(1.0, min(remaining, 60.0)),
-    )
+    try:
+        goals = parse(
+            job.scene,
+            job.instruction,
+            parser=job.parser,
+            llm_model=job.llm_model,
+            llm_base_url=job.llm_base_url,
+            api_key=job.api_key,
+            timeout=max(1.0, min(remaining, 60.0)),
+        )
+    except ModuleNotFoundError as exc:  # the 'language' (or 'llm') extra is not installed
+        message = missing_extra(exc)
+        if message is None:
+            raise
+        raise Unavailable(message) from None
     return to_dict(goals)
 
 
@@ -221,6 +222,23 @@ def run_check(job: CheckJob) -> dict:
 
     verdict = check(job.scene, job.goals, job.plan)
     return {"valid": verdict.valid, "reasons": list(verdict.reasons), "goals": list(verdict.goals)}
+
+
+@dataclass(frozen=True)
+class ViewJob:
+    """What the viewer draws for ``plan`` on ``scene`` (against ``goals``, default the plan's)."""
+
+    scene: SceneSpec
+    plan: PlanSpec
+    goals: GoalSpec | None = None
+    instruction: str | None = None
+
+
+def run_view(job: ViewJob) -> dict:
+    """The viewer's data (:func:`lgmcts.viz.viewer_data`): states, footprints, paints and goal shapes."""
+    from ..viz.html import viewer_data
+
+    return viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
 
 
 def warm_up(pause: float) -> int:

@@ -73,6 +73,16 @@ class CheckRequest(_Body):
     timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
 
 
+class ViewRequest(_Body):
+    """Compute what the viewer draws for a plan on a scene."""
+
+    scene: SceneSpec
+    plan: PlanSpec
+    goals: GoalSpec | None = Field(None, description="Goals to draw; default the plan's own.")
+    instruction: str | None = None
+    timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
+
+
 class VerdictOut(BaseModel):
     """Outcome of /check: validity, the violations in words, and per-goal success."""
 

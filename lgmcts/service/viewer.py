@@ -101,7 +101,6 @@ _PAGE = """<!DOCTYPE html>
   #status.error { color: #b71c1c; }
   #status.ok { color: #1b5e20; }
   #json { background: #f5f5f5; padding: 8px; max-height: 320px; overflow: auto; font: 12px monospace; }
-  #fallback svg { border: 1px solid #ccc; background: #fafafa; max-width: 100%; }
   .legend span { margin-right: 12px; }
 </style>
 </head>
@@ -128,7 +127,6 @@ _PAGE = """<!DOCTYPE html>
 </section>
 <section id="output">
   <div id="view"></div>
-  <div id="fallback"></div>
   <details open><summary>Plan JSON</summary><pre id="json"></pre></details>
 </section>
 </main>
@@ -165,56 +163,11 @@ _PAGE = """<!DOCTYPE html>
     return data;
   }
 
-  // ---- built-in drawing, used when the full viewer script is not installed
-  function footprint(o, pose) {
-    var s = o.shape, pts = [];
-    if (s.type === "box") {
-      var hx = s.size[0] / 2, hy = s.size[1] / 2;
-      pts = [[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]];
-    } else if (s.type === "cylinder") {
-      for (var k = 0; k < 24; k++) { var a = 2 * Math.PI * k / 24; pts.push([s.radius * Math.cos(a), s.radius * Math.sin(a)]); }
-    } else if (s.type === "polygon") {
-      pts = s.points;
-    } else if (s.type === "points") {
-      return s.points.map(function (p) { return [p[0], p[1]]; });
-    }
-    var c = Math.cos(pose[2]), d = Math.sin(pose[2]);
-    return pts.map(function (p) { return [pose[0] + c * p[0] - d * p[1], pose[1] + d * p[0] + c * p[1]]; });
-  }
-
-  function drawFallback(scene, plan) {
-    var ws = scene.workspace, W = 520, pad = 10;
-    var sx = (W - 2 * pad) / (ws.x[1] - ws.x[0]);
-    var H = Math.round((ws.y[1] - ws.y[0]) * sx + 2 * pad);
-    var X = function (x) { return pad + (x - ws.x[0]) * sx; }, Y = function (y) { return H - pad - (y - ws.y[0]) * sx; };
-    var poses = {}, moved = {};
-    scene.objects.forEach(function (o) { poses[o.id] = o.pose || [0, 0, 0]; });
-    (plan ? plan.actions : []).forEach(function (a) { poses[a.object] = a.to; moved[a.object] = true; });
-    var svg = '<svg xmlns="http://www.w3.org/2000/svg" width="' + W + '" height="' + H + '">';
-    svg += '<rect x="' + pad + '" y="' + pad + '" width="' + (W - 2 * pad) + '" height="' + (H - 2 * pad) + '" fill="none" stroke="#888"/>';
-    function poly(pts, fill, opacity, dash) {
-      return '<polygon points="' + pts.map(function (p) { return X(p[0]).toFixed(1) + "," + Y(p[1]).toFixed(1); }).join(" ") +
-        '" fill="' + fill + '" fill-opacity="' + opacity + '" stroke="#333"' + (dash ? ' stroke-dasharray="4 3"' : "") + "/>";
-    }
-    function colour(o) { var c = (o.color || "").split(" ")[0]; return CSS.supports("color", c) ? c : "#9e9e9e"; }
-    scene.objects.forEach(function (o) { if (moved[o.id]) svg += poly(footprint(o, o.pose || [0, 0, 0]), colour(o), 0.15, true); });
-    scene.objects.forEach(function (o) {
-      var p = poses[o.id];
-      svg += poly(footprint(o, p), colour(o), 0.8, false);
-      svg += '<text x="' + X(p[0]).toFixed(1) + '" y="' + (Y(p[1]) + 4).toFixed(1) + '" font-size="11" text-anchor="middle">' + o.id + "</text>";
-    });
-    svg += '<text x="' + (W / 2) + '" y="' + (H - 1) + '" font-size="10" text-anchor="middle" fill="#555">viewer side</text></svg>';
-    $("fallback").innerHTML = '<div class="legend"><span>dashed: start</span><span>solid: after the plan</span></div>' + svg;
-  }
-
-  function show(scene, plan, instruction) {
+  async function show(scene, plan, instruction) {
     $("json").textContent = JSON.stringify(plan, null, 2);
-    if (window.LGMCTSViewer && typeof window.LGMCTSViewer.render === "function") {
-      $("fallback").innerHTML = "";
-      window.LGMCTSViewer.render($("view"), { scene: scene, plan: plan, instruction: instruction });
-    } else {
-      drawFallback(scene, plan);
-    }
+    // The server computes what to draw (states, footprints, goal shapes); the script only draws it.
+    var data = await post("/view", { scene: scene, plan: plan, instruction: instruction });
+    window.LGMCTSViewer.render($("view"), data);
   }
 
   async function doPlan() {
@@ -229,7 +182,7 @@ _PAGE = """<!DOCTYPE html>
       var t0 = performance.now();
       var plan = await post("/plan", body);
       last = { scene: scene, plan: plan };
-      show(scene, plan, instruction || null);
+      await show(scene, plan, instruction || null);
       status((plan.solved ? "solved: " : "not solved: ") + plan.actions.length + " actions in " +
              Math.round(performance.now() - t0) + " ms", plan.solved ? "ok" : "error");
     } catch (e) { status(e.message, "error"); }

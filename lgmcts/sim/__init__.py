@@ -15,13 +15,30 @@ simulate (``parse``, ``plan``) never import MuJoCo.
 from __future__ import annotations
 
 import os
-from importlib import import_module
-from typing import Any
 
-# MUJOCO_GL is read when mujoco is first imported: choose the OpenGL backend
-# here, before any module of this package can import it.
+from ..lazy import lazy_names
+
+# MuJoCo reads the OpenGL backend when it is first imported, so it is chosen
+# here, before any module of this package imports mujoco. The names below load
+# on first use: importing ``lgmcts.sim`` (the command line does) needs no
+# mujoco, which comes with the 'sim' extra.
 os.environ.setdefault("MUJOCO_GL", "osmesa")
 os.environ.setdefault("PYOPENGL_PLATFORM", os.environ["MUJOCO_GL"])
+
+_WHERE = {
+    "CameraOptions": ".render",
+    "VideoRecorder": ".render",
+    "footprint_iou": ".render",
+    "observe": ".render",
+    "ExecOptions": ".executor",
+    "Execution": ".executor",
+    "Executor": ".executor",
+    "StepOutcome": ".executor",
+    "execute_plan": ".executor",
+    "ModelOptions": ".model",
+    "SimModel": ".model",
+    "build_model": ".model",
+}
 
 __all__ = [
     "CameraOptions",
@@ -38,18 +55,5 @@ __all__ = [
     "observe",
 ]
 
-_WHERE = {
-    **dict.fromkeys(["CameraOptions", "VideoRecorder", "footprint_iou", "observe"], ".render"),
-    **dict.fromkeys(["ExecOptions", "Execution", "Executor", "StepOutcome", "execute_plan"], ".executor"),
-    **dict.fromkeys(["ModelOptions", "SimModel", "build_model"], ".model"),
-}
 
-
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        return getattr(import_module(_WHERE[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_names(__name__, _WHERE)

@@ -2,7 +2,8 @@
 per action, footprint IoU of perception, and plan-on-observed success.
 
 Run ``python -m lgmcts.sim.evaluate --seeds 0-49`` (add ``--observe`` for the
-perception loop). The figures in ``docs/sim.md`` come from this script.
+perception loop, ``--tasks suite.jsonl`` for benchmark tasks written by
+``lgmcts bench-generate``). The figures in ``docs/sim.md`` come from this script.
 """
 
 from __future__ import annotations
@@ -49,8 +50,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--method", default="lgmcts")
     ap.add_argument("--observe", action="store_true", help="also observe each scene, plan on it and execute")
     ap.add_argument("--no-example", action="store_true", help="leave out examples/tabletop.json")
-    ap.add_argument("--suite", default=None, help="use the first --n tasks of a benchmark suite (elgr, structformer) with their ground-truth goals instead of random cases")
-    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --suite), or of configurations per N (with --labbe)")
+    ap.add_argument("--tasks", default=None, help="a suite file (JSON Lines, from `lgmcts bench-generate`): run its first --n tasks with their ground-truth goals instead of random cases")
+    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --tasks), or of configurations per N (with --labbe)")
     ap.add_argument("--labbe", default=None,
                     help="use --n Labbé protocol configurations (lgmcts.casegen.labbe_protocol_case, discs that may touch) "
                          "for each N in this list, e.g. 10,25, instead of random cases")
@@ -59,11 +60,18 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
 
     cases = []
-    if args.suite is not None:
-        from ..bench.suites import generate
+    if args.tasks is not None:
+        import json
 
-        for t in generate(args.suite, n=args.n, seed=0):
-            cases.append((f"{t.id} ({t.category})", t.scene_spec(), t.goal_spec()))
+        from ..formats import parse_goals, parse_scene
+
+        with open(args.tasks) as fh:
+            for line in fh:
+                if len(cases) == args.n:
+                    break
+                if line.strip():
+                    t = json.loads(line)
+                    cases.append((f"{t['id']} ({t['category']})", parse_scene(t["scene"]), parse_goals(t["goals"])))
         args.no_example, args.seeds = True, ""
     if args.labbe is not None:
         from ..casegen import labbe_protocol_case

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from ..errors import InputError
 from ..formats import SceneSpec
 from ..scene import TABLE, Scene
 
@@ -270,7 +271,12 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
             data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
             solref=[opts.weld_timeconst, 1.0],
         )
-    model = spec.compile()
+    try:
+        model = spec.compile()
+    except ValueError as exc:
+        # MuJoCo refuses bodies whose mass or inertia underflows its minimum
+        # (a tiny, thin object): bad input to the simulator, said in one line.
+        raise InputError(f"the simulator cannot build this scene: {' '.join(str(exc).split())[:200]}") from None
     bodies = np.array([model.body(f"obj{i}").id for i in sc.ids])
     geoms = np.array([model.geom(f"obj{i}_geom").id for i in sc.ids])
     welds = np.array([model.equality(f"grip{i}").id for i in sc.ids])

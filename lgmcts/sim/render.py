@@ -40,7 +40,7 @@ from ..formats import SceneSpec, load_scene, parse_scene  # noqa: E402
 from ..scene import TABLE, Scene  # noqa: E402
 from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model  # noqa: E402
 
-__all__ = ["CameraOptions", "Frames", "render_frames", "backproject", "observe", "footprint_iou", "VideoRecorder"]
+__all__ = ["CameraOptions", "Frames", "render_frames", "backproject", "drop_strays", "observe", "footprint_iou", "VideoRecorder"]
 
 
 @dataclass(frozen=True)
@@ -57,6 +57,11 @@ class CameraOptions:
     max_points : most points kept per object in the observed scene.
     min_pixels : objects seen in fewer pixels (over all cameras) are left out
         of the observed scene.
+    stray_dist : a point of an object's fused cloud with no other point of
+        that cloud within this distance is dropped (m). A pixel whose depth
+        and label disagree (seen at the rim of an object from a low angle)
+        back-projects to a lone point far from the object; kept, it would
+        stretch the object's outline by up to tens of centimetres.
     seed : seed of the point subsampling.
     """
 
@@ -65,6 +70,7 @@ class CameraOptions:
     cameras: tuple[str, ...] = (OVERHEAD_CAMERA, *(f"{SIDE_CAMERA}{j}" for j in range(4)))
     max_points: int = 400
     min_pixels: int = 12
+    stray_dist: float = 0.01
     seed: int = 0
 
 
@@ -181,6 +187,16 @@ def _cloud(pts: np.ndarray, bottom: float, max_points: int, rng: np.random.Gener
     return np.concatenate([top, base])
 
 
+def drop_strays(points: np.ndarray, dist: float) -> np.ndarray:
+    """``points`` without those that have no other point within ``dist`` (m)."""
+    if len(points) < 2:
+        return points
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(points).query(points, k=2)
+    return points[d[:, 1] <= dist]
+
+
 def observe(scene: SceneSpec | dict | str | Path, *, options: CameraOptions | None = None) -> SceneSpec:
     """Perceive ``scene`` with a simulated depth camera; objects become point clouds.
 
@@ -216,7 +232,8 @@ def observe(scene: SceneSpec | dict | str | Path, *, options: CameraOptions | No
                 if mask.any():
                     clouds.setdefault(k, []).append(frames.points[mask])
     rng = np.random.default_rng(opts.seed)
-    seen = {k: np.concatenate(c) for k, c in clouds.items() if sum(len(x) for x in c) >= opts.min_pixels}
+    fused = {k: drop_strays(np.concatenate(c), opts.stray_dist) for k, c in clouds.items()}
+    seen = {k: p for k, p in fused.items() if len(p) >= opts.min_pixels}
     if not seen:
         raise InputError("the camera sees no object")
     state = sc.initial

@@ -33,8 +33,8 @@ from typing import Any
 import numpy as np
 
 from ..formats import GoalSpec, PlanSpec, SceneSpec, load_plan, load_scene, parse_goals, to_dict
-from ..scene import Scene
-from .model import goal_shapes, replay
+from ..scene import TABLE, Scene
+from .model import describe_goal, goal_shapes, replay
 from .paint import paint
 
 __all__ = ["render_html", "viewer_data", "viewer_js", "script_json"]
@@ -93,9 +93,18 @@ def viewer_data(
         extra = pl.model_extra or {}
         instruction = extra.get("instruction") if isinstance(extra.get("instruction"), str) else None
     states = replay(sc, list(pl.actions))
+    # The plan's own fits draw its final state when it is drawn against its own goals.
+    fits = pl.fits if goals is None else None
     footprints = {str(i): np.round(sc.local[k], 6).tolist() for k, i in enumerate(sc.ids)}
     scene_json = to_dict(sc.to_spec(sc.initial))
-    frames = [{"goals": [s.to_json() for s in goal_shapes(sc, gs, st)]} for st in states]
+    frames = [
+        {
+            "poses": {str(i): [float(v) for v in st.poses[k]] for k, i in enumerate(sc.ids)},
+            "on": {str(i): (None if st.on[k] == TABLE else sc.ids[st.on[k]]) for k, i in enumerate(sc.ids)},
+            "goals": [s.to_json() for s in goal_shapes(sc, gs, st, fits=fits if k == len(states) - 1 else None)],
+        }
+        for k, st in enumerate(states)
+    ]
     return {
         "scene": scene_json,
         "plan": to_dict(pl),
@@ -103,6 +112,7 @@ def viewer_data(
         "footprints": footprints,
         "paints": {str(i): paint(c).to_json() for i, c in zip(sc.ids, sc.colors)},
         "frames": frames,
+        "goal_text": [describe_goal(g) for g in (gs.goals if gs is not None else [])],
     }
 
 

@@ -9,17 +9,16 @@ viewer draw from these descriptions.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import shapely
 
 from ..errors import InputError
-from ..formats import RELATIONS, Action, Goal, GoalSpec, PlanSpec
+from ..formats import Action, Goal, GoalSpec, PlanSpec
 from ..params import resolve as resolve_params
-from ..scene import TABLE, Scene, State
-from ..validate import fit_circle, goal_satisfied
+from ..scene import Scene, State, replay
+from ..patterns import registry
+from ..validate import goal_satisfied
 
 __all__ = ["GoalShape", "replay", "goal_shapes", "describe_action", "describe_goal", "plan_goals", "GOAL_COLORS", "PURPOSE_COLORS"]
 
@@ -40,7 +39,8 @@ class GoalShape:
     goal : the goal itself.
     problem : None when the goal holds, else the reason it does not.
     kind : ``"line"``, ``"circle"``, ``"rectangle"``, ``"relation"``,
-        ``"tower"`` or ``"pose"``.
+        ``"tower"``, ``"pose"`` or ``"points"``, as the goal's pattern draws
+        itself (its ``shape``; a pattern module may reuse any kind).
     geometry : by kind —
         line: ``points`` (2, 2) segment end points;
         circle: ``centre`` (2,), ``radius``;
@@ -49,6 +49,7 @@ class GoalShape:
         ``direction`` (2,) the relation's unit direction;
         tower: ``centre`` (2,) of the base, ``levels`` object ids bottom-up;
         pose: ``target`` (3,) the goal pose;
+        points: ``points`` (n, 2) the centres (a pattern without a shape of its own);
         and, for a goal with parameters, ``region`` ``[xmin, xmax, ymin,
         ymax]`` (its box in the scene's workspace) and ``heading`` (rad,
         with ``anchor_point`` (2,) where to draw it: the centres' mean).
@@ -81,41 +82,12 @@ class GoalShape:
         return {"index": self.index, "met": self.met, "problem": self.problem, "kind": self.kind, **{k: conv(v) for k, v in self.geometry.items()}}
 
 
-def replay(scene: Scene, actions: list[Action]) -> list[State]:
-    """States before the first action and after each one (``len(actions) + 1``).
+def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None) -> list[GoalShape]:
+    """Describe every goal's geometry in ``state`` and whether it holds.
 
-    Raises
-    ------
-    InputError
-        When an action names an object the scene does not have. Illegal but
-        well-formed actions (picking a covered object) are replayed as given:
-        pictures show what the plan says, the validator judges it.
-    """
-    states = [scene.initial]
-    for k, a in enumerate(actions):
-        if a.object not in scene.index:
-            raise InputError(f"action {k + 1} moves unknown object id {a.object}")
-        if a.on is not None and a.on not in scene.index:
-            raise InputError(f"action {k + 1} places object {a.object} on unknown object id {a.on}")
-        if a.on == a.object:
-            raise InputError(f"action {k + 1} places object {a.object} on itself")
-        sup = TABLE if a.on is None else scene.index[a.on]
-        states.append(states[-1].moved(scene.index[a.object], np.asarray(a.to, dtype=float), sup))
-    return states
-
-
-def _line(xy: np.ndarray) -> np.ndarray:
-    c = xy.mean(axis=0)
-    if len(xy) < 2 or np.allclose(xy, c):
-        return np.stack([c, c])
-    _, _, vt = np.linalg.svd(xy - c, full_matrices=False)
-    u = vt[0]
-    t = (xy - c) @ u
-    return np.stack([c + u * t.min(), c + u * t.max()])
-
-
-def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[GoalShape]:
-    """Describe every goal's geometry in ``state`` and whether it holds."""
+    ``fits`` are the goals' fitted parameters a plan carries for its final
+    state (``PlanSpec.fits``): given for that state, a goal is drawn from
+    them instead of being fitted again."""
     if goals is None:
         return []
     out = []
@@ -125,29 +97,12 @@ def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State) -> list[Goal
         idx = [scene.index[i] for i in g.objects]
         xy = np.asarray(state.poses[idx, :2], dtype=float)
         problem = goal_satisfied(g, scene, state.poses, state.on)
-        p = g.pattern
-        geom: dict
-        if p == "line":
-            kind, geom = "line", {"points": _line(xy)}
-        elif p == "circle":
-            c, r = fit_circle(xy) if len(xy) >= 3 else (xy.mean(axis=0), 0.0)
-            kind, geom = "circle", {"centre": np.asarray(c), "radius": float(r) if math.isfinite(r) else 0.0}
-        elif p == "rectangle":
-            rect = shapely.MultiPoint(xy).minimum_rotated_rectangle
-            if rect.geom_type == "Polygon":
-                corners = np.asarray(rect.exterior.coords)[:4]
-            else:  # collinear centres: draw the degenerate rectangle as its segment
-                seg = _line(xy)
-                corners = np.stack([seg[0], seg[1], seg[1], seg[0]])
-            kind, geom = "rectangle", {"corners": corners}
-        elif p in RELATIONS:
-            a = np.asarray(state.poses[scene.index[g.anchor], :2], dtype=float)  # type: ignore[index]
-            kind = "relation"
-            geom = {"anchor": a, "arrows": [(a, xy[j]) for j in range(len(xy))], "direction": np.asarray(RELATIONS[p])}
-        elif p == "tower":
-            kind, geom = "tower", {"centre": xy[0], "levels": list(g.objects)}
-        else:
-            kind, geom = "pose", {"target": np.asarray(g.pose, dtype=float)}
+        pattern = registry().get(g.pattern)
+        if pattern is None:
+            raise InputError(f"goal {k}: pattern '{g.pattern}' is not registered (load its module)")
+        drawn = pattern.draw(fits[k]) if fits is not None and k < len(fits) and fits[k] is not None else None
+        kind, geom = drawn if drawn is not None else pattern.shape(g, scene, state.poses)
+        geom = dict(geom)
         if g.region is not None or g.facing is not None:
             gp = resolve_params(g, scene.bounds, scene.radii[idx])
             if gp.box is not None:
@@ -179,17 +134,10 @@ def describe_goal(goal: Goal) -> str:
 
 
 def _describe_shape(goal: Goal) -> str:
-    objs = ", ".join(str(i) for i in goal.objects)
-    p = goal.pattern
-    if p in RELATIONS:
-        word = "behind" if p == "behind" else f"{p.replace('_', '-')} of"
-        return f"{objs} {word} {goal.anchor}"
-    if p == "tower":
-        return "tower " + " < ".join(str(i) for i in goal.objects)
-    if p == "pose":
-        x, y, t = goal.pose  # type: ignore[misc]
-        return f"{objs} to ({x:.2f}, {y:.2f}, {t:.2f})"
-    return f"{p} of {objs}"
+    pattern = registry().get(goal.pattern)
+    if pattern is None:
+        return f"{goal.pattern} of " + ", ".join(str(i) for i in goal.objects)
+    return pattern.describe(goal)
 
 
 def describe_action(scene: Scene, action: Action, number: int, total: int) -> str:

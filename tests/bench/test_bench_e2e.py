@@ -6,10 +6,8 @@ import pytest
 
 from lgmcts.bench import RunOptions, generate, run_suite, summarise
 
-pytest.importorskip("lgmcts.language", reason="the language parser is not installed")
-sim = pytest.importorskip("lgmcts.sim", reason="the physics executor is not installed")
-if not hasattr(sim, "execute_plan"):
-    pytest.skip("lgmcts.sim has no execute_plan yet", allow_module_level=True)
+pytest.importorskip("mujoco", reason="the 'sim' extra is not installed")
+pytestmark = pytest.mark.slow
 
 
 @pytest.mark.parametrize("suite,parser", [("elgr", "rules"), ("structformer", "gt")])

@@ -122,6 +122,7 @@ def test_summary_counts_rates_and_causes():
     assert csv[0].startswith("group,tasks,sr_p,sr_ep") and csv[-1].startswith("all,4,0.5000,0.2500,0.7500,5.000")
 
 
+@pytest.mark.slow
 def test_ray_runs_the_same_task_function(tmp_path, tasks):
     ray = pytest.importorskip("ray", reason="ray is an optional extra (pip install 'lgmcts[ray]')")
     ray.init(num_cpus=1, include_dashboard=False, log_to_driver=False)

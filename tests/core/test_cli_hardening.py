@@ -150,3 +150,9 @@ def test_serve_warns_on_a_public_bind_without_token():
         except subprocess.TimeoutExpired:
             proc.kill()
     assert first.startswith("WARNING") and "--token" in first
+
+
+@pytest.mark.parametrize("value", ["nan", "inf"])
+def test_bench_time_limit_must_be_finite(value, tmp_path):
+    out = run("bench", "--suite", "elgr", "--n", "1", "--no-exec", "--time-limit", value, "-o", str(tmp_path / "o"))
+    assert out.returncode == 2 and one_line(out.stderr) and "time-limit" in out.stderr

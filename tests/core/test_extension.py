@@ -108,3 +108,39 @@ def test_cli_loads_pattern_modules(root, tmp_path):
     assert r.returncode == 0 and r.stdout.startswith("valid"), r.stdout + r.stderr
     r = _cli("--pattern-module", "no_such_module_xyz", "check", scene, str(goals), str(out))
     assert r.returncode == 2 and r.stderr.strip().count("\n") == 0 and "no_such_module_xyz" in r.stderr
+
+
+def test_a_plugin_pattern_is_drawn_and_known_to_language(column):
+    """One register() call: goal_shapes draws the column from its own shape,
+    the HTML viewer gets it, and the language database lists its keys."""
+    import numpy as np
+
+    from lgmcts.language.matcher import pattern_infos
+    from lgmcts.scene import Scene
+    from lgmcts.viz import viewer_data
+    from lgmcts.viz.model import goal_shapes, replay
+
+    goals = {"goals": [{"pattern": "column", "objects": [1, 2, 3, 4]}]}
+    p = plan(_scene(), goals, seed=0)
+    sc = Scene.from_spec(parse_scene_dict(_scene()))
+    final = replay(sc, p.actions)[-1]
+    (shape,) = goal_shapes(sc, parse_goals(goals), final)
+    assert shape.met and shape.kind == "line"
+    (x0, y0), (x1, y1) = shape.geometry["points"]
+    xy = final.poses[[sc.index[i] for i in (1, 2, 3, 4)], :2]
+    assert x0 == x1 == pytest.approx(xy[:, 0].mean())
+    assert (y0, y1) == pytest.approx((xy[:, 1].min(), xy[:, 1].max()))
+    assert np.isfinite(np.asarray(shape.geometry["points"])).all()
+    start = goal_shapes(sc, parse_goals(goals), sc.initial)[0]
+    assert not start.met and "off the column" in start.problem
+    data = viewer_data(_scene(), p)
+    last = data["frames"][-1]["goals"][0]
+    assert last["kind"] == "line" and last["met"] and np.allclose(last["points"], shape.geometry["points"], atol=1e-6)
+    info = pattern_infos()["column"]
+    assert "in a column" in info.keys and info.min_objects == 2 and not info.anchored
+
+
+def parse_scene_dict(d):
+    from lgmcts.formats import parse_scene
+
+    return parse_scene(d)

@@ -8,6 +8,7 @@ import pytest
 from core_helpers import can, goals, scene
 from lgmcts.formats import RELATIONS, parse_goals, parse_scene
 from lgmcts.patterns import Context, GoalProgress, registry
+from lgmcts.patterns.line import LineParams
 from lgmcts.planner.step import Problem
 from lgmcts.scene import TABLE, Scene
 from lgmcts.validate import goal_satisfied
@@ -100,7 +101,7 @@ def test_line_takes_a_new_direction_when_its_second_object_is_replaced():
     pat, cg = problem.patterns[0], problem.goals[0]
     rng = np.random.default_rng(0)
     world = sc.initial.moved(0, np.array([0.0, 0.0, 0.0])).moved(1, np.array([0.2, 0.0, 0.0]))
-    prog = GoalProgress().add(0).add(1, params=(0.0, 0.0, 1.0, 0.0))  # a line along +x
+    prog = GoalProgress().add(0).add(1, params=LineParams((0.0, 0.0), (1.0, 0.0)))  # a line along +x
     prog = prog.without(1)  # object 1 moved away; object 0 still on the line
     world = world.moved(2, np.array([0.0, 0.2, 0.0]))  # object 2 goes straight behind object 0
     prog = pat.commit(Context(sc, world, cg, prog), 2, world.poses[2], rng)

@@ -141,3 +141,35 @@ def test_relations_stated_for_each_member_of_an_arrangement_are_one_goal(matcher
     assert {"pattern": "left", "objects": [6, 7], "anchor": 5} in got and len(got) == 2
     got = goal_dicts(k, "put the fork left of the plate; then put the knife left of the plate", matcher=matcher)
     assert len(got) == 2  # no arrangement of both: one goal per clause, as before
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "put the cans in a line next to the plate",  # "next to" is no goal: not a line with the plate in it
+        "make a circle of cans around the bottle",
+        "put the cans in a row and the mugs in a row beside them",
+        "put the cans in two lines",  # which cans go in which line?
+        "put some cans in a line",
+        "put half the cans in a line",  # three cans
+        "put the cans in a circle of radius 10 cm",
+        "put the cans in a line except for the red can which goes behind the plate",
+        "put the cans in a line pointing at the bottle",
+    ],
+)
+def test_commands_that_would_become_wrong_goals_are_refused(text, matcher):
+    with pytest.raises(InputError):
+        goal_dicts(CASES[0].scene, text, matcher=matcher)
+
+
+def test_reference_guards(matcher):
+    k = CASES[0].scene
+    # "it" is one object: after "the mugs", it is the plate they were placed by.
+    got = goal_dicts(k, "put the mugs in front of the plate and the cans behind it", matcher=matcher)
+    assert {"pattern": "behind", "objects": [9, 10, 11], "anchor": 5} in got
+    # "one of them": one anchor among the cans, not all three.
+    got = goal_dicts(k, "arrange the cans in a circle and put the bottle to the right of one of them", matcher=matcher)
+    rel = [g for g in got if g["pattern"] == "right"]
+    assert len(rel) == 1 and rel[0]["anchor"] in (9, 10, 11)
+    # "on the plate" at the end of a longer phrase still puts the plate at the bottom.
+    assert goal_dicts(k, "stack the bowls upside down on the plate", matcher=matcher)[0]["objects"][0] == 5

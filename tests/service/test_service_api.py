@@ -81,6 +81,20 @@ def test_check_accepts_a_plan_and_rejects_an_illegal_one(client):
     assert v["valid"] is False and any("not clear" in x for x in v["reasons"])
 
 
+def test_view_returns_what_the_viewer_draws(client):
+    from lgmcts.viz import viewer_data
+
+    plan = _plan(client, seed=1).json()
+    r = client.post("/view", json={"scene": SCENE, "plan": plan})
+    assert r.status_code == 200, r.text
+    data = r.json()
+    assert data == json.loads(json.dumps(viewer_data(SCENE, plan)))
+    assert len(data["frames"]) == len(plan["actions"]) + 1 and all(g["met"] for g in data["frames"][-1]["goals"])
+    bad = {"solved": True, "actions": [{"object": 99, "to": [0.0, 0.0, 0.0]}]}
+    r = client.post("/view", json={"scene": SCENE, "plan": bad})
+    assert r.status_code == 422 and "unknown object id 99" in r.json()["detail"]
+
+
 def test_viewer_page_and_api_docs(client):
     page = client.get("/")
     assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")

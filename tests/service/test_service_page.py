@@ -35,7 +35,7 @@ def test_page_plans_and_draws(server, tmp_path):
             page.wait_for_function(
                 "document.getElementById('status').textContent === 'the plan is valid'", timeout=30_000
             )
-            drawn = page.locator("#view, #fallback")
+            drawn = page.locator("#view")
             assert drawn.locator("svg, canvas").count() >= 1
             shot = page.screenshot(path=str(tmp_path / "page.png"))
         finally:

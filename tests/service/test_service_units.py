@@ -54,14 +54,6 @@ def test_viewer_script_is_inlined_safely(tmp_path, monkeypatch):
     assert "<\\/script>" in body
 
 
-def test_viewer_page_without_the_script_keeps_its_own_drawing(tmp_path, monkeypatch):
-    monkeypatch.setattr(viewer, "VIEWER_JS", tmp_path / "absent.js")
-    html = viewer.page()
-    assert "drawFallback" in html and "window.LGMCTSViewer = {" not in html
-    assert viewer.viewer_script() is None
-    assert "/*EXAMPLE_SCENE*/" not in html
-
-
 def test_example_scene_is_valid():
     parse_scene(viewer.EXAMPLE_SCENE)
 
@@ -99,3 +91,24 @@ def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
     r = client.post("/plan", json=body)
     assert r.status_code == 422
     assert r.json() == {"detail": "unknown method '_crash' (known: lgmcts, greedy, pmcts)"}
+
+
+def test_a_missing_extra_is_a_501_naming_it(monkeypatch):
+    """The parse job turns a missing optional module into Unavailable (501) with the extra to install."""
+    import lgmcts.language
+    from lgmcts.service import jobs
+
+    def parse(*args, **kwargs):
+        raise ModuleNotFoundError("No module named 'onnxruntime'", name="onnxruntime")
+
+    monkeypatch.setattr(lgmcts.language, "parse", parse)
+    scene = parse_scene(viewer.EXAMPLE_SCENE)
+    with pytest.raises(jobs.Unavailable, match=r"pip install 'lgmcts\[language\]'"):
+        jobs.run_parse(jobs.ParseJob(scene, "put the blocks in a line"))
+
+    def broken(*args, **kwargs):
+        raise ModuleNotFoundError("No module named 'lgmcts_internal_typo'", name="lgmcts_internal_typo")
+
+    monkeypatch.setattr(lgmcts.language, "parse", broken)
+    with pytest.raises(ModuleNotFoundError):  # a real bug is not dressed up as a missing extra
+        jobs.run_parse(jobs.ParseJob(scene, "put the blocks in a line"))

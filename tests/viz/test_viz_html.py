@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lgmcts.formats import load_scene
-from lgmcts.scene import Scene
+from lgmcts.formats import load_plan, load_scene
+from lgmcts.scene import Scene, replay
 from lgmcts.viz import render_html, viewer_data, viewer_js
 
 DATA = Path(__file__).parent / "data"
@@ -32,7 +32,7 @@ def test_viewer_data_contract():
     data = viewer_data(SCENE, PLAN, instruction="hi")
     plan = json.loads(PLAN.read_text())
     sc = Scene.from_spec(load_scene(SCENE))
-    assert set(data) == {"scene", "plan", "instruction", "footprints", "paints", "frames"}
+    assert set(data) == {"scene", "plan", "instruction", "footprints", "paints", "frames", "goal_text"}
     assert data["instruction"] == "hi"
     assert len(data["frames"]) == len(plan["actions"]) + 1
     assert [g["met"] for g in data["frames"][-1]["goals"]] == [True, True]
@@ -40,6 +40,13 @@ def test_viewer_data_contract():
     for k, i in enumerate(sc.ids):
         assert np.allclose(data["footprints"][str(i)], sc.local[k], atol=1e-6)
     assert data["paints"]["7"]["texture"] == "dots"
+    # Each frame carries the replayed state, so the script replays nothing.
+    states = replay(sc, load_plan(PLAN).actions)
+    for f, st in zip(data["frames"], states):
+        for k, i in enumerate(sc.ids):
+            assert np.allclose(f["poses"][str(i)], st.poses[k], atol=1e-6)
+            assert f["on"][str(i)] == (None if st.on[k] < 0 else sc.ids[st.on[k]])
+    assert len(data["goal_text"]) == len(load_plan(PLAN).goals.goals)
     json.dumps(data, allow_nan=False)
 
 
@@ -55,7 +62,7 @@ def test_viz_imports_no_plotting_library_until_drawing():
     import sys
 
     code = (
-        "import sys, lgmcts, lgmcts.viz, lgmcts.progress\n"
+        "import sys, lgmcts, lgmcts.viz, lgmcts.cli_util\n"
         "from lgmcts.viz import render_html\n"
         f"render_html({str(SCENE)!r}, {str(PLAN)!r})\n"
         "assert 'matplotlib' not in sys.modules, 'matplotlib imported eagerly'\n"
@@ -78,3 +85,26 @@ def test_core_does_not_import_viz():
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+def test_plans_carry_fits_and_viewers_draw_from_them():
+    """A plan carries each goal's fitted parameters for its final state; the
+    viewer draws the final state from them instead of fitting again, and a
+    plan without them (older files) is drawn by fitting."""
+    import lgmcts
+
+    root = Path(__file__).resolve().parents[2]
+    scene, goals = root / "examples" / "tabletop.json", root / "examples" / "goals.json"
+    p = lgmcts.plan(scene, goals, seed=0)
+    circle = p.fits[[g.pattern for g in p.goals.goals].index("circle")]
+    assert set(circle) == {"centre", "radius", "start_angle", "count"} and circle["count"] == 4
+    assert all(f is None for f, g in zip(p.fits, p.goals.goals) if g.pattern in ("behind", "tower", "pose"))
+    plan = json.loads(lgmcts.save_json(p))
+    k = [g["pattern"] for g in plan["goals"]["goals"]].index("circle")
+    drawn = viewer_data(scene, plan)["frames"][-1]["goals"][k]
+    assert np.allclose(drawn["centre"], circle["centre"]) and np.isclose(drawn["radius"], circle["radius"])
+    plan["fits"][k] = {**circle, "radius": 0.5}  # the viewer believes the plan
+    assert viewer_data(scene, plan)["frames"][-1]["goals"][k]["radius"] == 0.5
+    del plan["fits"]
+    refit = viewer_data(scene, plan)["frames"][-1]["goals"][k]
+    assert np.isclose(refit["radius"], circle["radius"])

@@ -7,7 +7,7 @@ import json
 import numpy as np
 
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
-from lgmcts.planner.fields import MAX_FIELD_CELLS, pose_fields
+from lgmcts.viz.fields import MAX_FIELD_CELLS, pose_fields
 from lgmcts.scene import Scene
 from lgmcts.viz.figures import FigureOptions, pictured_steps, write_plan_figures
 

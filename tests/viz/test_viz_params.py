@@ -59,6 +59,7 @@ def test_pictures_of_a_plan_with_params(solved, tmp_path):
     assert (tmp_path / "final.png").exists() and all(p.exists() for p in paths)
 
 
+@pytest.mark.slow
 def test_viewer_draws_regions_and_headings(solved, tmp_path):
     import shutil
 
@@ -81,9 +82,10 @@ def test_viewer_draws_regions_and_headings(solved, tmp_path):
     assert not errors
 
 
-def test_viewer_given_only_scene_and_plan_draws_regions_too(solved):
-    """The page the service serves renders from the scene and plan alone: it
-    computes the regions itself, the same boxes as lgmcts.params."""
+@pytest.mark.slow
+def test_viewer_draws_the_regions_computed_in_python(solved):
+    """The page the service serves draws the regions of viewer_data (its /view):
+    the same boxes as lgmcts.params."""
     import shutil
 
     from lgmcts.viz import viewer_js
@@ -103,7 +105,7 @@ def test_viewer_given_only_scene_and_plan_draws_regions_too(solved):
         page.on("pageerror", lambda e: errors.append(str(e)))
         page.set_content(f"<html><body><div id='v'></div><script>{viewer_js()}</script></body></html>")
         page.evaluate("d => { window.v = LGMCTSViewer.render(document.getElementById('v'), d); }",
-                      {"scene": scene, "plan": plan, "instruction": None})
+                      json.loads(json.dumps(viewer_data(scene, plan))))
         rects = page.eval_on_selector_all(".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])")
         assert page.locator(".lgv-heading").count() == 2
         b.close()

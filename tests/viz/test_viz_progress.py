@@ -1,4 +1,4 @@
-"""Progress bars and log levels (lgmcts.progress)."""
+"""Log levels (lgmcts.cli_util.configure_logging) and the drawing progress bar."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 from lgmcts.cli import app
-from lgmcts.progress import LOGGER_NAME, configure_logging, progress, progress_enabled
+from lgmcts.cli_util import LOGGER_NAME, configure_logging
 
 DATA = Path(__file__).parent / "data"
 
@@ -57,29 +57,29 @@ def test_other_libraries_stay_quiet(capsys):
     assert "noise" not in capsys.readouterr().err
 
 
-def test_progress_is_transparent_when_piped(monkeypatch, capsys):
-    monkeypatch.setattr("sys.stderr", io.StringIO())
-    items = [1, 2, 3]
-    assert progress(items, desc="x") is items
-    assert not progress_enabled()
+def _draw(tmp_path, stderr, monkeypatch):
+    from lgmcts.viz import write_plan_figures
+
+    import json
+
+    plan = json.loads((DATA / "cluttered_plan.json").read_text())
+    plan["actions"] = plan["actions"][:1]  # one step is enough for a bar, and quick to draw
+    monkeypatch.setattr("sys.stderr", stderr)
+    monkeypatch.setattr("lgmcts.viz.figures.heatmap_fields", lambda *a, **k: [])
+    write_plan_figures(DATA / "cluttered_scene.json", plan, tmp_path)
+    return stderr.getvalue()
 
 
-def test_progress_draws_on_a_terminal(monkeypatch):
-    fake = _Tty()
-    monkeypatch.setattr("sys.stderr", fake)
+def test_no_bar_when_piped(tmp_path, monkeypatch):
     monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
-    assert progress_enabled()
-    out = list(progress(iter(range(5)), total=5, desc="cases"))
-    assert out == [0, 1, 2, 3, 4]
-    text = fake.getvalue()
-    assert "cases" in text and "/5" in text and "it/s" in text
+    assert "drawing steps" not in _draw(tmp_path, io.StringIO(), monkeypatch)
 
 
-def test_environment_switch_turns_bars_off(monkeypatch):
-    monkeypatch.setattr("sys.stderr", _Tty())
+def test_bar_on_a_terminal_unless_switched_off(tmp_path, monkeypatch):
+    monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
+    assert "drawing steps" in _draw(tmp_path / "a", _Tty(), monkeypatch)
     monkeypatch.setenv("LGMCTS_NO_PROGRESS", "1")
-    items = (i for i in range(3))
-    assert progress(items) is items
+    assert "drawing steps" not in _draw(tmp_path / "b", _Tty(), monkeypatch)
 
 
 def test_cli_verbose_shows_the_search_log():

@@ -4,13 +4,16 @@
  *
  *   var viewer = LGMCTSViewer.render(element, data);
  *
- * data = {
+ * data = lgmcts.viz.viewer_data(...) (or the service's POST /view) = {
  *   scene: <scene JSON>, plan: <plan JSON with its goals>, instruction: str|null,
- *   footprints: {id: [[x, y], ...]}   optional, object frame, metres
- *   paints: {id: {fill, second, mark, ink, edge, texture}}   optional
- *   frames: [{goals: [<goal shape>, ...]}, ...]   optional, one per plan state
+ *   footprints: {id: [[x, y], ...]}   object frame, metres
+ *   paints: {id: {fill, second, mark, ink, edge, texture}}
+ *   frames: [{poses: {id: [x, y, theta]}, on: {id: id|null}, goals: [<goal shape>, ...]}, ...]
+ *           one per plan state
+ *   goal_text: [str, ...]   one line per goal
  * }
- * Optional parts are computed here when absent (see docs/viz.md).
+ * The script draws what it is given: replay, footprints, fits and goal
+ * descriptions are computed once, in Python (see docs/viz.md).
  *
  * The returned controller has setStep(k), next(), prev(), play(), pause(),
  * toggle(), step(), count(), poses(), playing(), destroy(). The element
@@ -25,25 +28,6 @@
   var GOAL_COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2"];
   var PURPOSE_COLORS = { goal: "#1b9e77", relocate: "#e8590c", unstack: "#7048e8" };
   var PURPOSE_WORDS = { goal: "place", relocate: "relocate", unstack: "unstack" };
-  var RELATIONS = {
-    left: [-1, 0], right: [1, 0], front: [0, -1], behind: [0, 1],
-    left_front: [-Math.SQRT1_2, -Math.SQRT1_2], left_behind: [-Math.SQRT1_2, Math.SQRT1_2],
-    right_front: [Math.SQRT1_2, -Math.SQRT1_2], right_behind: [Math.SQRT1_2, Math.SQRT1_2]
-  };
-  var COLOR_WORDS = {
-    red: "#d62728", green: "#2ba12b", blue: "#1f59cc", yellow: "#fad61a", orange: "#ff800d",
-    purple: "#8040b3", violet: "#8f5cd9", pink: "#f787ba", magenta: "#d91aa6", cyan: "#1abfd9",
-    teal: "#008080", brown: "#8c5729", tan: "#d1b58c", beige: "#ede0bf", white: "#f7f7f2",
-    black: "#1f1f1f", gray: "#8c8c8c", grey: "#8c8c8c", silver: "#bfbfc7", gold: "#d9a621",
-    olive: "#80801a", navy: "#1a2673", maroon: "#800d1a", lime: "#8cd933", wooden: "#b88752", wood: "#b88752"
-  };
-  var TEXTURE_WORDS = {
-    polka: "dots", dot: "dots", dots: "dots", dotted: "dots", spotted: "dots",
-    stripe: "stripes", stripes: "stripes", striped: "stripes", checker: "checks", checkered: "checks",
-    checkerboard: "checks", plaid: "checks", tiles: "checks", granite: "speckles", marble: "speckles",
-    wood: "grain", wooden: "grain", swirl: "waves", paisley: "waves"
-  };
-
   var CSS = [
     ".lgv{font:14px/1.4 system-ui,-apple-system,'Segoe UI',Roboto,Helvetica,Arial,sans-serif;color:#222;background:#fafaf7;padding:12px 16px;box-sizing:border-box;outline:none}",
     ".lgv *{box-sizing:border-box}",
@@ -110,242 +94,6 @@
     return local.map(function (p) { return [c * p[0] - s * p[1] + pose[0], s * p[0] + c * p[1] + pose[1]]; });
   }
 
-  function hull(points) {
-    var pts = points.map(function (p) { return [p[0], p[1]]; }).sort(function (a, b) { return a[0] - b[0] || a[1] - b[1]; });
-    if (pts.length < 3) return pts;
-    function cross(o, a, b) { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); }
-    var lower = [], upper = [], i;
-    for (i = 0; i < pts.length; i++) {
-      while (lower.length >= 2 && cross(lower[lower.length - 2], lower[lower.length - 1], pts[i]) <= 0) lower.pop();
-      lower.push(pts[i]);
-    }
-    for (i = pts.length - 1; i >= 0; i--) {
-      while (upper.length >= 2 && cross(upper[upper.length - 2], upper[upper.length - 1], pts[i]) <= 0) upper.pop();
-      upper.push(pts[i]);
-    }
-    upper.pop(); lower.pop();
-    return lower.concat(upper);
-  }
-
-  function centroid(poly) {
-    var a = 0, cx = 0, cy = 0;
-    for (var i = 0; i < poly.length; i++) {
-      var p = poly[i], q = poly[(i + 1) % poly.length], w = p[0] * q[1] - q[0] * p[1];
-      a += w; cx += (p[0] + q[0]) * w; cy += (p[1] + q[1]) * w;
-    }
-    if (Math.abs(a) < 1e-12) return [poly[0][0], poly[0][1]];
-    return [cx / (3 * a), cy / (3 * a)];
-  }
-
-  // Object-frame footprint and initial pose of one scene object, when the
-  // caller did not send them (mirrors lgmcts.scene).
-  function localFootprint(obj) {
-    var s = obj.shape || {}, i, pts;
-    if (s.type === "box") {
-      var hx = s.size[0] / 2, hy = s.size[1] / 2;
-      return { local: [[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]], pose: obj.pose };
-    }
-    if (s.type === "cylinder") {
-      var n = 24, r = s.radius / Math.cos(Math.PI / n);
-      pts = [];
-      for (i = 0; i < n; i++) {
-        var a = i * 2 * Math.PI / n + Math.PI / n;
-        pts.push([r * Math.cos(a), r * Math.sin(a)]);
-      }
-      return { local: pts, pose: obj.pose };
-    }
-    if (s.type === "polygon") return { local: hull(s.points), pose: obj.pose };
-    if (s.type === "points") {
-      var h = hull(s.points.map(function (p) { return [p[0], p[1]]; }));
-      var pose = obj.pose;
-      if (!pose) { var c = centroid(h); pose = [c[0], c[1], 0]; }
-      var ct = Math.cos(-pose[2]), st = Math.sin(-pose[2]);
-      return {
-        local: h.map(function (p) {
-          var dx = p[0] - pose[0], dy = p[1] - pose[1];
-          return [ct * dx - st * dy, st * dx + ct * dy];
-        }),
-        pose: pose
-      };
-    }
-    throw new Error("object " + obj.id + " has an unknown shape type '" + s.type + "'");
-  }
-
-  function paintFor(text) {
-    var words = String(text || "").toLowerCase().match(/#[0-9a-f]{6}|[a-z]+/g) || [];
-    var cols = [], texture = null, shade = 0;
-    words.forEach(function (w) {
-      if (w === "light" || w === "pale") { shade = 0.45; return; }
-      if (w === "dark" || w === "deep") { shade = -0.4; return; }
-      var c = COLOR_WORDS[w] || (/^#[0-9a-f]{6}$/.test(w) ? w : null);
-      if (c && !(w === "wood" || w === "wooden") ) { cols.push(shadeHex(c, shade)); shade = 0; }
-      if (TEXTURE_WORDS[w] && !texture) texture = TEXTURE_WORDS[w];
-      if ((w === "wood" || w === "wooden") && !cols.length) cols.push(COLOR_WORDS[w]);
-    });
-    var fill = cols[0] || "#c7c7c2";
-    var second = cols.length > 1 ? cols[1] : null;
-    if (second && !texture) texture = "stripes";
-    var lum = luminance(fill);
-    return {
-      fill: fill, second: second, texture: texture,
-      mark: second || (lum > 0.35 ? shadeHex(fill, -0.45) : shadeHex(fill, 0.55)),
-      ink: lum > 0.45 ? "#141414" : "#ffffff",
-      edge: lum > 0.12 ? shadeHex(fill, -0.5) : "#737373"
-    };
-  }
-
-  function rgb(hex) { return [1, 3, 5].map(function (k) { return parseInt(hex.substr(k, 2), 16) / 255; }); }
-  function luminance(hex) { var c = rgb(hex); return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-  function shadeHex(hex, amt) {
-    if (!amt) return hex;
-    return "#" + rgb(hex).map(function (c) {
-      var v = amt > 0 ? c + (1 - c) * amt : c * (1 + amt);
-      var s = Math.round(Math.max(0, Math.min(1, v)) * 255).toString(16);
-      return s.length < 2 ? "0" + s : s;
-    }).join("");
-  }
-
-  // ------------------------------------------------------------ replay and goal fits
-
-  function replay(objects, actions) {
-    var first = { poses: {}, on: {} };
-    objects.forEach(function (o) { first.poses[o.id] = o.pose.slice(); first.on[o.id] = o.on === undefined ? null : o.on; });
-    var frames = [first];
-    actions.forEach(function (a) {
-      var prev = frames[frames.length - 1], next = { poses: {}, on: {} };
-      for (var k in prev.poses) { next.poses[k] = prev.poses[k]; next.on[k] = prev.on[k]; }
-      next.poses[a.object] = a.to.slice();
-      next.on[a.object] = a.on === undefined ? null : a.on;
-      frames.push(next);
-    });
-    return frames;
-  }
-
-  function lineFit(xy) {
-    var n = xy.length, mx = 0, my = 0;
-    xy.forEach(function (p) { mx += p[0] / n; my += p[1] / n; });
-    var sxx = 0, sxy = 0, syy = 0;
-    xy.forEach(function (p) { var dx = p[0] - mx, dy = p[1] - my; sxx += dx * dx; sxy += dx * dy; syy += dy * dy; });
-    var ang = 0.5 * Math.atan2(2 * sxy, sxx - syy), ux = Math.cos(ang), uy = Math.sin(ang);
-    var tmin = Infinity, tmax = -Infinity;
-    xy.forEach(function (p) { var t = (p[0] - mx) * ux + (p[1] - my) * uy; tmin = Math.min(tmin, t); tmax = Math.max(tmax, t); });
-    return [[mx + ux * tmin, my + uy * tmin], [mx + ux * tmax, my + uy * tmax]];
-  }
-
-  function circleFit(xy) {
-    // Algebraic (Kasa) fit: solve for centre and radius in the least-squares sense.
-    var A = [[0, 0, 0], [0, 0, 0], [0, 0, 0]], b = [0, 0, 0];
-    xy.forEach(function (p) {
-      var row = [2 * p[0], 2 * p[1], 1], rhs = p[0] * p[0] + p[1] * p[1];
-      for (var i = 0; i < 3; i++) { b[i] += row[i] * rhs; for (var j = 0; j < 3; j++) A[i][j] += row[i] * row[j]; }
-    });
-    var s = solve3(A, b);
-    if (!s) return null;
-    return { centre: [s[0], s[1]], radius: Math.sqrt(Math.max(0, s[2] + s[0] * s[0] + s[1] * s[1])) };
-  }
-
-  function solve3(A, b) {
-    var M = A.map(function (r, i) { return r.concat([b[i]]); });
-    for (var c = 0; c < 3; c++) {
-      var piv = c;
-      for (var r = c + 1; r < 3; r++) if (Math.abs(M[r][c]) > Math.abs(M[piv][c])) piv = r;
-      if (Math.abs(M[piv][c]) < 1e-14) return null;
-      var t = M[c]; M[c] = M[piv]; M[piv] = t;
-      for (r = 0; r < 3; r++) {
-        if (r === c) continue;
-        var f = M[r][c] / M[c][c];
-        for (var k = c; k < 4; k++) M[r][k] -= f * M[c][k];
-      }
-    }
-    return [M[0][3] / M[0][0], M[1][3] / M[1][1], M[2][3] / M[2][2]];
-  }
-
-  function minRect(xy) {
-    // The minimum-area rectangle has a side along a hull edge: try each one.
-    var h = hull(xy), best = null;
-    for (var i = 0; i < h.length; i++) {
-      var p = h[i], q = h[(i + 1) % h.length], dx = q[0] - p[0], dy = q[1] - p[1], L = Math.hypot(dx, dy);
-      if (L < 1e-12) continue;
-      var ux = dx / L, uy = dy / L, a0 = Infinity, a1 = -Infinity, b0 = Infinity, b1 = -Infinity;
-      h.forEach(function (r) {
-        var a = r[0] * ux + r[1] * uy, b = -r[0] * uy + r[1] * ux;
-        a0 = Math.min(a0, a); a1 = Math.max(a1, a); b0 = Math.min(b0, b); b1 = Math.max(b1, b);
-      });
-      var area = (a1 - a0) * (b1 - b0);
-      if (!best || area < best.area) {
-        best = { area: area, corners: [[a0, b0], [a1, b0], [a1, b1], [a0, b1]].map(function (c) {
-          return [c[0] * ux - c[1] * uy, c[0] * uy + c[1] * ux];
-        }) };
-      }
-    }
-    if (!best) { var s = lineFit(xy); return [s[0], s[1], s[1], s[0]]; }
-    return best.corners;
-  }
-
-  // A goal's region and facing for drawing, as lgmcts.params defines them
-  // (the page given only a scene and a plan computes them itself).
-  var ROWS = ["bottom", "middle", "top"], COLS = ["left", "center", "right"];
-  var HEADINGS = { east: 0, north: Math.PI / 2, west: Math.PI, south: -Math.PI / 2 };
-
-  function regionBox(region, ws) {
-    if (Array.isArray(region)) return region.slice(0, 4);
-    if (typeof region !== "string") return null;
-    var w = region.toLowerCase().split(/\s+/).filter(Boolean);
-    if (w.length === 1 && (w[0] === "center" || w[0] === "middle")) w = ["middle", "center"];
-    if (w.length === 2 && (w[1] === "row" || w[1] === "column")) w = [w[0]];
-    var row = null, col = null;
-    if (w.length === 2) { row = w[0]; col = w[1]; }
-    else if (ROWS.indexOf(w[0]) >= 0) row = w[0];
-    else col = w[0];
-    var ri = ROWS.indexOf(row), ci = COLS.indexOf(col);
-    var dx = (ws.x[1] - ws.x[0]) / 3, dy = (ws.y[1] - ws.y[0]) / 3;
-    return [ci < 0 ? ws.x[0] : ws.x[0] + ci * dx, ci < 0 || ci === 2 ? ws.x[1] : ws.x[0] + (ci + 1) * dx,
-            ri < 0 ? ws.y[0] : ws.y[0] + ri * dy, ri < 0 || ri === 2 ? ws.y[1] : ws.y[0] + (ri + 1) * dy];
-  }
-
-  function fitGoals(goals, frame, ws) {
-    return goals.map(function (g, k) {
-      var xy = g.objects.map(function (i) { return frame.poses[i].slice(0, 2); });
-      var out = { index: k, met: null, problem: null };
-      if (g.region !== undefined && g.region !== null && ws) out.region = regionBox(g.region, ws);
-      if (g.facing !== undefined && g.facing !== null) {
-        out.heading = typeof g.facing === "number" ? g.facing : HEADINGS[String(g.facing).toLowerCase()];
-        out.anchor_point = [0, 1].map(function (c) { return xy.reduce(function (s, p) { return s + p[c]; }, 0) / xy.length; });
-      }
-      if (g.pattern === "line") { out.kind = "line"; out.points = lineFit(xy); }
-      else if (g.pattern === "circle") {
-        var c = xy.length >= 3 ? circleFit(xy) : null;
-        out.kind = "circle"; out.centre = c ? c.centre : xy[0]; out.radius = c ? c.radius : 0;
-      } else if (g.pattern === "rectangle") { out.kind = "rectangle"; out.corners = minRect(xy); }
-      else if (RELATIONS[g.pattern]) {
-        var a = frame.poses[g.anchor].slice(0, 2);
-        out.kind = "relation"; out.anchor = a; out.direction = RELATIONS[g.pattern];
-        out.arrows = xy.map(function (p) { return [a, p]; });
-      } else if (g.pattern === "tower") { out.kind = "tower"; out.centre = xy[0]; out.levels = g.objects.slice(); }
-      else { out.kind = "pose"; out.target = g.pose; }
-      return out;
-    });
-  }
-
-  function describeGoal(g) {
-    var text = describeShape(g);
-    if (typeof g.size === "string") text = g.size + " " + text;
-    else if (typeof g.size === "number") text += ", size " + fmt(g.size) + " m";
-    if (typeof g.region === "string") text += " in " + g.region;
-    else if (g.region) text += " in [" + g.region.map(fmt).join(", ") + "]";
-    if (typeof g.facing === "string") text += ", facing " + g.facing;
-    else if (typeof g.facing === "number") text += ", facing " + fmt(g.facing) + " rad";
-    return text;
-  }
-
-  function describeShape(g) {
-    var objs = g.objects.join(", ");
-    if (RELATIONS[g.pattern]) return objs + " " + (g.pattern === "behind" ? "behind" : g.pattern.replace("_", "-") + " of") + " " + g.anchor;
-    if (g.pattern === "tower") return "tower " + g.objects.join(" < ");
-    if (g.pattern === "pose") return objs + " to (" + g.pose.map(fmt).join(", ") + ")";
-    return g.pattern + " of " + objs;
-  }
-
   function checkData(data) {
     if (!data || typeof data !== "object") throw new Error("viewer data must be an object with 'scene' and 'plan'");
     if (!data.scene || !Array.isArray(data.scene.objects)) throw new Error("viewer data needs scene.objects");
@@ -357,6 +105,16 @@
       if (!ids[a.object]) throw new Error("action " + (k + 1) + " moves unknown object " + a.object);
       if (a.on !== null && a.on !== undefined && !ids[a.on]) throw new Error("action " + (k + 1) + " places on unknown object " + a.on);
     });
+    var computed = " (build the data with lgmcts.viz.viewer_data or the service's POST /view)";
+    ["footprints", "paints"].forEach(function (key) {
+      data.scene.objects.forEach(function (o) {
+        if (!data[key] || !data[key][o.id]) throw new Error("viewer data lacks " + key + " of object " + o.id + computed);
+      });
+    });
+    if (!Array.isArray(data.frames) || data.frames.length !== data.plan.actions.length + 1 ||
+        !data.frames.every(function (f) { return f && f.poses && f.on && Array.isArray(f.goals); })) {
+      throw new Error("viewer data needs one frame (poses, on, goals) per plan state" + computed);
+    }
   }
 
   function injectStyle(doc) {
@@ -399,20 +157,13 @@
     var goals = (plan.goals && plan.goals.goals) || [];
     var n = actions.length;
     var objects = scene.objects.map(function (o) {
-      var fp = data.footprints && data.footprints[o.id];
-      var lf = localFootprint(o);
-      return {
-        id: o.id, name: o.name, color: o.color || "", local: fp || lf.local, pose: lf.pose, on: o.on,
-        paint: (data.paints && data.paints[o.id]) || paintFor(o.color)
-      };
+      return { id: o.id, name: o.name, color: o.color || "", local: data.footprints[o.id], paint: data.paints[o.id] };
     });
     var byId = {};
     objects.forEach(function (o) { byId[o.id] = o; });
-    var frames = replay(objects, actions);
-    var goalFrames = frames.map(function (f, k) {
-      var given = data.frames && data.frames[k] && data.frames[k].goals;
-      return given || fitGoals(goals, f, scene.workspace);
-    });
+    var frames = data.frames;
+    var goalFrames = frames.map(function (f) { return f.goals; });
+    var goalText = data.goal_text || goals.map(function (g) { return g.pattern + " of " + g.objects.join(", "); });
     var member = {};
     goals.forEach(function (g, k) { g.objects.forEach(function (i) { (member[i] = member[i] || []).push(k); }); });
 
@@ -615,6 +366,8 @@
         } else if (s.kind === "pose") {
           var id0 = goals[s.index].objects[0];
           el(doc, "polygon", { points: pointsAttr(transform(byId[id0].local, s.target)), "stroke-dasharray": fs * 0.25 + " " + fs * 0.25 }, g);
+        } else if (s.kind === "points") {
+          s.points.forEach(function (q) { el(doc, "circle", { cx: X(q[0]), cy: Y(q[1]), r: fs * 0.9 }, g); });
         }
       });
     }
@@ -638,7 +391,7 @@
         nd.g.setAttribute("data-on", f.on[o.id] === null || f.on[o.id] === undefined ? "" : String(f.on[o.id]));
         placeObject(o.id, p, lv);
         nd.tip.textContent = o.id + " " + (o.color ? o.color + " " : "") + o.name + "\n(x, y, \u03b8) = (" + fmt(p[0]) + " m, " + fmt(p[1]) + " m, " + fmt(p[2]) + " rad)" +
-          (f.on[o.id] !== null && f.on[o.id] !== undefined ? "\non " + f.on[o.id] : "") + (member[o.id] ? "\ngoal: " + member[o.id].map(function (g) { return describeGoal(goals[g]); }).join("; ") : "");
+          (f.on[o.id] !== null && f.on[o.id] !== undefined ? "\non " + f.on[o.id] : "") + (member[o.id] ? "\ngoal: " + member[o.id].map(function (g) { return goalText[g]; }).join("; ") : "");
         nd.outline.setAttribute("stroke", o.paint.edge);
         nd.outline.setAttribute("stroke-width", fs * 0.12);
         nd.idText.style.display = holding(f, o.id) ? "none" : "";
@@ -677,7 +430,7 @@
           var sw = html(doc, "span", "lgv-swatch", li);
           sw.style.background = GOAL_COLORS[gk % GOAL_COLORS.length];
           html(doc, "span", "lgv-status", li, s.met === true ? "\u2713" : s.met === false ? "\u2717" : "\u2022");
-          html(doc, "span", null, li, describeGoal(g));
+          html(doc, "span", null, li, goalText[gk]);
           if (s.problem) li.title = s.problem;
           li.addEventListener("mouseenter", function () { g.objects.forEach(function (i) { nodes[i].g.classList.add("lgv-hl"); }); });
           li.addEventListener("mouseleave", function () { g.objects.forEach(function (i) { nodes[i].g.classList.remove("lgv-hl"); }); });
@@ -774,8 +527,6 @@
 
   global.LGMCTSViewer = {
     render: render,
-    version: "1",
-    paintFor: paintFor,
-    footprint: function (obj) { return localFootprint(obj).local; }
+    version: "2"
   };
 })(typeof window !== "undefined" ? window : this);
