@@ -287,7 +287,9 @@ def _lfsp(scene, instruction: str, options: RunOptions) -> PlanSpec:
 
     t0 = time.perf_counter()
     try:
-        return plan_lfsp(scene, instruction, options=LLMOptions(model=options.llm_model, base_url=options.llm_base_url))
+        timeout = float(os.environ.get("LGMCTS_LLM_TIMEOUT", "120"))
+        opts = LLMOptions(model=options.llm_model, base_url=options.llm_base_url, timeout=timeout)
+        return plan_lfsp(scene, instruction, options=opts)
     except InputError as exc:
         dt = round(time.perf_counter() - t0, 6)
         return PlanSpec(solved=False, actions=[], stats={"method": "lfsp", "reason": str(exc), "iterations": 0, "time_s": dt})

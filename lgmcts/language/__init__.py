@@ -11,12 +11,15 @@ Two parsers share one pattern database (:func:`lgmcts.patterns.registry`):
 
 Both return a :class:`lgmcts.formats.GoalSpec` or raise
 :class:`lgmcts.errors.InputError` with one line saying what was not
-understood. Importing this package does not import torch; the sentence model
-is loaded on the first parse that needs it.
+understood. Nothing here imports torch: the sentence model runs in
+onnxruntime (:mod:`.embed`) and is loaded on the first parse that needs it.
+The LFSP baseline (:mod:`.lfsp`), in which the language model proposes the
+poses itself, uses the same client as the LLM parser.
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -46,7 +49,7 @@ def parse(
     llm_model: str | None = None,
     llm_base_url: str | None = None,
     api_key: str | None = None,
-    timeout: float = 30.0,
+    timeout: float | None = None,
 ) -> GoalSpec:
     """Turn a command into goals over the objects of ``scene``.
 
@@ -62,8 +65,8 @@ def parse(
     llm_model, llm_base_url, api_key : str, optional
         Model name, OpenAI-compatible base URL and key for ``parser="llm"``
         (key default: the ``OPENAI_API_KEY`` environment variable).
-    timeout : float
-        Seconds to wait for one LLM answer.
+    timeout : float, optional
+        Seconds to wait for one LLM answer (default: ``LGMCTS_LLM_TIMEOUT``, else 30).
 
     Returns
     -------
@@ -90,6 +93,8 @@ def parse(
     if parser == "llm":
         from .llm import LLMOptions, parse_llm
 
+        if timeout is None:
+            timeout = float(os.environ.get("LGMCTS_LLM_TIMEOUT", "30"))
         opts = LLMOptions(model=llm_model, base_url=llm_base_url, api_key=api_key, timeout=timeout)
         return parse_llm(spec, text, options=opts)
     raise InputError(f"unknown parser '{truncate(str(parser), 40)}' (use: {', '.join(PARSERS)})")

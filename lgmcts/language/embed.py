@@ -55,6 +55,9 @@ MAX_TOKENS = 256
 #: Least cosine with the reference implementation an export must reach.
 MIN_COSINE = 0.999
 ONNX_FILE = "model.onnx"
+#: The encoder with onnxruntime's extended graph optimisations (fusions) applied
+#: once at export, on the machine that runs it: sessions then open without optimising.
+OPT_FILE = "model.opt.onnx"
 META_FILE = "meta.json"
 #: Embeddings of the built-in pattern keys, made with the export (texts and vectors).
 KNOWN_FILE = "known.npz"
@@ -146,7 +149,7 @@ def ensure_artefact(weights: Path | None = None) -> Path:
         why = last[-1] if last else f"exit status {proc.returncode}"
         raise InputError(
             f"the sentence model's ONNX export is missing and could not be made ({why}); "
-            "run 'python -m lgmcts.language.export' with torch and transformers installed"
+            "run 'python -m lgmcts.language.export' with torch, onnx and transformers installed"
         )
     return found
 
@@ -209,7 +212,11 @@ class OnnxEncoder:
         so.intra_op_num_threads = max(1, int(threads))
         so.inter_op_num_threads = 1
         so.log_severity_level = 3
-        self.session = ort.InferenceSession(str(folder / ONNX_FILE), so, providers=["CPUExecutionProvider"])
+        model = folder / ONNX_FILE
+        if (folder / OPT_FILE).is_file():
+            model = folder / OPT_FILE
+            so.graph_optimization_level = ort.GraphOptimizationLevel.ORT_DISABLE_ALL
+        self.session = ort.InferenceSession(str(model), so, providers=["CPUExecutionProvider"])
         self._inputs = {i.name for i in self.session.get_inputs()}
         self.folder = folder
         self._known: dict[str, np.ndarray] = {}

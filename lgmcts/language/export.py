@@ -7,6 +7,8 @@ traces its BERT encoder with ``torch.onnx.export`` and writes
 * ``model.onnx`` -- the encoder: token ids, attention mask and token types in,
   per-token hidden states out (pooling and normalisation are done in numpy
   by :mod:`lgmcts.language.embed`);
+* ``model.opt.onnx`` -- the same with onnxruntime's extended graph
+  optimisations applied, on this machine (sessions open faster from it);
 * ``known.npz`` -- the embeddings of the built-in pattern keys, made by the
   exported model, so that a cold start need not compute them;
 * ``meta.json`` -- what it was made from (package version, SHA-256 of the
@@ -45,6 +47,7 @@ from .embed import (
     MIN_COSINE,
     KNOWN_FILE,
     ONNX_FILE,
+    OPT_FILE,
     META_FILE,
     artefact_dir,
     mean_pool,
@@ -83,6 +86,43 @@ def _torch_embed(model, tokenizer, sentences) -> np.ndarray:
     return mean_pool(hidden, batch["attention_mask"].numpy())
 
 
+def _optimise(src: Path, dst: Path) -> None:
+    """Save ``src`` with onnxruntime's extended optimisations (node fusions) applied."""
+    import onnxruntime as ort
+
+    so = ort.SessionOptions()
+    so.graph_optimization_level = ort.GraphOptimizationLevel.ORT_ENABLE_EXTENDED
+    so.optimized_model_filepath = str(dst)
+    so.intra_op_num_threads = 1
+    so.log_severity_level = 3
+    ort.InferenceSession(str(src), so, providers=["CPUExecutionProvider"])
+
+
+def _registry_keys() -> list[str]:
+    from .matcher import pattern_infos
+
+    return sorted({k for info in pattern_infos().values() for k in info.keys})
+
+
+def _refresh_known(folder: Path) -> bool:
+    """Recompute the stored key embeddings when the built-in keys changed
+    (onnxruntime only); returns whether it did."""
+    keys = _registry_keys()
+    try:
+        with np.load(folder / KNOWN_FILE, allow_pickle=False) as z:
+            if [str(t) for t in z["texts"]] == keys:
+                return False
+    except (OSError, KeyError, ValueError):
+        pass
+    from .embed import OnnxEncoder
+
+    vecs = OnnxEncoder(folder, precomputed=False).encode(keys)
+    tmp = folder / (".tmp-" + KNOWN_FILE)
+    np.savez(tmp, texts=np.array(keys, dtype=str), vectors=vecs)
+    os.replace(tmp, folder / KNOWN_FILE)
+    return True
+
+
 def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = False) -> Path:
     """Write the ONNX encoder and its metadata; returns the folder.
 
@@ -103,8 +143,13 @@ def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = Fa
         except (OSError, json.JSONDecodeError):
             meta = {}
         if meta.get("source") == src:
+            if not (out / OPT_FILE).is_file():  # an export from before optimised models were stored
+                _optimise(out / ONNX_FILE, out / OPT_FILE)
+                (out / KNOWN_FILE).unlink(missing_ok=True)
+            fresh = _refresh_known(out)
             if not quiet:
-                print(f"sentence model: ONNX export up to date in {out}", file=sys.stderr)
+                what = "key embeddings recomputed" if fresh else "up to date"
+                print(f"sentence model: ONNX export in {out}, {what}", file=sys.stderr)
             return out
 
     t0 = time.perf_counter()
@@ -156,6 +201,7 @@ def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = Fa
                 do_constant_folding=True,
                 dynamo=False,
             )
+        _optimise(onnx_path, tmp / OPT_FILE)
         # The check: the runtime path (tokenizers + onnxruntime + numpy) against torch.
         from .embed import OnnxEncoder
 
@@ -169,15 +215,15 @@ def export(out_dir: Path | None = None, *, force: bool = False, quiet: bool = Fa
             )
         # The built-in pattern keys, embedded once here; the runtime reads them instead of
         # running the model for them on every cold start.
-        from .matcher import pattern_infos
-
-        keys = sorted({k for info in pattern_infos().values() for k in info.keys})
+        keys = _registry_keys()
         np.savez(tmp / KNOWN_FILE, texts=np.array(keys, dtype=str), vectors=runtime.encode(keys))
         meta = {
             "model": "sentence-transformers/all-MiniLM-L6-v2",
             "source": src,
             "weights_sha256": _sha256(weights / "model.safetensors"),
             "onnx_sha256": _sha256(onnx_path),
+            "optimised_sha256": _sha256(tmp / OPT_FILE),
+            "onnxruntime": __import__("onnxruntime").__version__,
             "opset": OPSET,
             "torch": torch.__version__,
             "check_min_cosine": round(float(cos.min()), 6),

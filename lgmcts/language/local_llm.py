@@ -109,7 +109,8 @@ class LocalServer:
 
     def env(self) -> dict[str, str]:
         """Environment variables that point the LLM paths at this server."""
-        return {"OPENAI_BASE_URL": self.base_url, "LGMCTS_LLM_MODEL": MODEL_ALIAS, "LGMCTS_LLM_FOLD_SYSTEM": "1"}
+        return {"OPENAI_BASE_URL": self.base_url, "LGMCTS_LLM_MODEL": MODEL_ALIAS, "LGMCTS_LLM_FOLD_SYSTEM": "1",
+                "LGMCTS_LLM_TIMEOUT": "300"}
 
     def start(self, timeout: float = 180.0) -> "LocalServer":
         model = gguf_path()

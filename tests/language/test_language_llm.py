@@ -178,3 +178,63 @@ def test_answers_that_break_the_schema_or_the_scene(tabletop, answer, needle):
             _llm(tabletop, srv.url)
     assert needle in str(err.value) and "\n" not in str(err.value)
     assert "no valid goals after 2 tries" in str(err.value)
+
+
+# ------------------------------------------------------------------ LFSP
+
+
+def test_lfsp_actions_are_checked_and_sent_back_once(tabletop):
+    from lgmcts.language.lfsp import plan_lfsp
+    from lgmcts.language.llm import LLMOptions
+
+    outside = json.dumps({"actions": [{"object": 5, "to": [0.9, 0.0, 0.0], "on": None}], "error": None})
+    good = json.dumps({"actions": [{"object": 5, "to": [0.12, 0.05, 0.0], "on": None}], "error": None})
+    with _Server([outside, good]) as srv:
+        plan = plan_lfsp(tabletop, "put the white bottle behind the green bowl",
+                         options=LLMOptions(model="m", base_url=srv.url, api_key="k", timeout=10))
+    assert plan.solved and [(a.object, a.to, a.on) for a in plan.actions] == [(5, (0.12, 0.05, 0.0), None)]
+    first, second = (r["body"] for r in srv.requests)
+    assert "outside the workspace" in second["messages"][-1]["content"]
+    # The prompt gives poses and sizes; the schema limits ids to the scene's.
+    assert "- 5: white bottle, round, radius 0.035 m" in first["messages"][-1]["content"]
+    schema = first["response_format"]["json_schema"]["schema"]
+    assert schema["properties"]["actions"]["items"]["properties"]["object"]["enum"] == list(range(1, 10))
+
+
+@pytest.mark.parametrize(
+    "answer, needle",
+    [
+        ({"actions": [{"object": 5, "to": [0.1, 0.1, 0.0], "on": 5}], "error": None}, "'on'"),
+        ({"actions": [{"object": 42, "to": [0.1, 0.1, 0.0], "on": None}], "error": None}, "unknown object id 42"),
+        ({"actions": [{"object": 5, "to": [0.1, None, 0.0], "on": None}], "error": None}, "three finite numbers"),
+        ({"actions": [], "error": "no giraffe here"}, "no giraffe here"),
+    ],
+)
+def test_lfsp_unusable_answers_are_one_line_errors(tabletop, answer, needle):
+    from lgmcts.language.lfsp import plan_lfsp
+    from lgmcts.language.llm import LLMOptions
+
+    with _Server([json.dumps(answer)] * 2) as srv:
+        with pytest.raises(InputError) as err:
+            plan_lfsp(tabletop, "put the bottle somewhere", options=LLMOptions(model="m", base_url=srv.url, timeout=10))
+    assert needle in str(err.value) and "\n" not in str(err.value)
+
+
+def test_lfsp_is_a_bench_method_judged_like_the_others(tabletop, monkeypatch):
+    from lgmcts.bench import RunOptions, generate, run_task
+
+    task = generate("elgr", n=1, seed=0)[0]
+    # Moving nothing useful: a plan the validator must reject.
+    answer = json.dumps({"actions": [{"object": task.scene["objects"][0]["id"], "to": [0.0, 0.0, 0.0], "on": None}],
+                         "error": None})
+    with _Server([answer]) as srv:
+        rec = run_task(task, RunOptions(method="lfsp", llm_model="m", llm_base_url=srv.url, execute=False))
+    assert rec["parser"] is None and rec["parse"]["goals"] is None
+    assert rec["planning"]["solved"] and not rec["sr_p"] and rec["cause"] == "plan invalid"
+    assert "Command: " + task.instruction in srv.requests[0]["body"]["messages"][-1]["content"]
+    with _Server(["not json", "still not json"]) as srv:
+        rec = run_task(task, RunOptions(method="lfsp", llm_model="m", llm_base_url=srv.url, execute=False))
+    assert rec["cause"] == "plan not found" and "no valid actions" in rec["detail"]
+    monkeypatch.delenv("LGMCTS_LLM_MODEL", raising=False)
+    with pytest.raises(InputError, match="--llm-model"):
+        RunOptions(method="lfsp").check()
