@@ -58,6 +58,10 @@ import math
 import random
 from pathlib import Path
 
+# The peers' template vocabulary; PAIR_WORDS gives "A is ... B" without "A is" and "B".
+from lgmcts.bench.peer_language import CONNECTIVES as CORRELATIVES
+from lgmcts.bench.peer_language import DIFF_WORDS, EQUAL_WORDS, PAIR_WORDS, PREP, PUT
+
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "data" / "peer_cases.jsonl"
 WS = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
@@ -75,23 +79,6 @@ HOUSE_NAMES = ("mug", "cup", "can", "bowl", "box", "bottle", "plate", "jar", "gl
 HOUSE_COLORS = ("red", "green", "blue", "yellow", "white", "black", "orange", "purple", "gray")
 CUTLERY = ("fork", "knife", "spoon")
 
-PUT = ("Put", "Place", "Leave")
-PREP = ("at", "in", "on")
-CORRELATIVES = ("; then ", "; and ", "; while ", "; so ", "; ")
-EQUAL_WORDS = ("is equal to", "is same as", "is identical to", "is alike", "is equivalent to")
-DIFF_WORDS = ("is different with", "is not the same as", "is not equal to", "is not identical to", "is not alike",
-              "is not equivalent to", "is different from")
-# The pair relations of the nine-point vocabulary, "A is ... B" without "A is" and "B".
-PAIR_WORDS = {
-    "left": ("left to",),
-    "right": ("right to",),
-    "front": ("in front of",),
-    "behind": ("behind", "in back of"),
-    "left_front": ("in front left of", "in left front of", "left and front of"),
-    "right_front": ("in front right of", "in right front of", "right and front of"),
-    "left_behind": ("behind left of", "left behind of", "left and behind of"),
-    "right_behind": ("behind right of", "right behind of", "right and behind of"),
-}
 # Older example files also wrote "back right of" / "behind right of".
 PAIR_WORDS_OLD = {"left_behind": ("back left of",), "right_behind": ("back right of",)}
 VERTICAL = {"on": "top", "above": "top", "under": "bottom", "below": "bottom"}

@@ -43,13 +43,14 @@ __all__ = ["MODES", "rephrase", "peer_instruction"]
 #: Instruction modes of the suite generators.
 MODES = ("ours", "peer")
 
-_PUT = ("Put", "Place", "Leave")
-_PREP = ("at", "in", "on")
-_CONNECT = ("; then ", "; and ", "; while ", "; so ", "; ")
-_EQUAL = ("is equal to", "is same as", "is identical to", "is alike", "is equivalent to")
-_DIFFERENT = ("is different with", "is not the same as", "is not equal to", "is not identical to", "is not alike",
+# The peers' template vocabulary (LGMCTS-D), shared with scripts/make_eval_cases.py.
+PUT = ("Put", "Place", "Leave")
+PREP = ("at", "in", "on")
+CONNECTIVES = ("; then ", "; and ", "; while ", "; so ", "; ")
+EQUAL_WORDS = ("is equal to", "is same as", "is identical to", "is alike", "is equivalent to")
+DIFF_WORDS = ("is different with", "is not the same as", "is not equal to", "is not identical to", "is not alike",
               "is not equivalent to", "is different from")
-_PAIR = {
+PAIR_WORDS = {
     "left": ("left to",),
     "right": ("right to",),
     "front": ("in front of",),
@@ -97,11 +98,11 @@ def _object_set(sc: _Scene, ids: list[int], rng: np.random.Generator) -> str | N
         (c,) = colors
         refs = [i for i in sorted(want) if sc.name_unique(i)]
         if sc.with_color(c) == want and refs:
-            forms.append(lambda: f"objects whose color {_pick(rng, _EQUAL)} {sc.objs[_pick(rng, refs)][0]}")
+            forms.append(lambda: f"objects whose color {_pick(rng, EQUAL_WORDS)} {sc.objs[_pick(rng, refs)][0]}")
         others = [i for i in sorted(sc.objs) if i not in want and sc.name_unique(i)]
         diff_refs = [i for i in others if {j for j in sc.objs if sc.objs[j][1] != sc.objs[i][1]} == want]
         if diff_refs:
-            forms.append(lambda: f"objects whose color {_pick(rng, _DIFFERENT)} {sc.objs[_pick(rng, diff_refs)][0]}")
+            forms.append(lambda: f"objects whose color {_pick(rng, DIFF_WORDS)} {sc.objs[_pick(rng, diff_refs)][0]}")
     if len(names) == 1:
         (n,) = names
         if sc.with_name(n) == want:
@@ -119,11 +120,11 @@ def _object_set(sc: _Scene, ids: list[int], rng: np.random.Generator) -> str | N
 
 
 def _pattern_sentence(objs: str, pattern: str, rng: np.random.Generator) -> str:
-    verb, prep = _pick(rng, _PUT), _pick(rng, _PREP)
+    verb, prep = _pick(rng, PUT), _pick(rng, PREP)
     return _pick(rng, (
         f"{verb} {objs} {prep} a {pattern} pattern",
         f"{verb} a {pattern} pattern using {objs}",
-        f"Select {objs}, and {_pick(rng, _PUT)} them {_pick(rng, _PREP)} a {pattern} pattern",
+        f"Select {objs}, and {_pick(rng, PUT)} them {_pick(rng, PREP)} a {pattern} pattern",
     ))
 
 
@@ -131,13 +132,13 @@ def _pair(sc: _Scene, a: int, b: int, words: tuple[str, ...], rng: np.random.Gen
     da, db = sc.desc(a), sc.desc(b)
     if da is None or db is None:
         return None
-    return f"{_pick(rng, _PUT)} {da} {_pick(rng, words)} {db}"
+    return f"{_pick(rng, PUT)} {da} {_pick(rng, words)} {db}"
 
 
 def _goal_sentences(sc: _Scene, g: dict, rng: np.random.Generator) -> list[str] | None:
     p, ids = g["pattern"], [int(i) for i in g["objects"]]
-    if p in _PAIR:
-        out = [_pair(sc, i, int(g["anchor"]), _PAIR[p], rng) for i in ids]
+    if p in PAIR_WORDS:
+        out = [_pair(sc, i, int(g["anchor"]), PAIR_WORDS[p], rng) for i in ids]
         return None if None in out else out
     if p == "tower":
         out = []
@@ -179,7 +180,7 @@ def peer_instruction(task: Task, rng: np.random.Generator) -> str | None:
     order = rng.permutation(len(sentences))
     text = sentences[order[0]]
     for k in order[1:]:
-        text += _pick(rng, _CONNECT) + sentences[k]
+        text += _pick(rng, CONNECTIVES) + sentences[k]
     return text
 
 
