@@ -26,6 +26,7 @@ __all__ = [
     "polygons",
     "inside_workspace",
     "lens_area",
+    "overlap_pairs",
     "overlapping",
     "colliding",
     "colliding_near",
@@ -224,3 +225,22 @@ def lens_area(r1: float, r2: float, d: float) -> float:
     a2 = r2 * r2 * math.acos(max(-1.0, min(1.0, (d * d + r2 * r2 - r1 * r1) / (2 * d * r2))))
     k = 0.5 * math.sqrt(max(0.0, (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2)))
     return a1 + a2 - k
+
+
+def overlap_pairs(polys: np.ndarray, discs: np.ndarray, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pairs ``a < b`` of footprints that meet, and the area each pair shares (m²).
+
+    ``polys`` is an object array of polygons, ``discs`` each one's true circle
+    radius (m, 0 for a non-cylinder) and ``xy`` its ``(n, 2)`` centre. Two
+    cylinders are judged on their circles (:func:`lens_area`), as the validator
+    judges them, so cylinders in contact share nothing. An R-tree finds the
+    candidate pairs, so the cost is about n log n.
+    """
+    polys = np.asarray(polys, dtype=object)
+    a, b = STRtree(polys).query(polys, predicate="intersects")
+    keep = a < b
+    a, b = a[keep], b[keep]
+    areas = np.array(shapely.area(shapely.intersection(polys[a], polys[b])), dtype=float) if len(a) else np.empty(0)
+    for k in np.flatnonzero((discs[a] > 0) & (discs[b] > 0)):
+        areas[k] = lens_area(float(discs[a[k]]), float(discs[b[k]]), float(np.hypot(*(xy[a[k]] - xy[b[k]]))))
+    return a, b, areas

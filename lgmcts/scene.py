@@ -56,27 +56,16 @@ def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, f
 
 def _refuse_start_overlaps(spec: SceneSpec, on: tuple[int, ...], polys: np.ndarray) -> None:
     """Raise :class:`InputError` when two table-level footprints share more than
-    :data:`lgmcts.limits.START_OVERLAP_AREA` m^2. Touching is legal.
-
-    An R-tree finds the candidate pairs, so the cost is about n log n.
+    :data:`lgmcts.limits.START_OVERLAP_AREA` m^2 (:func:`geometry.overlap_pairs`).
+    Touching is legal.
     """
     table = np.flatnonzero(np.asarray(on) == TABLE)
     if len(table) < 2:
         return
-    tab_polys = np.asarray(polys, dtype=object)[table]
-    tree = shapely.STRtree(tab_polys)
-    a, b = tree.query(tab_polys, predicate="intersects")
-    keep = a < b
-    a, b = a[keep], b[keep]
-    if not len(a):
-        return
-    areas = np.array(shapely.area(shapely.intersection(tab_polys[a], tab_polys[b])), dtype=float)
-    # Two cylinders are judged on their true circles, as the validator does.
     objs = [spec.objects[k] for k in table]
     disc = np.array([o.shape.radius if o.shape.type == "cylinder" else 0.0 for o in objs], dtype=float)
     xy = np.array([o.pose[:2] if o.pose is not None else (0.0, 0.0) for o in objs], dtype=float)
-    for k in np.flatnonzero((disc[a] > 0) & (disc[b] > 0)):
-        areas[k] = geo.lens_area(float(disc[a[k]]), float(disc[b[k]]), float(np.hypot(*(xy[a[k]] - xy[b[k]]))))
+    a, b, areas = geo.overlap_pairs(np.asarray(polys, dtype=object)[table], disc, xy)
     bad = np.flatnonzero(areas > limits.START_OVERLAP_AREA)
     if len(bad):
         k = bad[0]

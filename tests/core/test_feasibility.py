@@ -122,3 +122,25 @@ def test_precheck_never_refuses_a_case_built_from_a_real_arrangement(seed):
 
     case = random_case(seed)
     precheck(Scene.from_spec(case.scene), case.goals)
+
+
+def test_cylinder_pose_goals_in_contact_are_not_refused():
+    """Touching pose targets are legal (the validator judges cylinders on their
+    circles), so the pre-check must not call them infeasible at any yaw or bearing,
+    while a real overlap of the circles is still refused."""
+    import math
+
+    r = 0.0375
+    objs = [{"id": i + 1, "name": "disc", "color": "red", "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+             "pose": [0.1, 0.1 + 0.1 * i, 0.0], "on": None} for i in range(2)]
+    sc = Scene.from_spec(parse_scene({"workspace": {"x": [0, 0.5], "y": [0, 0.5]}, "objects": objs}))
+    for k in range(40):
+        th = k * math.pi / 80
+        for yaw in (0.0, 0.07, 0.13):
+            target = [0.25 + 2 * r * math.cos(th), 0.25 + 2 * r * math.sin(th), yaw]
+            precheck(sc, parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},
+                                                {"pattern": "pose", "objects": [2], "pose": target}]}))
+    overlap = [0.25 + 1.9 * r, 0.25, 0.0]
+    with pytest.raises(InputError, match="objects 1 and 2 have pose goals"):
+        precheck(sc, parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},
+                                            {"pattern": "pose", "objects": [2], "pose": overlap}]}))
