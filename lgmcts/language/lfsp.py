@@ -23,7 +23,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..formats import Action, PlanSpec, SceneSpec
-from .llm import LLMOptions, ask_validated, extract_json
+from .llm import LLMOptions, answer_items, ask_validated
 from .matcher import pattern_infos
 
 __all__ = ["plan_lfsp", "lfsp_messages", "lfsp_schema", "validate_actions", "scene_description"]
@@ -156,15 +156,7 @@ def validate_actions(content: str | None, spec: SceneSpec) -> list[Action]:
     InputError
         The model reports that the command cannot be done.
     """
-    data = extract_json(content)
-    if not isinstance(data, dict):
-        raise ValueError("the answer must be a JSON object with an 'actions' list")
-    acts = data.get("actions")
-    if data.get("error") and not acts:
-        reason = " ".join(str(data["error"]).split())[:200]
-        raise InputError(f"the language model could not plan the command: {reason}")
-    if not isinstance(acts, list) or not acts:
-        raise ValueError("the answer must have a non-empty 'actions' list")
+    acts = answer_items(content, "actions", "plan")
     ids = {o.id for o in spec.objects}
     w = spec.workspace
     out = []

@@ -205,6 +205,26 @@ def extract_json(content: str | None) -> Any:
     raise ValueError(f"the answer is not valid JSON ({first.msg} at position {first.pos})")
 
 
+def answer_items(content: str | None, key: str, doing: str) -> list:
+    """The non-empty list under ``key`` of an answer that is a JSON object.
+
+    Raises ``ValueError`` (sent back to the model) when the answer has no such
+    list, and :class:`InputError` when the model reports instead, under
+    ``"error"``, that it cannot ``doing`` the command.
+    """
+    data = extract_json(content)
+    if not isinstance(data, dict):
+        article = "an" if key[0] in "aeiou" else "a"
+        raise ValueError(f"the answer must be a JSON object with {article} '{key}' list")
+    items = data.get(key)
+    if data.get("error") and not items:
+        reason = " ".join(str(data["error"]).split())[:200]
+        raise InputError(f"the language model could not {doing} the command: {reason}")
+    if not isinstance(items, list) or not items:
+        raise ValueError(f"the answer must have a non-empty '{key}' list")
+    return items
+
+
 def validate_answer(content: str | None, spec: SceneSpec, infos: dict[str, PatternInfo] | None = None) -> GoalSpec:
     """Check one answer against the schema and the scene.
 
@@ -217,15 +237,7 @@ def validate_answer(content: str | None, spec: SceneSpec, infos: dict[str, Patte
         The model itself reports that the command cannot be parsed.
     """
     infos = pattern_infos() if infos is None else infos
-    data = extract_json(content)
-    if not isinstance(data, dict):
-        raise ValueError("the answer must be a JSON object with a 'goals' list")
-    goals = data.get("goals")
-    if data.get("error") and not goals:
-        reason = " ".join(str(data["error"]).split())[:200]
-        raise InputError(f"the language model could not parse the command: {reason}")
-    if not isinstance(goals, list) or not goals:
-        raise ValueError("the answer must have a non-empty 'goals' list")
+    goals = answer_items(content, "goals", "parse")
     ids = {o.id for o in spec.objects}
     clean = []
     for k, g in enumerate(goals):
