@@ -21,7 +21,7 @@ from . import limits
 from .errors import InputError
 from .formats import ObjectSpec, SceneSpec, Workspace
 
-__all__ = ["Scene", "State", "TABLE", "replay"]
+__all__ = ["Scene", "State", "TABLE", "advance", "replay"]
 
 #: Support index meaning "on the table".
 TABLE = -1
@@ -219,11 +219,15 @@ class State:
         poses = self.poses.copy()
         poses[i] = pose
         poses.setflags(write=False)
-        sup = list(self.on)
-        sup[i] = on
+        if on == self.on[i]:
+            sup = self.on
+        else:
+            sup = list(self.on)
+            sup[i] = on
+            sup = tuple(sup)
         polys = list(self._polys)
         polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i]))
-        out = State(self.scene, poses, tuple(sup), tuple(polys))
+        out = State(self.scene, poses, sup, tuple(polys))
         if on == self.on[i]:
             # Same supports: what depends on them alone carries over.
             for key in ("holding", "table_level"):
@@ -279,27 +283,62 @@ class State:
         return out
 
 
-def replay(scene: Scene, actions: Sequence[Any]) -> list[State]:
-    """The states a plan passes through: before the first action and after
-    each one (``len(actions) + 1``). The one replay of the package: the
-    validator, polishing, the pose fields, the pictures and the service's
-    viewer all step through :meth:`State.moved` this way.
+def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
+    """Why a target pose is unusable before any geometry, or ``None``.
+
+    Non-finite values, coordinates beyond :data:`lgmcts.limits.MAX_COORD` and
+    yaws beyond :data:`lgmcts.limits.MAX_ANGLE` are refused (the plan format
+    refuses them too; this holds for plans built in code), so that footprints
+    are only ever built at magnitudes where they keep their shape.
+    """
+    if pose.shape != (3,) or not np.isfinite(pose).all():
+        return "has a non-finite target pose"
+    if abs(pose[0]) > limits.MAX_COORD or abs(pose[1]) > limits.MAX_COORD or abs(pose[2]) > limits.MAX_ANGLE:
+        return "placed outside the workspace (target beyond the coordinate bounds)"
+    return None
+
+
+def advance(state: State, number: int, action: Any) -> State:
+    """The state after ``action`` (the plan's action ``number``, from 1).
+
+    The one step of every replay: :func:`replay`, the validator, polishing,
+    the pose fields, the pictures and the service's viewer all go through it.
+    Only what makes the action meaningless is refused here; an illegal but
+    well-formed action (picking a covered object, an overlap) is taken as
+    given, for the validator to judge.
 
     Raises
     ------
     InputError
-        When an action names an object the scene does not have, or places an
-        object on itself. Illegal but well-formed actions (picking a covered
-        object) are replayed as given: the validator judges them.
+        When the action names an object or support the scene does not have,
+        places an object on itself, or has a non-finite or out-of-bounds
+        target pose; the message starts with ``"action <number>: "``.
+    """
+    scene = state.scene
+    if action.object not in scene.index:
+        raise InputError(f"action {number}: unknown object id {action.object}")
+    if action.on is not None and action.on not in scene.index:
+        raise InputError(f"action {number}: object {action.object} placed on unknown object id {action.on}")
+    if action.on == action.object:
+        raise InputError(f"action {number}: object {action.object} placed on itself")
+    pose = np.asarray(action.to, dtype=float)
+    bad = _pose_out_of_bounds(pose)
+    if bad is not None:
+        raise InputError(f"action {number}: object {action.object} {bad}")
+    sup = TABLE if action.on is None else scene.index[action.on]
+    return state.moved(scene.index[action.object], pose, sup)
+
+
+def replay(scene: Scene, actions: Sequence[Any]) -> list[State]:
+    """The states a plan passes through: before the first action and after
+    each one (``len(actions) + 1``), each from :func:`advance`.
+
+    Raises
+    ------
+    InputError
+        At the first action :func:`advance` refuses.
     """
     states = [scene.initial]
-    for k, a in enumerate(actions):
-        if a.object not in scene.index:
-            raise InputError(f"action {k + 1} moves unknown object id {a.object}")
-        if a.on is not None and a.on not in scene.index:
-            raise InputError(f"action {k + 1} places object {a.object} on unknown object id {a.on}")
-        if a.on == a.object:
-            raise InputError(f"action {k + 1} places object {a.object} on itself")
-        sup = TABLE if a.on is None else scene.index[a.on]
-        states.append(states[-1].moved(scene.index[a.object], np.asarray(a.to, dtype=float), sup))
+    for k, a in enumerate(actions, start=1):
+        states.append(advance(states[-1], k, a))
     return states

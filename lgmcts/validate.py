@@ -5,7 +5,8 @@ and judges the final state against every goal. Each pattern's own rule is the
 ``accept`` method of its module in :mod:`lgmcts.patterns` (with its fit, in
 the module's "finished arrangement" section, written apart from its sampler);
 this module applies the rules common to all goals and the optional region,
-size and facing. It shares no code with the search.
+size and facing. It steps through a plan with :func:`lgmcts.scene.advance`,
+the one replay step of the package, and shares no other code with the search.
 
 Rules (tolerance ``TOL = 0.015`` m unless said otherwise):
 
@@ -50,7 +51,6 @@ import numpy as np
 import shapely
 
 from . import geometry as geo
-from . import limits
 from .errors import InputError
 from .formats import (
     PATTERN_NAMES,
@@ -69,7 +69,7 @@ from .patterns import registry
 from .patterns.base import wrap_off
 from .patterns.circle import fit_circle
 from .patterns.line import line_residuals
-from .scene import TABLE, Scene
+from .scene import TABLE, Scene, State, advance
 from .tolerances import (
     MAX_RELATION_DIST,
     MIN_CIRCLE_RADIUS,
@@ -90,22 +90,6 @@ _REEXPORTED = (fit_circle, line_residuals, MAX_RELATION_DIST, MIN_CIRCLE_RADIUS,
 #: A footprint vertex this far (m) outside the workspace is a violation
 #: whatever the area outside.
 EDGE_TOL = 1e-3
-
-
-def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
-    """Why a target pose is unacceptable before any geometry, or ``None``.
-
-    Non-finite values, coordinates beyond :data:`lgmcts.limits.MAX_COORD` and
-    yaws beyond :data:`lgmcts.limits.MAX_ANGLE` are refused here (the plan
-    format refuses them too; this holds for plans built in code), so that the
-    polygon tests only ever run at magnitudes where a footprint keeps its
-    shape.
-    """
-    if pose.shape != (3,) or not np.isfinite(pose).all():
-        return "has a non-finite target pose"
-    if abs(pose[0]) > limits.MAX_COORD or abs(pose[1]) > limits.MAX_COORD or abs(pose[2]) > limits.MAX_ANGLE:
-        return "placed outside the workspace (target beyond the coordinate bounds)"
-    return None
 
 
 #: ``rule(goal, scene, poses, on)``: ``None`` when the goal holds, else why not.
@@ -216,6 +200,35 @@ def _shape_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int,
 # ---------------------------------------------------------------- replay
 
 
+def _overlaps(state: State, i: int, pose: np.ndarray, poly, step: int) -> list[str]:
+    """Why placing object ``i`` on the table at ``pose`` (footprint ``poly``)
+    in ``state`` overlaps another table-level footprint, if it does."""
+    sc = state.scene
+    poses = state.poses
+    # Only footprints whose circumscribed circles meet can overlap.
+    reach = sc.radii[i] + sc.radii + 1e-9
+    close = np.hypot(poses[:, 0] - pose[0], poses[:, 1] - pose[1]) <= reach
+    close[i] = False
+    others = [int(k) for k in np.flatnonzero(close) if state.on[k] == TABLE]
+    if not others:
+        return []
+    arr = np.empty(len(others), dtype=object)
+    arr[:] = [state.polys[k] for k in others]
+    touching = np.flatnonzero(shapely.intersects(poly, arr))
+    if not len(touching):
+        return []
+    areas = np.asarray(shapely.area(shapely.intersection(poly, arr[touching])), dtype=float)
+    if sc.discs[i] > 0:
+        # Cylinder against cylinder: the circles' lens, not the polygons'.
+        for t_k, t in enumerate(touching):
+            k = others[int(t)]
+            if sc.discs[k] > 0:
+                d = math.hypot(*(poses[k, :2] - pose[:2]))
+                areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
+    return [f"action {step}: object {sc.ids[i]} overlaps object {sc.ids[others[int(t)]]} by {area * 1e4:.2f} cm^2"
+            for t, area in zip(touching, areas) if area > OVERLAP_AREA]
+
+
 def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list | str, plan: PlanSpec | dict | str) -> Verdict:
     """Replay ``plan`` on ``scene`` and judge it against ``goals``.
 
@@ -228,35 +241,29 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
     pl = load_plan(plan)
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
-    poses = np.array(sc.initial.poses, dtype=float)
-    # Supports as an array: each action's tests are vectorised over the
-    # objects, so a long plan on a large scene replays in seconds.
-    on = np.array(sc.initial.on, dtype=np.int64)
-    index = np.arange(sc.n)
-    polys = list(sc.initial.polys)
+    state = sc.initial
     reasons: list[str] = []
     for step, act in enumerate(pl.actions, start=1):
-        if act.object not in sc.index:
-            reasons.append(f"action {step}: unknown object {act.object}")
+        try:
+            # The shared step; it refuses only meaningless actions (unknown
+            # ids, an object on itself, a pose beyond the coordinate bounds,
+            # where geometry means nothing), which end the replay.
+            after = advance(state, step, act)
+        except InputError as e:
+            reasons.append(str(e))
             break
         i = sc.index[act.object]
-        above = np.flatnonzero(on == i)
-        if len(above):
-            reasons.append(f"action {step}: object {act.object} is not clear (object {sc.ids[above[0]]} rests on it)")
-        new_pose = np.asarray(act.to, dtype=float)
-        bad = _pose_out_of_bounds(new_pose)
-        if bad is not None:
-            # Bounds first: geometry at such magnitudes means nothing (a
-            # footprint at x = 1e20 collapses to a point of zero area).
-            reasons.append(f"action {step}: object {act.object} {bad}")
-            break
-        verts = sc.footprint(i, new_pose)
-        poly = shapely.polygons(verts)
+        on = state.on
+        if i in on:
+            reasons.append(f"action {step}: object {act.object} is not clear (object {sc.ids[on.index(i)]} rests on it)")
+        new_pose = after.poses[i]
+        poly = after.polys[i]
         if act.on is None:
             # Every vertex in the box means the convex footprint is inside. A
             # centre off the workspace or a vertex beyond EDGE_TOL outside is
             # always a violation; a smaller excursion is one when the area
             # outside exceeds OVERLAP_AREA.
+            verts = shapely.get_coordinates(poly)
             x, y = verts[:, 0], verts[:, 1]
             excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
             centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
@@ -264,50 +271,17 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
                 excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA
             ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
-            # Only footprints whose circumscribed circles meet can overlap.
-            reach = sc.radii[i] + sc.radii + 1e-9
-            close = np.hypot(poses[:, 0] - new_pose[0], poses[:, 1] - new_pose[1]) <= reach
-            others = [int(k) for k in np.flatnonzero(close & (on == TABLE) & (index != i))]
-            if others:
-                arr = np.empty(len(others), dtype=object)
-                arr[:] = [polys[k] for k in others]
-                touching = np.flatnonzero(shapely.intersects(poly, arr))
-                areas = shapely.area(shapely.intersection(poly, arr[touching])) if len(touching) else []
-                if len(touching) and sc.discs[i] > 0:
-                    # Cylinder against cylinder: the circles' lens, not the polygons'.
-                    areas = np.asarray(areas, dtype=float)
-                    for t_k, t in enumerate(touching):
-                        k = others[int(t)]
-                        if sc.discs[k] > 0:
-                            d = math.hypot(*(poses[k, :2] - new_pose[:2]))
-                            areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
-                for t, area in zip(touching, areas):
-                    if area > OVERLAP_AREA:
-                        k = others[int(t)]
-                        reasons.append(
-                            f"action {step}: object {act.object} overlaps object {sc.ids[k]} by {area * 1e4:.2f} cm^2"
-                        )
-            new_on = TABLE
+            reasons.extend(_overlaps(state, i, new_pose, poly, step))
         else:
-            if act.on not in sc.index:
-                reasons.append(f"action {step}: unknown support {act.on}")
-                break
             j = sc.index[act.on]
-            if j == i:
-                reasons.append(f"action {step}: object {act.object} placed on itself")
-                break
-            if np.any((on == j) & (index != i)):
+            if on.count(j) > (on[i] == j):
                 reasons.append(f"action {step}: support {act.on} is not clear")
-            if not shapely.contains_xy(polys[j], new_pose[0], new_pose[1]):
+            if not shapely.contains_xy(state.polys[j], new_pose[0], new_pose[1]):
                 reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
-            new_on = j
-        poses[i] = new_pose
-        on[i] = new_on
-        polys[i] = poly
+        state = after
     results = []
-    final_on = tuple(int(x) for x in on)
     for k, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, final_on)
+        why = goal_satisfied(g, sc, state.poses, state.on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {k} ({g.pattern} {g.objects}): {why}")

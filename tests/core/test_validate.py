@@ -152,3 +152,39 @@ def test_lens_area_matches_polygons():
         a = shapely.Point(0, 0).buffer(r1, 512)
         b = shapely.Point(d, 0).buffer(r2, 512)
         assert _lens_area(r1, r2, d) == pytest.approx(a.intersection(b).area, rel=1e-3, abs=1e-9)
+
+
+def test_validator_steps_through_the_shared_replay(monkeypatch):
+    # The validator's states are scene.advance's: a meaningless action is
+    # refused with advance's own message and ends the replay, and every step
+    # of a legal plan goes through advance once.
+    import lgmcts.scene as scene_mod
+    import lgmcts.validate as validate_mod
+    from lgmcts.errors import InputError
+    from lgmcts.formats import load_scene
+    from lgmcts.scene import Scene, advance, replay
+
+    sc = Scene.from_spec(load_scene(ROW))
+    g = goals({"pattern": "line", "objects": [1, 2, 3]})
+    bad = plan(act(1, -0.3, 0.0), act(99, 0.0, 0.0), act(2, 0.0, 0.0))
+    with pytest.raises(InputError) as err:
+        replay(sc, load_plan_actions(bad))
+    v = check(ROW, g, bad)
+    assert not v.valid and v.reasons[0] == str(err.value) == "action 2: unknown object id 99"
+    calls = []
+
+    def counting(state, number, action):
+        calls.append(number)
+        return advance(state, number, action)
+
+    monkeypatch.setattr(validate_mod, "advance", counting)
+    good = plan(act(1, -0.3, 0.0), act(2, 0.0, 0.0), act(3, 0.3, 0.0))
+    assert check(ROW, g, good).valid and calls == [1, 2, 3]
+    final = replay(sc, load_plan_actions(good))[-1]
+    assert scene_mod.TABLE == final.on[0] and final.poses[1].tolist() == [0.0, 0.0, 0.0]
+
+
+def load_plan_actions(p):
+    from lgmcts.formats import load_plan
+
+    return list(load_plan(p).actions)
