@@ -38,7 +38,7 @@ from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
-from .shapes import SIZES, normalise, stack_roles, take_params
+from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, normalise, stack_roles, take_params
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -399,6 +399,21 @@ class _Parser:
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         m = self.matcher.match(phrase, allowed=allowed)
+        if not m and m.reason != "no arrangement is named" and "'" not in m.reason:
+            # Words before the first word of a pattern key are the verb and its
+            # company ("balance ... on", "should end up below", "put down left
+            # of"): match from that word on.
+            pw = phrase.split()
+            first = next((k for k, w in enumerate(pw) if (_stem(w) in self.key_vocab and _stem(w) not in FILLERS
+                                                          and w not in STOPWORDS) or w in _DIR_WORDS), None)
+            if first is not None and first > 0:
+                while first > 0 and pw[first - 1] in ("to", "the", "on", "in", "at", "of", "a", "an"):
+                    first -= 1
+                if first > 0:
+                    m2 = self.matcher.match(" ".join(pw[first:]), allowed=allowed)
+                    if m2:
+                        m = m2
+                        phrase = " ".join(pw[first:])
         if m and m.pattern in RELATIONS:
             # Directions compose: the direction words of the phrase fix the
             # relation exactly ("at the back right of" is right_behind even
@@ -642,10 +657,17 @@ class _Parser:
         vertical = None
         if len(groups) == 2 and roles is None:
             lo, hi = gaps[1]
-            between = tuple(w for w in words[lo:hi] if w not in _VERT_SKIP and w != "the")
+            rel_words_, _ = self._word_kinds()
+            # Between the two objects: the vertical words, whatever verb goes
+            # with them ("rest A on B", "A should end up below B"), unless a
+            # word there names a direction or an arrangement.
+            between = tuple(w for w in words[lo:hi] if w in _VERT_WORDS or w in ("top", "of", "to", "neath"))
+            if any(_stem(w) in rel_words_ or w in _DIR_WORDS for w in words[lo:hi]):
+                between = ()
             if between in _VERT_ON or between in _VERT_UNDER:
                 others = [w for w in meaningful if w not in _VERT_WORDS and w not in _VERT_SKIP
-                          and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")]
+                          and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")
+                          and (self._free_word(w) or _stem(w) in rel_words_ or w in _DIR_WORDS)]
                 if not others:
                     vertical = "on" if between in _VERT_ON else "under"
                     phrase_words = ["stack"]
@@ -923,6 +945,40 @@ class _Parser:
         return p is not None
 
     # ------------------------------------------------------------ the command
+    def _content_word(self, w: str) -> bool:
+        """Whether ``w`` may carry part of a goal: an object, colour or id word, a
+        pattern or direction word, a place, size or order word, a number."""
+        st = _stem(w)
+        if _is_number(w) or w.startswith("#"):
+            return True
+        if not hasattr(self, "_cat_words"):
+            self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
+        if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
+            return True
+        if (st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _ASIDE_KEEP:
+            return True
+        return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+
+    def _without_asides(self, clause: tuple[str, ...]) -> tuple[str, ...]:
+        """``clause`` without its comma-separated asides: a part that names no
+        object, pattern, direction, place, size or order ("ok robot", "here is
+        the plan", "if it is not too much trouble", "could you do that")."""
+        parts: list[list[str]] = [[]]
+        for w in clause:
+            if w == ",":
+                parts.append([])
+            else:
+                parts[-1].append(w)
+        if len(parts) == 1 and not any(self._content_word(w) for w in parts[0]):
+            return ()
+        kept = [p for p in parts if any(self._content_word(w) for w in p)]
+        if len(kept) == len(parts):
+            return clause
+        out: list[str] = []
+        for p in kept:
+            out.extend(([","] if out else []) + p)
+        return tuple(out)
+
     def command(self, text: str) -> GoalSpec:
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
@@ -931,6 +987,10 @@ class _Parser:
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
                       r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
+        question = _QUESTION.match(text)
+        if question is not None and not _ASKS_TO_ACT.match(text):
+            raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
+        text = _relation_words(text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
@@ -945,7 +1005,11 @@ class _Parser:
         if dinner is not None:
             return self._finish(dinner)
         pending: list[_Pending] = []
-        for clause in split_clauses(words):
+        clauses = split_clauses(words)
+        kept = [c for c in (self._without_asides(c) for c in clauses) if c]
+        if clauses and not kept:
+            raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
+        for clause in kept:
             mentions = find_mentions(self.vocab, clause, self.key_vocab)
             for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
                 part_mentions = find_mentions(self.vocab, part, self.key_vocab)
@@ -1229,7 +1293,64 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
 
 
 _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
-              "rear": (0, 1)}
+              "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
+
+#: Words that keep a comma-separated part of a command from being an aside.
+_ASIDE_KEEP = frozenset({"order", "first", "then", "last", "next", "top", "bottom", "base", "middle", "between",
+                         "each", "other", "one", "ones", "former", "latter", "both", "all", "every", "except",
+                         "table", "on", "onto", "under", "below", "above", "beneath",
+                         "underneath", "atop", "upon"})
+
+#: A question about the scene ("is the knife left of the plate?"), not a request.
+_QUESTION = re.compile(r"(?i)^\s*(is|are|was|were|does|do|did|which|what|what's|where|where's|why|who|whose|"
+                       r"how many|how much|how's|how is|how are)\b.*\?\s*$")
+#: Questions that ask for an action ("do you mind ...", "is it possible to ...").
+_ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|are you able|do you (mind|think you could)|what about|how about)\b")
+
+_COMPASS = {"north": "back", "south": "front", "east": "right", "west": "left",
+            "northern": "back", "southern": "front", "eastern": "right", "western": "left"}
+_COMPASS_REL = re.compile(
+    r"(?i)\b(?:to the |on the |at the )?(north|south|east|west)(?:ern)?(?:[- ]?(east|west)(?:ern)?)?"
+    r"(?: side| end)? of\b")
+_NEAR_FAR = (
+    (re.compile(r"(?i)\b(?:on |to )?the far side of\b"), "behind"),
+    (re.compile(r"(?i)\b(?:on |to )?the near side of\b"), "in front of"),
+    (re.compile(r"(?i)\b(?:further|farther) (?:back|away(?: from (?:me|us|you|the viewer|the camera))?) than\b"),
+     "behind"),
+    (re.compile(r"(?i)\b(?:nearer|closer)(?: to (?:me|us|you|the viewer|the camera|the front))? than\b"),
+     "in front of"),
+    (re.compile(r"(?i)\b(?:further|farther) (?:forward|to the front) than\b"), "in front of"),
+    (re.compile(r"(?i)\bdiagonally (?=(?:behind|in front|forward|back|ahead|to the|left|right|up|down))"), ""),
+)
+#: "behind the cup and to its right": one diagonal relation to one anchor.
+_AND_ITS_SIDE = re.compile(
+    r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a )?[^,;.!?]+?) and "
+    r"(?:off |also |just )?(?:to |on )?(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?\b")
+
+
+def _relation_words(text: str) -> str:
+    """Directions said with compass points, near and far, "diagonally" or a
+    second side given by "its" rewritten as the relation phrases of the
+    pattern keys ("west of" -> "left of", "south-east of" -> "front right
+    of", "further back than" -> "behind", "behind the cup and to its right"
+    -> "behind and to the right of the cup")."""
+
+    def compass(m: re.Match) -> str:
+        a, b = _COMPASS[m.group(1).lower()], m.group(2)
+        if b is None:
+            return {"back": "behind", "front": "in front of", "right": "to the right of", "left": "to the left of"}[a]
+        return f"{a} {_COMPASS[b.lower()]} of"
+
+    text = _COMPASS_REL.sub(compass, text)
+    for pat, rep in _NEAR_FAR:
+        text = pat.sub(rep, text)
+
+    def side(m: re.Match) -> str:
+        rel, anchor, s2 = m.group(1).lower(), m.group(2), m.group(3).lower()
+        first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
+        return f"{first} {s2} of {anchor}"
+
+    return _AND_ITS_SIDE.sub(side, text)
 
 
 def _direction(phrase: str) -> str | None:
