@@ -37,7 +37,7 @@ from dataclasses import dataclass, field, replace
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
-from .matcher import FILLERS, STOPWORDS, PatternMatcher, _stem
+from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, normalise, stack_roles, take_params
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
@@ -704,7 +704,7 @@ class _Parser:
         anchored = frozenset(n for n in usable if infos[n].anchored)
         rel_words, free_words = self._word_kinds()
         rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
-        free_pos = [k for k in rest if _stem(words[k]) in free_words]
+        free_pos = [k for k in rest if any(f in free_words for f in _forms(words[k]))]
         sels = [self._select_group(g) for g in groups]
         if re.search(r"\b(another|second|new|separate|different)\b", phrase):
             # "another line": a second arrangement of objects no other goal uses.
@@ -1223,6 +1223,14 @@ def _chain_towers(goals: list[dict]) -> list[dict]:
     (the consistency checks refuse them).
     """
     goals = [dict(g) for g in goals]
+    below: set[tuple[int, int]] = set()
+    for g in goals:
+        if g["pattern"] == "tower" and not g.get("unordered"):
+            objs = g["objects"]
+            below.update((objs[i], objs[j]) for i in range(len(objs)) for j in range(i + 1, len(objs)))
+    loop = next(((a, b) for a, b in below if (b, a) in below), None)
+    if loop is not None:
+        raise InputError(f"contradiction: the stacking puts object {loop[0]} both below and above object {loop[1]}")
     merged = True
     while merged:
         merged = False
@@ -1322,6 +1330,8 @@ _NEAR_FAR = (
     (re.compile(r"(?i)\b(?:further|farther) (?:forward|to the front) than\b"), "in front of"),
     (re.compile(r"(?i)\bdiagonally (?=(?:behind|in front|forward|back|ahead|to the|left|right|up|down))"), ""),
 )
+#: "any of the blocks", "either of the mugs": one of them, whichever.
+_ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|these)\b")
 #: "behind the cup and to its right": one diagonal relation to one anchor.
 _AND_ITS_SIDE = re.compile(
     r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a )?[^,;.!?]+?) and "
@@ -1341,6 +1351,7 @@ def _relation_words(text: str) -> str:
             return {"back": "behind", "front": "in front of", "right": "to the right of", "left": "to the left of"}[a]
         return f"{a} {_COMPASS[b.lower()]} of"
 
+    text = _ANY_OF.sub("one of the", text)
     text = _COMPASS_REL.sub(compass, text)
     for pat, rep in _NEAR_FAR:
         text = pat.sub(rep, text)

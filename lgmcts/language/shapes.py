@@ -313,11 +313,19 @@ _ROLES = tuple(
             ("between them", "middle"), ("goes on it", "next"), ("goes on that", "next"), ("goes next", "next"),
             ("goes above", "next"), ("goes on top of it", "next"), ("goes on top of that", "next"),
             ("bottom", "bottom"), ("top", "top"), ("lowest", "bottom"), ("highest", "top"),
-            ("goes in between", "middle"), ("goes in the middle", "middle"),
+            ("goes in between", "middle"), ("goes in the middle", "middle"), ("at the summit", "top"),
+            ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
+            ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
+            ("goes down first", "bottom"), ("goes down last", "top"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
 )
+
+
+#: What "on top of" / "at the bottom of" may name and still be a place in the stack.
+_OF_STACK = frozenset({("it",), ("that",), ("them",), ("those",), ("the", "stack"), ("the", "tower"), ("the", "pile"),
+                       ("the", "heap"), ("everything",), ("all",)})
 
 
 def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
@@ -338,5 +346,9 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
         if words[j : j + len(seq)] == seq:
             if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
                 return None  # "top to bottom", "bottom up": an order of the list, not a role
-            return role, j + len(seq)
+            end = j + len(seq)
+            if words[end : end + 1] == ("of",) and words[end + 1 : end + 2] not in _OF_STACK \
+                    and words[end + 1 : end + 3] not in _OF_STACK:
+                return None  # "on top of the fork": a relation to another object, not a place in a stack
+            return role, end
     return None
