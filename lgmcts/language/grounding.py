@@ -702,7 +702,7 @@ def _mention_at(
         # A colour followed by a word naming nothing here: "the purple giraffe".
         k = j
         while k < n and words[k] not in _COORD and words[k] not in pattern_words and k - j < 2 and words[k].isalpha():
-            if words[k] in ("to", "in", "into", "on", "of", "at", "behind", "and"):
+            if words[k] in _NOT_NOUN:
                 break
             k += 1
         coordinated = (j < n and words[j] in _COORD) or (i > 0 and words[i - 1] in _COORD)
@@ -717,8 +717,10 @@ def _mention_at(
             return Mention(i, j, " ".join(words[i:j]), "all", True, None, colors, color_order)
         if k == j and det == "" and not nested and not (j < n and words[j] in _COORD):
             # A bare colour standing for its object ("stack red on blue"): the
-            # one object of that colour, refused as ambiguous when there are more.
-            return Mention(i, j, " ".join(words[i:j]), "the", False, None, colors, color_order)
+            # one object of that colour; where more objects have it, the noun
+            # comes from the rest of the command ("stack the cans: green first").
+            m = Mention(i, j, " ".join(words[i:j]), "the", False, None, colors, color_order)
+            return m if len(_colour_only(vocab, m)) <= 1 else replace(m, head="elided")
         phrase = " ".join(words[i:k])
         raise InputError(f"'{phrase}' names nothing in the scene")
     else:
@@ -786,8 +788,15 @@ def _mention_at(
     return m
 
 
-def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: frozenset[str]) -> list[Mention]:
-    """Every object reference in ``words``, left to right, non-overlapping."""
+def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: frozenset[str],
+                  context: tuple[frozenset[str], ...] = ()) -> list[Mention]:
+    """Every object reference in ``words``, left to right, non-overlapping.
+
+    ``context``: the object nouns of the command's earlier clauses, latest
+    first; a bare colour with no noun in its own clause takes the first of
+    them that some object of that colour has ("stack the cans: green first,
+    then white").
+    """
     out: list[Mention] = []
     i = 0
     while i < len(words):
@@ -797,7 +806,7 @@ def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: froz
             i = m.end
         else:
             i += 1
-    return _share_heads(vocab, words, out)
+    return _share_heads(vocab, words, out, context)
 
 
 def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
@@ -805,7 +814,8 @@ def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
     return bool(between) and all(w in _COORD for w in between)
 
 
-def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Mention]) -> list[Mention]:
+def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Mention],
+                 context: tuple[frozenset[str], ...] = ()) -> list[Mention]:
     """Give elided and "one" mentions the category of a coordinated neighbour.
 
     An elided mention ("the red" in "the red and the blue blocks") takes the
@@ -831,8 +841,14 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             m = mentions[k]
             if not m.head:
                 continue
-            later = [mentions[x] for x in g[pos + 1 :] if not mentions[x].head and mentions[x].names is not None]
-            earlier = [mentions[x] for x in reversed(g[:pos]) if not mentions[x].head and mentions[x].names is not None]
+            # A neighbour with a noun; for a bare colour also a generic one ("the
+            # red and the white objects": every red object and every white one).
+            def nouned(x: Mention) -> bool:
+                return not x.head and (x.names is not None or (m.head == "elided" and x.plural and x.det == "all"
+                                                                and not x.ids and x.colors is not None))
+
+            later = [mentions[x] for x in g[pos + 1 :] if nouned(mentions[x])]
+            earlier = [mentions[x] for x in reversed(g[:pos]) if nouned(mentions[x])]
             order = later + earlier if m.head == "elided" else earlier + later
             if not order and m.head == "one":
                 # "stack the red block on the blue one": the nearest noun before it.
@@ -844,7 +860,16 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
                 order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None] + [
                     x for x in mentions[k + 1:] if not x.head and x.names is not None]
                 order = [x for x in order if _any_match(vocab, replace(m, names=x.names))][:1]
+                if not order:
+                    order = [replace(m, names=n, head="") for n in context
+                             if _any_match(vocab, replace(m, names=n))][:1]
+                if not order and not m.plural and m.count is None and len(_colour_only(vocab, m)) == 1:
+                    # "yellow first, then orange": a colour that only one object has.
+                    order = [replace(m, names=None, head="")]
             if not order:
+                if m.head == "elided" and m.det == "the" and len(_colour_only(vocab, m)) > 1:
+                    hits = _colour_only(vocab, m)
+                    raise InputError(f"'{m.text}' is ambiguous: it matches objects {describe(vocab, hits)}")
                 if m.head == "elided":
                     raise InputError(f"'{m.text}' names nothing in the scene (no object noun goes with it)")
                 continue
@@ -861,6 +886,21 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             elif m.head == "elided":
                 out[k] = options[0]  # refused later: "nothing in the scene matches 'the red'"
     return out
+
+
+#: Words after a colour that are no noun of it ("red first", "purple as the base").
+_NOT_NOUN = frozenset({"to", "in", "into", "on", "of", "at", "behind", "and", "as", "first", "then", "last", "next",
+                       "second", "third", "goes", "go", "should", "is", "are", "be", "up", "down", "under", "below",
+                       "above", "beneath", "underneath", "with", "lowest", "highest", "bottom", "top", "base", "onto",
+                       "over", "atop", "upon", "so", "must", "will", "sits", "comes", "left", "right", "front"})
+
+
+def _colour_only(vocab: Vocabulary, m: Mention) -> list[int]:
+    """The objects with the mention's colours, of any category."""
+    try:
+        return list(candidates(vocab, replace(m, names=None, head="", same_color_as=None, excluding=(), det="all")))
+    except InputError:
+        return []
 
 
 def _any_match(vocab: Vocabulary, m: Mention) -> bool:

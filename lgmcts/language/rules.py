@@ -159,6 +159,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: Object nouns named so far, latest first ("stack the cans: green first").
+    nouns: list = field(default_factory=list)
 
 
 def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
@@ -464,9 +466,18 @@ class _Parser:
             or (self.state.header is not None and self.state.header[0] == "tower") or self.state.tower is not None
         if not towerish:
             return None, words
-        kept = [k for k in range(len(words)) if k not in drop]
-        new_pos = {k: n for n, k in enumerate(kept)}
-        return {new_pos[s]: r for s, r in roles.items()}, tuple(words[k] for k in kept)
+        # Each role phrase leaves a mark, so that the references around it do
+        # not run together ("purple as the base and orange on top").
+        out: list[str] = []
+        new_pos: dict[int, int] = {}
+        for k, w in enumerate(words):
+            if k in drop:
+                if k - 1 not in drop:
+                    out.append(_ROLE_MARK)
+                continue
+            new_pos[k] = len(out)
+            out.append(w)
+        return {new_pos[s]: r for s, r in roles.items()}, tuple(out)
 
     _DETACHED_EXCEPT = (("except", "for"), ("except",), ("excluding",), ("apart", "from"), ("other", "than"),
                         ("but", "not"), ("save", "for"), ("leaving", "out"), ("minus",))
@@ -498,7 +509,7 @@ class _Parser:
         """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
         main, sub = words[:k], words[k + n_skip :]
         text = " ".join(words)
-        mentions = find_mentions(self.vocab, main, self.key_vocab)
+        mentions = self._find(main)
         if not mentions:
             raise InputError(f"'{text}': say which object to move")
         movers: list[int | Choice] = []
@@ -527,11 +538,11 @@ class _Parser:
         for k in range(1, len(words) - 1):
             if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
                 return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
-        mentions = find_mentions(self.vocab, words, self.key_vocab)
+        mentions = self._find(words)
         role_at, reduced = self._roles(words, mentions)
         if role_at is not None:
             words = reduced
-            mentions = find_mentions(self.vocab, words, self.key_vocab)
+            mentions = self._find(words)
             if any(m.start < s < m.end for m in mentions for s in role_at):
                 # Without their role words two references ran together ("red at the
                 # bottom and blue on top" -> "red and blue"): which role is whose is lost.
@@ -541,7 +552,7 @@ class _Parser:
         if moved is not None:
             words = moved
             text = " ".join(words)
-            mentions = find_mentions(self.vocab, words, self.key_vocab)
+            mentions = self._find(words)
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
@@ -556,12 +567,12 @@ class _Parser:
                 cut = set(range(len(" ".join(words)[: sup.start()].split()),
                                 len(" ".join(words)[: sup.end()].split())))
                 words = tuple(w for k, w in enumerate(words) if k not in cut)
-                mentions = find_mentions(self.vocab, words, self.key_vocab)
+                mentions = self._find(words)
             self._order_by = order_by
             params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions}, stack=stackish)
             if words2 != words:
                 words = words2
-                mentions = find_mentions(self.vocab, words, self.key_vocab)
+                mentions = self._find(words)
                 if role_at is not None:
                     role_at = None  # positions moved; roles and places are not mixed
         for mm in mentions:
@@ -572,7 +583,7 @@ class _Parser:
         roles = [role_at.get(m.start) for m in mentions] if role_at else None
         text = " ".join(words)
         groups, gaps = _groups(words, mentions)
-        rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&")]
+        rest = [k for lo, hi in gaps for k in range(lo, hi) if words[k] not in (",", "#", "(", ")", "&", _ROLE_MARK)]
         while rest and words[rest[0]] in _LEADING:
             rest = rest[1:]
         phrase_words = [words[k] for k in rest]
@@ -945,6 +956,11 @@ class _Parser:
         return p is not None
 
     # ------------------------------------------------------------ the command
+    def _find(self, words: tuple[str, ...], key_vocab=None) -> list[Mention]:
+        """The object references of ``words``, bare colours completed by the nouns named before."""
+        return find_mentions(self.vocab, words, self.key_vocab if key_vocab is None else key_vocab,
+                             tuple(self.state.nouns))
+
     def _content_word(self, w: str) -> bool:
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
@@ -1010,14 +1026,21 @@ class _Parser:
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         for clause in kept:
-            mentions = find_mentions(self.vocab, clause, self.key_vocab)
+            mentions = self._find(clause, self.key_vocab)
             for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
-                part_mentions = find_mentions(self.vocab, part, self.key_vocab)
+                part_mentions = self._find(part, self.key_vocab)
                 for sub in _on_pairs_split(part, part_mentions):
                     while sub and sub[0] in _LEADING:
                         sub = sub[1:]
                     if sub:
                         pending.extend(self.clause(sub))
+                        try:
+                            named = self._find(sub)
+                        except InputError:
+                            named = []
+                        for mm in reversed(named):
+                            if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
+                                self.state.nouns.insert(0, mm.names)
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
         if order_by is not None and any(p.pattern == "tower" for p in pending):
@@ -1050,7 +1073,7 @@ class _Parser:
         cutlery = {"fork", "knife", "spoon", "chopstick", "chopsticks"}
         own = plates | {"bowl"} | cutlery
         named: dict[str, list[int]] = {"plate": [], "bowl": [], "cut": []}
-        for m in find_mentions(self.vocab, rest, self.key_vocab):
+        for m in self._find(rest, self.key_vocab):
             if m.names is None or not set(m.names) <= own or m.det == "pronoun":
                 return None
             got = self._select(m)
@@ -1302,6 +1325,9 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
 
 _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
               "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
+
+#: Where a stack role phrase stood once it has been read.
+_ROLE_MARK = "|"
 
 #: Words that keep a comma-separated part of a command from being an aside.
 _ASIDE_KEEP = frozenset({"order", "first", "then", "last", "next", "top", "bottom", "base", "middle", "between",
