@@ -67,7 +67,8 @@ _COMMAND_VERBS = frozenset(
 )
 #: Verbs of a selection clause: it names objects for the next clause ("select
 #: objects that are red. circle"; "take the red mug and put it ...").
-_SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch"})
+_SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch",
+                           "see", "spot", "notice", "locate"})
 _VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
                         "directly", "right", "just", "then", "lies", "ends", "up", "will", "must", "sitting",
                         "resting", "standing", "lying", "stacked", "set", "neatly", "squarely", "centred", "centered"})
@@ -538,6 +539,12 @@ class _Parser:
         for k in range(1, len(words) - 1):
             if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
                 return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
+            if words[k : k + 2] in (("until", "the"), ("until", "it"), ("leaving", "the"), ("that", "leaves"),
+                                    ("where", "the")) and k > 1:
+                # "shift A until B is on its left", "put A somewhere that leaves B on its left".
+                after = words[k + 1 :] if words[k + 1] in ("the", "it") else words[k + 2 :]
+                main = tuple(w for w in words[:k] if w not in ("somewhere", "anywhere"))
+                return self._so_that(main + ("so", "that") + after, len(main), 2)
         mentions = self._find(words)
         role_at, reduced = self._roles(words, mentions)
         if role_at is not None:

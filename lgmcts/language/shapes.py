@@ -229,8 +229,10 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             end = protected[i]
             if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
                 blocked = True
-            if seen_pattern and i > 0 and words[i - 1] == "with" and end < n and _region_run(words, end) is not None \
-                    and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))):
+            run = _region_run(words, end) if end < n else None
+            if seen_pattern and i > 0 and words[i - 1] == "with" and run is not None \
+                    and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))) \
+                    and not any(words[x] in _TABLE for x in range(end, min(run[2] + 3, n))):
                 blocked = True  # "a circle with the plate in the middle": the plate's place, not the circle's
             keep.extend(words[i:end])
             i = end
@@ -279,6 +281,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             got = None
         if got is not None:
             r, c, j = got
+            if r is not None and row is not None and row != r and r == "middle" and c is None and col is None:
+                # "at the back of the table, in the middle": the middle of that band.
+                r, c = None, "center"
             if r is not None:
                 if row is not None and row != r:
                     raise InputError(f"'{' '.join(words)}': two different places for one arrangement")

@@ -145,7 +145,8 @@ def test_the_red_one_takes_the_category_of_its_neighbour(scenes):
 
 
 def test_an_elided_head_without_a_noun_names_nothing(scenes):
-    with pytest.raises(InputError, match="'the red' names nothing"):
+    # Two objects are red and nothing names their noun: refused, naming both.
+    with pytest.raises(InputError, match="'the red' is ambiguous: it matches objects 1 \\(red mug\\), 9 \\(red block\\)"):
         _resolve_all(scenes["kitchen"], "the red and the blue")
 
 
