@@ -308,10 +308,18 @@ def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tup
                 and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
     for k in range(1, len(mentions) - 2):
-        a, b, c, d = mentions[k - 1], mentions[k], mentions[k + 1], mentions[k + 2]
-        # "A on B and C on D", "A on B and C behind D": C starts a second step.
-        if (words[a.end : b.start] in _ON_WORDS and c.end < d.start
-                and not all(w in _COORD for w in words[c.end : d.start])
+        a, b, c = mentions[k - 1], mentions[k], mentions[k + 1]
+        # "A on B and C on D", "A on B and C behind D", "A on B and C, D and E
+        # in a row left of F": C (with the list it opens) starts a second step.
+        e = k + 1
+        while e + 1 < len(mentions) and mentions[e].end < mentions[e + 1].start and all(
+                w in _COORD for w in words[mentions[e].end : mentions[e + 1].start]):
+            e += 1
+        if e + 1 >= len(mentions):
+            continue
+        last, d = mentions[e], mentions[e + 1]
+        if (words[a.end : b.start] in _ON_WORDS and last.end < d.start
+                and not all(w in _COORD for w in words[last.end : d.start])
                 and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
     if not cuts:
@@ -1029,7 +1037,7 @@ class _Parser:
             return self._finish(dinner)
         pending: list[_Pending] = []
         clauses = split_clauses(words)
-        kept = [c for c in (self._without_asides(c) for c in clauses) if c]
+        kept = [c for c in (self._without_asides(c) for c in clauses) if c and not _FREE_ORDER.fullmatch(" ".join(c))]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         for clause in kept:
@@ -1332,6 +1340,11 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
 
 _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
               "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
+
+#: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
+_FREE_ORDER = re.compile(r"(in )?(any|whatever|random|an arbitrary|no particular) order( you (like|want|choose))?"
+                         r"( is (fine|ok|okay|good))?( works)?|(the )?order (does not|do not|doesn't|won't) matter"
+                         r"|(the )?order is up to you|(i )?(do not|don't) (care|mind) (about )?(the|which) order")
 
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"
