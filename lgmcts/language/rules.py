@@ -846,6 +846,9 @@ class _Parser:
             # Stack roles: bottom first, then "goes on it"/"next" in order, the
             # middle, the objects without a role, the top last.
             rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
+            given = set(roles.values())
+            if "middle" in given and "bottom" not in given:
+                rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
             objs = sorted(objs, key=lambda x: rank[roles.get(x)])
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
         if n < info.min_objects and not (pattern == "tower" and defer_min):
