@@ -104,7 +104,8 @@ class Rectangle(BasePattern):
     name = "rectangle"
     keys = (
         "rectangle", "in a rectangle", "into a rectangle", "rectangular", "square", "square border", "box shape",
-        "rectangular frame", "perimeter of a rectangle", "border of a square", "arrange in a rectangle",
+        "rectangular frame", "perimeter of a rectangle", "border of a square", "arrange in a rectangle", "oblong",
+        "corners of a rectangle", "corners of a square",
     )
     description = "the objects' centres lie on the perimeter of one rectangle, at least one on every side"
     min_objects = 4
