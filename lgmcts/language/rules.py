@@ -619,6 +619,10 @@ class _Parser:
         if any(w in ("except", "excluding", "minus") for w in phrase_words):
             raise InputError(f"'{text}': cannot tell what to leave out")
         if not mentions:
+            if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
+                # "from the bottom up: green, red, blue": a stack named by its order.
+                self.state.header = ("tower", params, text)
+                return []
             if not meaningful:
                 return []  # a preamble such as "set the table" or "please"
             if self.state.selection is not None:
@@ -699,11 +703,12 @@ class _Parser:
                     phrase_words = ["stack"]
                     meaningful = ["stack"]
         if not meaningful and self.state.header is not None:
-            pat, hparams, _ = self.state.header
+            pat, hparams, htext = self.state.header
             self.state.header = None
             sels = [self._select_group(g) for g in groups]
             # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
-            p = self._shape(pat, sels, words, gaps, text, phrase_words, defer_min=True)
+            p = self._shape(pat, sels, words, gaps, f"{htext} {text}" if "top to" in htext else text, phrase_words,
+                            defer_min=True)
             p.params = {**hparams, **params}
             return [p]
         if not meaningful and self.state.tower is not None and len(groups) == 1:
@@ -784,7 +789,10 @@ class _Parser:
                     got = self._select(mm)
                     for x in got if isinstance(got, list) else [got]:
                         role_of[x] = r
-        shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of)
+        # A tower may grow over the next clauses ("green at the bottom, then red"):
+        # its size is checked once the command is read.
+        shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of,
+                            defer_min=m.pattern == "tower")
         shape.params = params
         return [shape]
 
@@ -1025,6 +1033,11 @@ class _Parser:
         if question is not None and not _ASKS_TO_ACT.match(text):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _relation_words(text)
+        # Reading orders of a stack said another way: one phrase for each.
+        text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?top (?:down|downwards)\b",
+                      "from top to bottom", text)
+        text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?bottom (?:up|upwards)\b",
+                      "from bottom to top", text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
