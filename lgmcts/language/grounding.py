@@ -603,8 +603,8 @@ def _colors(vocab: Vocabulary, words: tuple[str, ...], i: int) -> tuple[tuple[st
         if k == j:
             break
         nxt = _one_colour(vocab, words, k)
-        if nxt is None:
-            break
+        if nxt is None or nxt[0] in out:
+            break  # a colour named again starts another reference ("purple, red and green, purple lowest")
         out.append(nxt[0])
         j = nxt[1]
     if j < len(words) and words[j] in ("colored", "coloured", "color", "colour"):

@@ -546,7 +546,15 @@ class _Parser:
             raise InputError(f"'{text}': an object cannot be placed relative to itself")
         for k in range(1, len(words) - 1):
             if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
-                return self._so_that(words, k, 2 if words[k + 1] == "that" else 1)
+                skip = 2 if words[k + 1] == "that" else 1
+                if any(_stem(w) in ("stack", "tower", "pile") for w in words[:k]) and not any(
+                        w in ("it", "they", "them") for w in words[k + skip :]):
+                    # "stack the mugs so that the blue one is at the bottom": the
+                    # stack's roles, as "with the blue one at the bottom".
+                    sub = tuple(w for w in words[k + skip :] if w not in ("is", "are", "be", "should", "ends", "end",
+                                                                         "up", "goes", "go", "sits", "will"))
+                    return self.clause(words[:k] + ("with",) + sub)
+                return self._so_that(words, k, skip)
             if words[k : k + 2] in (("until", "the"), ("until", "it"), ("leaving", "the"), ("that", "leaves"),
                                     ("where", "the")) and k > 1:
                 # "shift A until B is on its left", "put A somewhere that leaves B on its left".
