@@ -1041,7 +1041,11 @@ class _Parser:
         if question is not None and not _ASKS_TO_ACT.match(text):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _relation_words(text)
-        # Reading orders of a stack said another way: one phrase for each.
+        # "the blue bottle's colour" -> "the same colour as the blue bottle";
+        # "that matches / shares the same colour as" -> "with the same colour as".
+        text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
+        text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
+                      r"with the same \1 as", text)
         text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?top (?:down|downwards)\b",
                       "from top to bottom", text)
         text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?bottom (?:up|upwards)\b",
