@@ -70,12 +70,12 @@ def test_one_arrangement_still_read(scene, text, pattern, matcher):
     assert [g["pattern"] for g in got] == [pattern]
 
 
-def test_stack_roles_that_run_together_are_refused(matcher):
-    # Without its role words "red at the bottom and blue on top" reads "red and
-    # blue", one reference: both would get the bottom role. Refused instead.
-    with pytest.raises(InputError, match="stack position"):
-        goal_dicts(_scene("blocks"), "stack the red, green and blue blocks with red at the bottom and blue on top",
-                   matcher=matcher)
+def test_stack_roles_keep_their_references_apart(matcher):
+    # "red at the bottom and blue on top": each role phrase leaves a mark, so
+    # "red" and "blue" stay two references, each with its own role.
+    got = goal_dicts(_scene("blocks"), "stack the red, green and blue blocks with red at the bottom and blue on top",
+                     matcher=matcher)
+    assert got == [{"pattern": "tower", "objects": [1, 3, 2]}]
     got = goal_dicts(_scene("blocks"), "stack the red, green and blue blocks with the red one at the bottom and "
                                        "the blue one on top", matcher=matcher)
     assert got == [{"pattern": "tower", "objects": [1, 3, 2]}]
@@ -85,9 +85,12 @@ def test_bare_colour_takes_the_noun_of_an_earlier_reference(matcher):
     got = goal_dicts(_scene("blocks"), "put the red block in front of the white bowl and blue behind the black bowl",
                      matcher=matcher)
     assert {"pattern": "behind", "objects": [2], "anchor": 8} in got
-    # A colour that several kinds of object share stays ambiguous.
+    # The noun of the parallel reference ("the red mug ... and blue"): the blue mug.
+    got = goal_dicts(_scene("home"), "put the red mug left of the plate and blue behind the plate", matcher=matcher)
+    assert {"pattern": "behind", "objects": [2], "anchor": 8} in got
+    # A colour that several kinds of object share, none of them named before, stays ambiguous.
     with pytest.raises(InputError, match="ambiguous"):
-        goal_dicts(_scene("home"), "put the red mug left of the plate and blue behind the plate", matcher=matcher)
+        goal_dicts(_scene("home"), "put the red mug left of the plate and green behind the plate", matcher=matcher)
 
 
 def test_a_definite_count_must_match_the_scene(matcher):
