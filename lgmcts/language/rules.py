@@ -1063,8 +1063,23 @@ class _Parser:
         dinner = self._dinner(words)
         if dinner is not None:
             return self._finish(dinner)
-        pending: list[_Pending] = []
         clauses = split_clauses(words)
+        pending: list[_Pending] = []
+        if self._dinner_at(words) is not None:
+            # "set the table, and put the mug behind the plate as well": the
+            # setting from the clauses about it, the other clauses as usual.
+            # Where the scene has no setting to lay, "set the table" only
+            # introduces what follows ("set the table: stack the bowl on the plate ...").
+            own = [c for c in clauses if self._dinner_at(c) is not None or self._setting_only(c)]
+            try:
+                dinner = self._dinner(tuple(w for c in own for w in c + (",",))[:-1])
+            except InputError:
+                dinner = []
+            if dinner is None:
+                raise InputError(f"'{' '.join(words)}': cannot tell which parts belong to the place setting")
+            if dinner:
+                pending.extend(dinner)
+                clauses = [c for c in clauses if c not in own]
         kept = [c for c in (self._without_asides(c) for c in clauses) if c and not _FREE_ORDER.fullmatch(" ".join(c))]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
@@ -1098,6 +1113,19 @@ class _Parser:
     # ------------------------------------------------------------ dinner
     _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
                ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"))
+
+    def _dinner_at(self, words: tuple[str, ...]) -> int | None:
+        """Where a place setting is asked for ("set the table", "dinner"), if it is."""
+        return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
+
+    def _setting_only(self, words: tuple[str, ...]) -> bool:
+        """Whether a clause names only the setting's own objects (plate, bowls, cutlery)."""
+        try:
+            ms = self._find(words)
+        except InputError:
+            return False
+        own = {"plate", "bowl", "fork", "knife", "spoon", "chopstick", "chopsticks", "cutlery", "silverware"}
+        return bool(ms) and all(m.names is not None and set(m.names) <= own and m.det != "pronoun" for m in ms)
 
     def _dinner(self, words: tuple[str, ...]) -> list[_Pending] | None:
         """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
