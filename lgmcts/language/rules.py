@@ -296,6 +296,42 @@ def _weak_split(
     return [tuple(x) for x in out if x]
 
 
+#: Verbs that follow a subject in a statement of the goal ("the heart goes on the bowl").
+_PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "must", "stays", "stay", "stands",
+                         "ends", "will", "rests", "lies", "belongs", "needs", "has", "gets", "can"})
+
+
+def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words: frozenset[str]) -> list[tuple[str, ...]]:
+    """Cut "A is on B, C is in front of B and D goes left of E" before each new
+    subject: a reference right after "," or "and" followed by a verb of
+    statement, when what comes before it already relates two objects."""
+    cuts: list[tuple[int, int]] = []
+    prev = 0
+    for k, m in enumerate(mentions):
+        if k < 2 or m.start == 0:
+            continue
+        lo = m.start
+        while lo > 0 and words[lo - 1] in (",", "and"):
+            lo -= 1
+        if lo == m.start or lo <= prev:
+            continue
+        if not (m.end < len(words) and words[m.end] in _PREDICATES):
+            continue
+        before = [x for x in mentions if prev <= x.start and x.end <= lo]
+        related = any(w in _VERT_WORDS or _stem(w) in rel_words or w in _DIR_WORDS for w in words[prev:lo])
+        if len(before) >= 2 and related:
+            cuts.append((lo, m.start))
+            prev = m.start
+    if not cuts:
+        return [words]
+    out, p = [], 0
+    for lo, hi in cuts:
+        out.append(words[p:lo])
+        p = hi
+    out.append(words[p:])
+    return [tuple(x) for x in out if x]
+
+
 def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[str, ...]]:
     """Cut "A on B and C on D" into "A on B" and "C on D" (two stacking steps)."""
     cuts = []
@@ -1083,22 +1119,13 @@ class _Parser:
         kept = [c for c in (self._without_asides(c) for c in clauses) if c and not _FREE_ORDER.fullmatch(" ".join(c))]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
-        for clause in kept:
-            mentions = self._find(clause, self.key_vocab)
-            for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
-                part_mentions = self._find(part, self.key_vocab)
-                for sub in _on_pairs_split(part, part_mentions):
-                    while sub and sub[0] in _LEADING:
-                        sub = sub[1:]
-                    if sub:
-                        pending.extend(self.clause(sub))
-                        try:
-                            named = self._find(sub)
-                        except InputError:
-                            named = []
-                        for mm in reversed(named):
-                            if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
-                                self.state.nouns.insert(0, mm.names)
+        for whole in kept:
+            try:
+                stated = _predicate_split(whole, self._find(whole), self._word_kinds()[0])
+            except InputError:
+                stated = [whole]
+            for clause in stated:
+                self._read_clause(clause, pending)
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
         if order_by is not None and any(p.pattern == "tower" for p in pending):
@@ -1113,6 +1140,25 @@ class _Parser:
     # ------------------------------------------------------------ dinner
     _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
                ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"))
+
+    def _read_clause(self, clause: tuple[str, ...], pending: list[_Pending]) -> None:
+        """Read one clause (cut further where it names two arrangements or two
+        stacking steps) into ``pending``, remembering the nouns it names."""
+        mentions = self._find(clause)
+        for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
+            for sub in _on_pairs_split(part, self._find(part)):
+                while sub and sub[0] in _LEADING:
+                    sub = sub[1:]
+                if not sub:
+                    continue
+                pending.extend(self.clause(sub))
+                try:
+                    named = self._find(sub)
+                except InputError:
+                    named = []
+                for mm in reversed(named):
+                    if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
+                        self.state.nouns.insert(0, mm.names)
 
     def _dinner_at(self, words: tuple[str, ...]) -> int | None:
         """Where a place setting is asked for ("set the table", "dinner"), if it is."""
