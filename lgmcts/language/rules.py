@@ -160,6 +160,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: The tower of the previous clause is listed from the top down.
+    downward: bool = False
     #: Object nouns named so far, latest first ("stack the cans: green first").
     nouns: list = field(default_factory=list)
 
@@ -763,7 +765,8 @@ class _Parser:
                 for x in got if isinstance(got, list) else [got]:
                     if x in tower.objects:
                         tower.objects.remove(x)
-                    tower.objects.append(x)
+                    # Read from the top down, each next object goes below the others.
+                    tower.objects.insert(0, x) if self.state.downward else tower.objects.append(x)
             return []
         # Order and emphasis words ("the first one at the bottom", "another")
         # carry no pattern meaning: leave them out of the phrase to match.
@@ -887,7 +890,8 @@ class _Parser:
                         # second mention whose part in the order is not read.
                         raise InputError(f"'{text}': object {x} is named twice and its place in the stack is "
                                          f"unclear; list the objects from the bottom up")
-        if info.ordered and re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text):
+        downward = info.ordered and bool(re.search(r"\b(top to (the )?bottom|from the top|top down)\b", text))
+        if downward:
             objs.reverse()
         if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):
             # "largest at the bottom": by volume, largest first (or smallest first).
@@ -919,6 +923,7 @@ class _Parser:
         self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
         self.state.tower = out if pattern == "tower" else None
+        self.state.downward = pattern == "tower" and downward
         return out
 
     def _select_group(self, group: list[Mention]) -> list:

@@ -321,7 +321,7 @@ _ROLES = tuple(
             ("goes in between", "middle"), ("goes in the middle", "middle"), ("at the summit", "top"),
             ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
             ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
-            ("goes down first", "bottom"), ("goes down last", "top"), ("goes in the middle", "middle"),
+            ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
