@@ -616,7 +616,7 @@ class _Parser:
             mentions = self._find(words)
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
-        if any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
+        if self.state.header is not None or any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
             stackish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None
@@ -1081,16 +1081,7 @@ class _Parser:
         question = _QUESTION.match(text)
         if question is not None and not _ASKS_TO_ACT.match(text):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
-        text = _relation_words(text)
-        # "the blue bottle's colour" -> "the same colour as the blue bottle";
-        # "that matches / shares the same colour as" -> "with the same colour as".
-        text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
-        text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
-                      r"with the same \1 as", text)
-        text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?top (?:down|downwards)\b",
-                      "from top to bottom", text)
-        text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?bottom (?:up|upwards)\b",
-                      "from bottom to top", text)
+        text = _rewrite(text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
@@ -1489,6 +1480,26 @@ _ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|th
 _AND_ITS_SIDE = re.compile(
     r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a )?[^,;.!?]+?) and "
     r"(?:off |also |just )?(?:to |on )?(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?\b")
+
+
+def _rewrite(text: str) -> str:
+    """Phrasings with one reading written the way the grammar reads them:
+    directions (:func:`_relation_words`), "the blue bottle's colour" -> "the
+    same colour as the blue bottle", "that matches / shares the same colour
+    as" -> "with the same colour as", "table centre" / "the table's left
+    edge" -> "the centre / left edge of the table", and the reading orders of
+    a stack ("from the top down", "bottom up") -> "from top to bottom" /
+    "from bottom to top"."""
+    text = _relation_words(text)
+    text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
+    text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
+                  r"with the same \1 as", text)
+    text = re.sub(r"(?i)\b(?:the )?table(?:'s)? (centre|center|middle|left|right|front|back)( side| edge| half| corner)?\b",
+                  r"the \1\2 of the table", text)
+    text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?top (?:down|downwards)\b",
+                  "from top to bottom", text)
+    return re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?bottom (?:up|upwards)\b",
+                  "from bottom to top", text)
 
 
 def _relation_words(text: str) -> str:

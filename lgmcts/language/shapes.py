@@ -276,7 +276,10 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 put("size", SIZES[w], " ".join(words))
                 i += 1
                 continue
-        got = None if blocked else _region_run(words, i, stack)
+        got = _region_run(words, i, stack)
+        if blocked and got is not None and not (i > 0 and words[i - 1] == "," and any(
+                words[x] in _TABLE for x in range(i, got[2]))):
+            got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
         if got is not None:
