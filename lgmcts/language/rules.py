@@ -784,6 +784,16 @@ class _Parser:
         rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
         free_pos = [k for k in rest if any(f in free_words for f in _forms(words[k]))]
         sels = [self._select_group(g) for g in groups]
+        if "using" in words and len(groups) >= 2:
+            # "place the cans in a line using the red, white and blue can": the
+            # objects after "using" are those of the arrangement, taken from the set before.
+            u = words.index("using")
+            before = [g for g, (lo, hi) in enumerate(gaps[1:]) if hi <= u or lo <= u < hi]
+            after = [g for g in range(len(groups)) if g not in before]
+            flat = lambda gs: {x for g in gs for s in sels[g] for x in (s if isinstance(s, list) else [s])  # noqa: E731
+                               if isinstance(x, int)}
+            if before and after and flat(after) and flat(after) < flat(before):
+                sels = [[] if g in before else sels[g] for g in range(len(sels))]
         if re.search(r"\b(another|second|new|separate|different)\b", phrase):
             # "another line": a second arrangement of objects no other goal uses.
             sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
@@ -804,6 +814,29 @@ class _Parser:
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
             out[-1].params = params
             return out
+        if self.state.selection is not None and len(groups) == 1 and roles is None:
+            lead = tuple(w for w in words[gaps[0][0] : gaps[0][1]] if w not in _VERT_SKIP and w not in _COMMAND_VERBS
+                         and w != "the")
+            if lead in _VERT_ON or lead in _VERT_UNDER:
+                # "heart: on the granite bowl": the selected objects on (or under) it.
+                sel, self.state.selection = list(self.state.selection), None
+                base = [x for y in sels[0] for x in (y if isinstance(y, list) else [y])]
+                objs = base + sel if lead in _VERT_ON else sel + base
+                self.state.last, self.state.last_tower = sel, True
+                return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
+        if not meaningful and roles is None and not rel_pos and not free_pos and phrase.strip() == "":
+            # "cans: line", "the knife, the fork and the spoon. make a circle with
+            # them": objects named on their own are those of the next clause.
+            sel: list[int | Choice] = []
+            for g in sels:
+                for y in g:
+                    for x in y if isinstance(y, list) else [y]:
+                        if x not in sel:
+                            sel.append(x)
+            self.state.selection = sel
+            self.state.last = list(sel)
+            self.state.last_tower = False
+            return []
         named = self._arrangements_named(phrase_words)
         if len(named) >= 2:
             raise InputError(f"'{text}' names more than one arrangement ({' and '.join(sorted(named))}) "
@@ -856,6 +889,9 @@ class _Parser:
                 for x in y if isinstance(y, list) else [y]:
                     if x not in target_sel:
                         target_sel.append(x)
+        if not target_sel and self.state.selection is not None:
+            target_sel = list(self.state.selection)  # "box: behind the red bowl"
+            self.state.selection = None
         if not target_sel:
             raise InputError(f"'{text}': nothing to put {words_rel} of the reference object")
         for a in anchor_sel:

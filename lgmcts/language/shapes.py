@@ -284,7 +284,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             got = None
         if got is not None:
             r, c, j = got
-            if r is not None and row is not None and row != r and r == "middle" and c is None and col is None:
+            if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
                 # "at the back of the table, in the middle": the middle of that band.
                 r, c = None, "center"
             if r is not None:
