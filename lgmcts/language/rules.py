@@ -1512,10 +1512,18 @@ _NEAR_FAR = (
 )
 #: "any of the blocks", "either of the mugs": one of them, whichever.
 _ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|these)\b")
-#: "behind the cup and to its right": one diagonal relation to one anchor.
+#: "behind the cup and to its right", "... and to the left of it", "... and off to
+#: the right": one diagonal relation to one anchor.
 _AND_ITS_SIDE = re.compile(
     r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a )?[^,;.!?]+?) and "
-    r"(?:off |also |just )?(?:to |on )?(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?\b")
+    r"(?:off |also |just |slightly |a bit )?(?:to |on )?(?:(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?"
+    r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of))")
+#: A correction: "left of the plate, no wait, right of the plate" keeps the second.
+_CORRECTION = re.compile(
+    r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|under|below|above|beneath)\b[^,;.!?]*?)"
+    r"\s*,?\s*\b(?:no wait|no,? wait|wait,? no|sorry|i mean|actually|make that|or rather|rather)\b\s*,?\s*")
+#: A contrast that only confirms the choice: "on the red mug, not the blue one".
+_NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
 
 
 def _rewrite(text: str) -> str:
@@ -1526,6 +1534,9 @@ def _rewrite(text: str) -> str:
     edge" -> "the centre / left edge of the table", and the reading orders of
     a stack ("from the top down", "bottom up") -> "from top to bottom" /
     "from bottom to top"."""
+    text = _CORRECTION.sub("", text)
+    text = _NOT_THE_OTHER.sub("", text)
+    text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)
     text = _relation_words(text)
     text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
     text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
@@ -1557,7 +1568,8 @@ def _relation_words(text: str) -> str:
         text = pat.sub(rep, text)
 
     def side(m: re.Match) -> str:
-        rel, anchor, s2 = m.group(1).lower(), m.group(2), m.group(3).lower()
+        rel, anchor = m.group(1).lower(), m.group(2)
+        s2 = next(g for g in m.groups()[2:] if g).lower()
         first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
         return f"{first} {s2} of {anchor}"
 

@@ -46,6 +46,8 @@ _CHATTER_SEQ = (
     ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
     ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
     ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
+    ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
+    ("i", "think"), ("honestly",), ("slightly",),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
