@@ -303,6 +303,29 @@ _PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "mu
                          "ends", "will", "rests", "lies", "belongs", "needs", "has", "gets", "can"})
 
 
+_MOVE_VERBS = frozenset({"move", "shift", "reposition", "relocate", "slide", "push", "nudge"})
+
+
+def _merged_moves(clauses: list[tuple[str, ...]]) -> list[tuple[str, ...]]:
+    """"Move the purple block. After that, the bowl should be behind it.": the
+    object to move, then the goal stated from another object's side, read as
+    one "move X so that ..." clause."""
+    out: list[tuple[str, ...]] = []
+    k = 0
+    while k < len(clauses):
+        c = clauses[k]
+        core = tuple(w for w in c if w not in ("only", "just", "please"))
+        if (k + 1 < len(clauses) and core and core[0] in _MOVE_VERBS and len(core) <= 6
+                and not any(w in _DIR_WORDS or w in _VERT_WORDS or w in ("to", "into", "in") for w in core)
+                and any(w in ("it", "its", "them", "their") for w in clauses[k + 1])):
+            out.append(core + ("so", "that") + clauses[k + 1])
+            k += 2
+            continue
+        out.append(c)
+        k += 1
+    return out
+
+
 def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words: frozenset[str]) -> list[tuple[str, ...]]:
     """Cut "A is on B, C is in front of B and D goes left of E" before each new
     subject: a reference right after "," or "and" followed by a verb of
@@ -321,7 +344,8 @@ def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words:
             continue
         before = [x for x in mentions if prev <= x.start and x.end <= lo]
         related = any(w in _VERT_WORDS or _stem(w) in rel_words or w in _DIR_WORDS for w in words[prev:lo])
-        if len(before) >= 2 and related:
+        so_that = any(words[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(prev, lo))
+        if len(before) >= 2 and related and not so_that:
             cuts.append((lo, m.start))
             prev = m.start
     if not cuts:
@@ -563,9 +587,13 @@ class _Parser:
         for m in mentions:
             sel = self._select(m)
             movers.extend(sel if isinstance(sel, list) else [sel])
-        self.state.last = list(movers)
-        self.state.last_tower = False
-        out = self.clause(sub)
+        out = []
+        for part in _weak_split(sub, self._find(sub), self.key_vocab, self._word_kinds()[0]):
+            # Every pronoun after "so that" is the object to move ("... the bowl
+            # in front of it and the can on its left").
+            self.state.last = list(movers)
+            self.state.last_tower = False
+            out.extend(self.clause(part))
         res = []
         for p in out:
             if any(o in movers for o in p.objects):
@@ -1087,6 +1115,9 @@ class _Parser:
         return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
 
     def _without_asides(self, clause: tuple[str, ...]) -> tuple[str, ...]:
+        if clause[:2] in (("there", "are"), ("there", "is"), ("we", "have"), ("you", "have"), ("i", "have")) and not any(
+                (_stem(w) in self.key_vocab and _stem(w) not in FILLERS) or w in _DIR_WORDS for w in clause):
+            return ()  # "there are two bottles": a remark about the scene
         """``clause`` without its comma-separated asides: a part that names no
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
@@ -1151,6 +1182,7 @@ class _Parser:
         kept = [c for c in (self._without_asides(c) for c in clauses) if c and not _FREE_ORDER.fullmatch(" ".join(c))]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
+        kept = _merged_moves(kept)
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), self._word_kinds()[0])
@@ -1177,7 +1209,9 @@ class _Parser:
         """Read one clause (cut further where it names two arrangements or two
         stacking steps) into ``pending``, remembering the nouns it names."""
         mentions = self._find(clause)
-        for part in _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0]):
+        so_that = any(clause[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(len(clause)))
+        parts = [clause] if so_that else _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0])
+        for part in parts:
             for sub in _on_pairs_split(part, self._find(part)):
                 while sub and sub[0] in _LEADING:
                     sub = sub[1:]
