@@ -851,8 +851,11 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
             earlier = [mentions[x] for x in reversed(g[:pos]) if nouned(mentions[x])]
             order = later + earlier if m.head == "elided" else earlier + later
             if not order and m.head == "one":
-                # "stack the red block on the blue one": the nearest noun before it.
+                # "stack the red block on the blue one": the nearest noun before it,
+                # else one named in an earlier clause ("there are two bottles. the white one ...").
                 order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
+                if not order and m.det not in ("other", "another"):
+                    order = [replace(m, names=n, head="") for n in context if _any_match(vocab, replace(m, names=n))][:1]
             if not order and m.head == "elided":
                 # "the red, green and blue blocks with red at the bottom and blue on
                 # top": a bare colour takes the noun of the nearest mention before it

@@ -1117,7 +1117,13 @@ class _Parser:
     def _without_asides(self, clause: tuple[str, ...]) -> tuple[str, ...]:
         if clause[:2] in (("there", "are"), ("there", "is"), ("we", "have"), ("you", "have"), ("i", "have")) and not any(
                 (_stem(w) in self.key_vocab and _stem(w) not in FILLERS) or w in _DIR_WORDS for w in clause):
-            return ()  # "there are two bottles": a remark about the scene
+            try:  # "there are two bottles": a remark about the scene, whose noun "the white one" may take
+                for mm in self._find(clause):
+                    if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
+                        self.state.nouns.insert(0, mm.names)
+            except InputError:
+                pass
+            return ()
         """``clause`` without its comma-separated asides: a part that names no
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
