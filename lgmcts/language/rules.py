@@ -1611,6 +1611,8 @@ def _relation_words(text: str) -> str:
         rel, anchor = m.group(1).lower(), m.group(2)
         s2 = next(g for g in m.groups()[2:] if g).lower()
         first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
+        if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2:
+            return m.group(0)  # "left of it and also right of it": a contradiction, read (and refused) as said
         return f"{first} {s2} of {anchor}"
 
     return _AND_ITS_SIDE.sub(side, text)

@@ -347,11 +347,25 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
     k = j
     while k < len(words) and words[k] in ("should", "will", "must", "can"):
         k += 1
-    if k < len(words) and words[k] in ("go", "sits", "sit", "comes", "come", "is", "be", "stands"):
+    if k < len(words) and words[k] in ("go", "goes", "sits", "sit", "comes", "come", "is", "be", "stands", "belongs",
+                                       "ends", "rests"):
         cand = ("goes",) + words[k + 1 :]
         for seq, role in _ROLES:
             if seq[0] == "goes" and cand[: len(seq)] == seq:
-                return role, k + len(seq)
+                end = k + len(seq)
+                if seq[-1] != "of" and words[end : end + 1] == ("of",) and words[end + 1 : end + 2] not in _OF_STACK \
+                        and words[end + 1 : end + 3] not in _OF_STACK:
+                    return None  # "goes on top of the red one": a relation to another object
+                return role, end
+        # "the red one goes at the bottom", "the white one is on top"
+        at = k + 1 + (words[k + 1 : k + 2] == ("up",))
+        for seq, role in _ROLES:
+            if seq[0] != "goes" and len(seq) > 1 and words[at : at + len(seq)] == seq:
+                end = at + len(seq)
+                if words[end : end + 1] == ("of",) and words[end + 1 : end + 2] not in _OF_STACK \
+                        and words[end + 1 : end + 3] not in _OF_STACK:
+                    return None
+                return role, end
     for seq, role in _ROLES:
         if words[j : j + len(seq)] == seq:
             if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
