@@ -303,6 +303,8 @@ _PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "mu
                          "ends", "will", "rests", "lies", "belongs", "needs", "has", "gets", "can"})
 
 
+_TABLE_WORDS = frozenset({"table", "tabletop", "workspace", "desk", "dinner", "setting", "place", "side", "way",
+                          "end", "rest"})
 _MOVE_VERBS = frozenset({"move", "shift", "reposition", "relocate", "slide", "push", "nudge"})
 
 
@@ -1232,6 +1234,13 @@ class _Parser:
                     if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
                         self.state.nouns.insert(0, mm.names)
 
+    def _unknown_nouns(self, words: tuple[str, ...], mentions: list[Mention]) -> list[str]:
+        """Words after "the"/"a" outside the references that name nothing here ("the napkin")."""
+        inside = {k for m in mentions for k in range(m.start, m.end)}
+        return [w for k, w in enumerate(words) if k not in inside and k > 0 and words[k - 1] in ("the", "a", "an")
+                and w.isalpha() and not self._content_word(w) and w not in STOPWORDS and _stem(w) not in FILLERS
+                and w not in _ALLOWED_EXTRA and w not in _TABLE_WORDS]
+
     def _dinner_at(self, words: tuple[str, ...]) -> int | None:
         """Where a place setting is asked for ("set the table", "dinner"), if it is."""
         return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
@@ -1243,7 +1252,8 @@ class _Parser:
         except InputError:
             return False
         own = {"plate", "bowl", "fork", "knife", "spoon", "chopstick", "chopsticks", "cutlery", "silverware"}
-        return bool(ms) and all(m.names is not None and set(m.names) <= own and m.det != "pronoun" for m in ms)
+        return bool(ms) and not self._unknown_nouns(words, ms) and all(
+            m.names is not None and set(m.names) <= own and m.det != "pronoun" for m in ms)
 
     def _dinner(self, words: tuple[str, ...]) -> list[_Pending] | None:
         """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
@@ -1262,7 +1272,10 @@ class _Parser:
         cutlery = {"fork", "knife", "spoon", "chopstick", "chopsticks"}
         own = plates | {"bowl"} | cutlery
         named: dict[str, list[int]] = {"plate": [], "bowl": [], "cut": []}
-        for m in self._find(rest, self.key_vocab):
+        found = self._find(rest, self.key_vocab)
+        if self._unknown_nouns(rest, found):
+            return None  # "put the napkin left of the plate, then set the table": read (and refused) as usual
+        for m in found:
             if m.names is None or not set(m.names) <= own or m.det == "pronoun":
                 return None
             got = self._select(m)
@@ -1273,6 +1286,12 @@ class _Parser:
         for w, sd in (("right", "right"), ("left", "left")):
             if w in rest:
                 side = sd
+                # "the plate ends up to the right of the cutlery": the cutlery on the other side.
+                k_side = rest.index(w)
+                before = [m for m in self._find(rest[:k_side]) if m.names is not None]
+                after = [m for m in self._find(rest[k_side:]) if m.names is not None]
+                if before and after and set(before[-1].names) <= plates and not set(after[0].names) <= plates:
+                    side = "left" if sd == "right" else "right"
         params, rest2 = take_params(rest, lambda w: True) if any(
             w in rest for w in ("small", "medium", "large", "big", "facing", "top", "bottom", "middle", "center")) else ({}, rest)
         by = {n: [i for i, nn, _ in self.vocab.objects if nn == n] for n in ("plate", "bowl")}
@@ -1560,8 +1579,8 @@ _AND_ITS_SIDE = re.compile(
     r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of))")
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
 _CORRECTION = re.compile(
-    r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|under|below|above|beneath)\b[^,;.!?]*?)"
-    r"\s*,?\s*\b(?:no wait|no,? wait|wait,? no|sorry|i mean|actually|make that|or rather|rather)\b\s*,?\s*")
+    r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|on|onto|under|below|above|beneath)\b[^,;.!?]*?)"
+    r"\s*,?\s*\b(?:(?:no,?\s+)?(?:wait|sorry|i mean|actually|make that|or rather|rather)|wait,? no|no(?=\s*,))\b\s*,?\s*")
 #: A contrast that only confirms the choice: "on the red mug, not the blue one".
 _NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
 
