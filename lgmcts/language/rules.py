@@ -382,7 +382,10 @@ def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tup
         if e + 1 >= len(mentions):
             continue
         last, d = mentions[e], mentions[e + 1]
-        if (words[a.end : b.start] in _ON_WORDS and last.end < d.start
+        first_rel = words[a.end : b.start] in _ON_WORDS or (
+            any(w in _DIR_WORDS for w in words[a.end : b.start])
+            and tuple(w for w in words[last.end : d.start] if w != "the") in _VERT_ON | _VERT_UNDER)
+        if (first_rel and last.end < d.start
                 and not all(w in _COORD for w in words[last.end : d.start])
                 and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
