@@ -1105,6 +1105,31 @@ class _Parser:
         return find_mentions(self.vocab, words, self.key_vocab if key_vocab is None else key_vocab,
                              tuple(self.state.nouns))
 
+    def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """"take the spoon and the fork; put the former in front of the latter":
+        "the former" / "the latter" replaced by the two references named before."""
+        at = [k for k in range(len(words) - 1) if words[k] == "the" and words[k + 1] in ("former", "latter")]
+        if not at:
+            return words
+        try:
+            named = [m for m in self._find(words[: at[0]]) if m.det not in ("pronoun",)]
+        except InputError:
+            return words
+        if len(named) < 2:
+            return words
+        pair = {"former": words[named[-2].start : named[-2].end], "latter": words[named[-1].start : named[-1].end]}
+        out: list[str] = []
+        k = 0
+        while k < len(words):
+            if k in at:
+                ref = pair[words[k + 1]]
+                out.extend(ref if ref[0] in ("the", "a", "an") else ("the",) + ref)
+                k += 2
+                continue
+            out.append(words[k])
+            k += 1
+        return tuple(out)
+
     def _content_word(self, w: str) -> bool:
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
@@ -1163,6 +1188,7 @@ class _Parser:
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
+        words = self._former_latter(words)
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
         cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
