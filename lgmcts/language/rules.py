@@ -1105,6 +1105,42 @@ class _Parser:
         return find_mentions(self.vocab, words, self.key_vocab if key_vocab is None else key_vocab,
                              tuple(self.state.nouns))
 
+    def _bare_colour_sets(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Colours standing for objects after a negation: "neither purple nor orange"
+        -> "not purple or orange"; "not red and not blue" -> "not red or blue";
+        "except yellow and orange" -> "except the yellow and orange ones"."""
+        colour = lambda w: w in self.vocab.color_words or w in COLOUR_WORDS  # noqa: E731
+        out = list(words)
+        k = 0
+        while k < len(out):
+            if out[k] == "neither" and k + 1 < len(out) and colour(out[k + 1]):
+                out[k] = "not"
+            if out[k] == "nor" and k > 0 and colour(out[k - 1]):
+                out[k] = "or"
+            if out[k : k + 2] == ["and", "not"] and k > 0 and colour(out[k - 1]) and k + 2 < len(out) \
+                    and colour(out[k + 2]) and any(out[j] == "not" for j in range(max(0, k - 4), k)):
+                out[k : k + 2] = ["or"]
+            k += 1
+        res: list[str] = []
+        k = 0
+        while k < len(out):
+            res.append(out[k])
+            lead = out[k] in ("except", "excluding", "minus") or tuple(out[max(0, k - 1) : k + 1]) in (
+                ("apart", "from"), ("other", "than"), ("except", "for"), ("but", "not"))
+            if lead and k + 1 < len(out) and colour(out[k + 1]):
+                j = k + 1
+                while j < len(out) and (colour(out[j]) or out[j] in (",", "and", "or")):
+                    j += 1
+                while out[j - 1] in (",", "and", "or"):
+                    j -= 1
+                nxt = out[j] if j < len(out) else ""
+                if not self._content_word(nxt) or nxt in _ASIDE_KEEP or nxt in _DIR_WORDS or nxt in self.key_vocab:
+                    res.extend(["the", *out[k + 1 : j], "ones"])
+                    k = j
+                    continue
+            k += 1
+        return tuple(res)
+
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":
         "the former" / "the latter" replaced by the two references named before."""
@@ -1189,6 +1225,7 @@ class _Parser:
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
         words = self._former_latter(words)
+        words = self._bare_colour_sets(words)
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
         cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
