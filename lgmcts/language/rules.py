@@ -303,6 +303,7 @@ _PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "mu
                          "ends", "will", "rests", "lies", "belongs", "needs", "has", "gets", "can"})
 
 
+_EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", "things", "stuff"})
 _TABLE_WORDS = frozenset({"table", "tabletop", "workspace", "desk", "dinner", "setting", "place", "side", "way",
                           "end", "rest"})
 _MOVE_VERBS = frozenset({"move", "shift", "reposition", "relocate", "slide", "push", "nudge"})
@@ -1339,9 +1340,11 @@ class _Parser:
         own = plates | {"bowl"} | cutlery
         named: dict[str, list[int]] = {"plate": [], "bowl": [], "cut": []}
         found = self._find(rest, self.key_vocab)
-        if self._unknown_nouns(rest, found):
+        if self._unknown_nouns(words, self._find(words)):
             return None  # "put the napkin left of the plate, then set the table": read (and refused) as usual
         for m in found:
+            if m.names is None and m.det == "all" and m.colors is None and not m.ids and m.text in _EVERYTHING:
+                continue  # "get everything ready for dinner"
             if m.names is None or not set(m.names) <= own or m.det == "pronoun":
                 return None
             got = self._select(m)
