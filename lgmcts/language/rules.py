@@ -306,6 +306,11 @@ _PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "mu
 _EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", "things", "stuff"})
 _TABLE_WORDS = frozenset({"table", "tabletop", "workspace", "desk", "dinner", "setting", "place", "side", "way",
                           "end", "rest"})
+def _stacking(w: str) -> bool:
+    """Whether ``w`` (in any inflection: "stacked", "piling") speaks of a stack."""
+    return any(f in ("stack", "tower", "pile", "foundation", "base") for f in _forms(w))
+
+
 _MOVE_VERBS = frozenset({"move", "shift", "reposition", "relocate", "slide", "push", "nudge"})
 
 
@@ -329,14 +334,15 @@ def _merged_moves(clauses: list[tuple[str, ...]]) -> list[tuple[str, ...]]:
     return out
 
 
-def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words: frozenset[str]) -> list[tuple[str, ...]]:
+def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words: frozenset[str],
+                     free_words: frozenset[str] = frozenset()) -> list[tuple[str, ...]]:
     """Cut "A is on B, C is in front of B and D goes left of E" before each new
     subject: a reference right after "," or "and" followed by a verb of
     statement, when what comes before it already relates two objects."""
     cuts: list[tuple[int, int]] = []
     prev = 0
     for k, m in enumerate(mentions):
-        if k < 2 or m.start == 0:
+        if k < 1 or m.start == 0:
             continue
         lo = m.start
         while lo > 0 and words[lo - 1] in (",", "and"):
@@ -346,7 +352,11 @@ def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words:
         if not (m.end < len(words) and words[m.end] in _PREDICATES):
             continue
         before = [x for x in mentions if prev <= x.start and x.end <= lo]
-        related = any(w in _VERT_WORDS or _stem(w) in rel_words or w in _DIR_WORDS for w in words[prev:lo])
+        related = any((w in _VERT_WORDS and w not in ("to", "of", "top")) or _stem(w) in rel_words or w in _DIR_WORDS
+                      for w in words[prev:lo])
+        shaped = any(f in free_words for w in words[prev:lo] for f in _forms(w))
+        if shaped and before and not related:
+            related, before = True, before * 2  # "the bowls are to be lined up, the bottles ...": complete
         so_that = any(words[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(prev, lo))
         if len(before) >= 2 and related and not so_that:
             cuts.append((lo, m.start))
@@ -539,7 +549,7 @@ class _Parser:
             drop.update(range(m.end, end))
         if not drop:
             return None, words
-        towerish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or len(roles) >= 2 \
+        towerish = any(_stacking(w) for w in words) or len(roles) >= 2 \
             or (self.state.header is not None and self.state.header[0] == "tower") or self.state.tower is not None
         if not towerish:
             return None, words
@@ -619,7 +629,7 @@ class _Parser:
         for k in range(1, len(words) - 1):
             if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
                 skip = 2 if words[k + 1] == "that" else 1
-                if any(_stem(w) in ("stack", "tower", "pile") for w in words[:k]) and not any(
+                if any(_stacking(w) for w in words[:k]) and not any(
                         w in ("it", "they", "them") for w in words[k + skip :]):
                     # "stack the mugs so that the blue one is at the bottom": the
                     # stack's roles, as "with the blue one at the bottom".
@@ -651,7 +661,7 @@ class _Parser:
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if self.state.header is not None or any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
-            stackish = any(_stem(w) in ("stack", "tower", "pile", "foundation", "base") for w in words) or (
+            stackish = any(_stacking(w) for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None
             sup = re.search(r"\b(largest|biggest|widest|heaviest|tallest|smallest|lightest|narrowest)( one| ones)? "
@@ -1260,7 +1270,7 @@ class _Parser:
         kept = _merged_moves(kept)
         for whole in kept:
             try:
-                stated = _predicate_split(whole, self._find(whole), self._word_kinds()[0])
+                stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
             except InputError:
                 stated = [whole]
             for clause in stated:
