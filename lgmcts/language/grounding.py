@@ -61,6 +61,8 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "pan": ("frying pan", "skillet"),
     "bottle": ("flask",),
     "flower": ("blossom",),
+    "can": ("tin", "soda can", "tin can"),
+    "letter": ("character",),
 }
 
 #: Group nouns: words for a kind of thing that is no object's name ("the

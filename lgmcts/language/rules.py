@@ -1653,7 +1653,8 @@ _ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|th
 #: "behind the cup and to its right", "... and to the left of it", "... and off to
 #: the right": one diagonal relation to one anchor.
 _AND_ITS_SIDE = re.compile(
-    r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a )?[^,;.!?]+?) and "
+    r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a |one of the )?[^,;.!?]+?)"
+    r"(?: and|,(?= (?:on |to )?(?:its|their) )) "
     r"(?:off |also |just |slightly |a bit )?(?:to |on )?(?:(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?"
     r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of))")
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
@@ -1672,6 +1673,9 @@ def _rewrite(text: str) -> str:
     edge" -> "the centre / left edge of the table", and the reading orders of
     a stack ("from the top down", "bottom up") -> "from top to bottom" /
     "from bottom to top"."""
+    text = re.sub(r"(?i)\bone (?:on top of|above|upon|atop|over) (?:the other|another)\b", "on top of each other", text)
+    after = r"(?i)\bone (?:after|behind|beside|next to) (?:the other|another)\b"
+    text = re.sub(after, "" if re.search(r"(?i)\b(row|line|file|queue)\b", text) else "in a line", text)
     text = _CORRECTION.sub("", text)
     text = _NOT_THE_OTHER.sub("", text)
     text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)

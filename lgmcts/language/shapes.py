@@ -39,6 +39,8 @@ _CHATTER = frozenset(
     um uh hmm er erm oh great awesome cool nice-to-have lol appreciated sir""".split()
 )
 _CHATTER_SEQ = (
+    ("would", "it", "be", "possible", "to"), ("i'd", "love", "it", "if"), ("i'd", "like", "it", "if"),
+    ("it", "would", "be", "great", "if"), ("it", "would", "be", "nice", "if"),
     ("would", "you", "mind"), ("do", "you", "mind"), ("thank", "you"), ("if", "you", "can"), ("if", "you", "could"),
     ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),
     ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("how", "about"),
@@ -47,7 +49,7 @@ _CHATTER_SEQ = (
     ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),
     ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
     ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
-    ("i", "think"), ("honestly",), ("slightly",),
+    ("i", "think"), ("honestly",), ("slightly",), ("could", "you", "possibly"), ("shall", "we"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
