@@ -68,6 +68,37 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("dinner", "put the bowl on the plate and the fork, knife and spoon in a row right of the plate",
      [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
       {"pattern": "right", "objects": [3, 4, 5], "anchor": 1}]),
+    # terse "objects: pattern" and a selection read by the next clause
+    ("pantry", "cans: line, back left.", [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "top left"}]),
+    ("pantry", "box: behind red bowl.", [{"pattern": "behind", "objects": [10], "anchor": 6}]),
+    ("toys", "heart: on the granite bowl", [{"pattern": "tower", "objects": [9, 11]}]),
+    # several subjects in one statement; the former and the latter
+    ("toys", "the star goes left of the tiger pan and the heart goes on top of the granite bowl",
+     [{"pattern": "left", "objects": [10], "anchor": 12}, {"pattern": "tower", "objects": [9, 11]}]),
+    ("home", "The bowls are to be lined up, the bottles are to be stacked with the white one on top",
+     [{"pattern": "line", "objects": [3, 4, 5]}, {"pattern": "tower", "objects": [7, 6]}]),
+    ("dinner", "take the spoon and the fork; put the former in front of the latter",
+     [{"pattern": "front", "objects": [5], "anchor": 3}]),
+    # colours after a negation; corrections; a place setting with more goals
+    ("blocks", "put the blocks that are neither purple nor orange in a rectangle",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4]}]),
+    ("blocks", "circle of every block except yellow and orange", [{"pattern": "circle", "objects": [1, 2, 3, 6]}]),
+    ("dinner", "put the spoon left of the plate, no wait, right of the plate",
+     [{"pattern": "right", "objects": [5], "anchor": 1}]),
+    ("dinner", "set the table. also stack the cup on the mug",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}, {"pattern": "tower", "objects": [6, 7]}]),
+    ("dinner", "set the table so that the plate ends up to the right of the cutlery",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
+    # stack orders: a role after its verb, read from the top down over clauses, so that
+    ("pantry", "make a stack of the three bowls; the red one goes at the bottom, the blue one in the middle and "
+               "the white one on top", [{"pattern": "tower", "objects": [6, 7, 5]}]),
+    ("toys", "from top to bottom I want the yellow block, the green block and then the red block",
+     [{"pattern": "tower", "objects": [5, 8, 7]}]),
+    ("home", "pile up the mugs so the blue one is on the bottom", [{"pattern": "tower", "objects": [2, 1]}]),
+    ("pantry", "move only the white can. afterwards the white bowl should be in front of it and the blue can on its left",
+     [{"pattern": "behind", "objects": [2], "anchor": 5}, {"pattern": "right", "objects": [2], "anchor": 3}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
@@ -87,6 +118,10 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "ok, thanks, that is all", "names nothing to arrange"),
     ("home", "ok robot, here is the plan", "names no object in the scene and no arrangement"),
     ("pantry", "stack red on blue", "is ambiguous"),
+    ("toys", "put the red block to the left of the blue block and also to the right of it", "nothing to put"),
+    ("dinner", "put the napkin to the left of the plate, then set the table", "'the napkin' names nothing"),
+    ("pantry", "stack the bowls. the white one goes on top of the red one", "contradiction"),
+    ("blocks", "stack purple, red and green, purple lowest and green highest", "ambiguous"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
