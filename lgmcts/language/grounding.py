@@ -673,6 +673,9 @@ def _mention_at(
         everything, det, end = "other", "other", j + 2
     elif det == "" and j < n and words[j] in ("everything", "anything"):
         everything, det, end = "all", "all", j + 1
+    if everything and end < n and words[end] in COLOUR_WORDS and _one_colour(vocab, words, end) is None:
+        # "everything purple" with nothing purple: not everything.
+        raise InputError(f"nothing in the scene matches '{' '.join(words[i:end + 1])}' (no {words[end]} object)")
     head = ""
     cols = None if everything else _colors(vocab, words, j)
     colors, color_order = None, ()

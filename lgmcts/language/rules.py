@@ -624,6 +624,15 @@ class _Parser:
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
         text = " ".join(words)
+        rel_words_ = self._word_kinds()[0]
+        for k, w in enumerate(words):
+            nxt = [x for x in words[k + 1 : k + 5] if x not in ("be", "end", "ends", "up", "placed", "put", "go", "sit",
+                                                                "sitting", "stand", "standing", "to", "the")]
+            if w in ("not", "never", "nowhere") and nxt and (
+                    nxt[0] in _DIR_WORDS or nxt[0] in _VERT_WORDS - {"of", "top"} or _stem(nxt[0]) in rel_words_
+                    or tuple(nxt[:2]) == ("in", "front")):
+                # "make sure the box is not behind the bowl": a goal that something must not hold.
+                raise InputError(f"'{text}': goals that something must not hold are not read; say where it should go")
         if any(w in ("itself", "themselves", "himself", "herself") for w in words):
             raise InputError(f"'{text}': an object cannot be placed relative to itself")
         for k in range(1, len(words) - 1):
@@ -1340,6 +1349,11 @@ class _Parser:
         if k is None:
             return None
         seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
+        many = re.search(r"\bfor (two|three|four|five|six|[2-9]|\d\d+) (people|persons|guests|diners|of us)\b",
+                         " ".join(words))
+        if many is not None:
+            raise InputError(f"'{' '.join(words)}': a setting {many.group(0)} needs one plate each; "
+                             f"set one place at a time")
         rest = words[:k] + words[k + len(seq):]
         # Objects named along with it must be the setting's own (plate, bowls,
         # cutlery: "set a place: bowl on the plate, silverware on the left");
@@ -1676,8 +1690,15 @@ def _rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bone (?:on top of|above|upon|atop|over) (?:the other|another)\b", "on top of each other", text)
     after = r"(?i)\bone (?:after|behind|beside|next to) (?:the other|another)\b"
     text = re.sub(after, "" if re.search(r"(?i)\b(row|line|file|queue)\b", text) else "in a line", text)
+    # "right in front of", "right behind the box": "right" says "directly" ("right behind of" stays a diagonal).
+    text = re.sub(r"(?i)\b(?:right|directly|just|immediately|straight) (in front of|behind(?! of)|above|below|under|"
+                  r"underneath|beneath|on top of|next to|beside)\b", r"\1", text)
+    # ", not in front of it" after a relation: a contrast that adds nothing.
+    text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
+                  r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
     text = _CORRECTION.sub("", text)
-    text = _NOT_THE_OTHER.sub("", text)
+    text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
+                              else "", text)
     text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)
     text = _relation_words(text)
     text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
