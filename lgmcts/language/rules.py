@@ -43,7 +43,9 @@ from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, normalise, stack_r
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
 _STRONG_WORDS = frozenset({"then", "while", "also", "afterwards", "meanwhile", "additionally", "furthermore", "whereas"})
-_STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"))
+_STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"),
+               ("at", "the", "same", "time"), ("once", "that", "is", "done"), ("when", "that", "is", "done"),
+               ("once", "you", "are", "done"), ("when", "you", "are", "done"))
 _PUNCT_END = frozenset({";", ".", "!", "?", ":"})
 _LEADING = frozenset(
     {"and", ",", "but", "then", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
@@ -68,7 +70,7 @@ _COMMAND_VERBS = frozenset(
 #: Verbs of a selection clause: it names objects for the next clause ("select
 #: objects that are red. circle"; "take the red mug and put it ...").
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch",
-                           "see", "spot", "notice", "locate"})
+                           "see", "spot", "notice", "locate", "look"})
 _VERT_SKIP = frozenset({"goes", "go", "sits", "sit", "is", "are", "be", "should", "placed", "put", "stands", "rests",
                         "directly", "right", "just", "then", "lies", "ends", "up", "will", "must", "sitting",
                         "resting", "standing", "lying", "stacked", "set", "neatly", "squarely", "centred", "centered"})
@@ -160,6 +162,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: The last arrangement read (a place said after it is its place).
+    last_shape: "_Pending | None" = None
     #: The tower of the previous clause is listed from the top down.
     downward: bool = False
     #: Object nouns named so far, latest first ("stack the cans: green first").
@@ -493,7 +497,7 @@ class _Parser:
             # company ("balance ... on", "should end up below", "put down left
             # of"): match from that word on.
             pw = phrase.split()
-            first = next((k for k, w in enumerate(pw) if (_stem(w) in self.key_vocab and _stem(w) not in FILLERS
+            first = next((k for k, w in enumerate(pw) if (any(f in self.key_vocab and f not in FILLERS for f in _forms(w))
                                                           and w not in STOPWORDS) or w in _DIR_WORDS), None)
             if first is not None and first > 0:
                 while first > 0 and pw[first - 1] in ("to", "the", "on", "in", "at", "of", "a", "an"):
@@ -717,6 +721,14 @@ class _Parser:
                              f"'facing north', 'east', 'south' or 'west'")
         if any(w in ("except", "excluding", "minus") for w in phrase_words):
             raise InputError(f"'{text}': cannot tell what to leave out")
+        if not mentions and params and not meaningful and self.state.last_shape is not None:
+            # "..., red on top, in the front right corner": the place of the arrangement just read.
+            shape = self.state.last_shape
+            for key, val in params.items():
+                if shape.params.get(key, val) != val:
+                    raise InputError(f"'{text}': two different {key}s for one arrangement")
+            shape.params.update(params)
+            return []
         if not mentions:
             if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
                 # "from the bottom up: green, red, blue": a stack named by its order.
@@ -791,6 +803,8 @@ class _Parser:
             # with them ("rest A on B", "A should end up below B"), unless a
             # word there names a direction or an arrangement.
             between = tuple(w for w in words[lo:hi] if w in _VERT_WORDS or w in ("top", "of", "to", "neath"))
+            while between and between[0] == "to" and between[:2] != ("to", "the"):
+                between = between[1:]  # "to end up underneath": the "to" of the verb
             if any(_stem(w) in rel_words_ or w in _DIR_WORDS for w in words[lo:hi]):
                 between = ()
             if between in _VERT_ON or between in _VERT_UNDER:
@@ -1012,6 +1026,7 @@ class _Parser:
         self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
         self.state.tower = out if pattern == "tower" else None
+        self.state.last_shape = out
         self.state.downward = pattern == "tower" and downward
         return out
 
@@ -1200,6 +1215,24 @@ class _Parser:
             return True
         return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
 
+    def _remark(self, clause: tuple[str, ...]) -> bool:
+        """A sentence that asks for nothing: no pattern, direction, stacking, place,
+        size or order word and no command verb, but words besides its object
+        references ("the bottles are a mess", "I find it easier to reach")."""
+        goal = any((any(f in self.key_vocab and f not in FILLERS for f in _forms(w)) and w not in STOPWORDS)
+                   or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _VERT_WORDS - {"to", "of"} or w in _COMMAND_VERBS
+                   or w in _SELECT_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS
+                   or w in ("order", "first", "last", "then", "facing") or _is_number(w) for w in clause)
+        if goal:
+            return False
+        try:
+            ms = self._find(clause)
+        except InputError:
+            ms = []
+        inside = {k for m in ms for k in range(m.start, m.end)}
+        return any(w.isalpha() and k not in inside and w not in STOPWORDS and _stem(w) not in FILLERS
+                   and not self._content_word(w) and w not in _ROLE_WORDS for k, w in enumerate(clause))
+
     def _without_asides(self, clause: tuple[str, ...]) -> tuple[str, ...]:
         if clause[:2] in (("there", "are"), ("there", "is"), ("we", "have"), ("you", "have"), ("i", "have")) and not any(
                 (_stem(w) in self.key_vocab and _stem(w) not in FILLERS) or w in _DIR_WORDS for w in clause):
@@ -1213,6 +1246,8 @@ class _Parser:
         """``clause`` without its comma-separated asides: a part that names no
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
+        if self._remark(clause):
+            return ()
         parts: list[list[str]] = [[]]
         for w in clause:
             if w == ",":
@@ -1237,8 +1272,9 @@ class _Parser:
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
                       r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
-        question = _QUESTION.match(text)
-        if question is not None and not _ASKS_TO_ACT.match(text):
+        bare = re.sub(r"(?i)^\s*(?:(?:hmm+|um+|uh+|so|well|ok(?:ay)?|hey|hi|oh|right|now)\b[,\s]*)+", "", text)
+        question = _QUESTION.match(bare) or re.search(r"(?i)\b(?:do|don't) you think\s*\?\s*$", bare)
+        if question is not None and not _ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _rewrite(text)
         words = normalise(tuple(t.text for t in tokenize(text)))
@@ -1628,9 +1664,16 @@ _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -
               "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
 
 #: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
-_FREE_ORDER = re.compile(r"(in )?(any|whatever|random|an arbitrary|no particular) order( you (like|want|choose))?"
-                         r"( is (fine|ok|okay|good))?( works)?|(the )?order (does not|do not|doesn't|won't) matter"
-                         r"|(the )?order is up to you|(i )?(do not|don't) (care|mind) (about )?(the|which) order")
+_FREE_ORDER = re.compile(r"(in )?(any|whatever|random|an arbitrary|no particular|any old) order( you (like|want|choose))?"
+                         r"( is (fine|ok|okay|good))?( works)?|(the )?order (of [a-z ]+ )?(does not|do not|doesn't|won't) "
+                         r"matter|(the )?order is up to you|(i )?(do not|don't|do n't) (care|mind)( about)?( the| which)?"
+                         r"( order)?|whichever( one)?( goes)? on top( is fine)?|(it )?(does not|doesn't) matter which "
+                         r"(one )?goes on top|i am not fussy about the order|any old way|(any|either) (one|[a-z]+) "
+                         r"(will|would) do|whichever (one )?you (like|want)")
+
+#: Words of stack roles and orders, which a remark never has.
+_ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle", "summit", "peak", "foundation",
+                         "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between"})
 
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"
@@ -1696,6 +1739,10 @@ def _rewrite(text: str) -> str:
     # ", not in front of it" after a relation: a contrast that adds nothing.
     text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
                   r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
+    text = re.sub(r"(?i)\b(?:turned|rotated|oriented|orientated) to face\b", "facing", text)
+    text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
+    text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
+    text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
     text = _CORRECTION.sub("", text)
     text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
                               else "", text)

@@ -50,6 +50,7 @@ _CHATTER_SEQ = (
     ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
     ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
     ("i", "think"), ("honestly",), ("slightly",), ("could", "you", "possibly"), ("shall", "we"),
+    ("do", "take", "your", "time"), ("take", "your", "time"), ("mind",),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
@@ -282,7 +283,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 continue
         got = _region_run(words, i, stack)
         if blocked and got is not None and not (i > 0 and words[i - 1] == "," and any(
-                words[x] in _TABLE for x in range(i, got[2]))):
+                words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))):
             got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
@@ -328,7 +329,8 @@ _ROLES = tuple(
             ("goes in between", "middle"), ("goes in the middle", "middle"), ("at the summit", "top"),
             ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
             ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
-            ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"), ("goes in the middle", "middle"),
+            ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"),
+            ("underneath", "bottom"), ("beneath", "bottom"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
@@ -370,6 +372,8 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
                 return role, end
     for seq, role in _ROLES:
         if words[j : j + len(seq)] == seq:
+            if seq in (("underneath",), ("beneath",)) and words[j + 1 : j + 2] not in ((), (",",), ("and",), (".",)):
+                return None  # "the bowl underneath the plate": a relation; "with the bowl underneath": the bottom
             if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
                 return None  # "top to bottom", "bottom up": an order of the list, not a role
             end = j + len(seq)
