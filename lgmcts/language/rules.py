@@ -362,6 +362,9 @@ def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words:
         if shaped and before and not related:
             related, before = True, before * 2  # "the bowls are to be lined up, the bottles ...": complete
         so_that = any(words[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(prev, lo))
+        if k >= 2 and mentions[k - 1].end == lo and mentions[k - 2].end < mentions[k - 1].start and all(
+                w in (",", "and") for w in words[mentions[k - 2].end : mentions[k - 1].start]):
+            continue  # "a ring of the mug, the cup and the bottle is to be made": the last item of a list
         if len(before) >= 2 and related and not so_that:
             cuts.append((lo, m.start))
             prev = m.start
@@ -397,7 +400,8 @@ def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tup
         if e + 1 >= len(mentions):
             continue
         last, d = mentions[e], mentions[e + 1]
-        first_rel = words[a.end : b.start] in _ON_WORDS or (
+        first_rel = words[a.end : b.start] in _ON_WORDS or tuple(
+            w for w in words[a.end : b.start] if w not in _VERT_SKIP and w != "the") in _VERT_ON | _VERT_UNDER or (
             any(w in _DIR_WORDS for w in words[a.end : b.start])
             and tuple(w for w in words[last.end : d.start] if w != "the") in _VERT_ON | _VERT_UNDER)
         if (first_rel and last.end < d.start
@@ -1215,14 +1219,35 @@ class _Parser:
             return True
         return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
 
+    def _remember(self, clause: tuple[str, ...]) -> None:
+        """Let later pronouns and bare colours refer to what a dropped remark names."""
+        try:
+            ms = self._find(clause)
+            got: list[int | Choice] = []
+            for m in ms:
+                sel = self._select(m)
+                got.extend(x for x in (sel if isinstance(sel, list) else [sel]) if x not in got)
+                if m.names is not None and not m.head and m.names not in self.state.nouns:
+                    self.state.nouns.insert(0, m.names)
+        except InputError:
+            return
+        if got:
+            self.state.last, self.state.last_tower = got, False
+
     def _remark(self, clause: tuple[str, ...]) -> bool:
         """A sentence that asks for nothing: no pattern, direction, stacking, place,
         size or order word and no command verb, but words besides its object
         references ("the bottles are a mess", "I find it easier to reach")."""
-        goal = any((any(f in self.key_vocab and f not in FILLERS for f in _forms(w)) and w not in STOPWORDS)
-                   or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _VERT_WORDS - {"to", "of"} or w in _COMMAND_VERBS
-                   or w in _SELECT_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS
-                   or w in ("order", "first", "last", "then", "facing") or _is_number(w) for w in clause)
+        lead = next((w for w in clause if w not in _LEADING and w not in STOPWORDS), "")
+        try:
+            named = [m for m in self._find(clause) if m.det != "pronoun"]
+        except InputError:
+            named = [None]
+        goal = ((lead in _COMMAND_VERBS or lead in _SELECT_VERBS) and bool(named)) or any(
+            (any(f in self.key_vocab and f not in FILLERS for f in _forms(w)) and w not in STOPWORDS)
+            or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _VERT_WORDS - {"to", "of"} or w in SIZES or w in ROWS
+            or w in COLS or w in FACINGS or w in ("order", "first", "last", "then", "facing") or _is_number(w)
+            for w in clause)
         if goal:
             return False
         try:
@@ -1236,17 +1261,13 @@ class _Parser:
     def _without_asides(self, clause: tuple[str, ...]) -> tuple[str, ...]:
         if clause[:2] in (("there", "are"), ("there", "is"), ("we", "have"), ("you", "have"), ("i", "have")) and not any(
                 (_stem(w) in self.key_vocab and _stem(w) not in FILLERS) or w in _DIR_WORDS for w in clause):
-            try:  # "there are two bottles": a remark about the scene, whose noun "the white one" may take
-                for mm in self._find(clause):
-                    if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
-                        self.state.nouns.insert(0, mm.names)
-            except InputError:
-                pass
+            self._remember(clause)  # "there are two bottles": a remark whose noun "the white one" may take
             return ()
         """``clause`` without its comma-separated asides: a part that names no
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
         if self._remark(clause):
+            self._remember(clause)  # "the bottles are a mess. could you stick them ...": them
             return ()
         parts: list[list[str]] = [[]]
         for w in clause:
@@ -1274,6 +1295,12 @@ class _Parser:
                       r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
         bare = re.sub(r"(?i)^\s*(?:(?:hmm+|um+|uh+|so|well|ok(?:ay)?|hey|hi|oh|right|now)\b[,\s]*)+", "", text)
         question = _QUESTION.match(bare) or re.search(r"(?i)\b(?:do|don't) you think\s*\?\s*$", bare)
+        cond = re.match(r"(?i)^\s*(?:if|unless|in case|when(?:ever)?)\s+(?:the|a|an|any|there|all|both|every|no|it|they)\b"
+                        r"(?!\s*(?:is|'s|isn't|is not)?\s*(?:not )?(?:too much|possible|ok|okay|alright|convenient|no)"
+                        r"\b)", bare)
+        if cond is not None:
+            raise InputError(f"'{text.strip()}': a command that depends on a condition is not read; "
+                             f"say what to arrange")
         if question is not None and not _ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _rewrite(text)
