@@ -623,7 +623,12 @@ class _Parser:
             if any(o in movers for o in p.objects):
                 res.append(p)
             elif p.anchor is not None and p.anchor in movers and p.pattern in _INVERSE and len(p.objects) == 1:
-                res.append(_Pending(_INVERSE[p.pattern], [p.anchor], p.objects[0], None, text))
+                inv = _INVERSE[p.pattern]
+                same = next((q for q in res if q.pattern == inv and q.anchor == p.objects[0]), None)
+                if same is not None:
+                    same.objects.append(p.anchor)  # "move both bowls so that the block is in front of them"
+                else:
+                    res.append(_Pending(inv, [p.anchor], p.objects[0], None, text))
             elif p.pattern == "tower" and any(o in movers for o in p.objects):
                 res.append(p)
             else:
@@ -1144,6 +1149,22 @@ class _Parser:
         return find_mentions(self.vocab, words, self.key_vocab if key_vocab is None else key_vocab,
                              tuple(self.state.nouns))
 
+    def _spoken_lists(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Lists said without commas ("the red the blue and the orange blocks") get
+        them; "toy" before a category ("the toy blocks") is dropped."""
+        colour = lambda w: w in self.vocab.color_words or w in COLOUR_WORDS  # noqa: E731
+        if not hasattr(self, "_cat_words"):
+            self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
+        out: list[str] = []
+        for k, w in enumerate(words):
+            if w == "the" and out and colour(out[-1]):
+                out.append(",")
+            if w == "toy" and k + 1 < len(words) and (words[k + 1] in self._cat_words
+                                                     or _stem(words[k + 1]) in self._cat_words):
+                continue
+            out.append(w)
+        return tuple(out)
+
     def _bare_colour_sets(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """Colours standing for objects after a negation: "neither purple nor orange"
         -> "not purple or orange"; "not red and not blue" -> "not red or blue";
@@ -1218,6 +1239,25 @@ class _Parser:
         if (st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _ASIDE_KEEP:
             return True
         return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+
+    def _topic_split(self, clause: tuple[str, ...]) -> list[tuple[str, ...]]:
+        """"the bowls, stack them with the white one at the bottom", "the green can
+        move it so ...": a reference put first, then a command about it by a pronoun."""
+        start = 2 if clause[:2] == ("you", "know") else 0
+        try:
+            ms = self._find(clause[start:])
+        except InputError:
+            return [clause]
+        if not ms or ms[0].start != 0 or ms[0].det == "pronoun":
+            return [clause]
+        j = start + ms[0].end
+        while j < len(clause) and clause[j] in (",", "and", "so", "then"):
+            j += 1
+        rest = clause[j:]
+        if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them"))
+                and any(w in ("it", "them", "they") for w in rest[:6])):
+            return [clause[start : start + ms[0].end], rest]
+        return [clause]
 
     def _remember(self, clause: tuple[str, ...]) -> None:
         """Let later pronouns and bare colours refer to what a dropped remark names."""
@@ -1307,6 +1347,14 @@ class _Parser:
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
+        words = self._spoken_lists(words)
+        for k, w in enumerate(words[:-1]):
+            nxt = words[k + 1]
+            if (w == "no" and (nxt in ("objects", "object", "things", "thing", "items", "item") or (
+                    nxt not in ("particular", "order", "matter", "wait") and (
+                        nxt in self._cat_words or _stem(nxt) in self._cat_words or nxt in COLOUR_WORDS)))) or (
+                    w == "none" and nxt == "of"):
+                raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
         words = self._former_latter(words)
         words = self._bare_colour_sets(words)
         # Words that may be read by their own embedding, encoded in one batch
@@ -1339,7 +1387,7 @@ class _Parser:
         kept = [c for c in (self._without_asides(c) for c in clauses) if c and not _FREE_ORDER.fullmatch(" ".join(c))]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
-        kept = _merged_moves(kept)
+        kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
@@ -1770,6 +1818,17 @@ def _rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
+    # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
+    repair = r"(?:no wait|wait no|no|sorry|i mean|i meant)"
+    text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s+{repair}\s+(?=the\b)", "", text)
+    text = re.sub(rf"(?i)\b(?:on|onto|in|to|at|behind|under|underneath)(?:\s+the)?\s+{repair}\s+"
+                  rf"(?=(?:on|onto|in|to|at|behind|under|underneath)\b)", "", text)
+    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top)?\b|"
+                  r"\bwhichever(?: one)?(?:\s*[.!?]*\s*$)", "", text)
+    text = re.sub(r"(?i)\b(?:out|up) front\b", "at the front of the table", text)
+    text = re.sub(r"(?i)\balong the (back|front|left|right)(?! of)\b", r"along the \1 of the table", text)
+    text = re.sub(r"(?i)\b(?:before|after|when|once|until) (?:the kids|you|we|i|they|he|she|my [a-z]+|our [a-z]+) "
+                  r"(?:get|gets|come|comes|arrive|arrives|leave|leaves|are|is|go|goes|wake|wakes)\b[^,;.!?]*", "", text)
     text = _CORRECTION.sub("", text)
     text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
                               else "", text)

@@ -50,7 +50,8 @@ _CHATTER_SEQ = (
     ("nothing", "else"), ("when", "you", "get", "a", "chance"), ("a", "lot"), ("so", "much"), ("in", "advance"),
     ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
     ("i", "think"), ("honestly",), ("slightly",), ("could", "you", "possibly"), ("shall", "we"),
-    ("do", "take", "your", "time"), ("take", "your", "time"), ("mind",),
+    ("do", "take", "your", "time"), ("take", "your", "time"), ("mind",), ("real", "quick"), ("real", "quickly"),
+    ("and", "that", "is", "it"), ("that", "is", "it"), ("that", "is", "all"), ("so", "yeah"), ("you", "know"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
