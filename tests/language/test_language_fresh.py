@@ -122,7 +122,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "Is the knife to the left of the plate?", "is a question about the scene"),
     ("home", "What colour is the phone?", "is a question about the scene"),
     ("dinner", "put the fork on top of the knife and the knife on top of the fork", "contradiction"),
-    ("home", "ok, thanks, that is all", "names nothing to arrange"),
+    ("home", "ok, thanks, that is all", "the instruction is empty"),
     ("home", "ok robot, here is the plan", "names no object in the scene and no arrangement"),
     ("pantry", "stack red on blue", "is ambiguous"),
     ("toys", "put the red block to the left of the blue block and also to the right of it", "nothing to put"),
