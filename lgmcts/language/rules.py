@@ -48,7 +48,7 @@ _STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well
                ("once", "you", "are", "done"), ("when", "you", "are", "done"))
 _PUNCT_END = frozenset({";", ".", "!", "?", ":"})
 _LEADING = frozenset(
-    {"and", ",", "but", "then", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
+    {"and", ",", "but", "then", "like", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
      "next", "now", "after", "that", "so", "meanwhile", "additionally", "furthermore", "plus", "kindly", "can", "could",
      "you", "would", "will", "whereas", "while", "afterwards"}
 )
@@ -1344,6 +1344,11 @@ class _Parser:
         if question is not None and not _ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _rewrite(text)
+        letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
+        if letters:
+            # "the T", "the A": a capital letter standing for the letter the scene has.
+            text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
+                          if m.group(2) in letters else m.group(0), text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
@@ -1805,7 +1810,11 @@ def _rewrite(text: str) -> str:
     edge" -> "the centre / left edge of the table", and the reading orders of
     a stack ("from the top down", "bottom up") -> "from top to bottom" /
     "from bottom to top"."""
-    text = re.sub(r"(?i)\bone (?:on top of|above|upon|atop|over) (?:the other|another)\b", "on top of each other", text)
+    text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
+                  text)
+    text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
+    text = re.sub(r"(?i),\s*(?:" + _FREE_ORDER.pattern + r"|i(?:'m| am) not fussy about the order)\s*(?=[,.;!?]|$)",
+                  "", text)
     after = r"(?i)\bone (?:after|behind|beside|next to) (?:the other|another)\b"
     text = re.sub(after, "" if re.search(r"(?i)\b(row|line|file|queue)\b", text) else "in a line", text)
     # "right in front of", "right behind the box": "right" says "directly" ("right behind of" stays a diagonal).

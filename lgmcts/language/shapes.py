@@ -283,8 +283,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 i += 1
                 continue
         got = _region_run(words, i, stack)
-        if blocked and got is not None and not (i > 0 and words[i - 1] == "," and any(
-                words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))):
+        if blocked and got is not None and not (
+                any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
+                or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
             got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
