@@ -724,7 +724,10 @@ def _mention_at(
             # A bare colour standing for its object ("stack red on blue"): the
             # one object of that colour; where more objects have it, the noun
             # comes from the rest of the command ("stack the cans: green first").
-            m = Mention(i, j, " ".join(words[i:j]), "the", False, None, colors, color_order)
+            several = len(colors) > 1  # "red, blue, white": one object per colour
+            m = Mention(i, j, " ".join(words[i:j]), "all" if several else "the", several, None, colors, color_order)
+            if several:
+                return m if len(_colour_only(vocab, m)) == len(colors) else replace(m, head="elided")
             return m if len(_colour_only(vocab, m)) <= 1 else replace(m, head="elided")
         phrase = " ".join(words[i:k])
         raise InputError(f"'{phrase}' names nothing in the scene")

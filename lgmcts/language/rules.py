@@ -986,6 +986,12 @@ class _Parser:
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
                roles: dict | None = None, defer_min: bool = False) -> _Pending:
         info = self.infos[pattern]
+        if info.ordered and len(sels) > 2:
+            flat = [{x for y in g for x in (y if isinstance(y, list) else [y]) if isinstance(x, int)} for g in sels]
+            later = set().union(*flat[1:])
+            if flat[0] and flat[0] == later and all(len(f) == 1 for f in flat[1:]):
+                # "stack the cups, yellow on orange": the set first, then its order.
+                sels, gaps = sels[1:], gaps[1:] if gaps else gaps
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
             if vertical == "on" or (vertical is None and any(
@@ -1835,7 +1841,8 @@ def _rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top)?\b|"
                   r"\bwhichever(?: one)?(?:\s*[.!?]*\s*$)", "", text)
     text = re.sub(r"(?i)\b(?:out|up) front\b", "at the front of the table", text)
-    text = re.sub(r"(?i)\balong the (back|front|left|right)(?! of)\b", r"along the \1 of the table", text)
+    text = re.sub(r"(?i)\balong the (back|front|left|right)\b(?! of| left| right| center| centre| middle| back| front| side|"
+                  r" edge| corner| half)", r"along the \1 of the table", text)
     text = re.sub(r"(?i)\b(?:before|after|when|once|until) (?:the kids|you|we|i|they|he|she|my [a-z]+|our [a-z]+) "
                   r"(?:get|gets|come|comes|arrive|arrives|leave|leaves|are|is|go|goes|wake|wakes)\b[^,;.!?]*", "", text)
     text = _CORRECTION.sub("", text)
