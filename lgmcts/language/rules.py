@@ -798,6 +798,10 @@ class _Parser:
             if self.state.header is not None and self.state.header[0] == "tower":
                 params = {**self.state.header[1], **params}
                 self.state.header = None
+        if re.search(r"\b(top to bottom|bottom to top)\b", text) and len(mentions) >= 2 and not any(
+                self._free_word(w) for w in meaningful):
+            # "from top to bottom the cans should go white, red, blue, green": a stack by its order.
+            phrase_words, meaningful = ["stack"], ["stack"]
         joined = " ".join(phrase_words)
         if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
                      joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
@@ -986,10 +990,10 @@ class _Parser:
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
                roles: dict | None = None, defer_min: bool = False) -> _Pending:
         info = self.infos[pattern]
-        if info.ordered and len(sels) > 2:
+        if info.ordered and len(sels) >= 2:
             flat = [{x for y in g for x in (y if isinstance(y, list) else [y]) if isinstance(x, int)} for g in sels]
             later = set().union(*flat[1:])
-            if flat[0] and flat[0] == later and all(len(f) == 1 for f in flat[1:]):
+            if flat[0] and flat[0] == later and sum(len(f) for f in flat[1:]) == len(later):
                 # "stack the cups, yellow on orange": the set first, then its order.
                 sels, gaps = sels[1:], gaps[1:] if gaps else gaps
         order = list(range(len(sels)))
