@@ -19,7 +19,10 @@ an expected goal may say ``"objects_from": [ids], "count": k`` (any k of
 those: "three blocks") and ``"anchor_any": [ids]`` (any one: "behind one
 block"); ``"disjoint": [[i, j]]`` at the top requires goals i and j to share
 no object ("another line"). A tower goal with ``"unordered": true`` matches
-its objects in any order (a stack whose order the command leaves open).
+its objects in any order (a stack whose order the command leaves open). A
+relation of one object to one anchor also matches its inverse ("the cup
+right of the mug" and "the mug left of the cup"): the acceptance rule holds
+of both in the same states.
 ``{"any_of": [expect, expect, ...]}`` passes when any alternative matches
 (a place setting with the cutlery on either side). The optional pattern
 parameters ``region`` ("top left", "middle center": ``<row> <col>`` with
@@ -245,7 +248,19 @@ def _norm_param(key: str, value: Any) -> Any:
     return f"{row} {col}"
 
 
+#: The relation that holds of the anchor when ``pattern`` holds of the object:
+#: the acceptance rule (within 45 degrees of the direction, 0 < d <= 0.30 m) is
+#: the same either way round, so "A left of B" and "B right of A" are one goal.
+_INVERSE = {"left": "right", "right": "left", "front": "behind", "behind": "front", "left_front": "right_behind",
+            "right_behind": "left_front", "left_behind": "right_front", "right_front": "left_behind"}
+
+
 def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
+    if (exp.get("pattern") != got.get("pattern") and _INVERSE.get(got.get("pattern", "")) == exp.get("pattern")
+            and len(got.get("objects", [])) == 1 and len(exp.get("objects", [])) == 1 and "anchor" in exp
+            and not any(got.get(k) is not None or exp.get(k) is not None for k in PARAMS)):
+        # "the cup right of the mug" labelled, "the mug left of the cup" read: one goal.
+        got = {"pattern": exp["pattern"], "objects": [got.get("anchor")], "anchor": got["objects"][0]}
     if exp.get("pattern") != got.get("pattern"):
         return False
     for key in PARAMS:

@@ -495,6 +495,10 @@ class _Parser:
         return found
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
+        dirs = {_DIR_WORDS[w] for w in re.findall(r"[a-z]+", phrase.lower()) if w in _DIR_WORDS}
+        if any((-x, -y) in dirs for x, y in dirs):
+            # "both in front of and behind the bowl"
+            raise InputError(f"contradiction: '{phrase}' names opposite directions")
         m = self.matcher.match(phrase, allowed=allowed)
         if not m and m.reason != "no arrangement is named" and "'" not in m.reason:
             # Words before the first word of a pattern key are the verb and its
@@ -1771,7 +1775,8 @@ _ROLE_MARK = "|"
 #: Words that keep a comma-separated part of a command from being an aside.
 _ASIDE_KEEP = frozenset({"order", "first", "then", "last", "next", "top", "bottom", "base", "middle", "between",
                          "each", "other", "one", "ones", "former", "latter", "both", "all", "every", "except",
-                         "table", "on", "onto", "under", "below", "above", "beneath",
+                         "table", "facing", "pointing", "turned", "oriented", "orientated", "aimed", "faces", "face",
+                         "on", "onto", "under", "below", "above", "beneath",
                          "underneath", "atop", "upon"})
 
 #: A question about the scene ("is the knife left of the plate?"), not a request.

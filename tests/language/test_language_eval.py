@@ -35,3 +35,18 @@ def test_goal_comparison_rules():
     assert goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4]}]})
     assert not goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 2]}, {"pattern": "line", "objects": [2, 3]}]})
     assert not goals_match(pick, {"goals": [{"pattern": "line", "objects": [1, 5]}, {"pattern": "line", "objects": [3, 4]}]})
+
+
+def test_a_relation_matches_its_inverse_only():
+    # "the cup right of the mug" and "the mug left of the cup" hold in the same states.
+    exp = {"goals": [{"pattern": "right", "objects": [7], "anchor": 6}]}
+    assert goals_match(exp, {"goals": [{"pattern": "left", "objects": [6], "anchor": 7}]})
+    assert goals_match(exp, {"goals": [{"pattern": "right", "objects": [7], "anchor": 6}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "left", "objects": [7], "anchor": 6}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "right", "objects": [6], "anchor": 7}]})
+    diag = {"goals": [{"pattern": "left_front", "objects": [1], "anchor": 2}]}
+    assert goals_match(diag, {"goals": [{"pattern": "right_behind", "objects": [2], "anchor": 1}]})
+    assert not goals_match(diag, {"goals": [{"pattern": "left_behind", "objects": [2], "anchor": 1}]})
+    # Several objects to one anchor are not one relation the other way round.
+    many = {"goals": [{"pattern": "behind", "objects": [1, 2], "anchor": 3}]}
+    assert not goals_match(many, {"goals": [{"pattern": "front", "objects": [3], "anchor": 1}]})
