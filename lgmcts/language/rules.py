@@ -1267,8 +1267,11 @@ class _Parser:
         j = start + ms[0].end
         while j < len(clause) and clause[j] in (",", "and", "so", "then"):
             j += 1
+        while j < len(clause) and clause[j] in ("just", "please", "now", "then", "can", "could", "you"):
+            j += 1
         rest = clause[j:]
-        if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them"))
+        if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them") or (
+                rest[0].isalpha() and rest[0] not in STOPWORDS and rest[1:2] in (("it",), ("them",))))
                 and any(w in ("it", "them", "they") for w in rest[:6])):
             return [clause[start : start + ms[0].end], rest]
         return [clause]
