@@ -702,10 +702,13 @@ class _Parser:
             self._order_by = order_by
             params, words2 = take_params(words, self._free_word, {m.start: m.end for m in mentions}, stack=stackish)
             if words2 != words:
+                by_index = [role_at.get(m.start) for m in mentions] if role_at is not None else None
                 words = words2
                 mentions = self._find(words)
-                if role_at is not None:
-                    role_at = None  # positions moved; roles and places are not mixed
+                if by_index is not None:
+                    # The place words are out; the references and their roles are the same, in order.
+                    role_at = ({m.start: r for m, r in zip(mentions, by_index) if r is not None}
+                               if len(mentions) == len(by_index) else None)
         for mm in mentions:
             if mm.start > 0 and words[mm.start - 1] in _OBJECT_SIZE_WORDS:
                 # "the large cans": a size that picks objects, which no selection here reads.
@@ -1163,6 +1166,19 @@ class _Parser:
         return find_mentions(self.vocab, words, self.key_vocab if key_vocab is None else key_vocab,
                              tuple(self.state.nouns))
 
+    def _category_ids(self, text: str) -> str:
+        """"blocks 4, 5 and 6", "the bowl 7": ids given after their category, read as
+        "objects 4, 5 and 6" when every number is the id of an object of that category."""
+        def ids(m: re.Match) -> str:
+            noun, nums = m.group(1).lower(), [int(x) for x in re.findall(r"\d+", m.group(2))]
+            kinds = {i: n for i, n, _ in self.vocab.objects}
+            if all(i in kinds and kinds[i] in (noun, _stem(noun)) for i in nums):
+                return ("objects " if len(nums) > 1 else "object ") + m.group(2)
+            return m.group(0)
+
+        return re.sub(r"(?i)\b([a-z]+) (\d+(?:\s*,\s*\d+)*(?:,?\s+and\s+\d+)?)\b(?!\s*(?:cm|mm|m|centimet|metre|meter|inch|%))",
+                      ids, text)
+
     def _spoken_lists(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """Lists said without commas ("the red the blue and the orange blocks") get
         them; "toy" before a category ("the toy blocks") is dropped."""
@@ -1173,6 +1189,10 @@ class _Parser:
         for k, w in enumerate(words):
             if w == "the" and out and colour(out[-1]):
                 out.append(",")
+            if (w == "and" and k >= 2 and words[k - 2] in ("every", "each", "all") and k + 1 < len(words)
+                    and words[k - 1] in self._cat_words and words[k + 1] in self._cat_words):
+                out.extend(["and", words[k - 2]])  # "every cup and bowl": every cup and every bowl
+                continue
             if w == "toy" and k + 1 < len(words) and (words[k + 1] in self._cat_words
                                                      or _stem(words[k + 1]) in self._cat_words):
                 continue
@@ -1361,6 +1381,7 @@ class _Parser:
         if question is not None and not _ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = _rewrite(text)
+        text = self._category_ids(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
             # "the T", "the A": a capital letter standing for the letter the scene has.
@@ -1811,7 +1832,7 @@ _AND_ITS_SIDE = re.compile(
     r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a |one of the )?[^,;.!?]+?)"
     r"(?: and|,(?= (?:on |to )?(?:its|their) )) "
     r"(?:off |also |just |slightly |a bit )?(?:to |on )?(?:(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?"
-    r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of))")
+    r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of)|(behind|in front of) (?:it|them)\b)")
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
 _CORRECTION = re.compile(
     r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|on|onto|under|below|above|beneath)\b[^,;.!?]*?)"
@@ -1842,6 +1863,7 @@ def _rewrite(text: str) -> str:
     text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
                   r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
     text = re.sub(r"(?i)\b(?:turned|rotated|oriented|orientated) to face\b", "facing", text)
+    text = re.sub(r"(?i)\bspread[- ]out\b", "wide", text)
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
@@ -1894,8 +1916,10 @@ def _relation_words(text: str) -> str:
     def side(m: re.Match) -> str:
         rel, anchor = m.group(1).lower(), m.group(2)
         s2 = next(g for g in m.groups()[2:] if g).lower()
+        s2 = {"behind": "back", "in front of": "front"}.get(s2, s2)
         first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
-        if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2:
+        if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2 or (
+                first in ("front", "back") and s2 in ("front", "back")):
             return m.group(0)  # "left of it and also right of it": a contradiction, read (and refused) as said
         return f"{first} {s2} of {anchor}"
 
