@@ -51,7 +51,8 @@ _CHATTER_SEQ = (
     ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
     ("i", "think"), ("honestly",), ("slightly",), ("could", "you", "possibly"), ("shall", "we"),
     ("do", "take", "your", "time"), ("take", "your", "time"), ("mind",), ("real", "quick"), ("real", "quickly"),
-    ("and", "that", "is", "it"), ("that", "is", "it"), ("that", "is", "all"), ("so", "yeah"), ("you", "know"),
+    ("in", "the", "final", "scene"), ("in", "the", "end"), ("at", "the", "end"), ("final", "state"),
+    ("end", "state"), ("goal", "state"), ("target", "state"), ("and", "that", "is", "it"), ("that", "is", "it"), ("that", "is", "all"), ("so", "yeah"), ("you", "know"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
 
@@ -332,7 +333,8 @@ _ROLES = tuple(
             ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
             ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
             ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"),
-            ("underneath", "bottom"), ("beneath", "bottom"), ("goes in the middle", "middle"),
+            ("underneath", "bottom"), ("beneath", "bottom"), ("on it", "next"), ("on top of it", "next"),
+            ("on top of that", "next"), ("on that", "next"), ("above it", "next"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
