@@ -911,6 +911,8 @@ class _Parser:
                 objs = base + sel if lead in _VERT_ON else sel + base
                 self.state.last, self.state.last_tower = sel, True
                 return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
+        if meaningful == ["down"] and not rel_pos and not free_pos and roles is None:
+            meaningful, phrase = [], ""  # "first put down the yellow block, (then) stack the green block on it"
         if not meaningful and roles is None and not rel_pos and not free_pos and phrase.strip() == "":
             # "cans: line", "the knife, the fork and the spoon. make a circle with
             # them": objects named on their own are those of the next clause.

@@ -333,8 +333,7 @@ _ROLES = tuple(
             ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
             ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
             ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"),
-            ("underneath", "bottom"), ("beneath", "bottom"), ("on it", "next"), ("on top of it", "next"),
-            ("on top of that", "next"), ("on that", "next"), ("above it", "next"), ("goes in the middle", "middle"),
+            ("underneath", "bottom"), ("beneath", "bottom"), ("goes in the middle", "middle"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
