@@ -57,7 +57,7 @@ SYNONYMS: dict[str, tuple[str, ...]] = {
     "cup": ("mug",),
     "bowl": ("dish",),
     "plate": ("dish",),
-    "phone": ("cellphone", "smartphone", "cell phone", "mobile phone", "mobile"),
+    "phone": ("cellphone", "smartphone", "cell phone", "mobile phone", "mobile", "handset"),
     "pan": ("frying pan", "skillet"),
     "bottle": ("flask",),
     "flower": ("blossom",),
@@ -325,6 +325,9 @@ class Mention:
     filters: tuple[tuple[str, str, "Mention"], ...] = ()
     #: "two of the three cans": the number of matches the phrase states.
     of_count: int | None = None
+    #: An everyday generic noun ("the red things", "every red item"): a colour
+    #: also takes the objects whose colour starts with it ("red swirl").
+    loose: bool = False
 
 
 @dataclass(frozen=True)
@@ -677,6 +680,7 @@ def _mention_at(
         # "everything purple" with nothing purple: not everything.
         raise InputError(f"nothing in the scene matches '{' '.join(words[i:end + 1])}' (no {words[end]} object)")
     head = ""
+    loose = False
     cols = None if everything else _colors(vocab, words, j)
     colors, color_order = None, ()
     if cols is not None:
@@ -696,6 +700,7 @@ def _mention_at(
         if words[j] in ("one", "ones") and colors is None and det not in ("the", "other", "another"):
             return None
         names, plural, end = None, words[j].endswith("s") or words[j] == "stuff", j + 1
+        loose = words[j] in _LOOSE_NOUNS
         if words[j] in ("one", "ones") and (colors is not None or det == "other"):
             head = "one"
     elif colors is None and det == "other" and words[i] == "the" and not nested and (j >= n or words[j] not in _COORD):
@@ -742,7 +747,7 @@ def _mention_at(
     if det == "count" and count == 1:
         det = "one"
     m = Mention(i, end, " ".join(words[i:end]), det, plural, names, colors, color_order, count=count, head=head,
-                of_count=locals().get("of_count"))
+                of_count=locals().get("of_count"), loose=loose)
     if non is not None:
         m = replace(m, filters=(("value", "ne", Mention(i, end, "non " + " ".join(non), "all", True, None, non, non)),))
     # Qualifiers.
@@ -906,6 +911,10 @@ _NOT_NOUN = frozenset({"to", "in", "into", "on", "of", "at", "behind", "and", "a
                        "over", "atop", "upon", "so", "must", "will", "sits", "comes", "left", "right", "front"})
 
 
+#: Generic nouns of everyday speech (not the peers' "objects").
+_LOOSE_NOUNS = frozenset({"things", "thing", "items", "item", "stuff"})
+
+
 def _colour_only(vocab: Vocabulary, m: Mention) -> list[int]:
     """The objects with the mention's colours, of any category."""
     try:
@@ -940,6 +949,12 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         i for i, n, c in vocab.objects
         if (names is None or n in names) and (m.colors is None or c in m.colors)
     ]
+    if out and m.colors is not None and m.loose and (m.plural or m.det == "all"):
+        # "all the red things": everyday words take the red swirl heart too;
+        # "red objects" (the peers' word) keeps exact colours.
+        firsts = {colour_words(c)[0] for c in m.colors if len(colour_words(c)) == 1}
+        out = sorted(set(out) | {i for i, n, c in vocab.objects if (names is None or n in names)
+                                 and len(colour_words(c)) > 1 and colour_words(c)[0] in firsts})
     if not out and m.colors is not None:
         # No exact colour: the colour words given may be part of the object's
         # colour ("the swirl flower" for a red swirl flower; every word given

@@ -745,6 +745,12 @@ class _Parser:
                     raise InputError(f"'{text}': two different {key}s for one arrangement")
             shape.params.update(params)
             return []
+        if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
+                and self.state.tower is not None and self.state.header is None:
+            # "stack red, blue, green. bottom up.": the order the stack was listed in.
+            if "top to bottom" in text:
+                self.state.tower.objects.reverse()
+            return []
         if not mentions:
             if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
                 # "from the bottom up: green, red, blue": a stack named by its order.
@@ -1784,7 +1790,7 @@ _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -
               "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
 
 #: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
-_FREE_ORDER = re.compile(r"(in )?(any|whatever|random|an arbitrary|no particular|any old) order( you (like|want|choose))?"
+_FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|random|an arbitrary|no particular|any old) order( you (like|want|choose))?"
                          r"( is (fine|ok|okay|good))?( works)?|(the )?order (of [a-z ]+ )?(does not|do not|doesn't|won't) "
                          r"matter|(the )?order is up to you|(i )?(do not|don't|do n't) (care|mind)( about)?( the| which)?"
                          r"( order)?|whichever( one)?( goes)? on top( is fine)?|(it )?(does not|doesn't) matter which "
@@ -1864,6 +1870,18 @@ def _rewrite(text: str) -> str:
     # ", not in front of it" after a relation: a contrast that adds nothing.
     text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
                   r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
+    # Reasons and how-to remarks ask for nothing: "..., because the bowl keeps dripping", "make it so".
+    text = re.sub(r"(?i),?\s*\b(?:because|since|'cause|cause|as i|so i can|so that i can)\b[^.;!?]*", "", text)
+    text = re.sub(r"(?i)\b(?:make it so|get there by [^.;!?]*|(?:,\s*)?so move it there|move it there|"
+                  r"(?:to )?make that happen)\b", "", text)
+    text = re.sub(r"(?i)\b(its|their) (?:new )?(?:spot|place|position|location|home) (should be|is|will be|must be)\b",
+                  lambda m: ("it " if m.group(1).lower() == "its" else "they ") + m.group(2), text)
+    # Numbered steps: "1. put ...", "2) line up ..." (a step number is no size).
+    text = re.sub(r"(?i)(?:^|(?<=[\s:;,.]))(?:step )?\d{1,2}\s*[.)]\s+(?=[a-z])", "; ", text)
+    text = re.sub(r"(?i)\b(?:two|three|four|five|\d) steps\s*:", "", text)
+    text = re.sub(r"(?i)\bdo (?=(?:put|place|move|set|stack|line|arrange|make|build|pile)\b)", "", text)
+    text = re.sub(r"(?i)\bthat (?:match|matches) the colou?r of\b", "with the same colour as", text)
+    text = re.sub(r"(?i)\beither (?!of\b)(?=[a-z]+\b)", "one ", text)
     text = re.sub(r"(?i)\b(?:turned|rotated|oriented|orientated) to face\b", "facing", text)
     text = re.sub(r"(?i)\bspread[- ]out\b", "wide", text)
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)

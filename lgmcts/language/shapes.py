@@ -342,6 +342,7 @@ _ROLES = tuple(
 
 #: What "on top of" / "at the bottom of" may name and still be a place in the stack.
 _OF_STACK = frozenset({("it",), ("that",), ("them",), ("those",), ("the", "stack"), ("the", "tower"), ("the", "pile"),
+                       ("a", "stack"), ("a", "tower"), ("a", "pile"),
                        ("the", "heap"), ("everything",), ("all",)})
 
 
