@@ -327,9 +327,12 @@ def _merged_moves(clauses: list[tuple[str, ...]]) -> list[tuple[str, ...]]:
     while k < len(clauses):
         c = clauses[k]
         core = tuple(w for w in c if w not in ("only", "just", "please"))
+        nxt = clauses[k + 1] if k + 1 < len(clauses) else ()
+        named = core[1:]
+        again = len(named) >= 2 and any(nxt[x : x + len(named)] == named for x in range(len(nxt)))
         if (k + 1 < len(clauses) and core and core[0] in _MOVE_VERBS and len(core) <= 6
                 and not any(w in _DIR_WORDS or w in _VERT_WORDS or w in ("to", "into", "in") for w in core)
-                and any(w in ("it", "its", "them", "their") for w in clauses[k + 1])):
+                and (any(w in ("it", "its", "them", "their") for w in nxt) or again)):
             out.append(core + ("so", "that") + clauses[k + 1])
             k += 2
             continue
@@ -640,6 +643,9 @@ class _Parser:
         return res
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
+        words = self._arrangement_refs(words)
+        if not words:
+            return []
         text = " ".join(words)
         rel_words_ = self._word_kinds()[0]
         for k, w in enumerate(words):
@@ -1242,6 +1248,41 @@ class _Parser:
                     continue
             k += 1
         return tuple(res)
+
+    def _arrangement_refs(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """"put that row to the left of the plate", "do it at the front, keep it
+        small": an arrangement read before, named by its pattern word or "it"."""
+        shape = self.state.last_shape
+        if shape is None or not all(isinstance(x, int) for x in shape.objects):
+            return words
+        nouns = {"line": ("line", "row", "file", "queue"), "circle": ("circle", "ring", "loop"),
+                 "rectangle": ("rectangle", "square", "box"), "tower": ("tower", "stack", "pile")}.get(shape.pattern, ())
+        out = list(words)
+        for k in range(len(out) - 1):
+            if out[k] in ("that", "this", "the") and out[k + 1] in nouns and not (
+                    k > 0 and out[k - 1] in ("in", "into", "as", "form", "make", "a", "behind", "of", "beside", "to",
+                                             "near", "on", "onto", "above", "under", "below", "around", "with")):
+                out[k : k + 2] = ["them", ""]
+        out = [w for w in out if w]
+        if tuple(out) != words:
+            self.state.last, self.state.last_tower = list(shape.objects), False
+        # "do it at the front of the table", "keep it small": its place or size.
+        rest = [w for w in out if w not in ("do", "keep", "make", "it", "them", "please", "put", "place", "have", "move",
+                                            "set", "all")]
+        if rest and out[0] in ("do", "keep", "make", "put", "place", "move", "set", "have") and any(
+                w in ("it", "them") for w in out[:3]) and list(self.state.last) == list(shape.objects):
+            size = next((SIZES[w] for w in rest if w in SIZES), None)
+            params, left = take_params(tuple(rest), lambda w: False)
+            if size is not None:
+                params["size"] = size
+                left = tuple(w for w in left if w not in SIZES)
+            if params and not [w for w in left if w not in STOPWORDS and w != ","]:
+                for key, val in params.items():
+                    if shape.params.get(key, val) != val:
+                        raise InputError(f"'{' '.join(words)}': two different {key}s for one arrangement")
+                shape.params.update(params)
+                return ()
+        return tuple(out)
 
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":

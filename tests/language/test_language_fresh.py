@@ -130,6 +130,14 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "line", "objects": [3, 4, 5]}]),
     ("dinner", "1. put the bowl on the plate 2. line up the fork, knife and spoon",
      [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]}]),
+    # an arrangement read before, named by its pattern word or "it"
+    ("dinner", "1. put the bowl on the plate, 2. line up the fork, knife and spoon, 3. put that row to the left of "
+               "the plate", [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+                             {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
+    ("home", "line up the bowls, then put them at the back of the table",
+     [{"pattern": "line", "objects": [3, 4, 5], "region": "top"}]),
+    ("dinner", "please move the spoon. after this, the knife must be on the right side of the spoon",
+     [{"pattern": "left", "objects": [5], "anchor": 4}]),
     # everyday generic nouns take compound colours; the peers' "objects" keep exact ones
     ("toys", "line up every red item", [{"pattern": "line", "objects": [1, 5, 11]}]),
     ("toys", "put all red objects in a row", [{"pattern": "line", "objects": [1, 5]}]),
