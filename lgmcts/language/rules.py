@@ -553,6 +553,7 @@ class _Parser:
         """
         roles: dict[int, str] = {}
         drop: set[int] = set()
+        spans: dict[int, range] = {}
         for m in mentions:
             if m.start in drop:
                 continue
@@ -561,7 +562,14 @@ class _Parser:
                 continue
             role, end = got
             roles[m.start] = role
-            drop.update(range(m.end, end))
+            spans[m.start] = range(m.end, end)
+            drop.update(spans[m.start])
+        if roles and all(r == "next_it" for r in roles.values()) and self.state.tower is None:
+            # "stack the green block on it": a stacking step, not a role among others.
+            return None, words
+        for k, r in roles.items():
+            if r == "next_it":
+                roles[k] = "next"  # "with the red block at the base and the yellow block above it"
         if not drop:
             return None, words
         towerish = any(_stacking(w) for w in words) or len(roles) >= 2 \
