@@ -1495,6 +1495,14 @@ class _Parser:
                 stated = [whole]
             for clause in stated:
                 self._read_clause(clause, pending)
+        if self.state.header is not None and self.state.header[0] == "tower" and any(
+                p.pattern == "tower" for p in pending):
+            # "build a single tower: A on B, and B on C": the steps built it.
+            hparams = self.state.header[1]
+            for p in pending:
+                if p.pattern == "tower":
+                    p.params = {**hparams, **p.params}
+            self.state.header = None
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
         if order_by is not None and any(p.pattern == "tower" for p in pending):
@@ -1925,6 +1933,9 @@ def _rewrite(text: str) -> str:
                   r"(?:to )?make that happen)\b", "", text)
     text = re.sub(r"(?i)\b(its|their) (?:new )?(?:spot|place|position|location|home) (should be|is|will be|must be)\b",
                   lambda m: ("it " if m.group(1).lower() == "its" else "they ") + m.group(2), text)
+    # "A on B, which itself sits on C" -> "A on B, and B on C".
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+),? (?:which|that) (?:itself |in turn )?(?:sits|is|rests|stands|goes|"
+                  r"should sit|should be) (on top of|on|above|under|below|beneath)\b", r"\1, and \1 \2", text)
     # Numbered steps: "1. put ...", "2) line up ..." (a step number is no size).
     text = re.sub(r"(?i)(?:^|(?<=[\s:;,.]))(?:step )?\d{1,2}\s*[.)]\s+(?=[a-z])", "; ", text)
     text = re.sub(r"(?i)\b(?:two|three|four|five|\d) steps\s*:", "", text)
