@@ -723,6 +723,17 @@ class _Parser:
                     # The place words are out; the references and their roles are the same, in order.
                     role_at = ({m.start: r for m, r in zip(mentions, by_index) if r is not None}
                                if len(mentions) == len(by_index) else None)
+        keep = re.search(r"\b(?:while |and )?(?:keep|keeping|make|making) (?:the|that|it|them) (?:(?:circle|ring|line|row|"
+                         r"rectangle|square|stack|tower|pile) )?(" + "|".join(SIZES) + r")\b", " ".join(words))
+        if keep is not None:
+            # "..., keeping the circle small": the size of the arrangement of this clause.
+            if params.get("size", SIZES[keep.group(1)]) != SIZES[keep.group(1)]:
+                raise InputError(f"'{text}': two different sizes for one arrangement")
+            params["size"] = SIZES[keep.group(1)]
+            lo = len(" ".join(words)[: keep.start()].split())
+            hi = len(" ".join(words)[: keep.end()].split())
+            words = words[:lo] + words[hi:]
+            mentions = self._find(words)
         for mm in mentions:
             if mm.start > 0 and words[mm.start - 1] in _OBJECT_SIZE_WORDS:
                 # "the large cans": a size that picks objects, which no selection here reads.
@@ -761,9 +772,11 @@ class _Parser:
             return []
         if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
                 and self.state.tower is not None and self.state.header is None:
-            # "stack red, blue, green. bottom up.": the order the stack was listed in.
+            # "stack red, blue, green. bottom up.": the order the stack was listed in; a list
+            # after it ("pile up the cans. from top to bottom: green, blue, ...") goes downward.
             if "top to bottom" in text:
                 self.state.tower.objects.reverse()
+                self.state.downward = True
             return []
         if not mentions:
             if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
@@ -1936,6 +1949,9 @@ def _rewrite(text: str) -> str:
     # "A on B, which itself sits on C" -> "A on B, and B on C".
     text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+),? (?:which|that) (?:itself |in turn )?(?:sits|is|rests|stands|goes|"
                   r"should sit|should be) (on top of|on|above|under|below|beneath)\b", r"\1, and \1 \2", text)
+    text = re.sub(r"(?i)\ba pair of\b", "two of", text)
+    text = re.sub(r"(?i)[,;]?\s*\bi (?:don't|do not|won't) (?:mind|care) which(?: one| ones| two| three| four)?\b", "", text)
+    text = re.sub(r"(?i),\s*(?:both|all|each) of them\b", "", text)
     # Numbered steps: "1. put ...", "2) line up ..." (a step number is no size).
     text = re.sub(r"(?i)(?:^|(?<=[\s:;,.]))(?:step )?\d{1,2}\s*[.)]\s+(?=[a-z])", "; ", text)
     text = re.sub(r"(?i)\b(?:two|three|four|five|\d) steps\s*:", "", text)
