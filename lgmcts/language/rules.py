@@ -944,7 +944,8 @@ class _Parser:
                 objs = base + sel if lead in _VERT_ON else sel + base
                 self.state.last, self.state.last_tower = sel, True
                 return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
-        if meaningful == ["down"] and not rel_pos and not free_pos and roles is None:
+        if meaningful and set(meaningful) <= {"down", "first"} and "down" in meaningful and not rel_pos and not free_pos \
+                and roles is None:
             meaningful, phrase = [], ""  # "first put down the yellow block, (then) stack the green block on it"
         if not meaningful and roles is None and not rel_pos and not free_pos and phrase.strip() == "":
             # "cans: line", "the knife, the fork and the spoon. make a circle with
@@ -1975,6 +1976,7 @@ def _rewrite(text: str) -> str:
                   r" edge| corner| half)", r"along the \1 of the table", text)
     text = re.sub(r"(?i)\b(?:before|after|when|once|until) (?:the kids|you|we|i|they|he|she|my [a-z]+|our [a-z]+) "
                   r"(?:get|gets|come|comes|arrive|arrives|leave|leaves|are|is|go|goes|wake|wakes)\b[^,;.!?]*", "", text)
+    text = re.sub(r"(?i),\s*on the (?:side|end) (?:closest|nearest|nearer|closer) to (?:me|us|you|the viewer)\b", "", text)
     text = _CORRECTION.sub("", text)
     text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
                               else "", text)

@@ -51,7 +51,7 @@ _CHATTER_SEQ = (
     ("a", "bit"), ("a", "little", "bit"), ("i'm", "thinking"), ("i", "am", "thinking"), ("i", "was", "thinking"),
     ("i", "think"), ("honestly",), ("slightly",), ("could", "you", "possibly"), ("shall", "we"),
     ("do", "take", "your", "time"), ("take", "your", "time"), ("mind",), ("real", "quick"), ("real", "quickly"),
-    ("in", "the", "final", "scene"), ("in", "the", "end"), ("at", "the", "end"), ("final", "state"),
+    ("right", "then"), ("in", "the", "final", "scene"), ("in", "the", "end"), ("at", "the", "end"), ("final", "state"),
     ("end", "state"), ("goal", "state"), ("target", "state"), ("and", "that", "is", "it"), ("that", "is", "it"), ("that", "is", "all"), ("so", "yeah"), ("you", "know"),
 )
 _SIDES = frozenset({"left", "right", "front", "back", "top"})
