@@ -749,8 +749,10 @@ class _Parser:
         self._unknown_objects(words, rest, mentions)
         for k in rest[:-1]:
             nxt = words[k + 1] if k + 1 < len(words) else ""
+            part_of = nxt in ("corners", "sides", "edges", "ends", "points", "vertices") and words[k + 2 : k + 4] in (
+                ("of", "a"), ("of", "the"), ("of", "one"))
             if (words[k] in NUMBERS or words[k] in ("several", "multiple", "separate")) and nxt.endswith("s") \
-                    and self._free_word(nxt):
+                    and self._free_word(nxt) and not part_of:  # "the four corners of a rectangle" is one
                 raise InputError(f"'{text}': {words[k]} {nxt} need their objects named one by one "
                                  f"(say which objects go in each)")
         meaningful = [w for w in phrase_words if w not in STOPWORDS and w not in FILLERS and not _is_number(w)]
