@@ -162,6 +162,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: After "put A left of B": (A, B), either of which a following "it" may mean.
+    it_pair: "tuple | None" = None
     #: The last arrangement read (a place said after it is its place).
     last_shape: "_Pending | None" = None
     #: The tower of the previous clause is listed from the top down.
@@ -631,6 +633,7 @@ class _Parser:
             # Every pronoun after "so that" is the object to move ("... the bowl
             # in front of it and the can on its left").
             self.state.last = list(movers)
+            self.state.it_pair = None
             self.state.last_tower = False
             out.extend(self.clause(part))
         res = []
@@ -812,6 +815,7 @@ class _Parser:
                             sel.append(x)
             self.state.selection = sel
             self.state.last = list(sel)
+            self.state.it_pair = None
             self.state.last_tower = False
             if self.state.header is not None:
                 # "small line in the top left. select objects that are mug.": the
@@ -945,6 +949,7 @@ class _Parser:
                 base = [x for y in sels[0] for x in (y if isinstance(y, list) else [y])]
                 objs = base + sel if lead in _VERT_ON else sel + base
                 self.state.last, self.state.last_tower = sel, True
+                self.state.it_pair = None
                 return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
         if meaningful and set(meaningful) <= {"down", "first"} and "down" in meaningful and not rel_pos and not free_pos \
                 and roles is None:
@@ -960,6 +965,7 @@ class _Parser:
                             sel.append(x)
             self.state.selection = sel
             self.state.last = list(sel)
+            self.state.it_pair = None
             self.state.last_tower = False
             return []
         named = self._arrangements_named(phrase_words)
@@ -1030,6 +1036,7 @@ class _Parser:
         self.state.last_tower = False
         self.state.tower = None
         self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
+        self.state.it_pair = (targets[0], anchor_sel[0]) if len(targets) == 1 and len(anchor_sel) == 1 else None
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
@@ -1086,6 +1093,7 @@ class _Parser:
             yaw = nums[2] if len(nums) > 2 else float(cur[2] if cur else 0.0)
             pose = (nums[0], nums[1], yaw)
         self.state.last = objs
+        self.state.it_pair = None
         self.state.last_tower = pattern == "tower"
         self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
@@ -1128,6 +1136,11 @@ class _Parser:
                 if len(opts) < m.count or len(opts) != len(last):
                     raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
                 return Choice(opts, m.count, m.text)
+            pair = self.state.it_pair
+            if m.text == "it" and pair is not None and all(isinstance(x, int) for x in pair):
+                # "put the cup left of the plate and the bottle behind it": the cup or the plate?
+                raise InputError(f"'{m.text}' is unclear: it may be object {pair[0]} or object {pair[1]}, both named "
+                                 f"in the clause before; name the one you mean")
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
             if m.text == "it" and len(last) > 1 and not self.state.last_tower:
@@ -1290,6 +1303,7 @@ class _Parser:
         out = [w for w in out if w]
         if tuple(out) != words:
             self.state.last, self.state.last_tower = list(shape.objects), False
+            self.state.it_pair = None
         # "do it at the front of the table", "keep it small": its place or size.
         rest = [w for w in out if w not in ("do", "keep", "make", "it", "them", "please", "put", "place", "have", "move",
                                             "set", "all")]
@@ -1383,6 +1397,7 @@ class _Parser:
             return
         if got:
             self.state.last, self.state.last_tower = got, False
+            self.state.it_pair = None
 
     def _remark(self, clause: tuple[str, ...]) -> bool:
         """A sentence that asks for nothing: no pattern, direction, stacking, place,

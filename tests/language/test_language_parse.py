@@ -70,8 +70,14 @@ def test_another_line_is_disjoint_from_the_first(scenes, matcher):
 
 
 def test_the_other_and_pronouns(scenes, matcher):
-    g = _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind it")
+    # After "A in front of B", "it" may be A or B: asked back, not guessed.
+    with pytest.raises(InputError, match="'it' is unclear: it may be object 1 or object 4"):
+        _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind it")
+    g = _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind the red mug")
     assert g == [{"pattern": "front", "objects": [1], "anchor": 4}, {"pattern": "behind", "objects": [2], "anchor": 1}]
+    # After a selection, "it" is the object taken.
+    g = _goals(scenes["kitchen"], "take the red mug and put it behind the green bowl")
+    assert g == [{"pattern": "behind", "objects": [1], "anchor": 4}]
 
 
 @pytest.mark.parametrize(
