@@ -672,6 +672,21 @@ class _Parser:
         for k in range(1, len(words) - 1):
             if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
                 skip = 2 if words[k + 1] == "that" else 1
+                sub_words = words[k + skip :]
+                if any(_stacking(w) for w in words[:k]) and sum(w in _VERT_WORDS - {"to", "of", "top"}
+                                                                for w in sub_words) >= 2:
+                    # "stack the cans so that the green one sits on the red one and the white one
+                    # sits on the green one": the stacking steps make the stack.
+                    out: list[_Pending] = []
+                    for mm in self._find(words[:k]):
+                        if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
+                            self.state.nouns.insert(0, mm.names)  # "the green one": a can
+                    for part in _weak_split(sub_words, self._find(sub_words), self.key_vocab, self._word_kinds()[0]):
+                        for step in _on_pairs_split(part, self._find(part)):
+                            out.extend(self.clause(tuple(w for w in step if w not in (",", "and"))
+                                                   if step[:1] in ((",",), ("and",)) else step))
+                    if out and all(p.pattern == "tower" for p in out):
+                        return out
                 if any(_stacking(w) for w in words[:k]) and not any(
                         w in ("it", "they", "them") for w in words[k + skip :]):
                     # "stack the mugs so that the blue one is at the bottom": the
@@ -703,7 +718,8 @@ class _Parser:
             mentions = self._find(words)
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
-        if self.state.header is not None or any(self._free_word(w) for k, w in enumerate(words) if k not in inside):
+        if self.state.header is not None or (not mentions and self.state.last_shape is not None) or any(
+                self._free_word(w) for k, w in enumerate(words) if k not in inside):
             stackish = any(_stacking(w) for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None
@@ -1556,7 +1572,7 @@ class _Parser:
         so_that = any(clause[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(len(clause)))
         parts = [clause] if so_that else _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0])
         for part in parts:
-            for sub in _on_pairs_split(part, self._find(part)):
+            for sub in ([part] if so_that else _on_pairs_split(part, self._find(part))):
                 while sub and sub[0] in _LEADING:
                     sub = sub[1:]
                 if not sub:
