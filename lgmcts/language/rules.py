@@ -224,11 +224,25 @@ def _gaps(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[int, in
     return out
 
 
+def _table_place(words: tuple[str, ...], k: int) -> bool:
+    """Whether ``words[k]`` is part of a place on the table ("the top right corner",
+    "the left of the table"), not a relation or pattern word."""
+    w = words[k]
+    pos = set(ROWS) | set(COLS)
+    nxt, prev = words[k + 1] if k + 1 < len(words) else "", words[k - 1] if k else ""
+    if w in REGION_NOUNS:
+        return prev in pos
+    if w not in pos:
+        return False
+    return (nxt in pos or nxt in REGION_NOUNS or prev in pos
+            or words[k + 1 : k + 4] in (("of", "the", "table"), ("of", "the", "workspace")))
+
+
 def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozenset[str]) -> list[int]:
     return [
         k for k in range(lo, hi)
         if words[k] not in STOPWORDS and words[k] not in FILLERS and _stem(words[k]) in vocab
-        and _stem(words[k]) not in _NOT_PATTERN
+        and _stem(words[k]) not in _NOT_PATTERN and not _table_place(words, k)
     ]
 
 
