@@ -2024,6 +2024,14 @@ def _rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:before|after|when|once|until) (?:the kids|you|we|i|they|he|she|my [a-z]+|our [a-z]+) "
                   r"(?:get|gets|come|comes|arrive|arrives|leave|leaves|are|is|go|goes|wake|wakes)\b[^,;.!?]*", "", text)
     text = re.sub(r"(?i),\s*on the (?:side|end) (?:closest|nearest|nearer|closer) to (?:me|us|you|the viewer)\b", "", text)
+    # A corrected list item: ", orange on the bottom, no actually yellow on the bottom".
+    text = re.sub(r"(?i),\s*+(?!no\b|wait\b|sorry\b)[^,;.!?]+?,\s*(?:no,?\s*)?(?:wait|sorry|actually|i mean|make that)\b,?\s*",
+                  ", ", text)
+    # "the white can should end up with the yellow cup sitting on it" -> "the yellow cup on the white can"
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+) (?:should |must |will )?(?:end up|be left|be) with "
+                  r"(the (?:[a-z]+ ){0,3}?[a-z]+) (?:sitting|resting|standing|placed|stacked|lying) (on top of|on|upon) "
+                  r"(?:it|them)\b", r"\2 \3 \1", text)
+    text = re.sub(r"(?i),?\s*(?:and |but )?leave (?:the [a-z ,]+?|them|it) alone\b", "", text)
     text = _CORRECTION.sub("", text)
     text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
                               else "", text)
