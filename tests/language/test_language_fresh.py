@@ -140,6 +140,18 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "line", "objects": [3, 4, 5], "region": "top"}]),
     ("dinner", "please move the spoon. after this, the knife must be on the right side of the spoon",
      [{"pattern": "left", "objects": [5], "anchor": 4}]),
+    # stacks from their steps; two arrangements each with its own place; repairs of a list item
+    ("pantry", "stack the cans so that the green one sits on the red one and the white one sits on the green one",
+     [{"pattern": "tower", "objects": [1, 4, 2]}]),
+    ("blocks", "build a single tower: the purple block on the green block, which itself sits on the yellow block",
+     [{"pattern": "tower", "objects": [4, 3, 6]}]),
+    ("home", "make a circle of the bowls in the top right corner and a line of the cans at the front",
+     [{"pattern": "circle", "objects": [3, 4, 5], "region": "top right"},
+      {"pattern": "line", "objects": [12, 13, 14], "region": "bottom"}]),
+    ("pantry", "stack the cups for me, orange on the bottom, no actually yellow on the bottom",
+     [{"pattern": "tower", "objects": [8, 9]}]),
+    ("pantry", "the white can should end up with the yellow cup sitting on it", [{"pattern": "tower", "objects": [2, 8]}]),
+    ("toys", "put the letters at the four corners of a rectangle", [{"pattern": "rectangle", "objects": [1, 2, 3, 4]}]),
     # everyday generic nouns take compound colours; the peers' "objects" keep exact ones
     ("toys", "line up every red item", [{"pattern": "line", "objects": [1, 5, 11]}]),
     ("toys", "put all red objects in a row", [{"pattern": "line", "objects": [1, 5]}]),
@@ -166,7 +178,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "ok, thanks, that is all", "the instruction is empty"),
     ("home", "ok robot, here is the plan", "names no object in the scene and no arrangement"),
     ("pantry", "stack red on blue", "is ambiguous"),
-    ("toys", "put the red block to the left of the blue block and also to the right of it", "nothing to put"),
+    ("toys", "put the red block to the left of the blue block and also to the right of it", "unclear"),
     ("dinner", "put the napkin to the left of the plate, then set the table", "'the napkin' names nothing"),
     ("pantry", "stack the bowls. the white one goes on top of the red one", "contradiction"),
     ("blocks", "stack purple, red and green, purple lowest and green highest", "ambiguous"),
@@ -177,6 +189,8 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "put none of the bowls in a line", "selects nothing"),
     ("dinner", "set the table for two people", "one plate each"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
+    ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
+    ("blocks", "make two lines of the blocks", "named one by one"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
