@@ -1173,6 +1173,8 @@ class _Parser:
                                  f"in the clause before; name the one you mean")
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
+            if m.text == "it" and len(last) > 1 and getattr(self.state, "mass", False):
+                return [x for x in last if isinstance(x, int)]  # "grab all the red stuff and stack it"
             if m.text == "it" and len(last) > 1 and not self.state.last_tower:
                 # "it" is one object: with several placed before, it is the one they were placed by.
                 if isinstance(self.state.last_anchor, int):
@@ -1183,6 +1185,7 @@ class _Parser:
             if any(isinstance(x, Choice) for x in last):
                 raise InputError(f"'{m.text}' is unclear: the objects it refers to are not fixed yet")
             return [x for x in last if isinstance(x, int)]
+        self.state.mass = bool(re.search(r"\b(stuff|everything|anything)\b", m.text))
         if m.det == "other" and m.names is None and not m.plural and self.state.choices:
             # "one mug ... the other one": the one of two that the first did not take.
             prev = self.state.choices[-1]
@@ -1994,6 +1997,11 @@ def _rewrite(text: str) -> str:
                   r"(?:to )?make that happen)\b", "", text)
     text = re.sub(r"(?i)\b(its|their) (?:new )?(?:spot|place|position|location|home) (should be|is|will be|must be)\b",
                   lambda m: ("it " if m.group(1).lower() == "its" else "they ") + m.group(2), text)
+    # "starting with the green block, ..., finishing with the blue one": the bottom and the top.
+    text = re.sub(r"(?i)\b(?:starting|beginning) with (the (?:[a-z]+ ){0,3}?[a-z]+)(?= *(?:,|;|then\b|and\b|$))",
+                  r"\1 at the bottom", text)
+    text = re.sub(r"(?i)\b(?:finishing|ending|topping it off|finishing off) with (the (?:[a-z]+ ){0,3}?[a-z]+?)"
+                  r"(?: at the top| on top| on the top)?(?= *(?:[,.;!?]|$))", r"\1 on top", text)
     # "A on B, which itself sits on C" -> "A on B, and B on C".
     text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+),? (?:which|that) (?:itself |in turn )?(?:sits|is|rests|stands|goes|"
                   r"should sit|should be) (on top of|on|above|under|below|beneath)\b", r"\1, and \1 \2", text)
