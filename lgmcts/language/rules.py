@@ -1153,6 +1153,20 @@ class _Parser:
                     done.add(key)
                     self.state.named.update(ids)
                     out.append(list(ids))
+        # "all the bowls and cups except the red bowl": an exception that removes
+        # nothing from its own item is the whole list's.
+        for mm in group:
+            for e in mm.excluding:
+                try:
+                    ex = set(candidates(self.vocab, replace(e, det="all")))
+                except InputError:
+                    continue
+                try:
+                    own = set(candidates(self.vocab, replace(mm, excluding=(), det="all")))
+                except InputError:
+                    own = set()
+                if ex and not ex & own:
+                    out = [[x for x in got if x not in ex] if isinstance(got, list) else got for got in out]
         return out
 
     def _select(self, m: Mention) -> list[int] | Choice:

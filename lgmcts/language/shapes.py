@@ -62,7 +62,7 @@ def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
     out: list[str] = []
     for k, w in enumerate(words):
         # "letter R", "letter U": a one-letter word after "letter" is a name.
-        out.extend(_ABBREV.get(w, (w,)) if not (k and words[k - 1] == "letter") else (w,))
+        out.extend(_ABBREV.get(w, (w,)) if not (k and words[k - 1] == "letter" and len(w) == 1) else (w,))
     words = tuple(out)
     out = []
     i = 0
