@@ -908,7 +908,8 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
 _NOT_NOUN = frozenset({"to", "in", "into", "on", "of", "at", "behind", "and", "as", "first", "then", "last", "next",
                        "second", "third", "goes", "go", "should", "is", "are", "be", "up", "down", "under", "below",
                        "above", "beneath", "underneath", "with", "lowest", "highest", "bottom", "top", "base", "onto",
-                       "over", "atop", "upon", "so", "must", "will", "sits", "comes", "left", "right", "front"})
+                       "over", "atop", "upon", "so", "must", "will", "sits", "comes", "left", "right", "front",
+                       "crowning", "next", "finally", "lowest", "highest"})
 
 
 #: Generic nouns of everyday speech (not the peers' "objects").

@@ -583,6 +583,10 @@ class _Parser:
         if roles and all(r == "next_it" for r in roles.values()) and self.state.tower is None:
             # "stack the green block on it": a stacking step, not a role among others.
             return None, words
+        # "(put the green block down first,) then the purple one on it, and the red one on
+        # top": "it" is what the clause before named, below the first object here.
+        self._below_first = (roles.get(mentions[0].start) == "next_it" and bool(self.state.last)
+                             and all(isinstance(x, int) for x in self.state.last)) if mentions else False
         for k, r in roles.items():
             if r == "next_it":
                 roles[k] = "next"  # "with the red block at the base and the yellow block above it"
@@ -1102,6 +1106,11 @@ class _Parser:
             vol = {x[0]: x[2] for x in self.vocab.measures}
             objs = sorted(objs, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))
             self._order_by = None
+        if roles and pattern == "tower" and getattr(self, "_below_first", False):
+            below = [x for x in self.state.last if x not in objs]
+            objs = below + objs
+            roles = {**roles, **{x: "bottom" for x in below}}
+            self._below_first = False
         if roles:
             # Stack roles: bottom first, then "goes on it"/"next" in order, the
             # middle, the objects without a role, the top last.
@@ -1934,7 +1943,8 @@ _FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|ra
 
 #: Words of stack roles and orders, which a remark never has.
 _ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle", "summit", "peak", "foundation",
-                         "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between"})
+                         "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between",
+                         "finish", "crowning", "layer"})
 
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"

@@ -333,6 +333,7 @@ _ROLES = tuple(
             ("at the peak", "top"), ("at the very top", "top"), ("at the very bottom", "bottom"),
             ("on the very top", "top"), ("right at the top", "top"), ("in the middle of the stack", "middle"),
             ("goes down first", "bottom"), ("goes down last", "top"), ("first", "bottom"), ("last", "top"),
+            ("to finish", "top"), ("to top it off", "top"), ("crowning it", "top"), ("as the bottom layer", "bottom"),
             ("underneath", "bottom"), ("beneath", "bottom"), ("on it", "next_it"), ("on top of it", "next_it"),
             ("above it", "next_it"), ("on that", "next_it"), ("on top of that", "next_it"), ("over it", "next_it"), ("goes in the middle", "middle"),
         ],

@@ -152,6 +152,19 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [8, 9]}]),
     ("pantry", "the white can should end up with the yellow cup sitting on it", [{"pattern": "tower", "objects": [2, 8]}]),
     ("toys", "put the letters at the four corners of a rectangle", [{"pattern": "rectangle", "objects": [1, 2, 3, 4]}]),
+    # the bottom and top of a stack said around it; an exception for a whole list; "stack it" after stuff
+    ("toys", "pile the blocks up, starting with the green block, then the yellow one, then the red one, and "
+             "finishing with the blue one at the top", [{"pattern": "tower", "objects": [8, 7, 5, 6]}]),
+    ("blocks", "first put down the green block, then the purple one on it, and finally the red one on top",
+     [{"pattern": "tower", "objects": [3, 6, 1]}]),
+    ("home", "put the plate down first, then the white bowl on it, then the red mug to finish",
+     [{"pattern": "tower", "objects": [8, 3, 1]}]),
+    ("pantry", "make a circle of all the bowls and cups except the red bowl",
+     [{"pattern": "circle", "objects": [5, 7, 8, 9]}]),
+    ("toys", "put every letter that's blue or green behind the granite bowl",
+     [{"pattern": "behind", "objects": [2, 4], "anchor": 9}]),
+    ("toys", "grab all the red stuff and stack it, doesn't matter which one goes on top",
+     [{"pattern": "tower", "objects": [1, 5, 11]}]),
     # everyday generic nouns take compound colours; the peers' "objects" keep exact ones
     ("toys", "line up every red item", [{"pattern": "line", "objects": [1, 5, 11]}]),
     ("toys", "put all red objects in a row", [{"pattern": "line", "objects": [1, 5]}]),
