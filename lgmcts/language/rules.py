@@ -162,6 +162,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: The last reference selected was a mass ("all the red stuff"): "it" is all of it.
+    mass: bool = False
     #: After "put A left of B": (A, B), either of which a following "it" may mean.
     it_pair: "tuple | None" = None
     #: The last arrangement read (a place said after it is its place).
@@ -470,6 +472,10 @@ class _Parser:
         self.infos = matcher.infos()
         self.key_vocab = matcher.vocabulary
         self.state = _State()
+        #: Every word of the scene's category names ("letter", "a", "block" ...).
+        self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
+        #: The clause being read starts "B on it": what the clause before named goes below B.
+        self._below_first = False
 
     # ------------------------------------------------------------ one clause
     def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
@@ -1106,7 +1112,7 @@ class _Parser:
             vol = {x[0]: x[2] for x in self.vocab.measures}
             objs = sorted(objs, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))
             self._order_by = None
-        if roles and pattern == "tower" and getattr(self, "_below_first", False):
+        if roles and pattern == "tower" and self._below_first:
             below = [x for x in self.state.last if x not in objs]
             objs = below + objs
             roles = {**roles, **{x: "bottom" for x in below}}
@@ -1196,7 +1202,7 @@ class _Parser:
                                  f"in the clause before; name the one you mean")
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
-            if m.text == "it" and len(last) > 1 and getattr(self.state, "mass", False):
+            if m.text == "it" and len(last) > 1 and self.state.mass:
                 return [x for x in last if isinstance(x, int)]  # "grab all the red stuff and stack it"
             if m.text == "it" and len(last) > 1 and not self.state.last_tower:
                 # "it" is one object: with several placed before, it is the one they were placed by.
@@ -1290,8 +1296,6 @@ class _Parser:
         """Lists said without commas ("the red the blue and the orange blocks") get
         them; "toy" before a category ("the toy blocks") is dropped."""
         colour = lambda w: w in self.vocab.color_words or w in COLOUR_WORDS  # noqa: E731
-        if not hasattr(self, "_cat_words"):
-            self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
         out: list[str] = []
         for k, w in enumerate(words):
             if w == "the" and out and colour(out[-1]):
@@ -1409,8 +1413,6 @@ class _Parser:
         st = _stem(w)
         if _is_number(w) or w.startswith("#"):
             return True
-        if not hasattr(self, "_cat_words"):
-            self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
         if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
             return True
         if (st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _ASIDE_KEEP:
