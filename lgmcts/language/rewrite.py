@@ -1,0 +1,180 @@
+"""One spelling per meaning: phrasings rewritten, before tokenising, into the
+forms the grammar of :mod:`.rules` reads.
+
+Directions said with compass points, near and far, "diagonally" or a second
+side given by "its"; corrections and repairs ("left of the plate, no wait,
+right of the plate"); "the blue bottle's colour"; table places ("table
+centre"); the reading orders of a stack ("from the top down"); reasons,
+how-to remarks and step numbers that ask for nothing. Also the patterns that
+tell a question about the scene from a request, and a clause that only
+leaves a stack's order open. Nothing here knows the scene.
+"""
+
+from __future__ import annotations
+
+import re
+
+__all__ = ["rewrite", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
+
+#: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
+FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|random|an arbitrary|no particular|any old) "
+                        r"order( you (like|want|choose))?( is (fine|ok|okay|good))?( works)?|"
+                        r"(the )?order (of [a-z ]+ )?(does not|do not|doesn't|won't) matter|(the )?order is up to you|(i )?(do not|don't|do n't) (care|mind)( about)?( the| which)?"
+                        r"( order)?|whichever( one)?( goes)? on top( is fine)?|(it )?(does not|doesn't) matter which "
+                        r"(one )?goes on top|i am not fussy about the order|any old way|(any|either) (one|[a-z]+) "
+                        r"(will|would) do|whichever (one )?you (like|want)")
+
+
+#: A question about the scene ("is the knife left of the plate?"), not a request.
+QUESTION = re.compile(r"(?i)^\s*(is|are|was|were|does|do|did|which|what|what's|where|where's|why|who|whose|"
+                      r"how many|how much|how's|how is|how are)\b.*\?\s*$")
+#: Questions that ask for an action ("do you mind ...", "is it possible to ...").
+ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|are you able|do you (mind|think you could)|what about|how about)\b")
+
+_COMPASS = {"north": "back", "south": "front", "east": "right", "west": "left",
+            "northern": "back", "southern": "front", "eastern": "right", "western": "left"}
+_COMPASS_REL = re.compile(
+    r"(?i)\b(?:to the |on the |at the )?(north|south|east|west)(?:ern)?(?:[- ]?(east|west)(?:ern)?)?"
+    r"(?: side| end)? of\b")
+_NEAR_FAR = (
+    (re.compile(r"(?i)\b(?:on |to )?the far side of\b"), "behind"),
+    (re.compile(r"(?i)\b(?:on |to )?the near side of\b"), "in front of"),
+    (re.compile(r"(?i)\b(?:further|farther) (?:back|away(?: from (?:me|us|you|the viewer|the camera))?) than\b"),
+     "behind"),
+    (re.compile(r"(?i)\b(?:nearer|closer)(?: to (?:me|us|you|the viewer|the camera|the front))? than\b"),
+     "in front of"),
+    (re.compile(r"(?i)\b(?:further|farther) (?:forward|to the front) than\b"), "in front of"),
+    (re.compile(r"(?i)\bdiagonally (?=(?:behind|in front|forward|back|ahead|to the|left|right|up|down))"), ""),
+)
+#: "any of the blocks", "either of the mugs": one of them, whichever.
+_ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|these)\b")
+#: "behind the cup and to its right", "... and to the left of it", "... and off to
+#: the right": one diagonal relation to one anchor.
+_AND_ITS_SIDE = re.compile(
+    r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a |one of the )?[^,;.!?]+?)"
+    r"(?: and|,(?= (?:on |to )?(?:its|their) )) "
+    r"(?:off |also |just |slightly |a bit )?(?:to |on )?(?:(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?"
+    r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of)|(behind|in front of) (?:it|them)\b)")
+#: A correction: "left of the plate, no wait, right of the plate" keeps the second.
+_CORRECTION = re.compile(
+    r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|on|onto|under|below|above|beneath)\b[^,;.!?]*?)"
+    r"\s*,?\s*\b(?:(?:no,?\s+)?(?:wait|sorry|i mean|actually|make that|or rather|rather)|wait,? no|no(?=\s*,))\b\s*,?\s*")
+#: A contrast that only confirms the choice: "on the red mug, not the blue one".
+_NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
+
+
+def rewrite(text: str) -> str:
+    """Phrasings with one reading written the way the grammar reads them:
+    directions (:func:`_relation_words`), "the blue bottle's colour" -> "the
+    same colour as the blue bottle", "that matches / shares the same colour
+    as" -> "with the same colour as", "table centre" / "the table's left
+    edge" -> "the centre / left edge of the table", and the reading orders of
+    a stack ("from the top down", "bottom up") -> "from top to bottom" /
+    "from bottom to top"."""
+    text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
+                  text)
+    text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
+    text = re.sub(r"(?i),\s*(?:" + FREE_ORDER.pattern + r"|i(?:'m| am) not fussy about the order)\s*(?=[,.;!?]|$)",
+                  "", text)
+    after = r"(?i)\bone (?:after|behind|beside|next to) (?:the other|another)\b"
+    text = re.sub(after, "" if re.search(r"(?i)\b(row|line|file|queue)\b", text) else "in a line", text)
+    # "right in front of", "right behind the box": "right" says "directly" ("right behind of" stays a diagonal).
+    text = re.sub(r"(?i)\b(?:right|directly|just|immediately|straight) (in front of|behind(?! of)|above|below|under|"
+                  r"underneath|beneath|on top of|next to|beside)\b", r"\1", text)
+    # ", not in front of it" after a relation: a contrast that adds nothing.
+    text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
+                  r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
+    # Reasons and how-to remarks ask for nothing: "..., because the bowl keeps dripping", "make it so".
+    text = re.sub(r"(?i),?\s*\b(?:because|since|'cause|cause|as i|so i can|so that i can)\b[^.;!?]*", "", text)
+    text = re.sub(r"(?i)\b(?:make it so|get there by [^.;!?]*|(?:,\s*)?so move it there|move it there|"
+                  r"(?:to )?make that happen)\b", "", text)
+    text = re.sub(r"(?i)\b(its|their) (?:new )?(?:spot|place|position|location|home) (should be|is|will be|must be)\b",
+                  lambda m: ("it " if m.group(1).lower() == "its" else "they ") + m.group(2), text)
+    # "starting with the green block, ..., finishing with the blue one": the bottom and the top.
+    text = re.sub(r"(?i)\b(?:starting|beginning) with (the (?:[a-z]+ ){0,3}?[a-z]+)(?= *(?:,|;|then\b|and\b|$))",
+                  r"\1 at the bottom", text)
+    text = re.sub(r"(?i)\b(?:finishing|ending|topping it off|finishing off) with (the (?:[a-z]+ ){0,3}?[a-z]+?)"
+                  r"(?: at the top| on top| on the top)?(?= *(?:[,.;!?]|$))", r"\1 on top", text)
+    # "A on B, which itself sits on C" -> "A on B, and B on C".
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+),? (?:which|that) (?:itself |in turn )?(?:sits|is|rests|stands|goes|"
+                  r"should sit|should be) (on top of|on|above|under|below|beneath)\b", r"\1, and \1 \2", text)
+    text = re.sub(r"(?i)\ba pair of\b", "two of", text)
+    text = re.sub(r"(?i)[,;]?\s*\bi (?:don't|do not|won't) (?:mind|care) which(?: one| ones| two| three| four)?\b", "", text)
+    text = re.sub(r"(?i),\s*(?:both|all|each) of them\b", "", text)
+    # Numbered steps: "1. put ...", "2) line up ..." (a step number is no size).
+    text = re.sub(r"(?i)(?:^|(?<=[\s:;,.]))(?:step )?\d{1,2}\s*[.)]\s+(?=[a-z])", "; ", text)
+    text = re.sub(r"(?i)\b(?:two|three|four|five|\d) steps\s*:", "", text)
+    text = re.sub(r"(?i)\bdo (?=(?:put|place|move|set|stack|line|arrange|make|build|pile)\b)", "", text)
+    text = re.sub(r"(?i)\bthat (?:match|matches) the colou?r of\b", "with the same colour as", text)
+    text = re.sub(r"(?i)\beither (?!of\b)(?=[a-z]+\b)", "one ", text)
+    text = re.sub(r"(?i)\b(?:turned|rotated|oriented|orientated) to face\b", "facing", text)
+    text = re.sub(r"(?i)\bspread[- ]out\b", "wide", text)
+    text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
+    text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
+    text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
+    # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
+    repair = r"(?:no wait|wait no|no|sorry|i mean|i meant)"
+    text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s+{repair}\s+(?=the\b)", "", text)
+    text = re.sub(rf"(?i)\b(?:on|onto|in|to|at|behind|under|underneath)(?:\s+the)?\s+{repair}\s+"
+                  rf"(?=(?:on|onto|in|to|at|behind|under|underneath)\b)", "", text)
+    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top)?\b|"
+                  r"\bwhichever(?: one)?(?:\s*[.!?]*\s*$)", "", text)
+    text = re.sub(r"(?i)\b(?:out|up) front\b", "at the front of the table", text)
+    text = re.sub(r"(?i)\balong the (back|front|left|right)\b(?! of| left| right| center| centre| middle| back| front| side|"
+                  r" edge| corner| half)", r"along the \1 of the table", text)
+    text = re.sub(r"(?i)\b(?:before|after|when|once|until) (?:the kids|you|we|i|they|he|she|my [a-z]+|our [a-z]+) "
+                  r"(?:get|gets|come|comes|arrive|arrives|leave|leaves|are|is|go|goes|wake|wakes)\b[^,;.!?]*", "", text)
+    text = re.sub(r"(?i),\s*on the (?:side|end) (?:closest|nearest|nearer|closer) to (?:me|us|you|the viewer)\b", "", text)
+    # A corrected list item: ", orange on the bottom, no actually yellow on the bottom".
+    text = re.sub(r"(?i),\s*+(?!no\b|wait\b|sorry\b)[^,;.!?]+?,\s*(?:no,?\s*)?(?:wait|sorry|actually|i mean|make that)\b,?\s*",
+                  ", ", text)
+    # "the white can should end up with the yellow cup sitting on it" -> "the yellow cup on the white can"
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,3}?[a-z]+) (?:should |must |will )?(?:end up|be left|be) with "
+                  r"(the (?:[a-z]+ ){0,3}?[a-z]+) (?:sitting|resting|standing|placed|stacked|lying) (on top of|on|upon) "
+                  r"(?:it|them)\b", r"\2 \3 \1", text)
+    text = re.sub(r"(?i),?\s*(?:and |but )?leave (?:the [a-z ,]+?|them|it) alone\b", "", text)
+    text = _CORRECTION.sub("", text)
+    text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
+                              else "", text)
+    text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)
+    text = _relation_words(text)
+    text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
+    text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
+                  r"with the same \1 as", text)
+    text = re.sub(r"(?i)\b(?:the )?table(?:'s)? (centre|center|middle|left|right|front|back)( side| edge| half| corner)?\b",
+                  r"the \1\2 of the table", text)
+    text = re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?top (?:down|downwards)\b",
+                  "from top to bottom", text)
+    return re.sub(r"(?i)\b(?:reading |going |listed |counting )?(?:from )?(?:the )?bottom (?:up|upwards)\b",
+                  "from bottom to top", text)
+
+
+def _relation_words(text: str) -> str:
+    """Directions said with compass points, near and far, "diagonally" or a
+    second side given by "its" rewritten as the relation phrases of the
+    pattern keys ("west of" -> "left of", "south-east of" -> "front right
+    of", "further back than" -> "behind", "behind the cup and to its right"
+    -> "behind and to the right of the cup")."""
+
+    def compass(m: re.Match) -> str:
+        a, b = _COMPASS[m.group(1).lower()], m.group(2)
+        if b is None:
+            return {"back": "behind", "front": "in front of", "right": "to the right of", "left": "to the left of"}[a]
+        return f"{a} {_COMPASS[b.lower()]} of"
+
+    text = _ANY_OF.sub("one of the", text)
+    text = _COMPASS_REL.sub(compass, text)
+    for pat, rep in _NEAR_FAR:
+        text = pat.sub(rep, text)
+
+    def side(m: re.Match) -> str:
+        rel, anchor = m.group(1).lower(), m.group(2)
+        s2 = next(g for g in m.groups()[2:] if g).lower()
+        s2 = {"behind": "back", "in front of": "front"}.get(s2, s2)
+        first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
+        if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2 or (
+                first in ("front", "back") and s2 in ("front", "back")):
+            return m.group(0)  # "left of it and also right of it": a contradiction, read (and refused) as said
+        return f"{first} {s2} of {anchor}"
+
+    return _AND_ITS_SIDE.sub(side, text)
