@@ -217,6 +217,18 @@ def _fronted(part: list[str]) -> bool:
     return k < len(part) and part[k] in _FRONTED and not any(w in _COMMAND_VERBS for w in part[k:])
 
 
+def _cut(words: tuple[str, ...], cuts: list[tuple[int, int]]) -> list[tuple[str, ...]]:
+    """``words`` in the pieces around the spans ``cuts`` (left to right, the spans dropped)."""
+    if not cuts:
+        return [words]
+    out, prev = [], 0
+    for lo, hi in cuts:
+        out.append(words[prev:lo])
+        prev = hi
+    out.append(words[prev:])
+    return [tuple(x) for x in out if x]
+
+
 def _gaps(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[int, int]]:
     """Token ranges between mentions: before the first, between, after the last."""
     out, prev = [], 0
@@ -311,14 +323,7 @@ def _weak_split(
                     cut = alo
         if cut is not None and (not cuts or cut > cuts[-1]):
             cuts.append(cut)
-    if not cuts:
-        return [words]
-    out, prev = [], 0
-    for c in cuts:
-        out.append(words[prev:c])
-        prev = c + 1
-    out.append(words[prev:])
-    return [tuple(x) for x in out if x]
+    return _cut(words, [(c, c + 1) for c in cuts])
 
 
 #: Verbs that follow a subject in a statement of the goal ("the heart goes on the bowl").
@@ -390,14 +395,7 @@ def _predicate_split(words: tuple[str, ...], mentions: list[Mention], rel_words:
         if len(before) >= 2 and related and not so_that:
             cuts.append((lo, m.start))
             prev = m.start
-    if not cuts:
-        return [words]
-    out, p = [], 0
-    for lo, hi in cuts:
-        out.append(words[p:lo])
-        p = hi
-    out.append(words[p:])
-    return [tuple(x) for x in out if x]
+    return _cut(words, cuts)
 
 
 def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tuple[str, ...]]:
@@ -430,14 +428,7 @@ def _on_pairs_split(words: tuple[str, ...], mentions: list[Mention]) -> list[tup
                 and not all(w in _COORD for w in words[last.end : d.start])
                 and b.end < c.start and all(w in _COORD for w in words[b.end : c.start])):
             cuts.append((b.end, c.start))
-    if not cuts:
-        return [words]
-    out, prev = [], 0
-    for lo, hi in cuts:
-        out.append(words[prev:lo])
-        prev = hi
-    out.append(words[prev:])
-    return [tuple(x) for x in out if x]
+    return _cut(words, cuts)
 
 
 def _groups(words: tuple[str, ...], mentions: list[Mention]) -> tuple[list[list[Mention]], list[tuple[int, int]]]:
@@ -703,9 +694,7 @@ class _Parser:
                     # "stack the cans so that the green one sits on the red one and the white one
                     # sits on the green one": the stacking steps make the stack.
                     out: list[_Pending] = []
-                    for mm in self._find(words[:k]):
-                        if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
-                            self.state.nouns.insert(0, mm.names)  # "the green one": a can
+                    self._note_nouns(self._find(words[:k]))  # "the green one": a can
                     for part in _weak_split(sub_words, self._find(sub_words), self.key_vocab, self._word_kinds()[0]):
                         for step in _on_pairs_split(part, self._find(part)):
                             out.extend(self.clause(tuple(w for w in step if w not in (",", "and"))
@@ -810,11 +799,7 @@ class _Parser:
             raise InputError(f"'{text}': cannot tell what to leave out")
         if not mentions and params and not meaningful and self.state.last_shape is not None:
             # "..., red on top, in the front right corner": the place of the arrangement just read.
-            shape = self.state.last_shape
-            for key, val in params.items():
-                if shape.params.get(key, val) != val:
-                    raise InputError(f"'{text}': two different {key}s for one arrangement")
-            shape.params.update(params)
+            _add_params(self.state.last_shape, params, text)
             return []
         if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
                 and self.state.tower is not None and self.state.header is None:
@@ -1376,10 +1361,7 @@ class _Parser:
                 params["size"] = size
                 left = tuple(w for w in left if w not in SIZES)
             if params and not [w for w in left if w not in STOPWORDS and w != ","]:
-                for key, val in params.items():
-                    if shape.params.get(key, val) != val:
-                        raise InputError(f"'{' '.join(words)}': two different {key}s for one arrangement")
-                shape.params.update(params)
+                _add_params(shape, params, " ".join(words))
                 return ()
         return tuple(out)
 
@@ -1450,8 +1432,7 @@ class _Parser:
             for m in ms:
                 sel = self._select(m)
                 got.extend(x for x in (sel if isinstance(sel, list) else [sel]) if x not in got)
-                if m.names is not None and not m.head and m.names not in self.state.nouns:
-                    self.state.nouns.insert(0, m.names)
+                self._note_nouns([m])
         except InputError:
             return
         if got:
@@ -1625,9 +1606,14 @@ class _Parser:
                     named = self._find(sub)
                 except InputError:
                     named = []
-                for mm in reversed(named):
-                    if mm.names is not None and not mm.head and mm.names not in self.state.nouns:
-                        self.state.nouns.insert(0, mm.names)
+                self._note_nouns(reversed(named))
+
+    def _note_nouns(self, mentions) -> None:
+        """Put the object nouns of ``mentions`` (in that order) at the front of the
+        nouns named so far, for later bare colours and "the white one"."""
+        for m in mentions:
+            if m.names is not None and not m.head and m.names not in self.state.nouns:
+                self.state.nouns.insert(0, m.names)
 
     def _unknown_nouns(self, words: tuple[str, ...], mentions: list[Mention]) -> list[str]:
         """Words after "the"/"a" outside the references that name nothing here ("the napkin")."""
@@ -1654,7 +1640,7 @@ class _Parser:
         """"Set the table" / "a dinner in the middle": the plate with its bowls stacked on it and the cutlery
         lined up beside it (the StructFormer-style composite goal). Only when nothing else is asked.
         """
-        k = next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
+        k = self._dinner_at(words)
         if k is None:
             return None
         seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
@@ -1845,6 +1831,14 @@ class _Parser:
                 if o in pos and tuple(pos[o]) != tuple(g["pose"]):
                     raise InputError(f"contradiction: object {o} is given two different poses")
                 pos[o] = g["pose"]
+
+
+def _add_params(shape: _Pending, params: dict, text: str) -> None:
+    """Give ``shape`` the place, size or facing said after it; a second, different one is refused."""
+    for key, val in params.items():
+        if shape.params.get(key, val) != val:
+            raise InputError(f"'{text}': two different {key}s for one arrangement")
+    shape.params.update(params)
 
 
 def _chain_towers(goals: list[dict]) -> list[dict]:
