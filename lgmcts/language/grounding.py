@@ -34,6 +34,7 @@ from dataclasses import dataclass, replace
 
 from ..errors import InputError
 from ..formats import SceneSpec
+from .matcher import STOPWORDS
 
 __all__ = [
     "SYNONYMS",
@@ -712,13 +713,14 @@ def _mention_at(
         # A colour followed by a word naming nothing here: "the purple giraffe".
         k = j
         while k < n and words[k] not in _COORD and words[k] not in pattern_words and k - j < 2 and words[k].isalpha():
-            if words[k] in _NOT_NOUN:
+            if words[k] in _NOT_NOUN or words[k] in STOPWORDS:
                 break
             k += 1
         coordinated = (j < n and words[j] in _COORD) or (i > 0 and words[i - 1] in _COORD)
-        if k == j and coordinated and det in ("the", "all", "both", "other", "") and not nested:
+        if k == j and (coordinated or det == "the") and det in ("the", "all", "both", "other", "") and not nested:
             # "the red and the blue blocks", "the red block and the blue": the
-            # noun is shared with a coordinated neighbour (resolved in find_mentions).
+            # noun is shared with a coordinated neighbour (resolved in find_mentions);
+            # "..., then the yellow" takes the noun of the mentions around it.
             return Mention(i, j, " ".join(words[i:j]), det or "the", False, None, colors, color_order,
                            head="elided")
         if k == j and det == "" and not nested and len(colors) > 1 and all(

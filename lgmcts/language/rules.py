@@ -455,6 +455,10 @@ def _numbers(words: tuple[str, ...]) -> list[float]:
     return [float(w) for w in words if re.fullmatch(r"-?\d+(?:\.\d+)?", w)]
 
 
+#: Plain colour words, said one after another for one object each ("red orange yellow").
+_HUES = frozenset("red green blue yellow purple white black orange pink brown gray grey".split())
+
+
 class _Parser:
     def __init__(self, spec: SceneSpec, matcher: PatternMatcher, options: RulesOptions) -> None:
         self.spec = spec
@@ -1286,6 +1290,9 @@ class _Parser:
         for k, w in enumerate(words):
             if w == "the" and out and colour(out[-1]):
                 out.append(",")
+            if (w in _HUES and out and out[-1] in _HUES
+                    and not any(f"{out[-1]} {w}" in c for c in self.vocab.colors.values())):
+                out.append(",")  # "bottom to top red orange yellow": one object per colour
             if (w == "and" and k >= 2 and words[k - 2] in ("every", "each", "all") and k + 1 < len(words)
                     and words[k - 1] in self._cat_words and words[k + 1] in self._cat_words):
                 out.extend(["and", words[k - 2]])  # "every cup and bowl": every cup and every bowl

@@ -376,7 +376,7 @@ HAND: list[tuple[str, str, str, object]] = [
     ("grounding", "kitchen", "put the red block and the green one in a line", [_g("line", [9, 10])]),
     ("grounding", "kitchen", "put the red one and the green block in a line", [_g("line", [9, 10])]),
     ("grounding", "kitchen", "line up the red block and the blue", [_g("line", [9, 11])]),
-    ("refusal", "kitchen", "put the red in a line", "names nothing"),
+    ("refusal", "kitchen", "put the red in a line", "ambiguous"),
     # A list "A, B, C and D" stays in one command; "and" before a verb starts a new one.
     ("free", "tabletop", "Stack the red block, the blue block, the green block and the yellow block into a tower",
      [_g("tower", [1, 2, 3, 4])]),
