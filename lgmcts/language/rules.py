@@ -1562,7 +1562,7 @@ class _Parser:
             if dinner:
                 pending.extend(dinner)
                 clauses = [c for c in clauses if c not in own]
-        kept = [c for c in (self._without_asides(c) for c in clauses) if c and not FREE_ORDER.fullmatch(" ".join(c))]
+        kept = [c for c in (self._without_asides(c) for c in clauses) if c and not self._free_order(c)]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
@@ -1614,6 +1614,22 @@ class _Parser:
                 except InputError:
                     named = []
                 self._note_nouns(reversed(named))
+
+    def _free_order(self, clause: tuple[str, ...]) -> bool:
+        """A clause that only leaves a stack's order open: "any order is fine",
+        "the order is not important", "which one is under which does not matter"."""
+        text = " ".join(clause)
+        if FREE_ORDER.fullmatch(text):
+            return True
+        if not re.search(r"\b(order|sequence|which (one )?(is|goes|sits) (under|on top of|on|above|below|over) which)\b", text):
+            return False
+        if not re.search(r"\b(not|n't|no|any|whatever|fine|matters?|up to you|care|free|important|irrelevant|"
+                         r"unimportant|open|ok|okay|decide|choose)\b", text):
+            return False
+        try:
+            return not self._find(clause)
+        except InputError:
+            return False
 
     def _note_nouns(self, mentions) -> None:
         """Put the object nouns of ``mentions`` (in that order) at the front of the
