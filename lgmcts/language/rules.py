@@ -1516,6 +1516,7 @@ class _Parser:
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = rewrite(text)
+        self._said = text
         text = self._category_ids(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
@@ -1804,6 +1805,9 @@ class _Parser:
         goals = _merge_relations(goals)
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
+        unread = _unread_cue(self._said, goals, self._cat_words)
+        if unread is not None:
+            raise InputError(f"'{unread}' is not part of any goal read from the command; say that part again on its own")
         if not _params_accepted():
             goals = [{k: v for k, v in g.items() if k not in _PARAM_KEYS} for g in goals]
         spec = parse_goals({"goals": goals})
@@ -1981,6 +1985,43 @@ def _direction(phrase: str) -> str | None:
     name = {(-1, 0): "left", (1, 0): "right", (0, -1): "front", (0, 1): "behind", (-1, -1): "left_front",
             (-1, 1): "left_behind", (1, -1): "right_front", (1, 1): "right_behind"}[(x, y)]
     return name if name in RELATIONS else None
+
+
+#: Words that ask for a kind of goal whatever else the sentence says, with the
+#: patterns of the goals that can carry them (a relation from either side:
+#: "move the box so the can is in front of it" is the box behind the can).
+_FRONT_BACK = ("front", "left_front", "right_front", "behind", "left_behind", "right_behind")
+_LEFT_RIGHT = ("left", "left_front", "left_behind", "right", "right_front", "right_behind")
+_CUES = (
+    (re.compile(r"\b(in front of|ahead of|behind|in back of)\b"), _FRONT_BACK),
+    (re.compile(r"\b(to the left of|to the right of|(?:left|right) of|to (?:its|their|the) (?:left|right)\b|"
+                r"on the (?:left|right) of)"), _LEFT_RIGHT),
+    (re.compile(r"\b(lin(?:e|es|ed|ing) (?:them |it |those |these )?up|(?:a|one|single|straight) (?:line|row)|in (?:a )?row)\b"),
+     ("line",)),
+    (re.compile(r"\b(circle|ring|loop)\b"), ("circle",)),
+    (re.compile(r"\b(rectangle|square|rectangular)\b"), ("rectangle",)),
+    (re.compile(r"\b(stack(?:ed|ing|s)?|pil(?:e|es|ed|ing)|tower|on top of)\b"), ("tower",)),
+)
+#: Where a cue word describes a place on the table, not a relation between objects.
+_TABLE_PLACE = re.compile(r"^\s*(?:the |this |that )?(?:table|workspace|tabletop|board|surface|counter|desk)\b")
+
+
+def _unread_cue(text: str, goals: list[dict], nouns: frozenset[str] = frozenset()) -> str | None:
+    """A phrase that asks for a relation, a line, a circle, a rectangle or a
+    stack that no goal read from ``text`` has (the command's other words were
+    read without it), or None. A goal that drops a part of the command is
+    wrong; asking again is better. ``nouns``: the scene's category words
+    ("ring", "square" name objects in some scenes)."""
+    have = {g["pattern"] for g in goals}
+    low = text.lower()
+    for cue, patterns in _CUES:
+        if have & set(patterns):
+            continue
+        for m in cue.finditer(low):
+            if _TABLE_PLACE.match(low[m.end():]) or m.group(0) in nouns:
+                continue  # "in front of the table": a place; "the rainbow ring": an object
+            return m.group(0)
+    return None
 
 
 def _is_number(w: str) -> bool:
