@@ -47,6 +47,9 @@ _STRONG_WORDS = frozenset({"then", "while", "also", "afterwards", "meanwhile", "
 _STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well", "as", "that"),
                ("at", "the", "same", "time"), ("once", "that", "is", "done"), ("when", "that", "is", "done"),
                ("once", "you", "are", "done"), ("when", "you", "are", "done"))
+#: How "the same for X" starts (split off the clause before it).
+_SAME_START = (("the", "same", "for"), ("the", "same", "with"), ("the", "same", "goes"), ("same", "for"),
+               ("same", "with"), ("do", "the", "same"))
 _PUNCT_END = frozenset({";", ".", "!", "?", ":"})
 _LEADING = frozenset(
     {"and", ",", "but", "then", "like", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
@@ -190,7 +193,8 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
-        if (w in (",", "and") and i + 1 < len(words) and words[i + 1] in _COMMAND_VERBS and parts[-1]
+        if (w in (",", "and") and i + 1 < len(words) and (words[i + 1] in _COMMAND_VERBS or any(
+                words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
                 and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
             parts.append([])
@@ -454,6 +458,15 @@ def _groups(words: tuple[str, ...], mentions: list[Mention]) -> tuple[list[list[
 def _numbers(words: tuple[str, ...]) -> list[float]:
     return [float(w) for w in words if re.fullmatch(r"-?\d+(?:\.\d+)?", w)]
 
+
+#: "(then) do the same with X", "same for X", "the same goes for X", "repeat that for X".
+_SAME = re.compile(r"^(?:then |now |and |also )*(?:(?:please |you )?(?:do|repeat|apply) (?:the same|that|this)(?: thing)?"
+                   r"(?: again)?|(?:and )?(?:the )?same(?: thing)?(?: goes)?) (?:for|with|to) (.+?)(?: too| as well)?$")
+
+#: "leave X where it is", "don't move X": X stays where it is.
+_LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do not move|don't touch|do not touch|"
+                    r"never mind|ignore) (.+?)(?: where (?:it is|they are|it's|they're)| alone| in place| be| as (?:it is|"
+                    r"they are)| untouched| as is)?(?: please)?$")
 
 #: Plain colour words, said one after another for one object each ("red orange yellow").
 _HUES = frozenset("red green blue yellow purple white black orange pink brown gray grey".split())
@@ -1563,17 +1576,22 @@ class _Parser:
             if dinner:
                 pending.extend(dinner)
                 clauses = [c for c in clauses if c not in own]
-        kept = [c for c in (self._without_asides(c) for c in clauses) if c and not self._free_order(c)]
+        kept = [c for c in (c if _SAME.match(" ".join(c)) else self._without_asides(c) for c in clauses)
+                if c and not self._free_order(c) and not self._left_alone(c)]
         if clauses and not kept:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
+        last: tuple[str, ...] = ()
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
             except InputError:
                 stated = [whole]
             for clause in stated:
-                self._read_clause(clause, pending)
+                before = len(pending)
+                self._read_clause(self._same_as_before(clause, last), pending)
+                if len(pending) > before:
+                    last = clause
         if self.state.header is not None and self.state.header[0] == "tower" and any(
                 p.pattern == "tower" for p in pending):
             # "build a single tower: A on B, and B on C": the steps built it.
@@ -1615,6 +1633,50 @@ class _Parser:
                 except InputError:
                     named = []
                 self._note_nouns(reversed(named))
+
+    def _same_as_before(self, clause: tuple[str, ...], last: tuple[str, ...]) -> tuple[str, ...]:
+        """"do the same with the yellow letter and the yellow block", "same for the
+        mugs": the clause before, its first references replaced by the new ones
+        (all of them where as many are named; else the objects placed, so the
+        reference object stays)."""
+        m = _SAME.match(" ".join(clause))
+        if m is None:
+            return clause
+        if not last:
+            raise InputError(f"'{' '.join(clause)}': the same as what? nothing was asked before it")
+        rest = tuple(m.group(1).split())
+        new = self._find(rest)
+        old = self._find(last)
+        if not new or len(new) > len(old):
+            raise InputError(f"'{' '.join(clause)}': cannot tell which objects take the places of which")
+        out = list(last)
+        for a, b in reversed(list(zip(old, new))):
+            out[a.start : a.end] = rest[b.start : b.end]
+        return tuple(out)
+
+    def _left_alone(self, clause: tuple[str, ...]) -> bool:
+        """"leave the plate and the bowl where they are", "so leave it", "don't touch
+        the phone": objects that stay put. Nothing to arrange; later pronouns may
+        refer to them, and "everything else" leaves them out."""
+        m = _LEAVE.match(" ".join(clause))
+        if m is None:
+            return False
+        rest = tuple(m.group(1).split())
+        try:
+            ms = self._find(rest)
+        except InputError:
+            return False
+        inside = {k for x in ms for k in range(x.start, x.end)}
+        if not ms or any(k not in inside and w not in (",", "and", "both") for k, w in enumerate(rest)):
+            return False
+        got: list[int] = []
+        for x in ms:
+            sel = self._select(x)  # "leave the bowl" with three bowls is refused as ambiguous
+            got.extend(o for o in (sel if isinstance(sel, list) else [sel]) if isinstance(o, int) and o not in got)
+        self._note_nouns(ms)
+        self.state.last, self.state.last_tower, self.state.it_pair = list(got), False, None
+        self.state.named.update(got)
+        return True
 
     def _free_order(self, clause: tuple[str, ...]) -> bool:
         """A clause that only leaves a stack's order open: "any order is fine",
