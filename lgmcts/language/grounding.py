@@ -648,6 +648,10 @@ def _mention_at(
             j = got_c[1]
     count = None
     num = _number(words, j)
+    if num is not None and det == "one" and words[j - 2 : j] == ("of", "the"):
+        # "one of the three bowls": one, out of a group said to have three.
+        of_count, j = num
+        num = None
     if num is not None and (det in ("", "the", "all", "other", "another") or (det == "one" and words[i] == "a")):
         count, j = num
         of_count = None

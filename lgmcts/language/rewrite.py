@@ -76,6 +76,11 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
     text = re.sub(r"(?i),\s*(?:" + FREE_ORDER.pattern + r"|i(?:'m| am) not fussy about the order)\s*(?=[,.;!?]|$)",
                   "", text)
+    # "stacked in an arbitrary order", "(order immaterial)": the order is left open.
+    text = re.sub(r"(?i)\s*\b(?:in|with|using) (?:any|whatever|random|an arbitrary|arbitrary|no particular|any old|"
+                  r"no specific|no set|no fixed|an unspecified|unspecified) (?:order|sequence)\b", "", text)
+    text = re.sub(r"(?i)\s*\((?:the )?(?:order|sequence) (?:is )?(?:immaterial|irrelevant|arbitrary|unimportant|free|"
+                  r"open|not important|does not matter|doesn't matter|up to you)\)", "", text)
     after = r"(?i)\bone (?:after|behind|beside|next to) (?:the other|another)\b"
     text = re.sub(after, "" if re.search(r"(?i)\b(row|line|file|queue)\b", text) else "in a line", text)
     # "right in front of", "right behind the box": "right" says "directly" ("right behind of" stays a diagonal).

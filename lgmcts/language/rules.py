@@ -463,6 +463,10 @@ def _numbers(words: tuple[str, ...]) -> list[float]:
 _SAME = re.compile(r"^(?:then |now |and |also )*(?:(?:please |you )?(?:do|repeat|apply) (?:the same|that|this)(?: thing)?"
                    r"(?: again)?|(?:and )?(?:the )?same(?: thing)?(?: goes)?) (?:for|with|to) (.+?)(?: too| as well)?$")
 
+#: "(which one is immaterial)", "(any of them)": a choice left open.
+_ANY_ONE = re.compile(r"^(?:which|whichever|any|either)(?: one| of them| of the \w+)?(?: is| will| would)?(?: \w+)?"
+                      r"(?: immaterial| irrelevant| fine| do| ok| okay| matter| matters)?$")
+
 #: "leave X where it is", "don't move X": X stays where it is.
 _LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do not move|don't touch|do not touch|"
                     r"never mind|ignore) (.+?)(?: where (?:it is|they are|it's|they're)| alone| in place| be| as (?:it is|"
@@ -1547,6 +1551,7 @@ class _Parser:
                         nxt in self._cat_words or _stem(nxt) in self._cat_words or nxt in COLOUR_WORDS)))) or (
                     w == "none" and nxt == "of"):
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
+        words = self._parentheses(words)
         words = self._former_latter(words)
         words = self._bare_colour_sets(words)
         # Words that may be read by their own embedding, encoded in one batch
@@ -1654,6 +1659,45 @@ class _Parser:
             out[a.start : a.end] = rest[b.start : b.end]
         return tuple(out)
 
+    def _parentheses(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Parentheses that add nothing are dropped ("(which one is immaterial)",
+        "(order immaterial)"); parentheses that list the objects of the phrase
+        before them ("the dishes (the plate and the three bowls)", "cans (red,
+        white, green)") are dropped where they name the same objects and replace
+        the phrase where they name some of them. Others stay, and are refused."""
+        out = list(words)
+        while "(" in out and ")" in out[out.index("(") :]:
+            a = out.index("(")
+            b = out.index(")", a)
+            inner = tuple(out[a + 1 : b])
+            if (not inner or self._free_order(inner) or _ANY_ONE.match(" ".join(inner))
+                    or not any(self._content_word(w) for w in inner)):
+                out[a : b + 1] = []
+                continue
+            before = tuple(out[:a])
+            try:
+                outer = next((m for m in self._find(before) if m.end == a and m.det != "pronoun"), None)
+                if outer is None:
+                    break
+                own = find_mentions(self.vocab, inner, self.key_vocab,
+                                    (outer.names,) if outer.names is not None else ())
+                inside = {k for m in own for k in range(m.start, m.end)}
+                if not own or any(k not in inside and w not in (",", "and", "all", "both") and not _is_number(w)
+                                  for k, w in enumerate(inner)):
+                    break
+                whole = set(candidates(self.vocab, replace(outer, det="all", plural=True)))
+                named = {o for m in own for o in candidates(self.vocab, replace(m, det="all", plural=True))}
+            except InputError:
+                break
+            if named == whole or (outer.det == "all" and named == set(candidates(self.vocab, outer))):
+                out[a : b + 1] = []
+            elif named < whole:
+                self._note_nouns([outer])
+                out[outer.start : b + 1] = list(inner)
+            else:
+                break
+        return tuple(out)
+
     def _left_alone(self, clause: tuple[str, ...]) -> bool:
         """"leave the plate and the bowl where they are", "so leave it", "don't touch
         the phone": objects that stay put. Nothing to arrange; later pronouns may
@@ -1684,10 +1728,12 @@ class _Parser:
         text = " ".join(clause)
         if FREE_ORDER.fullmatch(text):
             return True
-        if not re.search(r"\b(order|sequence|which (one )?(is|goes|sits) (under|on top of|on|above|below|over) which)\b", text):
+        if not re.search(r"\b(order|sequence|which (one |of them |of the two )?(is|goes|sits|ends up|comes|lands|sits) "
+                         r"(under|on top|on|above|below|over|at the bottom|at the top|first|last|lowest|highest))\b",
+                         text):
             return False
         if not re.search(r"\b(not|n't|no|any|whatever|fine|matters?|up to you|care|free|important|irrelevant|"
-                         r"unimportant|open|ok|okay|decide|choose)\b", text):
+                         r"unimportant|open|ok|okay|decide|choose|immaterial|arbitrary|unspecified|yours)\b", text):
             return False
         try:
             return not self._find(clause)
