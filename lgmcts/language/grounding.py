@@ -500,7 +500,7 @@ def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern
     if words[j - 1] in ("is", "are") or (j < n and words[j] in ("is", "are")):
         k = j + (1 if j < n and words[j] in ("is", "are") else 0)
         neg = False
-        if k < n and words[k] in ("not", "n't"):
+        if k < n and words[k] in ("not", "n't", "neither"):
             neg, k = True, k + 1
         if k < n and words[k] in ("a", "an"):
             k += 1
@@ -516,6 +516,23 @@ def _attr_qualifier(vocab: "Vocabulary", words: tuple[str, ...], i: int, pattern
         if cat is not None:
             names = vocab.categories[cat[0]][0]
             k = cat[1]
+            while neg and cols is None:
+                # "not a can or a bowl", "neither letters nor blocks", "not a can and not a bowl"
+                k2 = k
+                if k2 < n and words[k2] == ",":
+                    k2 += 1
+                if _starts(words, k2, ("and", "not")) or _starts(words, k2, ("or", "not")):
+                    k2 += 2
+                elif k2 < n and words[k2] in ("or", "nor"):
+                    k2 += 1
+                else:
+                    break
+                if k2 < n and words[k2] in ("a", "an", "the"):
+                    k2 += 1
+                more = vocab.longest(vocab.categories, words, k2) if k2 < n else None
+                if more is None:
+                    break
+                names, k = names | vocab.categories[more[0]][0], more[1]
         elif k < n and words[k] in GENERIC:
             k += 1
         value = Mention(j, k, " ".join(words[j:k]), "all", True, names, cols[0] if cols else None,
