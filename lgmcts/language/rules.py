@@ -193,7 +193,7 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
-        if (w in (",", "and") and i + 1 < len(words) and (words[i + 1] in _COMMAND_VERBS or any(
+        if (w in (",", "and") and i + 1 < len(words) and (_command_verb(words[i + 1]) or any(
                 words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
                 and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
@@ -211,6 +211,22 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
         if p:
             out.append(tuple(p))
     return out
+
+
+def _command_verb(w: str) -> bool:
+    """A command verb, or its -ing form ("... and lining up the cans")."""
+    if w in _COMMAND_VERBS:
+        return True
+    if not w.endswith("ing") or len(w) < 6:
+        return False
+    base = w[:-3]
+    return any(b in _ARRANGE_VERBS for b in (base, base + "e", base[:-1] if base[-1:] == base[-2:-1] else base))
+
+
+#: Verbs whose -ing form starts a command of its own ("leaving out", "using" do not).
+_ARRANGE_VERBS = frozenset({"put", "place", "move", "set", "stack", "arrange", "line", "pile", "align", "position", "lay",
+                            "gather", "organize", "organise", "build", "form", "create", "group", "slide", "push",
+                            "shift", "rearrange"})
 
 
 def _fronted(part: list[str]) -> bool:
