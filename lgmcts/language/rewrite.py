@@ -74,6 +74,10 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
                   text)
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
+    # Articles and "of" left out: "on top the plate", "red block at bottom", "in front the bowl".
+    text = re.sub(r"(?i)\b(on top|in front|in back|on the top|at the top|on the left side|on the right side)"
+                  r" (the|a|an|this|that|my|your)\b", r"\1 of \2", text)
+    text = re.sub(r"(?i)\b(at|on|in) (bottom|top|base)\b(?! of)", r"\1 the \2", text)
     text = re.sub(r"(?i),\s*(?:" + FREE_ORDER.pattern + r"|i(?:'m| am) not fussy about the order)\s*(?=[,.;!?]|$)",
                   "", text)
     # "stacked in an arbitrary order", "(order immaterial)": the order is left open.
