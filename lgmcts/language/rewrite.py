@@ -78,6 +78,13 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(on top|in front|in back|on the top|at the top|on the left side|on the right side)"
                   r" (the|a|an|this|that|my|your)\b", r"\1 of \2", text)
     text = re.sub(r"(?i)\b(at|on|in) (bottom|top|base)\b(?! of)", r"\1 the \2", text)
+    # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
+    text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
+                  r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)
+    text = re.sub(r"(?i)\b(lowest|highest|uppermost|topmost|bottommost|undermost) (?:is|should be|must be|will be|goes) "
+                  r"((?:the )?[a-z]+(?: (?:one|can|block|bowl|cup|mug|letter|plate|bottle))?)(?=\s*(?:[,.;!?]|and\b|$))",
+                  r"\2 \1", text)
+    text = re.sub(r"(?i)(,\s*|\band )after (?:it|that|this|them)\b,?", r"\1then", text)
     text = re.sub(r"(?i),\s*(?:" + FREE_ORDER.pattern + r"|i(?:'m| am) not fussy about the order)\s*(?=[,.;!?]|$)",
                   "", text)
     # "stacked in an arbitrary order", "(order immaterial)": the order is left open.

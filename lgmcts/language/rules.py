@@ -166,6 +166,8 @@ class _State:
     choices: list = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
+    #: The object a stack role just placed in that tower: "then green" goes right above it.
+    tower_prev: int | None = None
     #: The last reference selected was a mass ("all the red stuff"): "it" is all of it.
     mass: bool = False
     #: After "put A left of B": (A, B), either of which a following "it" may mean.
@@ -893,13 +895,32 @@ class _Parser:
                 and not any(self._free_word(w) for w in meaningful) and any(roles)):
             # "...; the red one goes in between": a role for an object of the tower just built.
             tower = self.state.tower.objects
+            prev = None
             for mm, r in zip(mentions, roles):
                 got = self._select(mm)
                 for x in got if isinstance(got, list) else [got]:
                     if x in tower:
                         tower.remove(x)
-                    at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, len(tower))
+                    # "white at the bottom, then green": one without a role goes right above the one before.
+                    after = tower.index(prev) + 1 if prev in tower else len(tower)
+                    at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
                     tower.insert(at, x)
+                    prev = x
+            self.state.tower_prev = prev if roles[-1] != "top" else None
+            return []
+        if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
+                and self.state.tower_prev in self.state.tower.objects and (roles is None or not any(roles))
+                and all(x in self.state.tower.objects for mm in mentions
+                        for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
+            # "white at the bottom, then green": the next one up.
+            tower = self.state.tower.objects
+            for mm in mentions:
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x != self.state.tower_prev and x in tower:
+                        tower.remove(x)
+                        tower.insert(tower.index(self.state.tower_prev) + 1, x)
+                        self.state.tower_prev = x
             return []
         if roles is not None and not any(self._free_word(w) for w in meaningful):
             phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
@@ -1148,6 +1169,8 @@ class _Parser:
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
             objs = sorted(objs, key=lambda x: rank[roles.get(x)])
+            placed = [x for x in objs if roles.get(x) in ("bottom", "next")]
+            self.state.tower_prev = placed[-1] if placed and pattern == "tower" else None
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
         if n < info.min_objects and not (pattern == "tower" and defer_min):
             noun = "object" if n == 1 else "objects"
