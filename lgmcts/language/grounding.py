@@ -702,7 +702,7 @@ def _mention_at(
         # "everything purple" with nothing purple: not everything.
         raise InputError(f"nothing in the scene matches '{' '.join(words[i:end + 1])}' (no {words[end]} object)")
     head = ""
-    loose = False
+    loose = everything == "all"  # "everything red" takes the red swirl heart too
     cols = None if everything else _colors(vocab, words, j)
     colors, color_order = None, ()
     if cols is not None:
@@ -936,7 +936,7 @@ _NOT_NOUN = frozenset({"to", "in", "into", "on", "of", "at", "behind", "and", "a
 
 
 #: Generic nouns of everyday speech (not the peers' "objects").
-_LOOSE_NOUNS = frozenset({"things", "thing", "items", "item", "stuff"})
+_LOOSE_NOUNS = frozenset({"things", "thing", "items", "item", "stuff", "ones", "pieces", "piece"})
 
 
 def _colour_only(vocab: Vocabulary, m: Mention) -> list[int]:

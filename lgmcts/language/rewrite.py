@@ -78,6 +78,14 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(on top|in front|in back|on the top|at the top|on the left side|on the right side)"
                   r" (the|a|an|this|that|my|your)\b", r"\1 of \2", text)
     text = re.sub(r"(?i)\b(at|on|in) (bottom|top|base)\b(?! of)", r"\1 the \2", text)
+    # "next to the box on its left": left of the box.
+    text = re.sub(r"(?i)\b(?:next to|beside|by|alongside) (the (?:[a-z]+ ){0,3}?[a-z]+),? (?:on|to|at) (?:its|their|the) "
+                  r"(left|right|far|near)(?: side| hand side)?\b",
+                  lambda m: {"far": "behind ", "near": "in front of "}.get(m.group(2).lower(),
+                                                                          f"to the {m.group(2)} of ") + m.group(1), text)
+    # "centred on the table", "in the dead centre": the middle of the table.
+    text = re.sub(r"(?i)\b(?:centred|centered) (?:on|in|at) the (?:table|workspace|tabletop)\b",
+                  "in the centre of the table", text)
     # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
     text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
                   r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)
