@@ -195,6 +195,11 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
+        if w == "," and words[i + 1 : i + 2] == ("so",) and i + 2 < len(words) and _command_verb(words[i + 2]) \
+                and parts[-1]:
+            parts.append([])  # "the cans are everywhere, so put them in a row": the request after the remark
+            i += 2
+            continue
         if (w in (",", "and") and i + 1 < len(words) and (_command_verb(words[i + 1]) or any(
                 words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
                 and not _fronted(parts[-1])):
@@ -480,6 +485,13 @@ def _numbers(words: tuple[str, ...]) -> list[float]:
 #: "(then) do the same with X", "same for X", "the same goes for X", "repeat that for X".
 _SAME = re.compile(r"^(?:then |now |and |also )*(?:(?:please |you )?(?:do|repeat|apply) (?:the same|that|this)(?: thing)?"
                    r"(?: again)?|(?:and )?(?:the )?same(?: thing)?(?: goes)?) (?:for|with|to) (.+?)(?: too| as well)?$")
+
+#: Words by which a sentence asks for something, so it does not only describe.
+_DESCRIBES_NOT = re.compile(r"\b(should|must|need|needs|has to|have to|is to|are to|want|wants|would|'d|like|to be|"
+                            r"end up|ends up|goes|go|belong|belongs|please|can you|could you|let)\b")
+#: Verbs of a sentence that says how things are.
+_STATE_VERB = re.compile(r"\b(is|are|am|'m|was|were|keep|keeps|'s|seem|seems|look|looks|has|have|got|getting|"
+                         r"been)\b")
 
 #: "(which one is immaterial)", "(any of them)": a choice left open.
 _ANY_ONE = re.compile(r"^(?:which|whichever|any|either)(?: one| of them| of the \w+)?(?: is| will| would)?(?: \w+)?"
@@ -1511,11 +1523,13 @@ class _Parser:
             named = [m for m in self._find(clause) if m.det != "pronoun"]
         except InputError:
             named = [None]
+        counted = {k for m in named if m is not None for k in range(m.start, m.end)}  # "the three cans"
         goal = ((lead in _COMMAND_VERBS or lead in _SELECT_VERBS) and bool(named)) or any(
             (any(f in self.key_vocab and f not in FILLERS for f in _forms(w)) and w not in STOPWORDS)
             or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _VERT_WORDS - {"to", "of"} or w in SIZES or w in ROWS
-            or w in COLS or w in FACINGS or w in ("order", "first", "last", "then", "facing") or _is_number(w)
-            for w in clause)
+            or w in COLS or w in FACINGS or w in ("order", "first", "last", "then", "facing")
+            or (_is_number(w) and k not in counted)
+            for k, w in enumerate(clause))
         if goal:
             return False
         try:
@@ -1591,6 +1605,7 @@ class _Parser:
                     w == "none" and nxt == "of"):
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
         words = self._parentheses(words)
+        words = self._context_sentences(words)
         words = self._former_latter(words)
         words = self._bare_colour_sets(words)
         # Words that may be read by their own embedding, encoded in one batch
@@ -1736,6 +1751,82 @@ class _Parser:
             else:
                 break
         return tuple(out)
+
+    def _context_sentences(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Sentences before the request that only describe how things are ("the
+        white bowl is in my way.", "i keep knocking the blue mug over.", "the mug,
+        the cup and the bottle are crowding the plate.") ask for nothing: they are
+        dropped, and what their subject names is what a later "it"/"them" means."""
+        sentences: list[tuple[str, ...]] = []
+        start = 0
+        for k, w in enumerate(words):
+            if w in (".", "!", "?"):
+                sentences.append(words[start : k + 1])
+                start = k + 1
+        if start < len(words):
+            sentences.append(words[start:])
+        dropped = 0
+        for sent in sentences[:-1]:
+            if not self._describes(sent[:-1]):
+                break
+            self._remember_subject(sent[:-1])
+            dropped += len(sent)
+        return words[dropped:]
+
+    def _describes(self, sent: tuple[str, ...]) -> bool:
+        """Whether ``sent`` states how things are rather than asking for anything."""
+        body = [w for w in sent if w not in (",", "'")]
+        while body and body[0] in _LEADING:
+            body = body[1:]
+        if len(body) < 2 or _command_verb(body[0]) or body[0] in ("let", "lets", "let's", "go", "i'd", "we'd"):
+            return False
+        text = " ".join(body)
+        if _DESCRIBES_NOT.search(text) or any(cue.search(text) for cue, _ in _CUES):
+            return False
+        if not (_STATE_VERB.search(text) or body[0] in ("i", "i'm", "we", "time", "there", "it's", "this", "that")):
+            return False
+        try:
+            inside = {k for m in self._find(tuple(body)) for k in range(m.start, m.end)}
+        except InputError:
+            inside = set()
+        for k, w in enumerate(body):
+            if k in inside or w in STOPWORDS or w in ("before", "after", "until", "while", "when"):
+                continue  # "before guests come over": a time, not a place
+            nxt = body[k + 1] if k + 1 < len(body) else ""
+            if w == "over" and nxt not in ("the", "a", "an", "it", "them") and k + 1 not in inside:
+                continue  # "knocking the mug over", "all over the place" is below
+            if w in ROWS or w in COLS:
+                # "in the middle", "at the back" say where; "cluttering the middle" only describes.
+                if k and (body[k - 1] in ("in", "at", "on", "to", "into") or (
+                        body[k - 1] == "the" and k > 1 and body[k - 2] in ("in", "at", "on", "to", "into"))):
+                    return False
+                continue
+            if (w in _VERT_WORDS - {"to", "of", "over"} or w in _DIR_WORDS or w in SIZES or _is_number(w)
+                    or w in _ROLE_WORDS or w in ("order", "first", "last", "then", "facing")):
+                return False
+            st = _stem(w)
+            if st in self.key_vocab and st not in FILLERS and st not in _GENERIC_KEY_WORDS:
+                return False
+        return True
+
+    def _remember_subject(self, sent: tuple[str, ...]) -> None:
+        """Remember what the subject of a describing sentence names (all its
+        references where it starts with none: "there are two bottles")."""
+        try:
+            ms = [m for m in self._find(sent) if m.det != "pronoun"]
+        except InputError:
+            return
+        lead: list = []
+        for m in ms:
+            gap = sent[lead[-1].end : m.start] if lead else sent[:m.start]
+            if all(w in ("the", ",", "and", "both", "all") for w in gap) and (lead or all(w in _LEADING or w == "the"
+                                                                                       for w in gap)):
+                lead.append(m)
+            else:
+                break
+        chosen = lead or ms
+        if chosen:
+            self._remember(sent[chosen[0].start : chosen[-1].end])
 
     def _left_alone(self, clause: tuple[str, ...]) -> bool:
         """"leave the plate and the bowl where they are", "so leave it", "don't touch
