@@ -86,6 +86,8 @@ def rewrite(text: str) -> str:
     # "centred on the table", "in the dead centre": the middle of the table.
     text = re.sub(r"(?i)\b(?:centred|centered) (?:on|in|at) the (?:table|workspace|tabletop)\b",
                   "in the centre of the table", text)
+    # "... and behind of it": "behind it" (not after "left"/"right", where "right behind of" is a diagonal).
+    text = re.sub(r"(?i)(?<!left )(?<!right )\bbehind of (it|them)\b", r"behind \1", text)
     # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
     text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
                   r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)

@@ -172,6 +172,8 @@ class _State:
     mass: bool = False
     #: After "put A left of B": (A, B), either of which a following "it" may mean.
     it_pair: "tuple | None" = None
+    #: "it" was the reference object of the clause just read: the next clause's "it" is the same.
+    it_chain: int | None = None
     #: The last arrangement read (a place said after it is its place).
     last_shape: "_Pending | None" = None
     #: The tower of the previous clause is listed from the top down.
@@ -1133,6 +1135,9 @@ class _Parser:
         self.state.tower = None
         self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
         self.state.it_pair = (targets[0], anchor_sel[0]) if len(targets) == 1 and len(anchor_sel) == 1 else None
+        if len(anchor_sel) == 1 and isinstance(anchor_sel[0], int) and any(
+                isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p]):
+            self.state.it_chain = anchor_sel[0]
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
 
     def _shape(self, pattern: str, sels, words, gaps, text: str, phrase_words, *, vertical: str | None = None,
@@ -1254,6 +1259,8 @@ class _Parser:
                     raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
                 return Choice(opts, m.count, m.text)
             pair = self.state.it_pair
+            if m.text == "it" and getattr(self, "_chain", None) is not None:
+                return [self._chain]
             if m.text == "it" and pair is not None and all(isinstance(x, int) for x in pair):
                 # "put the cup left of the plate and the bottle behind it": the cup or the plate?
                 raise InputError(f"'{m.text}' is unclear: it may be object {pair[0]} or object {pair[1]}, both named "
@@ -1677,6 +1684,8 @@ class _Parser:
     def _read_clause(self, clause: tuple[str, ...], pending: list[_Pending]) -> None:
         """Read one clause (cut further where it names two arrangements or two
         stacking steps) into ``pending``, remembering the nouns it names."""
+        # "it" as a relation's reference object, again in the next clause: the same object
+        # ("the fork is fine. put the knife to its right and the spoon to its left").
         mentions = self._find(clause)
         so_that = any(clause[x : x + 2] in (("so", "that"), ("such", "that")) for x in range(len(clause)))
         parts = [clause] if so_that else _weak_split(clause, mentions, self.key_vocab, self._word_kinds()[0])
@@ -1686,6 +1695,7 @@ class _Parser:
                     sub = sub[1:]
                 if not sub:
                     continue
+                self._chain, self.state.it_chain = self.state.it_chain, None
                 pending.extend(self.clause(sub))
                 try:
                     named = self._find(sub)
