@@ -63,6 +63,12 @@ _CORRECTION = re.compile(
 _NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
 
 
+#: Verb stems of "-ing" forms and their base forms.
+_BASE = {"put": "put", "plac": "place", "stack": "stack", "pil": "pile", "arrang": "arrange", "lin": "line",
+         "mov": "move", "sett": "set", "lay": "lay", "build": "build", "form": "form", "position": "position",
+         "align": "align", "group": "group"}
+
+
 def rewrite(text: str) -> str:
     """Phrasings with one reading written the way the grammar reads them:
     directions (:func:`_relation_words`), "the blue bottle's colour" -> "the
@@ -79,8 +85,8 @@ def rewrite(text: str) -> str:
                   r" (the|a|an|this|that|my|your)\b", r"\1 of \2", text)
     text = re.sub(r"(?i)\b(at|on|in) (bottom|top|base)\b(?! of)", r"\1 the \2", text)
     # "next to the box on its left": left of the box.
-    text = re.sub(r"(?i)\b(?:next to|beside|by|alongside) (the (?:[a-z]+ ){0,3}?[a-z]+),? (?:on|to|at) (?:its|their|the) "
-                  r"(left|right|far|near)(?: side| hand side)?\b",
+    text = re.sub(r"(?i)\b(?:next to|beside|by|alongside) (the (?:[a-z]+ ){0,3}?[a-z]+|it|them),? (?:on|to|at) "
+                  r"(?:(?:its|their|the) )?(left|right|far|near)(?: side| hand side)?\b",
                   lambda m: {"far": "behind ", "near": "in front of "}.get(m.group(2).lower(),
                                                                           f"to the {m.group(2)} of ") + m.group(1), text)
     # "centred on the table", "in the dead centre": the middle of the table.
@@ -88,6 +94,12 @@ def rewrite(text: str) -> str:
                   "in the centre of the table", text)
     # "... and behind of it": "behind it" (not after "left"/"right", where "right behind of" is a diagonal).
     text = re.sub(r"(?i)(?<!left )(?<!right )\bbehind of (it|them)\b", r"behind \1", text)
+    # Learners' English: "you are putting them in a circle" (a request), "everything what is blue",
+    # "do them in a round shape".
+    text = re.sub(r"(?i)\byou(?:'re| are) (put|plac|stack|pil|arrang|lin|mov|sett|lay|build|form|position|align|group)"
+                  r"(?:t|e)?ing\b", lambda m: _BASE.get(m.group(1).lower(), m.group(1)), text)
+    text = re.sub(r"(?i)\b(everything|anything|all|things|objects) what\b", r"\1 that", text)
+    text = re.sub(r"(?i)(^|[,.;:!?]\s*)do (them|it|those|these|the [a-z]+)\b(?= (?:in|into|as|like) )", r"\1put \2", text)
     # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
     text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
                   r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)

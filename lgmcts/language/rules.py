@@ -1504,6 +1504,11 @@ class _Parser:
                 rest[0].isalpha() and rest[0] not in STOPWORDS and rest[1:2] in (("it",), ("them",))))
                 and any(w in ("it", "them", "they") for w in rest[:6])):
             return [clause[start : start + ms[0].end], rest]
+        if (clause[start + ms[0].end : start + ms[0].end + 1] == (",",) and rest
+                and any(w in ("it", "them", "they") for w in rest)):
+            # "the tiger pan, the star must be sitting on top of it", "the plate, you
+            # are putting the spoon next to it": a topic, then a sentence about it.
+            return [clause[start : start + ms[0].end], rest]
         return [clause]
 
     def _remember(self, clause: tuple[str, ...]) -> None:
@@ -1566,7 +1571,7 @@ class _Parser:
                 parts[-1].append(w)
         if len(parts) == 1 and not any(self._content_word(w) for w in parts[0]):
             return ()
-        kept = [p for p in parts if any(self._content_word(w) for w in p)]
+        kept = [p for p in parts if any(self._content_word(w) for w in p) and not (len(parts) > 1 and self._free_order(tuple(p)))]
         if len(kept) == len(parts):
             return clause
         out: list[str] = []
