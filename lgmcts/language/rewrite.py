@@ -80,6 +80,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
                   text)
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
+    # "one mug on top of the other": the two mugs stacked.
+    text = re.sub(r"(?i)\bone ([a-z]+) (?:on top of|on|onto|above|upon|atop|over) the other(?: one)?\b",
+                  lambda m: f"the {m.group(1)}s on top of each other", text)
     # Articles and "of" left out: "on top the plate", "red block at bottom", "in front the bowl".
     text = re.sub(r"(?i)\b(on top|in front|in back|on the top|at the top|on the left side|on the right side)"
                   r" (the|a|an|this|that|my|your)\b", r"\1 of \2", text)

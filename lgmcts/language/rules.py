@@ -1684,7 +1684,8 @@ class _Parser:
 
     # ------------------------------------------------------------ dinner
     _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
-               ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"))
+               ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"), ("plate", "setting"),
+               ("lay", "a", "place"), ("table", "set"), ("setting", "for", "one"), ("cover", "for", "one"))
 
     def _read_clause(self, clause: tuple[str, ...], pending: list[_Pending]) -> None:
         """Read one clause (cut further where it names two arrangements or two
@@ -1740,7 +1741,9 @@ class _Parser:
             b = out.index(")", a)
             inner = tuple(out[a + 1 : b])
             if (not inner or self._free_order(inner) or _ANY_ONE.match(" ".join(inner))
-                    or not any(self._content_word(w) for w in inner)):
+                    or not any(self._content_word(w) for w in inner)
+                    or (self._dinner_at(inner) is not None and self._dinner_at(tuple(out[:a])) is not None
+                        and not self._find(inner))):
                 out[a : b + 1] = []
                 continue
             before = tuple(out[:a])

@@ -142,7 +142,8 @@ _REGION_PREP = frozenset({"in", "at", "on", "near", "along", "toward", "towards"
 _VIEWER = frozenset({"me", "us", "viewer", "camera", "you", "robot"})
 _SIDE_FACINGS = {"left": "west", "right": "east", "leftward": "west", "rightward": "east", "leftwards": "west",
                  "rightwards": "east"}
-_FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face"})
+_FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
+                         "heading"})
 
 
 def _region_run(words: tuple[str, ...], i: int, stack: bool = False):
@@ -295,6 +296,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
                 # "at the back of the table, in the middle": the middle of that band.
                 r, c = None, "center"
+            if c == "center" and r in (None, "middle") and col not in (None, "center") and row is None:
+                # "on the left side, in the middle": halfway along that side.
+                r, c = "middle", None
             if r is not None:
                 if row is not None and row != r:
                     raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
