@@ -1077,6 +1077,10 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
         if len(ids) > 1:
             raise InputError(f"'{m.text}' is ambiguous: it matches objects {describe(vocab, ids)}")
         return ids
+    if m.det in ("the", "") and m.colors is not None and len(m.colors) == len(ids) > 1 and len({
+            c for i, _, c in vocab.objects if i in ids}) == len(ids):
+        # "the red, blue and green block": one block of each colour named.
+        return ids
     if m.det == "the":
         if len(ids) > 1:
             raise InputError(

@@ -103,6 +103,15 @@ def rewrite(text: str) -> str:
                   r"(?:t|e)?ing\b", lambda m: _BASE.get(m.group(1).lower(), m.group(1)), text)
     text = re.sub(r"(?i)\b(everything|anything|all|things|objects) what\b", r"\1 that", text)
     text = re.sub(r"(?i)(^|[,.;:!?]\s*)do (them|it|those|these|the [a-z]+)\b(?= (?:in|into|as|like) )", r"\1put \2", text)
+    # "in that order from the bottom": the list before it is bottom first.
+    text = re.sub(r"(?i),?\s*\bin (?:that|this|the same) order,? (?:starting )?from the (bottom|top)(?: up| down)?\b",
+                  lambda m: ", from bottom to top" if m.group(1).lower() == "bottom" else ", from top to bottom", text)
+    # "red bowl down, white bowl up, blue bowl between": a stack's roles by one word each.
+    text = re.sub(r"(?i)(^|[,:;]\s*|\band )((?:the )?(?:(?!the\b)[a-z]+ ){0,2}(?!the\b)[a-z]+) (down|up|between)(?=\s*(?:[,;.]|and\b|$))",
+                  lambda m: m.group(0) if re.match(r"(?i)(?:pile|stack|line|set|put|place|move|make|build|pick|lift|"
+                                                   r"hold|turn|fill|heap|them|it)\b", m.group(2)) else
+                  m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
+                                              "between": " in between"}[m.group(3).lower()], text)
     # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
     text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
                   r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)

@@ -340,6 +340,12 @@ _ROLES = tuple(
             ("to finish", "top"), ("to top it off", "top"), ("crowning it", "top"), ("as the bottom layer", "bottom"),
             ("underneath", "bottom"), ("beneath", "bottom"), ("on it", "next_it"), ("on top of it", "next_it"),
             ("above it", "next_it"), ("on that", "next_it"), ("on top of that", "next_it"), ("over it", "next_it"), ("goes in the middle", "middle"),
+            ("under them all", "bottom"), ("down under them all", "bottom"), ("under everything", "bottom"),
+            ("below everything", "bottom"), ("beneath everything", "bottom"), ("below them all", "bottom"),
+            ("sandwiched between them", "middle"), ("sandwiched in between", "middle"), ("sandwiched in the middle", "middle"),
+            ("finishes it off on the top", "top"), ("finishes it off", "top"), ("tops it off", "top"),
+            ("caps it off", "top"), ("caps it", "top"), ("crowns it", "top"), ("on top of them all", "top"),
+            ("on top of everything", "top"), ("above them all", "top"), ("above everything", "top"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )
