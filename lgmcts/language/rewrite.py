@@ -112,6 +112,15 @@ def rewrite(text: str) -> str:
                                                    r"hold|turn|fill|heap|them|it)\b", m.group(2)) else
                   m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
                                               "between": " in between"}[m.group(3).lower()], text)
+    # "can" as a verb ("where I can see them", "the other two can go in between"): not the object.
+    text = re.sub(r"(?i)\b(i|you|we|they|he|she|it|one|two|three|four|others?) can\b(?! (?:and|,|or)\b)", r"\1 could",
+                  text)
+    text = re.sub(r"(?i)\bcan (go|be|sit|stay|see|find|reach|get|have|do|come|end|stand|rest|lie)\b", r"could \1", text)
+    # A spaced dash between two statements: "the box is in the way - move it ...".
+    text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
+    # "everything on the table apart from the plate": "on the table" only says where they are now.
+    text = re.sub(r"(?i)\b(everything|all the objects|all objects|all the items|all the things|all items) (?:on|from) "
+                  r"the (?:table|tabletop|workspace)\b", r"\1", text)
     # Stack roles said with a verb: "white is lowest", "highest is blue", "after it green".
     text = re.sub(r"(?i)\b(?:is|are|goes|go|sits|sit|comes|come|should be|must be|will be) (lowest|highest|"
                   r"undermost|uppermost|topmost|bottommost)\b", r"\1", text)
@@ -167,7 +176,7 @@ def rewrite(text: str) -> str:
     text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s+{repair}\s+(?=the\b)", "", text)
     text = re.sub(rf"(?i)\b(?:on|onto|in|to|at|behind|under|underneath)(?:\s+the)?\s+{repair}\s+"
                   rf"(?=(?:on|onto|in|to|at|behind|under|underneath)\b)", "", text)
-    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top)?\b|"
+    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top| way round| way around| way up)?\b|"
                   r"\bwhichever(?: one)?(?:\s*[.!?]*\s*$)", "", text)
     text = re.sub(r"(?i)\b(?:out|up) front\b", "at the front of the table", text)
     text = re.sub(r"(?i)\balong the (back|front|left|right)\b(?! of| left| right| center| centre| middle| back| front| side|"

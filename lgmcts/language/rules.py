@@ -49,7 +49,8 @@ _STRONG_SEQ = (("after", "that"), ("and", "then"), ("and", "also"), ("as", "well
                ("once", "you", "are", "done"), ("when", "you", "are", "done"))
 #: How "the same for X" starts (split off the clause before it).
 _SAME_START = (("the", "same", "for"), ("the", "same", "with"), ("the", "same", "goes"), ("same", "for"),
-               ("same", "with"), ("do", "the", "same"))
+               ("same", "with"), ("do", "the", "same"), ("do", "not", "touch"), ("do", "not", "move"),
+               ("don't", "touch"), ("don't", "move"), ("leave",))
 _PUNCT_END = frozenset({";", ".", "!", "?", ":"})
 _LEADING = frozenset(
     {"and", ",", "but", "then", "like", "also", "finally", "first", "firstly", "secondly", "thirdly", "lastly", "please",
@@ -145,7 +146,7 @@ _COMPASS_LEFT = frozenset({"north", "south", "east", "west", "northward", "south
 #: A stacking order given by an attribute or a sort, which the parser does not read.
 _ORDER_BY = re.compile(
     r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
-    r"in (size|height|colou?r|alphabetical) order|by (size|height|colou?r|volume|weight)|"
+    r"in (size|height|colou?r|alphabetical|rainbow|reverse alphabetical|reverse) order|(in|by) the order of the (rainbow|alphabet)|by (size|height|colou?r|volume|weight)|"
     r"(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest) to (the )?"
     r"(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest))\b")
 
@@ -1876,7 +1877,7 @@ class _Parser:
         text = " ".join(clause)
         if FREE_ORDER.fullmatch(text):
             return True
-        if not re.search(r"\b(order|sequence|which (one |of them |of the two )?(is|goes|sits|ends up|comes|lands|sits) "
+        if not re.search(r"\b(order|sequence|which way (round|up|around)|which (one |of them |of the two )?(is|goes|sits|ends up|comes|lands|sits) "
                          r"(under|on top|on|above|below|over|at the bottom|at the top|first|last|lowest|highest))\b",
                          text):
             return False
