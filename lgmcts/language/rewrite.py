@@ -109,7 +109,8 @@ def rewrite(text: str) -> str:
     # "red bowl down, white bowl up, blue bowl between": a stack's roles by one word each.
     text = re.sub(r"(?i)(^|[,:;]\s*|\band )((?:the )?(?:(?!the\b)[a-z]+ ){0,2}(?!the\b)[a-z]+) (down|up|between)(?=\s*(?:[,;.]|and\b|$))",
                   lambda m: m.group(0) if re.match(r"(?i)(?:pile|stack|line|set|put|place|move|make|build|pick|lift|"
-                                                   r"hold|turn|fill|heap|them|it)\b", m.group(2)) else
+                                                   r"hold|turn|fill|heap|them|it)\b", m.group(2))
+                  or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", m.group(2)) else
                   m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
                                               "between": " in between"}[m.group(3).lower()], text)
     # "can" as a verb ("where I can see them", "the other two can go in between"): not the object.
