@@ -117,6 +117,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(i|you|we|they|he|she|it|one|two|three|four|others?) can\b(?! (?:and|,|or)\b)", r"\1 could",
                   text)
     text = re.sub(r"(?i)\bcan (go|be|sit|stay|see|find|reach|get|have|do|come|end|stand|rest|lie)\b", r"could \1", text)
+    # "where I can see them", "so I can count them": a reason, asking for nothing.
+    text = re.sub(r"(?i),?\s*\b(?:where|so that|so) (?:i|you|we|they|he|she) (?:can|could) (?:easily )?"
+                  r"(?:see|reach|find|get to|grab|count|use|spot) (?:it|them|those|these)\b", "", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.

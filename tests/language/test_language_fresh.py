@@ -30,7 +30,10 @@ def test_fresh_set_shape():
 #: Dev cases answered otherwise than labelled on purpose: "move a pair of the
 #: cans in front of the brown box" is read as any two cans (the parser chooses
 #: two); the label refuses it because a relation goal has no count field.
-KNOWN = {"freshP-refusal-020"}
+#: "every red object in a line" keeps exact colours (the peers' word "objects",
+#: as in StructFormer's and LGMCTS-D's templates); the writer counted the red
+#: swirl heart in.
+KNOWN = {"freshP-refusal-020", "freshU-combination-007"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -38,7 +41,7 @@ def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
     report = evaluate(dev, lambda s, t: parse_rules(s, t, matcher=matcher))
     wrong = {r.case.id for r in report.results if not r.ok and r.got is not None}
     assert wrong <= KNOWN, sorted(wrong - KNOWN)
-    assert report.accuracy >= 0.90
+    assert report.accuracy >= 0.93
 
 
 def _goals(scene: str, text: str, matcher) -> list[dict]:
@@ -168,6 +171,63 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     # everyday generic nouns take compound colours; the peers' "objects" keep exact ones
     ("toys", "line up every red item", [{"pattern": "line", "objects": [1, 5, 11]}]),
     ("toys", "put all red objects in a row", [{"pattern": "line", "objects": [1, 5]}]),
+    ("toys", "put everything red in a line", [{"pattern": "line", "objects": [1, 5, 11]}]),
+    ("toys", "All the red ones, please stack them, order is not important.",
+     [{"pattern": "tower", "objects": [1, 5, 11]}]),
+    # a bare colour after "then" takes the noun around it; colours said without commas
+    ("blocks", "stack the green block and then the yellow", [{"pattern": "tower", "objects": [3, 4]}]),
+    ("blocks", "Stack red, blue, green from the bottom up.", [{"pattern": "tower", "objects": [1, 2, 3]}]),
+    ("blocks", "all 6 blocks in one stack, bottom to top red orange yellow green blue purple",
+     [{"pattern": "tower", "objects": [1, 5, 4, 3, 2, 6]}]),
+    # the rest of a stack follows the ones named; roles said with a verb or one word
+    ("pantry", "Stack the cans: white at the bottom, then green.", [{"pattern": "tower", "objects": [2, 4, 1, 3]}]),
+    ("pantry", "Stack cans: white is lowest, after it green, after it red, highest is blue.",
+     [{"pattern": "tower", "objects": [2, 4, 1, 3]}]),
+    ("pantry", "Bowls make a tower: red bowl down, white bowl up, blue bowl between.",
+     [{"pattern": "tower", "objects": [6, 7, 5]}]),
+    ("blocks", "A three-high stack is required: orange at the bottom, purple at the top, and the yellow block "
+               "sandwiched between them.", [{"pattern": "tower", "objects": [5, 4, 6]}]),
+    ("home", "In the end I want the white bowl on top of the blue bowl and the cans lined up.",
+     [{"pattern": "tower", "objects": [5, 3]}, {"pattern": "line", "objects": [12, 13, 14]}]),
+    # "do the same", things left alone, describing sentences before the request
+    ("toys", "Stack the blue letter R on the blue block. Do the same with the yellow letter and the yellow block.",
+     [{"pattern": "tower", "objects": [6, 2]}, {"pattern": "tower", "objects": [7, 3]}]),
+    ("home", "Put the bottles behind the phone, and the same for the mugs.",
+     [{"pattern": "behind", "objects": [6, 7], "anchor": 15}, {"pattern": "behind", "objects": [1, 2], "anchor": 15}]),
+    ("dinner", "Leave the plate and the bowl where they are. Everything else goes in a ring.",
+     [{"pattern": "circle", "objects": [3, 4, 5, 6, 7, 8]}]),
+    ("home", "The white bowl is in my way. Put it on top of the white plate.", [{"pattern": "tower", "objects": [8, 3]}]),
+    ("home", "I keep knocking the blue mug over. Move it in front of the white bowl.",
+     [{"pattern": "front", "objects": [2], "anchor": 3}]),
+    ("dinner", "The mug, the cup and the bottle are crowding the plate. Line them up side by side.",
+     [{"pattern": "line", "objects": [6, 7, 8]}]),
+    ("pantry", "Honestly, the brown box is in the way - move it to the right of the red can.",
+     [{"pattern": "right", "objects": [10], "anchor": 1}]),
+    ("home", "The fork is fine. Put the knife to its right and the spoon to its left.",
+     [{"pattern": "right", "objects": [10], "anchor": 9}, {"pattern": "left", "objects": [11], "anchor": 9}]),
+    # topics, learners' forms, parentheses, counts out of a group, negated lists of categories
+    ("toys", "The tiger pan, the star must be sitting on top of it.", [{"pattern": "tower", "objects": [12, 10]}]),
+    ("home", "The white things, you are putting them in a circle.", [{"pattern": "circle", "objects": [3, 6, 8, 13]}]),
+    ("pantry", "Cans (red, white, green) are to be arranged in a closed loop.",
+     [{"pattern": "circle", "objects": [1, 2, 4]}]),
+    ("home", "The dishes (the plate and the three bowls) are to be arranged in a rectangle.",
+     [{"pattern": "rectangle", "objects": [3, 4, 5, 8]}]),
+    ("pantry", "Put one of the three bowls behind the red can.", [{"pattern": "behind", "objects": [5], "anchor": 1}]),
+    ("pantry", "Pop everything that's not a can or a bowl into a line.", [{"pattern": "line", "objects": [8, 9, 10]}]),
+    ("pantry", "Every item that is neither a can nor the box is to be placed in a line.",
+     [{"pattern": "line", "objects": [5, 6, 7, 8, 9]}]),
+    # -ing commands, left-out words, places
+    ("home", "Would you mind stacking the green bowl on the blue bowl and lining up the cans?",
+     [{"pattern": "tower", "objects": [5, 4]}, {"pattern": "line", "objects": [12, 13, 14]}]),
+    ("home", "Put red mug on top the white plate.", [{"pattern": "tower", "objects": [8, 1]}]),
+    ("pantry", "First stack the bowls, red one lowest, then white, then blue; then cups next to the box on its left.",
+     [{"pattern": "tower", "objects": [6, 5, 7]}, {"pattern": "left", "objects": [8, 9], "anchor": 10}]),
+    ("home", "Cutlery line, pointing to west, on the left side in the middle.",
+     [{"pattern": "line", "objects": [9, 10, 11], "facing": "west", "region": "middle left"}]),
+    ("blocks", "Goal: a large rectangle formed by the red, blue, green and yellow blocks, centred on the table.",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "size": "large", "region": "middle center"}]),
+    ("pantry", "I'm making soup later, so I'd like the cans lined up where I can see them.",
+     [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
@@ -204,6 +264,11 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
     ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
     ("blocks", "make two lines of the blocks", "named one by one"),
+    # a phrase no goal carries is refused, not dropped
+    ("home", "One mug on top of the other, and the bottles in front of the phone.", "is not part of any goal"),
+    ("blocks", "Make one tall tower out of all six blocks in rainbow order, red at the bottom.", "order"),
+    ("home", "Leave the plate and the bowl where they are. Everything else goes in a ring.", "'the bowl' is ambiguous"),
+    ("home", "Do the same for the mugs.", "the same as what"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
