@@ -178,6 +178,10 @@ def rewrite(text: str) -> str:
     # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
     repair = r"(?:no wait|wait no|no|sorry|i mean|i meant)"
     text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s+{repair}\s+(?=the\b)", "", text)
+    # The same with commas: "the red bowl, no sorry, the blue bowl", "the cups, no wait, um, the bowls".
+    said = r"(?:(?:no|oh|wait|sorry|actually|i mean|i meant|or rather|scratch that|make that|rather)[,.!]?\s*){1,3}"
+    text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s*,\s*{said},?\s*(?:(?:um|uh|er|erm)\s*,?\s*)*(?=the\b)", "",
+                  text)
     text = re.sub(rf"(?i)\b(?:on|onto|in|to|at|behind|under|underneath)(?:\s+the)?\s+{repair}\s+"
                   rf"(?=(?:on|onto|in|to|at|behind|under|underneath)\b)", "", text)
     text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top| way round| way around| way up)?\b|"

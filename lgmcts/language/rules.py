@@ -2058,7 +2058,7 @@ class _Parser:
             if g not in goals:
                 goals.append(g)
         goals = _chain_towers(goals)
-        goals = [g for k, g in enumerate(goals) if g not in goals[:k]]
+        goals = _same_goals_merged(goals)
         goals = _merge_relations(goals)
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
@@ -2184,6 +2184,31 @@ def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: 
     p = _Parser(spec, matcher, options or RulesOptions())
     p.command(text)
     return p.goal_dicts
+
+
+def _same_goals_merged(goals: list[dict]) -> list[dict]:
+    """One goal for each arrangement said twice ("put them in a circle, like a
+    little loop"): the same pattern over the same objects (in the same order for
+    a tower) and the same reference object; the place, size and facing said
+    either time are the goal's (two different ones are refused)."""
+    out: list[dict] = []
+    for g in goals:
+        same = None
+        for h in out:
+            if (h["pattern"] == g["pattern"] and h.get("anchor") == g.get("anchor")
+                    and (h["objects"] == g["objects"] if g["pattern"] == "tower" else
+                         sorted(h["objects"]) == sorted(g["objects"]))):
+                same = h
+                break
+        if same is None:
+            out.append(dict(g))
+            continue
+        for key in _PARAM_KEYS:
+            if key in g:
+                if same.get(key, g[key]) != g[key]:
+                    raise InputError(f"two different {key}s ({same[key]}, {g[key]}) for one {g['pattern']}")
+                same[key] = g[key]
+    return out
 
 
 def _merge_relations(goals: list[dict]) -> list[dict]:
