@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["rewrite", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
+__all__ = ["rewrite", "unframe", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
 
 #: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
 FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|random|an arbitrary|no particular|any old) "
@@ -61,6 +61,32 @@ _CORRECTION = re.compile(
     r"\s*,?\s*\b(?:(?:no,?\s+)?(?:wait|sorry|i mean|actually|make that|or rather|rather)|wait,? no|no(?=\s*,))\b\s*,?\s*")
 #: A contrast that only confirms the choice: "on the red mug, not the blue one".
 _NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
+
+
+#: Words that frame a request as the state wanted at the end ("the goal is ...",
+#: "when it's done, ...", "picture this: ..."), and spoken openers ("okay so, um").
+_FRAMES = (
+    r"\b(?:so |basically |honestly |mm,? )*the (?:end |final )?goal(?: state)?(?: i'm after| i am after| here)?"
+    r"(?: is| would be)?(?: (?:to have|to get|to see|that|for))?\s*:?\s*",
+    r"\b(?:when|once|after) (?:it's|it is|it has been|everything is|everything's|you're|you are|you've|you have|"
+    r"all is|it's all|it is all|we're|we are)(?: all)? (?:done|finished|complete|completed|over|through)\b,?\s*",
+    r"\bwhen all's said and done\b,?\s*|\bwhen all is said and done\b,?\s*|\bat the end of the day\b,?\s*",
+    r"\bin the end\b,?\s*|\bultimately\b,?\s*|\bthe way i (?:picture|see|imagine) it\b,?\s*",
+    r"\bpicture this\s*:?\s*|^\s*(?:picture|imagine)\b\s*|\bfinal (?:layout|state|arrangement|result|setup|picture)\s*:\s*",
+    r"\bthe end state(?: i'm after| i am after| i want| wanted)?\s*:\s*",
+)
+_OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|hmm+|mm+|oh|yeah|yes|hey|real quick|"
+                     r"basically|like)\b[,\s]*|right\b\s*(?:,|so\b)[,\s]*)+")
+
+
+def unframe(text: str) -> str:
+    """The request without the words that frame it as an end state or open it in speech."""
+    text = _OPENER.sub("", text)
+    for f in _FRAMES:
+        text = re.sub(f"(?i){f}", "", text)
+    text = re.sub(r"(?i)\bthe final (stack|tower|pile|line|row|circle|ring|rectangle|square|arrangement)\b",
+                  r"the \1", text)
+    return _OPENER.sub("", text)
 
 
 #: Verb stems of "-ing" forms and their base forms.
@@ -120,6 +146,14 @@ def rewrite(text: str) -> str:
     # "where I can see them", "so I can count them": a reason, asking for nothing.
     text = re.sub(r"(?i),?\s*\b(?:where|so that|so) (?:i|you|we|they|he|she) (?:can|could) (?:easily )?"
                   r"(?:see|reach|find|get to|grab|count|use|spot) (?:it|them|those|these)\b", "", text)
+    # "all six of them", "both of them" after the objects: a restatement.
+    text = re.sub(r"(?i),\s*(?:(?:uh|um|like),?\s*)*(?:all|both)(?: [a-z0-9]+)? of them\b(?=\s*(?:[,.;!?]|$))", "", text)
+    # Spoken fillers between commas; "would ya" at the end.
+    text = re.sub(r"(?i),\s*(?:like|you know|i guess|basically|yeah)\s*,", ",", text)
+    text = re.sub(r"(?i),?\s*\b(?:would|will|could) (?:ya|you)\b(?=\s*(?:[,.;!?]|$))", "", text)
+    # "..., and the blocks too(, but separately)": the same again for other objects.
+    text = re.sub(r"(?i),?\s*\band (the (?:[a-z]+ ){0,3}?[a-z]+) (?:too|as well)(?:,? but (?:separately|on their own|"
+                  r"apart))?\b", r". the same for \1", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.
@@ -184,7 +218,7 @@ def rewrite(text: str) -> str:
                   text)
     text = re.sub(rf"(?i)\b(?:on|onto|in|to|at|behind|under|underneath)(?:\s+the)?\s+{repair}\s+"
                   rf"(?=(?:on|onto|in|to|at|behind|under|underneath)\b)", "", text)
-    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one)?(?: goes where| goes on top| way round| way around| way up)?\b|"
+    text = re.sub(r"(?i)\b(?:it )?(?:does not|doesn't|does n't) matter which(?: one| way(?: round| around| up)?| [a-z]+)?(?: goes where| goes on top)?\b|"
                   r"\bwhichever(?: one)?(?:\s*[.!?]*\s*$)", "", text)
     text = re.sub(r"(?i)\b(?:out|up) front\b", "at the front of the table", text)
     text = re.sub(r"(?i)\balong the (back|front|left|right)\b(?! of| left| right| center| centre| middle| back| front| side|"

@@ -38,7 +38,7 @@ from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
-from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite
+from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, normalise, stack_roles, take_params
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
@@ -70,7 +70,7 @@ _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
      "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
-     "use", "find"}
+     "use", "find", "stick", "pop", "plonk", "shove", "chuck"}
 )
 #: Verbs of a selection clause: it names objects for the next clause ("select
 #: objects that are red. circle"; "take the red mug and put it ...").
@@ -1280,7 +1280,8 @@ class _Parser:
             if any(isinstance(x, Choice) for x in last):
                 raise InputError(f"'{m.text}' is unclear: the objects it refers to are not fixed yet")
             return [x for x in last if isinstance(x, int)]
-        self.state.mass = bool(re.search(r"\b(stuff|everything|anything)\b", m.text))
+        self.state.mass = bool(re.search(r"\b(stuff|everything|anything|cutlery|silverware|flatware|crockery|"
+                                         r"tableware|dishware)\b", m.text))
         if m.det == "other" and m.names is None and not m.plural and self.state.choices:
             # "one mug ... the other one": the one of two that the first did not take.
             prev = self.state.choices[-1]
@@ -1583,6 +1584,7 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
+        text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
