@@ -1452,6 +1452,15 @@ class _Parser:
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":
         "the former" / "the latter" replaced by the two references named before."""
+        # "the first one" / "the second one" after two references mean the same ("put the first one on
+        # top of the second one"), where they are not stack roles ("the first one goes at the bottom").
+        ordinal = {"first": "former", "second": "latter"}
+        words = tuple(w for k, w in enumerate(words) if not (w == "one" and k >= 2 and words[k - 1] in ordinal
+                                                             and words[k - 2] == "the"))
+        words = tuple(ordinal.get(w, w) if k and words[k - 1] == "the" and (
+            k + 1 >= len(words) or words[k + 1] in ("on", "onto", "under", "in", "behind", "to", "next", "left",
+                                                   "right", "beside", "below", "above", "of", "and", ",", ".")) else w
+            for k, w in enumerate(words))
         at = [k for k in range(len(words) - 1) if words[k] == "the" and words[k + 1] in ("former", "latter")]
         if not at:
             return words
@@ -1688,7 +1697,9 @@ class _Parser:
     # ------------------------------------------------------------ dinner
     _DINNER = (("set", "the", "table"), ("set", "a", "table"), ("lay", "the", "table"), ("set", "up", "the", "table"),
                ("dinner",), ("place", "setting"), ("table", "setting"), ("set", "a", "place"), ("plate", "setting"),
-               ("lay", "a", "place"), ("table", "set"), ("setting", "for", "one"), ("cover", "for", "one"))
+               ("lay", "a", "place"), ("table", "set"), ("setting", "for", "one"), ("cover", "for", "one"),
+               ("place", "is", "laid"), ("place", "laid"), ("table", "laid"), ("table", "should", "be", "set"),
+               ("table", "is", "set"), ("place", "settings"))
 
     def _read_clause(self, clause: tuple[str, ...], pending: list[_Pending]) -> None:
         """Read one clause (cut further where it names two arrangements or two
@@ -1927,8 +1938,9 @@ class _Parser:
         if k is None:
             return None
         seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
-        many = re.search(r"\bfor (two|three|four|five|six|[2-9]|\d\d+) (people|persons|guests|diners|of us)\b",
-                         " ".join(words))
+        many = re.search(r"\bfor (two|three|four|five|six|[2-9]|\d\d+)(?: (people|persons|guests|diners|of us)|"
+                         r"(?= , | \.|$)| ,? like (?:two|three|four|five|six|\d+))\b|\b(?:two|three|four|five|six|[2-9]) "
+                         r"(?:full )?place settings\b", " ".join(words))
         if many is not None:
             raise InputError(f"'{' '.join(words)}': a setting {many.group(0)} needs one plate each; "
                              f"set one place at a time")
