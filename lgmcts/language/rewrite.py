@@ -154,6 +154,15 @@ def rewrite(text: str) -> str:
     # "..., and the blocks too(, but separately)": the same again for other objects.
     text = re.sub(r"(?i),?\s*\band (the (?:[a-z]+ ){0,3}?[a-z]+) (?:too|as well)(?:,? but (?:separately|on their own|"
                   r"apart))?\b", r". the same for \1", text)
+    # "the orange one and the yellow one, blocks I mean": the noun of the "one"s said after them.
+    def _noun_after(m: re.Match) -> str:
+        noun = m.group(2)[:-1] if m.group(2).lower().endswith("s") else m.group(2)
+        return re.sub(r"(?i)\bone\b", noun, m.group(1)) + ","
+    text = re.sub(r"(?i)((?:\bthe [a-z]+ one(?:,? and |, )?){2,}),\s*([a-z]+) i mean\s*,", _noun_after, text)
+    # "a rectangle, a big one": the size of that arrangement.
+    text = re.sub(r"(?i)\b(a|an) (rectangle|circle|line|row|ring|loop|square|tower|stack|pile),?\s*(?:uh,?\s*|um,?\s*)?"
+                  r"(?:a|an) (big|large|small|little|medium|medium-sized|short|long|wide|tall|huge|tiny) one\b",
+                  r"a \3 \2", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.
