@@ -41,7 +41,7 @@ _NEAR_FAR = (
     (re.compile(r"(?i)\b(?:on |to )?the near side of\b"), "in front of"),
     (re.compile(r"(?i)\b(?:further|farther) (?:back|away(?: from (?:me|us|you|the viewer|the camera))?) than\b"),
      "behind"),
-    (re.compile(r"(?i)\b(?:nearer|closer)(?: to (?:me|us|you|the viewer|the camera|the front))? than\b"),
+    (re.compile(r"(?i)\b(?:nearer|closer)(?: (?:to )?(?:me|us|you|the viewer|the camera|the front))? than\b"),
      "in front of"),
     (re.compile(r"(?i)\b(?:further|farther) (?:forward|to the front) than\b"), "in front of"),
     (re.compile(r"(?i)\bdiagonally (?=(?:behind|in front|forward|back|ahead|to the|left|right|up|down))"), ""),
@@ -95,6 +95,23 @@ _BASE = {"put": "put", "plac": "place", "stack": "stack", "pil": "pile", "arrang
          "align": "align", "group": "group"}
 
 
+#: Words after which "can" is the object ("the white can go ...", "one can goes ...").
+_NOUN_BEFORE = frozenset("""the a an this that each every one any red green blue yellow purple white black orange pink
+    brown gray grey silver golden other""".split())
+
+#: Words that ask for an arrangement or a relation.
+_ASKS = re.compile(r"(?i)\b(?:in front|behind|left|right|on top|onto|on|under|underneath|below|beneath|above|circle|"
+                   r"ring|loop|row|line|lined|stack|stacked|pile|piled|tower|rectangle|square|facing|pointing)\b")
+
+
+def _like_restated(m: re.Match) -> str:
+    """Drop ", like ..." where the words before it already ask for an arrangement;
+    else keep what it says ("the cups, like round in a circle")."""
+    if _ASKS.search(m.group(1)):
+        return m.group(1)
+    return m.group(1) + re.sub(r"(?i),\s*like\b", ",", m.group(2))
+
+
 def rewrite(text: str) -> str:
     """Phrasings with one reading written the way the grammar reads them:
     directions (:func:`_relation_words`), "the blue bottle's colour" -> "the
@@ -140,9 +157,10 @@ def rewrite(text: str) -> str:
                   m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
                                               "between": " in between"}[m.group(3).lower()], text)
     # "can" as a verb ("where I can see them", "the other two can go in between"): not the object.
-    text = re.sub(r"(?i)\b(i|you|we|they|he|she|it|one|two|three|four|others?) can\b(?! (?:and|,|or)\b)", r"\1 could",
-                  text)
-    text = re.sub(r"(?i)\bcan (go|be|sit|stay|see|find|reach|get|have|do|come|end|stand|rest|lie)\b", r"could \1", text)
+    text = re.sub(r"(?i)\b(i|you|we|they|he|she) can\b", r"\1 could", text)
+    text = re.sub(r"(?i)\b([a-z]+ )?can (go|be|sit|stay|see|find|reach|get|have|do|come|end|stand|rest|lie)\b",
+                  lambda m: m.group(0) if (m.group(1) or "").strip().lower() in _NOUN_BEFORE
+                  else f"{m.group(1) or ''}could {m.group(2)}", text)
     # "where I can see them", "so I can count them": a reason, asking for nothing.
     text = re.sub(r"(?i),?\s*\b(?:where|so that|so) (?:i|you|we|they|he|she) (?:can|could) (?:easily )?"
                   r"(?:see|reach|find|get to|grab|count|use|spot) (?:it|them|those|these)\b", "", text)
@@ -163,6 +181,14 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(a|an) (rectangle|circle|line|row|ring|loop|square|tower|stack|pile),?\s*(?:uh,?\s*|um,?\s*)?"
                   r"(?:a|an) (big|large|small|little|medium|medium-sized|short|long|wide|tall|huge|tiny) one\b",
                   r"a \3 \2", text)
+    # "the blocks that are, like, red or orange": the filler gone, the comma too.
+    text = re.sub(r"(?i)\b(that|which|who) (are|is)\s*,\s*", r"\1 \2 ", text)
+    text = re.sub(r"(?i)\b(make|put|do|stack|arrange|set|get) like\b", r"\1", text)
+    # "as for the red mug: ...", "regarding the knife, ...": the topic of what follows.
+    text = re.sub(r"(?i)\b(?:as for|regarding|about|concerning|with regard to|as to) (the (?:[a-z]+ ){0,3}?[a-z]+)\s*[:,]",
+                  r"\1,", text)
+    # "..., like right on top of it": a restatement of what the sentence already asks.
+    text = re.sub(r"(?i)([^.;!?]*?)(,\s*like\b[^,.;!?]*)", _like_restated, text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.
