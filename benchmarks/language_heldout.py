@@ -1,12 +1,13 @@
 """Accuracy of the offline parser on the labelled language sets, per file and split.
 
     python benchmarks/language_heldout.py                 # the default sets
-    python benchmarks/language_heldout.py FILE[:SPLIT] ...
+    python benchmarks/language_heldout.py FILE[:SPLIT[:PREFIX,...]] ...
 
 Prints, per set, the commands parsed as labelled, the answered commands and
 the wrong goals among them, and the correct commands refused (the figures of
 ``lgmcts eval-parse FILE --split SPLIT``, without the failure list, so that a
-test split can be reported without being read). Run it from another checkout
+test split can be reported without being read). ``PREFIX,...`` keeps the
+cases whose id starts with one of them (one writer's batch: ``freshX``). Run it from another checkout
 with ``PYTHONPATH`` set to that checkout to compare two versions of the
 parser on the same files.
 """
@@ -26,7 +27,8 @@ DEFAULT = [
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("sets", nargs="*", default=DEFAULT, help="FILE or FILE:SPLIT (dev or test)")
+    ap.add_argument("sets", nargs="*", default=DEFAULT,
+                    help="FILE, FILE:SPLIT (dev or test) or FILE:SPLIT:PREFIX,... (ids starting so)")
     args = ap.parse_args()
     from lgmcts.language.evaluate import evaluate, load_cases
     from lgmcts.language.matcher import default_matcher
@@ -34,9 +36,11 @@ def main() -> None:
 
     matcher = default_matcher()
     for item in args.sets:
-        path, _, split = item.partition(":")
+        path, _, rest = item.partition(":")
+        split, _, prefixes = rest.partition(":")
         p = Path(path) if Path(path).is_absolute() else ROOT / path
-        cases = [c for c in load_cases(p) if not split or c.split == split]
+        cases = [c for c in load_cases(p) if (not split or c.split == split)
+                 and (not prefixes or c.id.startswith(tuple(prefixes.split(","))))]
         report = evaluate(cases, lambda s, t: parse_rules(s, t, matcher=matcher))
         n = len(cases)
         ok = sum(r.ok for r in report.results)

@@ -245,6 +245,11 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
     # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
+    # A correction in a sentence of its own ("... under the red one. Wait, sorry, the blue one."): the
+    # same as one after a comma.
+    text = re.sub(r"(?i)[.!?]\s+(?:(?:no|wait|sorry|actually|oops|i mean|i meant)\b[,!.]?\s*)+"
+                  r"(?!(?:put|place|move|stack|set|make|arrange|line|build|and|then|also|plus|swap|switch|exchange|"
+                  r"reverse|flip|turn)\b)", ", no wait, ", text)
     repair = r"(?:no wait|wait no|no|sorry|i mean|i meant)"
     text = re.sub(rf"(?i)\bthe(?:\s+[a-z]+){{1,3}}?\s+{repair}\s+(?=the\b)", "", text)
     # The same with commas: "the red bowl, no sorry, the blue bowl", "the cups, no wait, um, the bowls".

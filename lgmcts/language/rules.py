@@ -1111,6 +1111,11 @@ class _Parser:
         if p >= len(groups):
             raise InputError(f"'{text}': {words_rel} of what? name the reference object")
         anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
+        tower = self.state.tower.objects if self.state.tower is not None else []
+        if (len(anchor_sel) == 1 and tower and anchor_sel[0] == tower[-1] and isinstance(tower[0], int) and any(
+                isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p])):
+            # "put the bowl on the plate and the cutlery beside it": beside the stack, named by its base.
+            anchor_sel = [tower[0]]
         target_sel: list[int | Choice] = []
         for g, s in enumerate(sels):
             if g == p:
@@ -1675,6 +1680,13 @@ class _Parser:
                 self._read_clause(self._same_as_before(clause, last), pending)
                 if len(pending) > before:
                     last = clause
+        setting = dinner if isinstance(dinner, list) else []
+        side = next((p for p in setting if p.pattern in ("left", "right")), None)
+        stack = set(next((p.objects for p in setting if p.pattern == "tower"), []))
+        if side is not None and any(p is not side and p.pattern in RELATIONS and set(p.objects) == set(side.objects)
+                                    and p.anchor in stack | {side.anchor} for p in pending):
+            # "get dinner ready: the bowl on the plate and the cutlery on the right of it": the side said.
+            pending.remove(side)
         if self.state.header is not None and self.state.header[0] == "tower" and any(
                 p.pattern == "tower" for p in pending):
             # "build a single tower: A on B, and B on C": the steps built it.
