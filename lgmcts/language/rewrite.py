@@ -189,6 +189,12 @@ def rewrite(text: str) -> str:
                   r"\1,", text)
     # "..., like right on top of it": a restatement of what the sentence already asks.
     text = re.sub(r"(?i)([^.;!?]*?)(,\s*like\b[^,.;!?]*)", _like_restated, text)
+    # "the plate with the bowl on it": the bowl on the plate; ", with the cup sitting on the plate": and the
+    # cup on the plate.
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,2}?[a-z]+) with (the (?:[a-z]+ ){0,2}?[a-z]+) (?:sitting |resting |standing )?"
+                  r"(?:on top of it|on it|on top)\b", r"\2 on \1", text)
+    text = re.sub(r"(?i),\s*with (the (?:[a-z]+ ){0,2}?[a-z]+) (?:sitting|standing|resting|placed|lying|set|perched|nested) "
+                  r"(on|under|underneath|below|beneath|above|behind|in front of|to the)\b", r", and \1 \2", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.

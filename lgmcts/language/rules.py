@@ -198,6 +198,12 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
+        if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1])
+                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), start=True)):
+            # "the bowl on the plate, and the mug, cup and bottle in a row": two goals said without verbs.
+            parts.append([])
+            i += 2
+            continue
         if w == "," and words[i + 1 : i + 2] == ("so",) and i + 2 < len(words) and _command_verb(words[i + 2]) \
                 and parts[-1]:
             parts.append([])  # "the cans are everywhere, so put them in a row": the request after the remark
@@ -221,6 +227,30 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
         if p:
             out.append(tuple(p))
     return out
+
+
+#: Words that give an arrangement or a relation after the objects ("the bowl on the plate").
+_GOAL_WORDS = frozenset({"on", "onto", "under", "underneath", "below", "beneath", "above", "behind", "front", "left",
+                         "right", "line", "row", "circle", "ring", "loop", "stack", "stacked", "pile", "piled", "tower",
+                         "rectangle", "square", "top", "lined", "next", "beside"})
+_OBJECT_START = frozenset({"the", "a", "an", "all", "every", "each", "both", "everything", "one", "two", "three", "four"})
+
+
+def _next_stop(words: tuple[str, ...], i: int) -> int:
+    """Where the comma-separated stretch of ``words`` from ``i`` ends."""
+    j = i
+    while j < len(words) and words[j] not in (";", ".", "!", "?") and words[j : j + 2] != (",", "and"):
+        j += 1
+    return j
+
+
+def _asks_after_object(part: list[str], start: bool = False) -> bool:
+    """Whether ``part`` names objects and then an arrangement or relation for them (``start``: and
+    begins with the objects)."""
+    first = next((k for k, w in enumerate(part) if w in _OBJECT_START), None)
+    if first is None or (start and first != 0):
+        return False
+    return any(w in _GOAL_WORDS for w in part[first + 1 :])
 
 
 def _command_verb(w: str) -> bool:
