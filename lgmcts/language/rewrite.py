@@ -195,6 +195,9 @@ def rewrite(text: str) -> str:
                   r"(?:on top of it|on it|on top)\b", r"\2 on \1", text)
     text = re.sub(r"(?i),\s*with (the (?:[a-z]+ ){0,2}?[a-z]+) (?:sitting|standing|resting|placed|lying|set|perched|nested) "
                   r"(on|under|underneath|below|beneath|above|behind|in front of|to the)\b", r", and \1 \2", text)
+    # "the blue bowl's the base", "the white one's on top": "is", not a possessive.
+    text = re.sub(r"(?i)\b([a-z]+)'s (?:the )?(base|bottom|foundation)\b", r"\1 at the bottom", text)
+    text = re.sub(r"(?i)\b([a-z]+)'s (?:the top|on top|at the top|the cap)\b", r"\1 on top", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.
