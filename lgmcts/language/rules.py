@@ -530,6 +530,11 @@ _STATE_VERB = re.compile(r"\b(is|are|am|'m|was|were|keep|keeps|'s|seem|seems|loo
 _ANY_ONE = re.compile(r"^(?:which|whichever|any|either)(?: one| of them| of the \w+)?(?: is| will| would)?(?: \w+)?"
                       r"(?: immaterial| irrelevant| fine| do| ok| okay| matter| matters)?$")
 
+#: Words before an object that is named without being arranged ("except the plate", "the same colour as the mug").
+_NOT_USED_BEFORE = frozenset({"except", "excluding", "but", "not", "than", "as", "from", "without", "instead", "minus",
+                              "besides", "leave", "touch", "move", "like", "unlike", "match", "matches", "matching",
+                              "nor", "neither", "apart", "other", "besides", "alike", "to", "with", "of"})
+
 #: "leave X where it is", "don't move X": X stays where it is.
 _LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do not move|don't touch|do not touch|"
                     r"never mind|ignore) (.+?)(?: where (?:it is|they are|it's|they're)| alone| in place| be| as (?:it is|"
@@ -1700,6 +1705,7 @@ class _Parser:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
         last: tuple[str, ...] = ()
+        self._named_in = [c for c in kept]
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
@@ -1901,6 +1907,30 @@ class _Parser:
         chosen = lead or ms
         if chosen:
             self._remember(sent[chosen[0].start : chosen[-1].end])
+
+    def _unused_object(self, goals: list[dict]) -> None:
+        """Refuse a command that names one object by itself ("the red mug") where no goal
+        read from it uses that object: a part of the command was not read."""
+        used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
+        used |= {o for g in goals for o in g.get("anchor_any", ())}
+        for clause in getattr(self, "_named_in", []):
+            try:
+                ms = self._find(clause)
+            except InputError:
+                continue
+            for m in ms:
+                if m.det != "the" or m.plural or m.names is None or m.head:
+                    continue
+                before = clause[max(0, m.start - 3) : m.start]
+                if any(w in _NOT_USED_BEFORE for w in before):
+                    continue
+                try:
+                    got = candidates(self.vocab, m)
+                except InputError:
+                    continue
+                if len(got) == 1 and got[0] not in used:
+                    raise InputError(f"'{m.text}' is named but no goal read from the command uses it; "
+                                     f"say what to do with it")
 
     def _left_alone(self, clause: tuple[str, ...]) -> bool:
         """"leave the plate and the bowl where they are", "so leave it", "don't touch
@@ -2118,6 +2148,7 @@ class _Parser:
         goals = _merge_relations(goals)
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
+        self._unused_object(goals)
         unread = _unread_cue(self._said, goals, self._cat_words)
         if unread is not None:
             raise InputError(f"'{unread}' is not part of any goal read from the command; say that part again on its own")
