@@ -198,6 +198,11 @@ def rewrite(text: str) -> str:
     # "the blue bowl's the base", "the white one's on top": "is", not a possessive.
     text = re.sub(r"(?i)\b([a-z]+)'s (?:the )?(base|bottom|foundation)\b", r"\1 at the bottom", text)
     text = re.sub(r"(?i)\b([a-z]+)'s (?:the top|on top|at the top|the cap)\b", r"\1 on top", text)
+    # "the very center": the center.
+    text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
+    # "..., the mugs stacked, ...": a stack said without a verb.
+    text = re.sub(r"(?i)(^|[,;:]\s*|\band )(the (?:[a-z]+ ){0,2}?[a-z]+) (stacked|piled)(?: up)?(?=\s*(?:[,;.]|and\b|$))",
+                  r"\1stack \2", text)
     # A spaced dash between two statements: "the box is in the way - move it ...".
     text = re.sub(r"\s+[-\u2013\u2014]+\s+", ". ", text)
     # "everything on the table apart from the plate": "on the table" only says where they are now.

@@ -253,6 +253,25 @@ def _asks_after_object(part: list[str], start: bool = False) -> bool:
     return any(w in _GOAL_WORDS for w in part[first + 1 :])
 
 
+_LIST_WORDS = frozenset({"then", "and", "on", "at", "under", "below", "above", "goes", "is", "last", "first", "next",
+                         "highest", "lowest", "onto", "over", "beneath", "underneath"})
+
+
+def _bare_letter(m: re.Match, letters: set[str]) -> str:
+    """"the letter R" for a capital R said bare, where the scene has that letter."""
+    x = m.group(1)
+    before = m.string[: m.start()].rstrip()
+    after = m.string[m.end():].lstrip()
+    prev = re.findall(r"[A-Za-z]+|[,;:]", before)[-1:] or [""]
+    nxt = re.findall(r"[A-Za-z]+|[,;:.!?]", after)[:1] or [""]
+    if x not in letters or x == "I" or prev[0].lower() in ("the", "letter", "a", "an"):
+        return x
+    if x == "A" and not (prev[0].lower() in ("then", "and", ",") or nxt[0] in (",", ";", ".", "!", "?", "")
+                         or nxt[0].lower() in _LIST_WORDS):
+        return x
+    return f"the letter {x}"
+
+
 def _command_verb(w: str) -> bool:
     """A command verb, or its -ing form ("... and lining up the cans")."""
     if w in _COMMAND_VERBS:
@@ -1657,6 +1676,9 @@ class _Parser:
             # "the T", "the A": a capital letter standing for the letter the scene has.
             text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
                           if m.group(2) in letters else m.group(0), text)
+            # "A then R then T then E", "R, T, E": capitals said bare ("A" only where it cannot be
+            # the article: after a list word, or before one or the end).
+            text = re.sub(r"\b([A-Z])\b(?!')", lambda m: _bare_letter(m, letters), text)
         words = normalise(tuple(t.text for t in tokenize(text)))
         if not any(w.isalnum() for w in words):
             raise InputError("the instruction is empty")
