@@ -1317,7 +1317,9 @@ class _Parser:
                 opts = tuple(x for x in last if isinstance(x, int))
                 if len(opts) < m.count or len(opts) != len(last):
                     raise InputError(f"'{m.text}' is unclear: it refers to {len(opts)} fixed objects")
-                return Choice(opts, m.count, m.text)
+                choice = Choice(opts, m.count, m.text)
+                self.state.choices.append(choice)  # "... and the other one ..."
+                return choice
             pair = self.state.it_pair
             if m.text == "it" and getattr(self, "_chain", None) is not None:
                 return [self._chain]
