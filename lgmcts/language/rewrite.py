@@ -112,6 +112,29 @@ def _like_restated(m: re.Match) -> str:
     return m.group(1) + re.sub(r"(?i),\s*like\b", ",", m.group(2))
 
 
+_SHAPE_NOUN = re.compile(r"(?i)\b(a|an|one|the) (circle|ring|loop|rectangle|square|line|row|tower|stack|pile)\b")
+_SIZE_SAID = ((re.compile(r"(?i),?\s*\b(?:nice and|good and|really|nice|small and|tight and)? ?(?:wide|spread out|roomy|"
+                          r"spacious)\b(?! of)"), "large"),
+              (re.compile(r"(?i),?\s*\b(?:nice and|small and|good and|really) (?:tight|compact|close together|snug)\b"),
+               "small"))
+
+
+def _size_words(text: str) -> str:
+    """"a rectangle ..., nice and wide": "a large rectangle ..." (only where one arrangement is named
+    by its noun for the size to go with)."""
+    shapes = list(_SHAPE_NOUN.finditer(text))
+    if len(shapes) != 1:
+        return text
+    for said, size in _SIZE_SAID:
+        m = said.search(text)
+        if m is not None and m.start() >= shapes[0].end():
+            text = text[: m.start()] + text[m.end():]
+            a = shapes[0]
+            art = "a" if a.group(1).lower() in ("an", "one") else a.group(1)
+            return text[: a.start()] + f"{art} {size} {a.group(2)}" + text[a.end():]
+    return text
+
+
 def rewrite(text: str) -> str:
     """Phrasings with one reading written the way the grammar reads them:
     directions (:func:`_relation_words`), "the blue bottle's colour" -> "the
@@ -163,7 +186,7 @@ def rewrite(text: str) -> str:
                   else f"{m.group(1) or ''}could {m.group(2)}", text)
     # "where I can see them", "so I can count them": a reason, asking for nothing.
     text = re.sub(r"(?i),?\s*\b(?:where|so that|so) (?:i|you|we|they|he|she) (?:can|could) (?:easily )?"
-                  r"(?:see|reach|find|get to|grab|count|use|spot) (?:it|them|those|these)\b", "", text)
+                  r"(?:see|reach|find|get to|grab|count|use|spot|read) (?:it|them|those|these)\b", "", text)
     # "all six of them", "both of them" after the objects: a restatement.
     text = re.sub(r"(?i),\s*(?:(?:uh|um|like),?\s*)*(?:all|both)(?: [a-z0-9]+)? of them\b(?=\s*(?:[,.;!?]|$))", "", text)
     # Spoken fillers between commas; "would ya" at the end.
@@ -198,6 +221,10 @@ def rewrite(text: str) -> str:
     # "the blue bowl's the base", "the white one's on top": "is", not a possessive.
     text = re.sub(r"(?i)\b([a-z]+)'s (?:the )?(base|bottom|foundation)\b", r"\1 at the bottom", text)
     text = re.sub(r"(?i)\b([a-z]+)'s (?:the top|on top|at the top|the cap)\b", r"\1 on top", text)
+    # Sizes said in everyday words: "nice and wide", "small and tight", "spread out".
+    text = _size_words(text)
+    # "over on the left": on the left side of the table.
+    text = re.sub(r"(?i)\bover (?:on|to) the (left|right)\b(?! of)", r"on the \1 side of the table", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
