@@ -176,7 +176,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)(^|[,:;]\s*|\band )((?:the )?(?:(?!the\b)[a-z]+ ){0,2}(?!the\b)[a-z]+) (down|up|between)(?=\s*(?:[,;.]|and\b|$))",
                   lambda m: m.group(0) if re.match(r"(?i)(?:pile|stack|line|set|put|place|move|make|build|pick|lift|"
                                                    r"hold|turn|fill|heap|them|it)\b", m.group(2))
-                  or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", m.group(2)) else
+                  or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", m.group(2))
+                  or re.search(r"(?i)\b(?:pile|stack|line|set|put|place|move|make|build|lift|pick|them|it|those|these|"
+                               r"they)\b", m.group(2)) else
                   m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
                                               "between": " in between"}[m.group(3).lower()], text)
     # "can" as a verb ("where I can see them", "the other two can go in between"): not the object.
@@ -286,6 +288,15 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
     # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
+    # A whole request taken back: "set the table, actually no, just put the bowl on the plate", "put the
+    # white things in a circle, no wait, the blue things in a circle".
+    text = re.sub(r"(?i)(^|[.;!?]\s*|,\s*(?:and |then )?)([^,.;!?]*?)\s*,\s*(?:no wait|wait no|no sorry|sorry no|"
+                  r"actually no|no actually|no no|scratch that|forget that|never mind that|no)[,!.]?\s*"
+                  r"(?:(?:um|uh|actually|wait|sorry)[,\s]*)*(?=(?:the|put|place|move|stack|set|make|arrange|line|build|"
+                  r"just|instead)\b)",
+                  lambda m: m.group(1) if _ASKS.search(m.group(2)) or re.search(
+                      r"(?i)\b(?:table|dinner|setting|place)\b", m.group(2)) else m.group(0), text)
+    text = re.sub(r"(?i)^\s*(?:just|instead)\s+", "", text)
     # A correction in a sentence of its own ("... under the red one. Wait, sorry, the blue one."): the
     # same as one after a comma.
     text = re.sub(r"(?i)[.!?]\s+(?:(?:no|wait|sorry|actually|oops|i mean|i meant)\b[,!.]?\s*)+"

