@@ -74,6 +74,11 @@ _FRAMES = (
     r"\bin the end\b,?\s*|\bultimately\b,?\s*|\bthe way i (?:picture|see|imagine) it\b,?\s*",
     r"\bpicture this\s*:?\s*|^\s*(?:picture|imagine)\b\s*|\bfinal (?:layout|state|arrangement|result|setup|picture)\s*:\s*",
     r"\bthe end state(?: i'm after| i am after| i want| wanted)?\s*:\s*",
+    r"\bthe (?:end |final |main )?(?:idea|plan|aim|point|target|result)(?: here)? is(?: that| to have| for)?\s+",
+    r"\bwhat i'?m after is\s+|\bwhat i am after is\s+|\bwhat i want is\s+",
+    r"\bwhen i (?:come back|get back|return)(?:,)?\s*",
+    r"^\s*(?:okay |ok |so |right )*(?:two|three|four) things\s*:\s*",
+    r"\b(?:tidy[- ]up|clean[- ]up) time\s*[!.]?\s*",
 )
 _OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|hmm+|mm+|oh|yeah|yes|hey|real quick|"
                      r"basically|like)\b[,\s]*|right\b\s*(?:,|so\b)[,\s]*)+")
@@ -84,8 +89,11 @@ def unframe(text: str) -> str:
     text = _OPENER.sub("", text)
     for f in _FRAMES:
         text = re.sub(f"(?i){f}", "", text)
-    text = re.sub(r"(?i)\bthe final (stack|tower|pile|line|row|circle|ring|rectangle|square|arrangement)\b",
+    text = re.sub(r"(?i)\bthe (?:final|finished|end) (stack|tower|pile|line|row|circle|ring|rectangle|square|arrangement)\b",
                   r"the \1", text)
+    text = re.sub(r"(?i)\bthe (?:final|finished|end) (?:layout|arrangement|state|result|picture|table) "
+                  r"(?:should|will|must) (?:have|show|be)\s*:?\s*", "", text)
+    text = re.sub(r"(?i)\bthe goal for (the (?:[a-z]+ ){0,2}?[a-z]+) is(?: that)?\b", r"\1:", text)
     return _OPENER.sub("", text)
 
 
@@ -227,6 +235,25 @@ def rewrite(text: str) -> str:
     text = _size_words(text)
     # "over on the left": on the left side of the table.
     text = re.sub(r"(?i)\bover (?:on|to) the (left|right)\b(?! of)", r"on the \1 side of the table", text)
+    # "the orange cup with the red can to its left", "the letter E has the blue block behind it": the
+    # second object placed relative to the first.
+    def _has_rel(m: re.Match) -> str:
+        rel = m.group(3).lower()
+        rel = {"on its left": "to the left of", "on its right": "to the right of", "to its left": "to the left of",
+               "to its right": "to the right of", "behind it": "behind", "in front of it": "in front of",
+               "on top of it": "on top of", "on it": "on", "under it": "under", "below it": "below"}[rel]
+        return f"{m.group(2)} {rel} {m.group(1)}"
+    text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,2}?[a-z]+) (?:has|have|with|should have) (the (?:[a-z]+ ){0,2}?[a-z]+) "
+                  r"(?:directly |sitting |standing |just |right |placed |resting )?(on its left|on its right|to its left|"
+                  r"to its right|behind it|in front of it|on top of it|on it|under it|below it)\b", _has_rel, text)
+    # ", with the green bowl on top of the blue bowl": and the green bowl on top of it.
+    text = re.sub(r"(?i),\s*with (the (?:[a-z]+ ){0,2}?[a-z]+) (on top of|on|under|underneath|below|beneath|behind|"
+                  r"in front of|to the left of|to the right of)\s+(?=the\b)", r", and \1 \2 ", text)
+    # "the highest", "topmost": stack roles.
+    text = re.sub(r"(?i)\b(?:is|are) the (highest|lowest|top one|bottom one)\b", lambda m: m.group(1).split()[0]
+                  .replace("top", "highest").replace("bottom", "lowest"), text)
+    text = re.sub(r"(?i)\b(topmost|uppermost)\b", "highest", text)
+    text = re.sub(r"(?i)\b(bottommost|undermost|lowermost)\b", "lowest", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.

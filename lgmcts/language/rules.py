@@ -965,7 +965,18 @@ class _Parser:
             # "...; the red one goes in between": a role for an object of the tower just built.
             tower = self.state.tower.objects
             prev = None
-            for mm, r in zip(mentions, roles):
+            pairs = list(zip(mentions, roles))
+            if re.search(r"\btop to (the )?bottom\b", text) and not self.state.downward:
+                # "black bowl, then white bowl, then the blue block, from the top down, black bowl
+                # highest": the list read downward first, then the roles.
+                for mm, r in pairs:
+                    if r is None:
+                        got = self._select(mm)
+                        tower.extend(x for x in (got if isinstance(got, list) else [got]) if x not in tower)
+                tower.reverse()
+                self.state.downward = True
+                pairs = [(mm, r) for mm, r in pairs if r is not None]
+            for mm, r in pairs:
                 got = self._select(mm)
                 for x in got if isinstance(got, list) else [got]:
                     if x in tower:
