@@ -117,7 +117,7 @@ def _like_restated(m: re.Match) -> str:
     else keep what it says ("the cups, like round in a circle")."""
     if _ASKS.search(m.group(1)):
         return m.group(1)
-    return m.group(1) + re.sub(r"(?i),\s*like\b", ",", m.group(2))
+    return m.group(1) + re.sub(r"(?i),\s*(?:so |and )?(?:like|yeah|you know|i mean|basically)\b", ",", m.group(2))
 
 
 _SHAPE_NOUN = re.compile(r"(?i)\b(a|an|one|the) (circle|ring|loop|rectangle|square|line|row|tower|stack|pile)\b")
@@ -198,7 +198,16 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i),?\s*\b(?:where|so that|so) (?:i|you|we|they|he|she) (?:can|could) (?:easily )?"
                   r"(?:see|reach|find|get to|grab|count|use|spot|read) (?:it|them|those|these)\b", "", text)
     # "all six of them", "both of them" after the objects: a restatement.
-    text = re.sub(r"(?i),\s*(?:(?:uh|um|like),?\s*)*(?:all|both)(?: [a-z0-9]+)? of them\b(?=\s*(?:[,.;!?]|$))", "", text)
+    text = re.sub(r"(?i),\s*(?:(?:uh|um|like),?\s*)*(?:all|both)(?: [a-z0-9]+)? of (?:them|it)\b(?=\s*(?:[,.;!?]|$))", "",
+                  text)
+    text = re.sub(r"(?i)\bevery single\b", "every", text)
+    text = re.sub(r"(?i)\b([a-z]+)'s (sitting|standing|resting|lying|placed|going|ending|ended|sat|stood)\b", r"\1 is \2",
+                  text)
+    # "drop the cup into the bowl", "the white bowl sitting in the black bowl": one inside the other, a stack.
+    text = re.sub(r"(?i)\b(?:(sitting|nested|nesting|resting|tucked|placed|set) )?(?:into|inside(?: of)?|(?<=sitting )in|"
+                  r"(?<=nested )in|(?<=resting )in|(?<=tucked )in)\s+(?=(?:the|it)\b(?! (?:middle|centre|center|corner|front|"
+                  r"back|left|right|top|bottom|row|line|circle|ring|stack|pile|rectangle|square)\b))",
+                  lambda m: (m.group(1) + " " if m.group(1) else "") + "on ", text)
     # Spoken fillers between commas; "would ya" at the end.
     text = re.sub(r"(?i),\s*(?:like|you know|i guess|basically|yeah)\s*,", ",", text)
     text = re.sub(r"(?i),?\s*\b(?:would|will|could) (?:ya|you)\b(?=\s*(?:[,.;!?]|$))", "", text)
@@ -221,7 +230,8 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:as for|regarding|about|concerning|with regard to|as to) (the (?:[a-z]+ ){0,3}?[a-z]+)\s*[:,]",
                   r"\1,", text)
     # "..., like right on top of it": a restatement of what the sentence already asks.
-    text = re.sub(r"(?i)([^.;!?]*?)(,\s*like\b[^,.;!?]*)", _like_restated, text)
+    text = re.sub(r"(?i)([^.;!?]*?)(,\s*(?:so |and )?(?:like|yeah|you know|i mean|basically)\b[^,.;!?]*)",
+                  _like_restated, text)
     # "the plate with the bowl on it": the bowl on the plate; ", with the cup sitting on the plate": and the
     # cup on the plate.
     text = re.sub(r"(?i)\b(the (?:[a-z]+ ){0,2}?[a-z]+) with (the (?:[a-z]+ ){0,2}?[a-z]+) (?:sitting |resting |standing )?"

@@ -1588,7 +1588,7 @@ class _Parser:
                 and any(w in ("it", "them", "they") for w in rest[:6])):
             return [clause[start : start + ms[0].end], rest]
         if (clause[start + ms[0].end : start + ms[0].end + 1] == (",",) and rest
-                and any(w in ("it", "them", "they") for w in rest)):
+                and any(w in ("it", "them", "they", "those", "these") for w in rest)):
             # "the tiger pan, the star must be sitting on top of it", "the plate, you
             # are putting the spoon next to it": a topic, then a sentence about it.
             return [clause[start : start + ms[0].end], rest]

@@ -443,6 +443,8 @@ RELABELLED: dict[str, dict] = {
     "grounding-037": {"goals": [_g("line", [8, 9])]},
     "grounding-039": {"goals": [_g("line", [7, 8])]},
     "grounding-040": {"goals": [_g("line", [6, 13, 15])]},
+    # "into the bowl": one object inside the other is a stack (as the free-form writers label it).
+    "grounding-045": {"goals": [_g("tower", [9, 12])]},
 }
 
 #: Cases that became refusals: "it" after "A in front of B" may be A or B, and
