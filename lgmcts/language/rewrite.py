@@ -77,7 +77,7 @@ _FRAMES = (
     r"\bthe (?:end |final |main )?(?:idea|plan|aim|point|target|result)(?: here)? is(?: that| to have| for)?\s+",
     r"\bwhat i'?m after is\s+|\bwhat i am after is\s+|\bwhat i want is\s+",
     r"\bwhen i (?:come back|get back|return)(?:,)?\s*",
-    r"^\s*(?:okay |ok |so |right )*(?:two|three|four) things\s*:\s*",
+    r"^\s*(?:okay |ok |so |right )*(?:two|three|four|a couple of|a few) (?:things|jobs|tasks)\b[^.:;!?]*[.:;!?]\s*",
     r"\b(?:tidy[- ]up|clean[- ]up) time\s*[!.]?\s*",
 )
 _OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|hmm+|mm+|oh|yeah|yes|hey|real quick|"

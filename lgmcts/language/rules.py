@@ -102,7 +102,8 @@ _DET_WORDS = frozenset({"the", "all", "every", "each", "both", "these", "those",
 _ALLOWED_EXTRA = frozenset(
     {"another", "second", "first", "new", "neat", "big", "large", "small", "tidy", "nice", "perfect", "bottom",
      "pattern", "shape", "formation", "well", "too", "again", "afterward", "there", "following", "order", "straight",
-     "please", "robot", "scene", "arrangement"}
+     "please", "robot", "scene", "arrangement", "proper", "standard", "usual", "normal", "full", "complete", "basic",
+     "simple", "meal", "lunch", "breakfast", "supper", "setup", "restaurant", "person"}
 )
 
 
@@ -1730,6 +1731,23 @@ class _Parser:
             except InputError:
                 dinner = []
             if dinner is None:
+                # "the table laid for a meal, and the mug should be behind the plate": the
+                # setting up to the first break after it, the rest a clause of its own.
+                at = next(c for c in clauses if self._dinner_at(c) is not None)
+                k = self._dinner_at(at)
+                cut = next((j for j in range(k + 1, len(at)) if at[j] in (",", "and", "plus", "with", "but")), None)
+                if cut is not None:
+                    head, tail = at[:cut], at[cut:]
+                    while tail and tail[0] in (",", "and", "plus", "with", "but", "also"):
+                        tail = tail[1:]
+                    try:
+                        alone = self._dinner(head) if tail and not self._setting_only(tail) else None
+                    except InputError:
+                        alone = None
+                    if alone:
+                        dinner, own = alone, [c for c in own if c is not at]
+                        clauses = [tail if c is at else c for c in clauses]
+            if dinner is None:
                 raise InputError(f"'{' '.join(words)}': cannot tell which parts belong to the place setting")
             if dinner:
                 pending.extend(dinner)
@@ -2025,7 +2043,9 @@ class _Parser:
 
     def _dinner_at(self, words: tuple[str, ...]) -> int | None:
         """Where a place setting is asked for ("set the table", "dinner"), if it is."""
-        return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s), None)
+        return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s
+                     and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))),
+                    None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:
         """Whether a clause names only the setting's own objects (plate, bowls, cutlery)."""
