@@ -259,6 +259,9 @@ def rewrite(text: str) -> str:
     # ", with the green bowl on top of the blue bowl": and the green bowl on top of it.
     text = re.sub(r"(?i),\s*with (the (?:[a-z]+ ){0,2}?[a-z]+) (on top of|on|under|underneath|below|beneath|behind|"
                   r"in front of|to the left of|to the right of)\s+(?=the\b)", r", and \1 \2 ", text)
+    # "put the tiger pan down as the base", "where the green can is the base": the bottom of the stack.
+    text = re.sub(r"(?i)\bdown (as (?:the|a) (?:base|bottom layer|bottom|foundation))\b", r"\1", text)
+    text = re.sub(r"(?i)\bis the (base|foundation|bottom layer)\b", r"as the \1", text)
     # "the highest", "topmost": stack roles.
     text = re.sub(r"(?i)\b(?:is|are) the (highest|lowest|top one|bottom one)\b", lambda m: m.group(1).split()[0]
                   .replace("top", "highest").replace("bottom", "lowest"), text)

@@ -184,7 +184,7 @@ class _State:
     nouns: list = field(default_factory=list)
 
 
-def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
+def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -> list[tuple[str, ...]]:
     """Split at sentence ends, ";", connectives and "and"/"," before a verb; drop leading connectors."""
     parts: list[list[str]] = [[]]
     i = 0
@@ -199,11 +199,17 @@ def split_clauses(words: tuple[str, ...]) -> list[tuple[str, ...]]:
             parts.append([])
             i += 1
             continue
-        if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1])
-                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), start=True)):
+        if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1], nouns)
+                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True)):
             # "the bowl on the plate, and the mug, cup and bottle in a row": two goals said without verbs.
             parts.append([])
             i += 2
+            continue
+        if (w == "," and _asks_after_object(parts[-1], nouns) and words[i + 1 : i + 2] != ("and",)
+                and _asks_after_object(list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns, start=True)):
+            # "the blocks in a line, the yellow block on the orange one, and ...": a list of such goals.
+            parts.append([])
+            i += 1
             continue
         if w == "," and words[i + 1 : i + 2] == ("so",) and i + 2 < len(words) and _command_verb(words[i + 2]) \
                 and parts[-1]:
@@ -237,21 +243,24 @@ _GOAL_WORDS = frozenset({"on", "onto", "under", "underneath", "below", "beneath"
 _OBJECT_START = frozenset({"the", "a", "an", "all", "every", "each", "both", "everything", "one", "two", "three", "four"})
 
 
-def _next_stop(words: tuple[str, ...], i: int) -> int:
-    """Where the comma-separated stretch of ``words`` from ``i`` ends."""
+def _next_stop(words: tuple[str, ...], i: int, comma: bool = False) -> int:
+    """Where the stretch of ``words`` from ``i`` ends (at ", and", or at any comma with ``comma``)."""
     j = i
-    while j < len(words) and words[j] not in (";", ".", "!", "?") and words[j : j + 2] != (",", "and"):
+    while j < len(words) and words[j] not in (";", ".", "!", "?") and words[j : j + 2] != (",", "and") and not (
+            comma and words[j] == ","):
         j += 1
     return j
 
 
-def _asks_after_object(part: list[str], start: bool = False) -> bool:
+def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), start: bool = False) -> bool:
     """Whether ``part`` names objects and then an arrangement or relation for them (``start``: and
-    begins with the objects)."""
+    begins with the objects). ``nouns``: the scene's category words ("the green ring" is an object)."""
     first = next((k for k, w in enumerate(part) if w in _OBJECT_START), None)
     if first is None or (start and first != 0):
         return False
-    return any(w in _GOAL_WORDS for w in part[first + 1 :])
+    if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns:
+        return False  # ", the row facing west": the arrangement itself, not objects
+    return any(w in _GOAL_WORDS and w not in nouns for w in part[first + 1 :])
 
 
 _LIST_WORDS = frozenset({"then", "and", "on", "at", "under", "below", "above", "goes", "is", "last", "first", "next",
@@ -1718,7 +1727,7 @@ class _Parser:
         dinner = self._dinner(words)
         if dinner is not None:
             return self._finish(dinner)
-        clauses = split_clauses(words)
+        clauses = split_clauses(words, self._cat_words)
         pending: list[_Pending] = []
         if self._dinner_at(words) is not None:
             # "set the table, and put the mug behind the plate as well": the
