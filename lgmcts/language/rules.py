@@ -1665,6 +1665,15 @@ class _Parser:
         if len(parts) == 1 and not any(self._content_word(w) for w in parts[0]):
             return ()
         kept = [p for p in parts if any(self._content_word(w) for w in p) and not (len(parts) > 1 and self._free_order(tuple(p)))]
+        if len(kept) > 1:
+            # ", just a straight row is fine", ", single file": a part naming again, with no object,
+            # the arrangement another part already names.
+            said = [self._part_patterns(p) for p in kept]
+            kept = [p for k, p in enumerate(kept) if not (
+                said[k] and not self._names_objects(p)
+                and not any(w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+                            or w in _COMPASS_LEFT or w in ("facing", "pointing", "little", "tiny", "big") for w in p)
+                and said[k] <= set().union(*(said[j] for j in range(len(kept)) if j != k)))]
         if len(kept) == len(parts):
             return clause
         out: list[str] = []
@@ -2017,6 +2026,23 @@ class _Parser:
         self.state.last, self.state.last_tower, self.state.it_pair = list(got), False, None
         self.state.named.update(got)
         return True
+
+    def _part_patterns(self, part: list[str]) -> set[str]:
+        """The arrangements (not relations) the words of ``part`` name by themselves."""
+        out = set()
+        for w in part:
+            if not w.isalpha() or len(w) < 3 or w in STOPWORDS or _stem(w) in FILLERS or w in _DIR_WORDS:
+                continue
+            p, _, _ = self.matcher.word_pattern(w)
+            if p is not None and not self.infos[p].anchored:
+                out.add(p)
+        return out
+
+    def _names_objects(self, part: list[str]) -> bool:
+        try:
+            return bool(self._find(tuple(part)))
+        except InputError:
+            return True
 
     def _free_order(self, clause: tuple[str, ...]) -> bool:
         """A clause that only leaves a stack's order open: "any order is fine",
