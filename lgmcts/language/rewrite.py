@@ -79,6 +79,8 @@ _FRAMES = (
     r"\bwhen i (?:come back|get back|return)(?:,)?\s*",
     r"^\s*(?:okay |ok |so |right )*(?:two|three|four|a couple of|a few) (?:things|jobs|tasks)\b[^.:;!?]*[.:;!?]\s*",
     r"\b(?:tidy[- ]up|clean[- ]up) time\s*[!.]?\s*",
+    r"\b(?:the kids?|my (?:son|daughter|wife|husband|partner|kids?|boss|mum|mom|dad)|grandma|grandpa) "
+    r"(?:wants?|would like|needs?|asked for)\s+",
 )
 _OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|hmm+|mm+|oh|yeah|yes|hey|real quick|"
                      r"basically|like)\b[,\s]*|right\b\s*(?:,|so\b)[,\s]*)+")
@@ -267,6 +269,9 @@ def rewrite(text: str) -> str:
                   .replace("top", "highest").replace("bottom", "lowest"), text)
     text = re.sub(r"(?i)\b(topmost|uppermost)\b", "highest", text)
     text = re.sub(r"(?i)\b(bottommost|undermost|lowermost)\b", "lowest", text)
+    # "the mug is to be supported by the plate": on it; "whatever's blue": everything that is.
+    text = re.sub(r"(?i)\b(?:supported|held up|carried|borne) by\b", "on", text)
+    text = re.sub(r"(?i)\bwhatever(?:'s| is)\b", "everything that is", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
