@@ -272,6 +272,8 @@ def rewrite(text: str) -> str:
     # "the mug is to be supported by the plate": on it; "whatever's blue": everything that is.
     text = re.sub(r"(?i)\b(?:supported|held up|carried|borne) by\b", "on", text)
     text = re.sub(r"(?i)\bwhatever(?:'s| is)\b", "everything that is", text)
+    # "only the spoon, not the fork, goes behind": the fork is named only to be left out.
+    text = re.sub(r"(?i),\s*(?:but |and )?not (?:the|a|an) (?:[a-z]+ ){0,2}?[a-z]+\s*,", ",", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.

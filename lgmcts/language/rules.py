@@ -170,6 +170,8 @@ class _State:
     tower: "_Pending | None" = None
     #: The object a stack role just placed in that tower: "then green" goes right above it.
     tower_prev: int | None = None
+    #: That tower's order was said by "A on B" / "A under B": a role may not reverse it.
+    tower_fixed: bool = False
     #: The last reference selected was a mass ("all the red stuff"): "it" is all of it.
     mass: bool = False
     #: After "put A left of B": (A, B), either of which a following "it" may mean.
@@ -210,6 +212,11 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             # "the blocks in a line, the yellow block on the orange one, and ...": a list of such goals.
             parts.append([])
             i += 1
+            continue
+        if w == "," and words[i + 1 : i + 2] == ("but",) and i + 2 < len(words) and words[i + 2] in _COMMAND_VERBS \
+                and parts[-1]:
+            parts.append([])  # "stack A on B, but keep B on top": a second request (here refused as contradicting)
+            i += 2
             continue
         if w == "," and words[i + 1 : i + 2] == ("so",) and i + 2 < len(words) and _command_verb(words[i + 2]) \
                 and parts[-1]:
@@ -974,6 +981,7 @@ class _Parser:
                 and not any(self._free_word(w) for w in meaningful) and any(roles)):
             # "...; the red one goes in between": a role for an object of the tower just built.
             tower = self.state.tower.objects
+            before = [x for x in tower if isinstance(x, int)]
             prev = None
             pairs = list(zip(mentions, roles))
             if re.search(r"\btop to (the )?bottom\b", text) and not self.state.downward:
@@ -997,6 +1005,10 @@ class _Parser:
                     tower.insert(at, x)
                     prev = x
             self.state.tower_prev = prev if roles[-1] != "top" else None
+            if self.state.tower_fixed and [x for x in tower if x in before] != before:
+                # "stack the white bowl on the black bowl, but keep the black bowl on top"
+                said = " ".join(w for w in text.split() if w != _ROLE_MARK)
+                raise InputError(f"'{said}' contradicts the stacking order said before it")
             return []
         if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
                 and self.state.tower_prev in self.state.tower.objects and (roles is None or not any(roles))
@@ -1287,6 +1299,7 @@ class _Parser:
         self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
         self.state.tower = out if pattern == "tower" else None
+        self.state.tower_fixed = pattern == "tower" and vertical is not None  # "A on B": that order is said
         self.state.last_shape = out
         self.state.downward = pattern == "tower" and downward
         return out

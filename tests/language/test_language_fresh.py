@@ -33,11 +33,13 @@ def test_fresh_set_shape():
 #: "every red object in a line" keeps exact colours (the peers' word "objects",
 #: as in StructFormer's and LGMCTS-D's templates); the writer counted the red
 #: swirl heart in.
-#: "put them round in a circle, like a little loop" is read as a small circle
-#: (the label has no size); a line of the two objects of the blue can's colour is
-#: a line here (the labelling conventions asked for three objects in a line).
+#: "put them round in a circle, like a little loop" and "a little tower" are read
+#: as small (most writers label "a little row", "a tight little circle" so; these
+#: labels have no size); a line of the two objects of a colour is a line here (the
+#: labelling conventions asked for three objects in a line).
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
-         "freshXc-pattern-words-006", "freshYc-attribute-selection-005"}
+         "freshXc-pattern-words-006", "freshYc-attribute-selection-005", "freshM1-pattern-words-005",
+         "freshM2-attribute-selection-004"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
