@@ -799,7 +799,7 @@ def _mention_at(
             k = end + len(q)
             excl: list[Mention] = []
             while True:
-                e = _mention_at(vocab, words, k, pattern_words, nested=True)
+                e = _bare_excluded(vocab, words, k, m) or _mention_at(vocab, words, k, pattern_words, nested=True)
                 if e is None:
                     break
                 excl.append(e)
@@ -809,7 +809,7 @@ def _mention_at(
                     kk += 1
                 if kk == k:
                     break
-                e2 = _mention_at(vocab, words, kk, pattern_words, nested=True)
+                e2 = _bare_excluded(vocab, words, kk, m) or _mention_at(vocab, words, kk, pattern_words, nested=True)
                 if e2 is None:
                     break
                 k = kk
@@ -822,6 +822,24 @@ def _mention_at(
             continue
         break
     return m
+
+
+def _bare_excluded(vocab: Vocabulary, words: tuple[str, ...], k: int, outer: Mention) -> Mention | None:
+    """"all the blocks except the purple and the orange (ones)": a colour with no noun after an
+    exception takes the noun of the objects it is left out of."""
+    if outer.names is None:
+        return None
+    j = k + (1 if k < len(words) and words[k] == "the" else 0)
+    got = _colors(vocab, words, j)
+    if got is None:
+        return None
+    colors, end = got
+    if end < len(words) and words[end] in ("one", "ones"):
+        end += 1
+    elif end < len(words) and words[end] not in _COORD and words[end].isalpha() and words[end] not in _NOT_NOUN \
+            and words[end] not in ("go", "goes", "in", "into", "should", "are", "is"):
+        return None  # "except the red block": an ordinary reference
+    return Mention(k, end, " ".join(words[k:end]), "all", True, outer.names, colors, colors)
 
 
 def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: frozenset[str],

@@ -214,8 +214,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i),\s*(?:like|you know|i guess|basically|yeah)\s*,", ",", text)
     text = re.sub(r"(?i),?\s*\b(?:would|will|could) (?:ya|you)\b(?=\s*(?:[,.;!?]|$))", "", text)
     # "..., and the blocks too(, but separately)": the same again for other objects.
-    text = re.sub(r"(?i),?\s*\band (the (?:[a-z]+ ){0,3}?[a-z]+) (?:too|as well)(?:,? but (?:separately|on their own|"
-                  r"apart))?\b", r". the same for \1", text)
+    text = re.sub(r"(?i)([^.;!?]*?),?\s*\band (the (?:[a-z]+ ){0,3}?[a-z]+) (?:too|as well)(?:,? but (?:separately|on their own|"
+                  r"apart))?\b", lambda m: f"{m.group(1)}. the same for {m.group(2)}" if _ASKS.search(m.group(1))
+                  else m.group(0), text)
     # "the orange one and the yellow one, blocks I mean": the noun of the "one"s said after them.
     def _noun_after(m: re.Match) -> str:
         noun = m.group(2)[:-1] if m.group(2).lower().endswith("s") else m.group(2)
