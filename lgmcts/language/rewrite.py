@@ -275,6 +275,10 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bwhatever(?:'s| is)\b", "everything that is", text)
     # "only the spoon, not the fork, goes behind": the fork is named only to be left out.
     text = re.sub(r"(?i),\s*(?:but |and )?not (?:the|a|an) (?:[a-z]+ ){0,2}?[a-z]+\s*,", ",", text)
+    # "circle them up", "ring those": the shape's name as the verb.
+    text = re.sub(r"(?i)\b(circle|ring|loop)\s+(them|those|these|it|'em|em)(?:\s+up)?\b",
+                  lambda m: f"put {'them' if m.group(2).lower() in ('em', chr(39) + 'em') else m.group(2)} in a circle",
+                  text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
