@@ -1214,6 +1214,8 @@ class _Parser:
         if not target_sel and self.state.selection is not None:
             target_sel = list(self.state.selection)  # "box: behind the red bowl"
             self.state.selection = None
+        if not target_sel and getattr(self, "_implicit", None) is not None:
+            target_sel = [self._implicit[0]]  # "..., and a bit to the left of it"
         if not target_sel:
             raise InputError(f"'{text}': nothing to put {words_rel} of the reference object")
         for a in anchor_sel:
@@ -1357,6 +1359,8 @@ class _Parser:
             pair = self.state.it_pair
             if m.text == "it" and getattr(self, "_chain", None) is not None:
                 return [self._chain]
+            if m.text == "it" and getattr(self, "_implicit", None) is not None:
+                return [self._implicit[1]]
             if m.text == "it" and pair is not None and all(isinstance(x, int) for x in pair):
                 # "put the cup left of the plate and the bottle behind it": the cup or the plate?
                 raise InputError(f"'{m.text}' is unclear: it may be object {pair[0]} or object {pair[1]}, both named "
@@ -1848,7 +1852,20 @@ class _Parser:
                 if not sub:
                     continue
                 self._chain, self.state.it_chain = self.state.it_chain, None
+                # "E in front of R, and a bit to the left of it": no object of its own but "it",
+                # so the object placed before is still the subject and "it" is its reference object.
+                self._implicit = None
+                pair = self.state.it_pair
+                try:
+                    own = self._find(sub)
+                except InputError:
+                    own = []
+                if (pair is not None and all(isinstance(x, int) for x in pair) and len(own) == 1
+                        and own[0].det == "pronoun" and own[0].text == "it" and any(w in _DIR_WORDS for w in sub)
+                        and not any(w in _VERT_WORDS - {"to", "of"} for w in sub)):
+                    self._implicit = pair
                 pending.extend(self.clause(sub))
+                self._implicit = None
                 try:
                     named = self._find(sub)
                 except InputError:
@@ -2248,7 +2265,7 @@ class _Parser:
                 goals.append(g)
         goals = _chain_towers(goals)
         goals = _same_goals_merged(goals)
-        goals = _merge_relations(goals)
+        goals = _diagonals(_merge_relations(goals))
         self._contradictions(goals)
         self.goal_dicts = [dict(g) for g in goals]
         self._unused_object(goals)
@@ -2398,6 +2415,29 @@ def _same_goals_merged(goals: list[dict]) -> list[dict]:
                 if same.get(key, g[key]) != g[key]:
                     raise InputError(f"two different {key}s ({same[key]}, {g[key]}) for one {g['pattern']}")
                 same[key] = g[key]
+    return out
+
+
+def _diagonals(goals: list[dict]) -> list[dict]:
+    """A side and a depth said for the same objects and reference object ("E in front of R, and a bit
+    to the left of it") are one diagonal relation (left and front), as "in front of R and to its left"."""
+    out = [dict(g) for g in goals]
+    k = 0
+    while k < len(out):
+        a = out[k]
+        j = next((j for j in range(k + 1, len(out)) if out[j]["pattern"] in RELATIONS and a["pattern"] in RELATIONS
+                  and out[j].get("anchor") == a.get("anchor") and a.get("anchor") is not None
+                  and sorted(out[j]["objects"]) == sorted(a["objects"])
+                  and {out[j]["pattern"], a["pattern"]} in ({"left", "front"}, {"left", "behind"},
+                                                            {"right", "front"}, {"right", "behind"})), None)
+        if j is None:
+            k += 1
+            continue
+        side = a["pattern"] if a["pattern"] in ("left", "right") else out[j]["pattern"]
+        depth = out[j]["pattern"] if side == a["pattern"] else a["pattern"]
+        out[k] = {**a, **{x: y for x, y in out[j].items() if x not in ("pattern", "objects", "anchor")},
+                  "pattern": f"{side}_{depth}"}
+        del out[j]
     return out
 
 

@@ -251,6 +251,12 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
              "the white one last", [{"pattern": "tower", "objects": [5, 4, 3]}]),
     ("toys", "Right, so, the letters. I'd love them in a line, and the blocks too, but separately.",
      [{"pattern": "line", "objects": [1, 2, 3, 4]}, {"pattern": "line", "objects": [5, 6, 7, 8]}]),
+    ("toys", "Letter E in front of letter R, please, and a bit to the left of it.",
+     [{"pattern": "left_front", "objects": [4], "anchor": 2}]),
+    ("home", "I'd like the white bottle positioned behind the blue mug, toward its left.",
+     [{"pattern": "left_behind", "objects": [6], "anchor": 2}]),
+    ("blocks", "All the blocks except the purple and the orange go in a circle.",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4]}]),
     ("pantry", "I'm making soup later, so I'd like the cans lined up where I can see them.",
      [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
 ])
@@ -295,6 +301,8 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("blocks", "Make one tall tower out of all six blocks in rainbow order, red at the bottom.", "order"),
     ("home", "Leave the plate and the bowl where they are. Everything else goes in a ring.", "'the bowl' is ambiguous"),
     ("home", "Do the same for the mugs.", "the same as what"),
+    ("blocks", "Stack the white bowl on the black bowl, but keep the black bowl on top.", "contradicts"),
+    ("home", "put the red mug behind the plate and put the white bottle to the left of it", "'it' is unclear"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
