@@ -282,7 +282,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "ok, thanks, that is all", "the instruction is empty"),
     ("home", "ok robot, here is the plan", "names no object in the scene and no arrangement"),
     ("pantry", "stack red on blue", "is ambiguous"),
-    ("toys", "put the red block to the left of the blue block and also to the right of it", "unclear"),
+    ("toys", "put the red block to the left of the blue block and also to the right of it", "contradiction"),
     ("dinner", "put the napkin to the left of the plate, then set the table", "'the napkin' names nothing"),
     ("pantry", "stack the bowls. the white one goes on top of the red one", "contradiction"),
     ("blocks", "stack purple, red and green, purple lowest and green highest", "ambiguous"),
