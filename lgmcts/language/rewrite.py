@@ -279,6 +279,8 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(circle|ring|loop)\s+(them|those|these|it|'em|em)(?:\s+up)?\b",
                   lambda m: f"put {'them' if m.group(2).lower() in ('em', chr(39) + 'em') else m.group(2)} in a circle",
                   text)
+    # "the mug's gotta go left of the bottle": goes.
+    text = re.sub(r"(?i)\b([a-z]+)(?:'s| has| is) (?:gotta|got to|going to|gonna) (go|sit|end up)\b", r"\1 \2", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
@@ -312,7 +314,8 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i),\s*(?:but |and )?not (?:in front of|behind|to the left of|to the right of|left of|right of|"
                   r"on top of|on|under|below|above)\b[^,;.!?]*", "", text)
     # Reasons and how-to remarks ask for nothing: "..., because the bowl keeps dripping", "make it so".
-    text = re.sub(r"(?i),?\s*\b(?:because|since|'cause|cause|as i|so i can|so that i can)\b[^.;!?]*", "", text)
+    text = re.sub(r"(?i)^\s*(?:because|since|as) [^.;:!?,]*[:,]\s*", "", text)  # "Since I'm about to eat: ..."
+    text = re.sub(r"(?i),?\s*\b(?:because|since|'cause|cause|as i|so i can|so that i can)\b[^.;:!?]*", "", text)
     text = re.sub(r"(?i)\b(?:make it so|get there by [^.;!?]*|(?:,\s*)?so move it there|move it there|"
                   r"(?:to )?make that happen)\b", "", text)
     text = re.sub(r"(?i)\b(its|their) (?:new )?(?:spot|place|position|location|home) (should be|is|will be|must be)\b",

@@ -2080,6 +2080,9 @@ class _Parser:
         text = " ".join(clause)
         if FREE_ORDER.fullmatch(text):
             return True
+        if re.fullmatch(r"(the )?(order|sequence) of .+ (is|is entirely|is totally) (your call|up to you|your choice|"
+                        r"free|open|not important|unimportant|yours to pick|yours)", text):
+            return True  # "the order of the other two is your call"
         if not re.search(r"\b(order|sequence|which way (round|up|around)|which (one |of them |of the two )?(is|goes|sits|ends up|comes|lands|sits) "
                          r"(under|on top|on|above|below|over|at the bottom|at the top|first|last|lowest|highest))\b",
                          text):
