@@ -188,7 +188,9 @@ def rewrite(text: str) -> str:
                                                    r"hold|turn|fill|heap|them|it)\b", m.group(2))
                   or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", m.group(2))
                   or re.search(r"(?i)\b(?:pile|stack|line|set|put|place|move|make|build|lift|pick|them|it|those|these|"
-                               r"they)\b", m.group(2)) else
+                               r"they)\b", m.group(2))
+                  or not re.search(r"(?i)\b(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|gray|grey|"
+                                   r"silver|one)\b", m.group(2)) else
                   m.group(1) + m.group(2) + {"down": " at the bottom", "up": " on the top",
                                               "between": " in between"}[m.group(3).lower()], text)
     # "can" as a verb ("where I can see them", "the other two can go in between"): not the object.
@@ -281,6 +283,8 @@ def rewrite(text: str) -> str:
                   text)
     # "the mug's gotta go left of the bottle": goes.
     text = re.sub(r"(?i)\b([a-z]+)(?:'s| has| is) (?:gotta|got to|going to|gonna) (go|sit|end up)\b", r"\1 \2", text)
+    # "anything red or blue, cans and bowls alike,": says which kinds the selection spans, adds none.
+    text = re.sub(r"(?i),\s*(?:both )?(?:the )?[a-z]+ and (?:the )?[a-z]+ alike\b", "", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
