@@ -593,6 +593,13 @@ class _Parser:
         self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
         #: The clause being read starts "B on it": what the clause before named goes below B.
         self._below_first = False
+        #: The object "it" means in the part being read when "it" named a reference object just before.
+        self._chain: int | None = None
+        #: (subject, reference) of the part before, where the part being read has no object but "it".
+        self._implicit: tuple | None = None
+        #: The clauses read, for the check that every object named by itself is used; the rewritten text.
+        self._named_in: list[tuple[str, ...]] = []
+        self._said = ""
 
     # ------------------------------------------------------------ one clause
     def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
@@ -1214,7 +1221,7 @@ class _Parser:
         if not target_sel and self.state.selection is not None:
             target_sel = list(self.state.selection)  # "box: behind the red bowl"
             self.state.selection = None
-        if not target_sel and getattr(self, "_implicit", None) is not None:
+        if not target_sel and self._implicit is not None:
             target_sel = [self._implicit[0]]  # "..., and a bit to the left of it"
         if not target_sel:
             raise InputError(f"'{text}': nothing to put {words_rel} of the reference object")
@@ -1357,9 +1364,9 @@ class _Parser:
                 self.state.choices.append(choice)  # "... and the other one ..."
                 return choice
             pair = self.state.it_pair
-            if m.text == "it" and getattr(self, "_chain", None) is not None:
+            if m.text == "it" and self._chain is not None:
                 return [self._chain]
-            if m.text == "it" and getattr(self, "_implicit", None) is not None:
+            if m.text == "it" and self._implicit is not None:
                 return [self._implicit[1]]
             if m.text == "it" and pair is not None and all(isinstance(x, int) for x in pair):
                 # "put the cup left of the plate and the bottle behind it": the cup or the plate?
@@ -1793,7 +1800,7 @@ class _Parser:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
         last: tuple[str, ...] = ()
-        self._named_in = [c for c in kept]
+        self._named_in = list(kept)
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
@@ -2014,7 +2021,7 @@ class _Parser:
         read from it uses that object: a part of the command was not read."""
         used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
         used |= {o for g in goals for o in g.get("anchor_any", ())}
-        for clause in getattr(self, "_named_in", []):
+        for clause in self._named_in:
             try:
                 ms = self._find(clause)
             except InputError:
