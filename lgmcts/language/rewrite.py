@@ -285,6 +285,16 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b([a-z]+)(?:'s| has| is) (?:gotta|got to|going to|gonna) (go|sit|end up)\b", r"\1 \2", text)
     # "anything red or blue, cans and bowls alike,": says which kinds the selection spans, adds none.
     text = re.sub(r"(?i),\s*(?:both )?(?:the )?[a-z]+ and (?:the )?[a-z]+ alike\b", "", text)
+    # "get the cup onto the bowl": put it there ("get" alone selects).
+    text = re.sub(r"(?i)\bget (the (?:[a-z]+ ){0,2}?[a-z]+) (onto|on top of|on|into|in front of|behind|to the left of|"
+                  r"to the right of|under|underneath|below|beneath)\b", r"put \1 \2", text)
+    # "underneath the green cup I want the blue bowl": the relation put first.
+    text = re.sub(r"(?i)^\s*(underneath|under|beneath|below|on top of|behind|in front of|to the left of|to the right of)"
+                  r" (the (?:[a-z]+ ){0,2}?[a-z]+),? (?:i want|i'd like|i would like|we need|there should be|put|place|"
+                  r"goes|should go) (the (?:[a-z]+ ){0,2}?[a-z]+)\s*([.!]?)\s*$", r"put \3 \1 \2\4", text)
+    # "near the front": a place on the table (not "near the bowl").
+    text = re.sub(r"(?i)\bnear the (front|back|left|right)(?!(?: edge| side)? of)(?! (?:left|right|center|centre|middle|"
+                  r"corner|front|back)\b)(?: edge| side)?\b", r"at the \1 of the table", text)
     # "the very center": the center.
     text = re.sub(r"(?i)\bthe very (centre|center|middle|front|back|edge|end|corner|left|right)\b", r"the \1", text)
     # "..., the mugs stacked, ...": a stack said without a verb.
