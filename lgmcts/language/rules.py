@@ -1628,15 +1628,19 @@ class _Parser:
             return [clause[start : start + ms[0].end], rest]
         return [clause]
 
+    def _select_noting(self, mentions) -> list[int | Choice]:
+        """What ``mentions`` select, in order and once each, their nouns noted for later references."""
+        got: list[int | Choice] = []
+        for m in mentions:
+            sel = self._select(m)
+            got.extend(x for x in (sel if isinstance(sel, list) else [sel]) if x not in got)
+            self._note_nouns([m])
+        return got
+
     def _remember(self, clause: tuple[str, ...]) -> None:
         """Let later pronouns and bare colours refer to what a dropped remark names."""
         try:
-            ms = self._find(clause)
-            got: list[int | Choice] = []
-            for m in ms:
-                sel = self._select(m)
-                got.extend(x for x in (sel if isinstance(sel, list) else [sel]) if x not in got)
-                self._note_nouns([m])
+            got = self._select_noting(self._find(clause))
         except InputError:
             return
         if got:
@@ -2055,11 +2059,8 @@ class _Parser:
         inside = {k for x in ms for k in range(x.start, x.end)}
         if not ms or any(k not in inside and w not in (",", "and", "both") for k, w in enumerate(rest)):
             return False
-        got: list[int] = []
-        for x in ms:
-            sel = self._select(x)  # "leave the bowl" with three bowls is refused as ambiguous
-            got.extend(o for o in (sel if isinstance(sel, list) else [sel]) if isinstance(o, int) and o not in got)
-        self._note_nouns(ms)
+        # Unlike a remark's, these references must resolve: "leave the bowl" with three bowls is refused.
+        got = [o for o in self._select_noting(ms) if isinstance(o, int)]
         self.state.last, self.state.last_tower, self.state.it_pair = list(got), False, None
         self.state.named.update(got)
         return True
