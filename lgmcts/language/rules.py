@@ -597,8 +597,9 @@ class _Parser:
         self._chain: int | None = None
         #: (subject, reference) of the part before, where the part being read has no object but "it".
         self._implicit: tuple | None = None
-        #: The clauses read, for the check that every object named by itself is used; the rewritten text.
-        self._named_in: list[tuple[str, ...]] = []
+        #: Each part read with its references, for the check that every object named by itself is
+        #: used; the rewritten text.
+        self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
         self._said = ""
 
     # ------------------------------------------------------------ one clause
@@ -1804,7 +1805,6 @@ class _Parser:
             raise InputError(f"'{' '.join(words)}' names no object in the scene and no arrangement")
         kept = _merged_moves([c for k in kept for c in self._topic_split(k)])
         last: tuple[str, ...] = ()
-        self._named_in = list(kept)
         for whole in kept:
             try:
                 stated = _predicate_split(whole, self._find(whole), *self._word_kinds())
@@ -1882,6 +1882,7 @@ class _Parser:
                 except InputError:
                     named = []
                 self._note_nouns(reversed(named))
+                self._named_in.append((sub, named))
 
     def _same_as_before(self, clause: tuple[str, ...], last: tuple[str, ...]) -> tuple[str, ...]:
         """"do the same with the yellow letter and the yellow block", "same for the
@@ -2025,11 +2026,7 @@ class _Parser:
         read from it uses that object: a part of the command was not read."""
         used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
         used |= {o for g in goals for o in g.get("anchor_any", ())}
-        for clause in self._named_in:
-            try:
-                ms = self._find(clause)
-            except InputError:
-                continue
+        for clause, ms in self._named_in:
             for m in ms:
                 if m.det != "the" or m.plural or m.names is None or m.head:
                     continue
