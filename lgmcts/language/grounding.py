@@ -860,7 +860,33 @@ def find_mentions(vocab: Vocabulary, words: tuple[str, ...], pattern_words: froz
             i = m.end
         else:
             i += 1
-    return _share_heads(vocab, words, out, context)
+    return _shared_exception(words, _share_heads(vocab, words, out, context))
+
+
+def _shared_exception(words: tuple[str, ...], mentions: list[Mention]) -> list[Mention]:
+    """"all the cans and bowls, except for the white ones": an exception said
+    after a list of plural references leaves its colour out of every one of
+    them when the last reference shares the list's determiner or a comma sets
+    the exception off; otherwise it belongs to the last reference alone."""
+    out = list(mentions)
+    k = 0
+    while k < len(out):
+        j = k
+        while j + 1 < len(out) and _coordinated(words, out[j], out[j + 1]):
+            j += 1
+        last = out[j]
+        bare = [e for e in last.excluding if e.names is last.names and e.names is not None and e.det == "all"
+                and not e.excluding]
+        if j > k and bare and len(bare) == len(last.excluding) and all(
+                m.plural and m.det in ("all", "the") and not m.excluding and m.names is not None
+                for m in out[k:j]) and (
+                words[last.start] not in ("the", "all", "every", "each", "both")
+                or "," in words[last.start : last.excluding[0].start]):
+            for t in range(k, j):
+                m = out[t]
+                out[t] = replace(m, excluding=tuple(replace(e, names=m.names) for e in bare))
+        k = j + 1
+    return out
 
 
 def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:

@@ -153,6 +153,10 @@ def rewrite(text: str) -> str:
     edge" -> "the centre / left edge of the table", and the reading orders of
     a stack ("from the top down", "bottom up") -> "from top to bottom" /
     "from bottom to top"."""
+    # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
+    text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
+                  r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"
+                  r"comes|come|lands|land|be) (?:on|at) (?:the )?(?:bottom|top|base)\b", "in any order", text)
     text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
                   text)
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)
@@ -401,7 +405,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)
     text = _relation_words(text)
     text = re.sub(r"(?i)\b(the|a) ((?:[a-z]+ ){0,3}?[a-z]+)'s (colou?r|shape)\b", r"the same \3 as \1 \2", text)
-    text = re.sub(r"(?i)\b(?:that|which) (?:match|matches|share|shares) (?:the )?same (colou?r|shape) as\b",
+    text = re.sub(r"(?i)\b(?:(?:that|which) (?:match|matches|share|shares)|matching|sharing) (?:the )?same (colou?r|shape) as\b",
+                  r"with the same \1 as", text)
+    text = re.sub(r"(?i)\b(?:(?:that|which) (?:shares?|has|have)|sharing|having) (?:a|the|its|their) (colou?r|shape) with\b",
                   r"with the same \1 as", text)
     text = re.sub(r"(?i)\b(?:the )?table(?:'s)? (centre|center|middle|left|right|front|back)( side| edge| half| corner)?\b",
                   r"the \1\2 of the table", text)
