@@ -57,8 +57,54 @@ _AND_ITS_SIDE = re.compile(
     r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of)|(behind|in front of) (?:it|them)\b)")
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
 _CORRECTION = re.compile(
-    r"(?i)\b(?:(?:to the |on the |in )?(?:left|right|front|behind|back|on top|on|onto|under|below|above|beneath)\b[^,;.!?]*?)"
+    r"(?i)\b(?:(?:to the |on the |in |to its |to their |on its |on their )?(?:left|right|front|behind|back|on top|on|onto|"
+    r"under|below|above|beneath)\b[^,;.!?]*?)"
     r"\s*,?\s*\b(?:(?:no,?\s+)?(?:wait|sorry|i mean|actually|make that|or rather|rather)|wait,? no|no(?=\s*,))\b\s*,?\s*")
+#: Hesitation and repair words around a correction ("hmm, or no,", "or wait, no,", "? No wait,").
+_HEDGE = r"(?:hmm+|hm+|um+|uh+|er|erm|oh|or|well|ah)"
+_REPAIR_KEY = r"(?:no|wait|sorry|i mean|i meant|rather|scratch that|make that|hang on|oops)"
+_REPAIR_RUN = re.compile(rf"(?i)\s*[,;.?!]\s*((?:(?:{_HEDGE}|{_REPAIR_KEY})\s*[,.!?]?\s*)+?)(?<=[,.!?])\s*(?=[a-z])"
+                         r"(?!(?:swap|switch|exchange|reverse|flip|turn|was|is|yes|that)\b)")
+
+
+def _repairs(text: str) -> str:
+    """Every spoken repair marker, with its hesitations, as ", no wait, "."""
+    def one(m: re.Match) -> str:
+        words = re.findall(r"[a-z]+", m.group(1).lower())
+        said = " ".join(words)
+        if not re.search(rf"\b{_REPAIR_KEY}\b", said) or not re.fullmatch(
+                rf"(?:(?:{_HEDGE}|{_REPAIR_KEY})\s*)+", said) or said in ("no", "well", "oh", "or"):
+            return m.group(0)
+        return ", no wait, "
+    return _REPAIR_RUN.sub(one, text)
+
+
+_REL_START = re.compile(r"(?i)(?:to the |on the |to its |on its |to their |the )?(?:left|right|front|back|behind|in front)\b")
+
+
+def _corrected(text: str, relations_only: bool = False) -> str:
+    """A corrected relation: "left of the plate, no wait, right of the plate"
+    keeps the second; "right of the cup, no wait, left of it": "it" is the cup.
+    ``relations_only``: only where the correction is itself a relation."""
+    pos = 0
+    while True:
+        m = _CORRECTION.search(text, pos)
+        if m is None:
+            return text
+        dropped, rest = m.group(0), text[m.end():]
+        if relations_only and not _REL_START.match(rest):
+            pos = m.end()
+            continue
+        np = re.search(r"(?i)\b(?:of|behind|on|onto|under|below|above|beneath) ((?:the|a) [a-z ]+?)\s*(?:,|$)", dropped)
+        if np is not None:
+            rest = re.sub(r"(?i)^((?:to the |on the |to its |on its )?(?:left|right|front|back)(?: side)? of|behind|"
+                          r"in front of|on top of|on|onto|under|below|above|beneath) (?:it|them)\b",
+                          lambda k: f"{k.group(1)} {np.group(1)}", rest)
+        if re.match(r"(?i)(?:to|on) the ", dropped) and re.match(r"(?i)the (?:left|right|front|back)\b", rest):
+            rest = dropped.split()[0] + " " + rest
+        text = text[: m.start()] + rest
+
+
 #: A contrast that only confirms the choice: "on the red mug, not the blue one".
 _NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
 
@@ -129,17 +175,33 @@ _SIZE_SAID = ((re.compile(r"(?i),?\s*\b(?:nice and|good and|really|nice|small an
                "small"))
 
 
+#: A size said on its own after the arrangement: ", a big one", ", medium size".
+_SIZE_AFTER = re.compile(r"(?i),\s*(?:(?:a|an) (small|little|tiny|medium|medium-sized|mid-sized|large|big|huge) one|"
+                         r"(small|medium|large|big)[- ]?(?:size|sized))\b(?=\s*(?:[,;.!?]|$))")
+_SIZE_NAMES = {"little": "small", "tiny": "small", "medium-sized": "medium", "mid-sized": "medium", "big": "large",
+               "huge": "large"}
+_BARE_SHAPE = re.compile(r"(?i)\b()(circle|ring|loop|rectangle|square|line|row|tower|stack|pile)\b")
+
+
 def _size_words(text: str) -> str:
-    """"a rectangle ..., nice and wide": "a large rectangle ..." (only where one arrangement is named
-    by its noun for the size to go with)."""
+    """"a rectangle ..., nice and wide": "a large rectangle ..."; "cutlery row ..., medium size":
+    "cutlery medium row ..." (only where one arrangement is named by its noun for the size to go with)."""
     shapes = list(_SHAPE_NOUN.finditer(text))
+    after = _SIZE_AFTER.search(text)
+    if after is not None and not shapes:
+        shapes = list(_BARE_SHAPE.finditer(text))
     if len(shapes) != 1:
         return text
+    a = shapes[0]
+    if after is not None and after.start() >= a.end():
+        size = (after.group(1) or after.group(2)).lower()
+        text = text[: after.start()] + text[after.end():]
+        return text[: a.start()] + (f"{a.group(1)} " if a.group(1) else "") + \
+            f"{_SIZE_NAMES.get(size, size)} {a.group(2)}" + text[a.end():]
     for said, size in _SIZE_SAID:
         m = said.search(text)
-        if m is not None and m.start() >= shapes[0].end():
+        if m is not None and m.start() >= a.end():
             text = text[: m.start()] + text[m.end():]
-            a = shapes[0]
             art = "a" if a.group(1).lower() in ("an", "one") else a.group(1)
             return text[: a.start()] + f"{art} {size} {a.group(2)}" + text[a.end():]
     return text
@@ -360,6 +422,14 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
+    text = _corrected(_repairs(text), relations_only=True)
+    # "in a small circle, no wait, a medium one": the corrected size.
+    text = re.sub(r"(?i)\b(a|an) (?:small|medium|large|big|little|tiny|huge|wide|tight|short|long)(?:[- ]sized)? ([a-z]+)"
+                  r"\s*,\s*no wait,\s*(?:a|an) (small|medium|large|big|little|tiny|huge|wide|tight|short|long)"
+                  r"(?:[- ]sized)? (?:one|\2)\b", r"a \3 \2", text)
+    # "out of the bowls, no wait, out of the mugs": the second object for the same role.
+    text = re.sub(r"(?i)\b(out of|on top of|on|onto|in|into|to|at|behind|under|underneath|with|from|of|beside|next to) "
+                  r"the [a-z ]+?\s*,\s*no wait,\s*(?=\1 the\b)", "", text)
     # Repairs inside a reference: "on the blue no wait the red bowl" -> "on the red bowl".
     # A whole request taken back: "set the table, actually no, just put the bowl on the plate", "put the
     # white things in a circle, no wait, the blue things in a circle".
@@ -399,7 +469,7 @@ def rewrite(text: str) -> str:
                   r"(the (?:[a-z]+ ){0,3}?[a-z]+) (?:sitting|resting|standing|placed|stacked|lying) (on top of|on|upon) "
                   r"(?:it|them)\b", r"\2 \3 \1", text)
     text = re.sub(r"(?i),?\s*(?:and |but )?leave (?:the [a-z ,]+?|them|it) alone\b", "", text)
-    text = _CORRECTION.sub("", text)
+    text = _corrected(text)
     text = _NOT_THE_OTHER.sub(lambda m: m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", text[: m.start()])
                               else "", text)
     text = re.sub(r"(?i)\bright (in|at|on) the (centre|center|middle|front|back|edge)\b", r"\1 the \2", text)

@@ -2028,7 +2028,8 @@ class _Parser:
         used |= {o for g in goals for o in g.get("anchor_any", ())}
         for clause, ms in self._named_in:
             for m in ms:
-                if m.det != "the" or m.plural or m.names is None or m.head:
+                group = m.plural and m.det in ("the", "all") and m.names is not None and not m.head
+                if not group and (m.det != "the" or m.plural or m.names is None or m.head):
                     continue
                 before = clause[max(0, m.start - 3) : m.start]
                 if any(w in _NOT_USED_BEFORE for w in before):
@@ -2037,6 +2038,10 @@ class _Parser:
                     got = candidates(self.vocab, m)
                 except InputError:
                     continue
+                if group and got and not set(got) & used:
+                    # "letters: column; blocks: square": the letters are named, and nothing is read for them.
+                    raise InputError(f"'{m.text}' are named but no goal read from the command uses them; "
+                                     f"say what to do with them")
                 if len(got) == 1 and got[0] not in used:
                     raise InputError(f"'{m.text}' is named but no goal read from the command uses it; "
                                      f"say what to do with it")
