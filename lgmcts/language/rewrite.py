@@ -219,6 +219,12 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"
                   r"comes|come|lands|land|be) (?:on|at) (?:the )?(?:bottom|top|base)\b", "in any order", text)
+    # "arranged around a common centre to form a circle": what a circle is, not a place on the table.
+    text = re.sub(r"(?i)\s*\b(?:around|round|about) (?:a|one|the) (?:common|shared|single|central|same) (?:centre|center|point|"
+                  r"middle|spot)\b", "", text)
+    # "and the red block above that": "that" after a place word is the object just placed.
+    text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
+                  r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))", r"\1 it", text)
     text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
                   text)
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)

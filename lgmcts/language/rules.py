@@ -2170,6 +2170,10 @@ class _Parser:
             for x in got if isinstance(got, list) else []:
                 nm = next(n for i, n, _ in self.vocab.objects if i == x)
                 named["plate" if nm in plates else "bowl" if nm == "bowl" else "cut"].append(x)
+        said = " ".join(rest)
+        if re.search(r"\b(?:on|to) the left\b", said) and re.search(r"\b(?:on|to) the right\b", said) and not re.search(
+                r"\b(?:or|either|whichever|any|one|other)\b", said):
+            raise InputError(f"contradiction: '{said}' puts the cutlery both left and right of the plate")
         side = "left"
         for w, sd in (("right", "right"), ("left", "left")):
             if w in rest:
