@@ -82,6 +82,35 @@ def _repairs(text: str) -> str:
 _REL_START = re.compile(r"(?i)(?:to the |on the |to its |on its |to their |the )?(?:left|right|front|back|behind|in front)\b")
 
 
+_REMAKE = re.compile(r"(?i)\s*[,.!?;]\s*(?:(?:hmm+|um+|uh+|oh|no|wait|sorry|actually|or|instead)[,!.]?\s+)*"
+                     r"(?:actually|no|wait|sorry|instead)[,!.]?\s+(?:um+,?\s+|uh+,?\s+)*make (?:it|that|them|the (?:stack|tower|"
+                     r"order)) (?:into )?(.+?)(?:\s+instead)?\s*(?=[.!?;]|$)")
+_SHAPE_PHRASE = re.compile(r"(?i)\b(?:a|an|one) (?:[a-z]+ )?(circle|ring|loop|rectangle|square|line|row|tower|stack|pile)\b")
+_HUE_LIST = re.compile(r"(?i)\b(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|grey|gray)"
+                       r"(?:\s*(?:,|,? and|,? then)\s*(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|grey|gray)){1,7}\b")
+
+
+def _remade(text: str) -> str:
+    """"... in a line. Actually, make it a circle": the circle replaces the line;
+    "bottom to top: red, blue, green? Hmm, actually make it green, blue, red": the
+    second order replaces the first."""
+    m = _REMAKE.search(text)
+    if m is None:
+        return text
+    new, before, after = m.group(1), text[: m.start()], text[m.end():]
+    shape = _SHAPE_PHRASE.fullmatch(new) or re.fullmatch(r"(?i)(?:a|an|one) (circle|ring|loop|rectangle|square|line|row|"
+                                                          r"tower|stack|pile)", new)
+    olds = list(_SHAPE_PHRASE.finditer(before))
+    if shape is not None and olds:
+        o = olds[-1]
+        return before[: o.start()] + new + before[o.end():] + after
+    hues = list(_HUE_LIST.finditer(before))
+    if _HUE_LIST.fullmatch(new) and hues:
+        o = hues[-1]
+        return before[: o.start()] + new + before[o.end():] + after
+    return text
+
+
 def _corrected(text: str, relations_only: bool = False) -> str:
     """A corrected relation: "left of the plate, no wait, right of the plate"
     keeps the second; "right of the cup, no wait, left of it": "it" is the cup.
@@ -428,7 +457,7 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
-    text = _corrected(_repairs(text), relations_only=True)
+    text = _corrected(_repairs(_remade(text)), relations_only=True)
     # "in a small circle, no wait, a medium one": the corrected size.
     text = re.sub(r"(?i)\b(a|an) (?:small|medium|large|big|little|tiny|huge|wide|tight|short|long)(?:[- ]sized)? ([a-z]+)"
                   r"\s*,\s*no wait,\s*(?:a|an) (small|medium|large|big|little|tiny|huge|wide|tight|short|long)"
