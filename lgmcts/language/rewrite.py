@@ -111,6 +111,35 @@ def _remade(text: str) -> str:
     return text
 
 
+#: Words by which a clause can ask for a goal; a purpose clause has none of them.
+_GOAL_CUE = re.compile(r"(?i)\b(?:left|right|front|behind|back|on|onto|under|underneath|below|above|beneath|over|top|bottom|"
+                       r"base|line|lined|row|circle|ring|loop|tower|stack|stacked|pile|piled|rectangle|square|next|beside|"
+                       r"between|facing|face|ends? up|north|south|east|west|diagonal|diagonally|corner|centre|center|middle|"
+                       r"edge|side|order|first|last)\b")
+_ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move|stack|set|make|arrange|line|build|pile|lay|"
+        r"could|can|would|will|get|grab|stick|pop|slide|shift|form|gather|group|bring|leave|keep|have|let|i'd|i want|i need)\b")
+_PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since|as|, for) "
+                            r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|people|everyone|nobody|no one|"
+                            r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
+                            r"they don't|they do not|they can|they won't|they take|it takes|there's|there is|everything's|"
+                            r"everything is|everything will|nothing)\b[^.;!?]*)")
+_PURPOSE_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?:so that|so|in order to|to|in order that|because|since)\s+"
+                             rf"(?P<c>[^,;.!?]+),\s*(?={_ACT})")
+_REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i'm|i am|i'll|i will|we're|we are|i've|we've|i have|we have|"
+                            rf"it's|there's|the [a-z]+ (?:is|are)) [^,;.!?]+),\s*so\s+(?={_ACT})")
+
+
+def _purposes(text: str) -> str:
+    """The reasons people give with a request, which ask for nothing: "... so I
+    can read the labels", "so the T is hidden from the camera", "to get the
+    drinks ready, put ...", "I'm going to sort the shopping later, so ...".
+    Only a clause with no word that could ask for a goal is dropped ("so that
+    the blue mug ends up on its left" is a goal)."""
+    text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else "", text)
+    text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else m.group(1), text)
+    return _REASON_BEFORE.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else m.group(1), text)
+
+
 def _corrected(text: str, relations_only: bool = False) -> str:
     """A corrected relation: "left of the plate, no wait, right of the plate"
     keeps the second; "right of the cup, no wait, left of it": "it" is the cup.
@@ -222,7 +251,8 @@ def _size_words(text: str) -> str:
     if len(shapes) != 1:
         return text
     a = shapes[0]
-    if after is not None and after.start() >= a.end():
+    if after is not None and after.start() >= a.end() and not re.search(
+            r"(?i)\b(?:no|wait|sorry|actually|i mean|rather)\b", text[a.end() : after.end()]):
         size = (after.group(1) or after.group(2)).lower()
         text = text[: after.start()] + text[after.end():]
         return text[: a.start()] + (f"{a.group(1)} " if a.group(1) else "") + \
@@ -457,7 +487,7 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
-    text = _corrected(_repairs(_remade(text)), relations_only=True)
+    text = _corrected(_repairs(_remade(_purposes(text))), relations_only=True)
     # "in a small circle, no wait, a medium one": the corrected size.
     text = re.sub(r"(?i)\b(a|an) (?:small|medium|large|big|little|tiny|huge|wide|tight|short|long)(?:[- ]sized)? ([a-z]+)"
                   r"\s*,\s*no wait,\s*(?:a|an) (small|medium|large|big|little|tiny|huge|wide|tight|short|long)"
