@@ -129,6 +129,15 @@ _REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i'm|i am|i'll|i will|we
                             rf"it's|there's|the [a-z]+ (?:is|are)) [^,;.!?]+),\s*so\s+(?={_ACT})")
 
 
+#: A heading before the request: "Round two!", "Step one:", "Your double mission:", "Heads up:".
+_HEADING = re.compile(
+    r"(?i)(^|[.;!?]\s+)(?:(?:alright|okay|ok|right|psst|now),?\s+(?:[a-z]+,\s+)?)?(?:(?:round|level|stage|step|part|phase) "
+    r"(?:[a-z]+|\d+)|(?:final|bonus|secret|last|next|lightning|speed|warm[- ]up|first|second|third|practice|double|"
+    r"triple|big) (?:round|challenge|mission|task|level|step|stage)|grand finale|finale|next up|"
+    r"(?:your|the|today's|this|a|our) (?:[a-z]+ )?(?:mission|task|challenge|riddle|puzzle|quest)|here's a riddle|"
+    r"riddle me this|heads up|come on(?:,? come on)?|no pressure|ready|attention|listen up)\s*[!:]+\s*")
+
+
 def _purposes(text: str) -> str:
     """The reasons people give with a request, which ask for nothing: "... so I
     can read the labels", "so the T is hidden from the camera", "to get the
@@ -487,7 +496,7 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
-    text = _corrected(_repairs(_remade(_purposes(text))), relations_only=True)
+    text = _corrected(_repairs(_remade(_purposes(_HEADING.sub(r"\1", text)))), relations_only=True)
     # "in a small circle, no wait, a medium one": the corrected size.
     text = re.sub(r"(?i)\b(a|an) (?:small|medium|large|big|little|tiny|huge|wide|tight|short|long)(?:[- ]sized)? ([a-z]+)"
                   r"\s*,\s*no wait,\s*(?:a|an) (small|medium|large|big|little|tiny|huge|wide|tight|short|long)"
