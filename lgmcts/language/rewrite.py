@@ -290,6 +290,27 @@ def rewrite(text: str) -> str:
     # "arranged around a common centre to form a circle": what a circle is, not a place on the table.
     text = re.sub(r"(?i)\s*\b(?:around|round|about) (?:a|one|the) (?:common|shared|single|central|same) (?:centre|center|point|"
                   r"middle|spot)\b", "", text)
+    # Stack roles in other words: floors and layers, "(base)", "base = yellow", "crowning the whole thing",
+    # "red bottom, green middle", "red on the table" in a stack, "the white one holds up the black one".
+    text = re.sub(r"(?i)\b(?:is|as|on|at|in|for) the (?:ground|bottom|first|lowest) (?:floor|layer|level|storey|story|tier)\b",
+                  "at the bottom", text)
+    text = re.sub(r"(?i)\b(?:is|as|on|at|in|for) the (?:top|upper|uppermost|highest) (?:floor|layer|level|storey|story|tier)\b",
+                  "on top", text)
+    text = re.sub(r"(?i)\s*\((?:the )?(?:base|bottom)\)", " at the bottom", text)
+    text = re.sub(r"(?i)\s*\((?:the )?top\)", " on top", text)
+    text = re.sub(r"(?i)(?<!to )(?<!from )(?<!the )\b(base|bottom|top)\s*(?:=|is)\s*(red|green|blue|yellow|purple|white|black|"
+                  r"orange|pink|brown|gr[ae]y)\b",
+                  lambda m: f"{m.group(2)} {'on top' if m.group(1).lower() == 'top' else 'at the bottom'}", text)
+    text = re.sub(r"(?i)\b(?:crowning|topping|capping) (?:it all|the (?:whole )?(?:thing|stack|tower|pile|lot))\b", "on top", text)
+    text = re.sub(r"(?i)(?<!to )(?<!from )\b(red|green|blue|yellow|purple|white|black|orange|pink|brown|gr[ae]y) (bottom|middle|top)"
+                  r"\b(?! of)(?=\s*(?:[,;.!?]|$|and\b))",
+                  lambda m: f"{m.group(1)} {dict(bottom='at the bottom', middle='in the middle', top='on top')[m.group(2).lower()]}",
+                  text)
+    if re.search(r"(?i)\b(?:stack|stacked|tower|pile|piled)\b", text):
+        text = re.sub(r"(?i)\b(red|green|blue|yellow|purple|white|black|orange|pink|brown|gr[ae]y) (?:goes |sits |stays |rests )?"
+                      r"(?:directly )?on the table\b", r"\1 at the bottom", text)
+    text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) (?:has to |must |should |will |can |is to |needs to )?(?:hold|holds|support|"
+                  r"supports|carry|carries|bear|bears) up (the(?: [a-z]+){1,3}?)(?=\s*(?:[,;.!?]|$|and\b))", r"\2 on \1", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
                   r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))", r"\1 it", text)
