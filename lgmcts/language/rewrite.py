@@ -118,14 +118,15 @@ _GOAL_CUE = re.compile(r"(?i)\b(?:left|right|front|behind|back|on|onto|under|und
                        r"edge|side|order|first|last)\b")
 _ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move|stack|set|make|arrange|line|build|pile|lay|"
         r"could|can|would|will|get|grab|stick|pop|slide|shift|form|gather|group|bring|leave|keep|have|let|i'd|i want|i need)\b")
-_PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since|as|, for) "
+_PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since) "
                             r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|people|everyone|nobody|no one|"
                             r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
                             r"they don't|they do not|they can|they won't|they take|it takes|there's|there is|everything's|"
-                            r"everything is|everything will|nothing)\b[^.;!?]*)")
+                            r"everything is|everything will|nothing|the (?:[a-z]+ ){1,2}?(?:is|are|isn't|aren't|won't|doesn't|"
+                            r"don't|will|stays|stay|gets|get))\b[^.;!?]*)")
 _PURPOSE_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?:so that|so|in order to|to|in order that|because|since)\s+"
                              rf"(?P<c>[^,;.!?]+),\s*(?={_ACT})")
-_REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i'm|i am|i'll|i will|we're|we are|i've|we've|i have|we have|"
+_REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i need|we need|i want|i have to|i must|i'd like|i'm|i am|i'll|i will|we're|we are|i've|we've|i have|we have|"
                             rf"it's|there's|the [a-z]+ (?:is|are)) [^,;.!?]+),\s*so\s+(?={_ACT})")
 
 

@@ -201,8 +201,9 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
             i += 1
             continue
-        if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1], nouns)
-                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True)):
+        bare = bool(parts[-1]) and parts[-1][0] in _HUES and not any(x in _OBJECT_START for x in parts[-1])
+        if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1], nouns, hues=bare)
+                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True, hues=bare)):
             # "the bowl on the plate, and the mug, cup and bottle in a row": two goals said without verbs.
             parts.append([])
             i += 2
@@ -259,13 +260,16 @@ def _next_stop(words: tuple[str, ...], i: int, comma: bool = False) -> int:
     return j
 
 
-def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), start: bool = False) -> bool:
+def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), start: bool = False,
+                       hues: bool = False) -> bool:
     """Whether ``part`` names objects and then an arrangement or relation for them (``start``: and
-    begins with the objects). ``nouns``: the scene's category words ("the green ring" is an object)."""
-    first = next((k for k, w in enumerate(part) if w in _OBJECT_START), None)
+    begins with the objects). ``nouns``: the scene's category words ("the green ring" is an object).
+    ``hues``: a bare colour may begin the part ("red on blue, and green left of yellow")."""
+    first = next((k for k, w in enumerate(part) if w in _OBJECT_START or (hues and k == 0 and w in _HUES)), None)
     if first is None or (start and first != 0):
         return False
-    if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns:
+    if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns \
+            and part[first] not in _HUES:
         return False  # ", the row facing west": the arrangement itself, not objects
     return any(w in _GOAL_WORDS and w not in nouns for w in part[first + 1 :])
 
