@@ -381,7 +381,8 @@ _SAME_COLOR = tuple(
 _EXCEPT = tuple(
     tuple(s.split())
     for s in sorted(
-        ["except for", "except", "but not", "other than", "excluding", "apart from", "but", "save for", "without"],
+        ["except for", "except", "but not", "other than", "excluding", "apart from", "but", "save for", "without", "minus",
+         "leaving out", "not counting", "with the exception of", "aside from", "barring"],
         key=lambda s: -len(s),
     )
 )

@@ -312,6 +312,47 @@ def rewrite(text: str) -> str:
                       r"(?:directly )?on the table\b", r"\1 at the bottom", text)
     text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) (?:has to |must |should |will |can |is to |needs to )?(?:hold|holds|support|"
                   r"supports|carry|carries|bear|bears) up (the(?: [a-z]+){1,3}?)(?=\s*(?:[,;.!?]|$|and\b))", r"\2 on \1", text)
+    # "take / use the tiger pan as the base and put the star onto it": the star on the tiger pan.
+    m = re.search(r"(?i)\b(?:take|use|have|start with|begin with) (the(?: [a-z]+){1,3}?) as the (?:base|bottom|foundation)"
+                  r"(?: layer| level)?\s*,?\s*(?:and |then )*", text)
+    if m is not None and re.search(r"(?i)\b(?:it)\b", text[m.end():]):
+        rest = re.sub(r"(?i)\bit\b", m.group(1), text[m.end():], count=1)
+        text = text[: m.start()] + rest
+    text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) (?:forms|makes up|serves as|acts as) the (?:base|foundation)\b",
+                  r"\1 at the bottom", text)
+    # "in the middle of the right-hand side of the table", "at the centre of the table's front edge".
+    text = re.sub(r"(?i)\b(?:in|at) the (?:middle|centre|center) of the (left|right)(?:[- ]hand)? (?:side|edge|half)\b",
+                  r"on the \1 side", text)
+    text = re.sub(r"(?i)\b(?:in|at) the (?:middle|centre|center) of the (?:table's )?(front|back|near|far) (?:edge|side|half)"
+                  r"(?: of the table)?\b", lambda k: "at the " + {"near": "front", "far": "back"}.get(k.group(1).lower(),
+                                                                                       k.group(1)) + " of the table", text)
+    # "oriented so that it faces west": facing west.
+    text = re.sub(r"(?i),?\s*\b(?:(?:oriented|orientated|turned|rotated|positioned|arranged|placed|set) )?so (?:that )?"
+                  r"(?:it|they|the (?:[a-z]+ ){0,2}[a-z]+) (?:faces|face|is facing|are facing|points|point)(?: towards?)? "
+                  r"(?:the )?(north|south|east|west)\b", r" facing \1", text)
+    # "farther from the viewer than the blue bowl": behind it.
+    text = re.sub(r"(?i)\b(?:farther|further|more distant) (?:away )?from (?:the viewer|the camera|the observer|the front)"
+                  r" than\b", "behind", text)
+    text = re.sub(r"(?i)\b(?:closer|nearer) to (?:the viewer|the camera|the observer|the front) than\b", "in front of", text)
+    # "in a linear formation", "a circular arrangement".
+    text = re.sub(r"(?i)\b(?:an? )?(linear|circular|rectangular) (?:formation|arrangement|configuration|array|layout)\b",
+                  lambda k: {"linear": "a line", "circular": "a circle", "rectangular": "a rectangle"}[k.group(1).lower()],
+                  text)
+    # "With the exception of the red A, arrange the letters in a row": the exception after the request.
+    text = re.sub(r"(?i)^(?:with the exception of|except for|apart from|aside from|other than|excluding) (the [^,;.!?]+?),\s*"
+                  r"([^;.!?]+)", r"\2, except \1", text)
+    # "bowls, minus the blue one -> stack", "blocks that aren't red - tower": an arrangement after an arrow or a dash.
+    text = re.sub(r"(?i)\s*(?:->|=>|→|\s-)\s*(?:a |one )?(stack|tower|pile|line|row|circle|ring|square|rectangle)\b",
+                  r" in a \1", text)
+    # "if that's all right with you", "if it's no trouble at all": politeness that asks for nothing.
+    text = re.sub(r"(?i),?\s*\bif (?:that's|that is|it's|it is|that'd be|it'd be) (?:all right|alright|ok|okay|fine|no trouble|"
+                  r"not too much (?:trouble|bother)|no bother)(?: at all)?(?: with you| by you| for you)?\b,?", "", text)
+    text = re.sub(r"(?i),?\s*\bif you see what i mean\b", "", text)
+    text = re.sub(r"(?i),?\s*\b(?:while|whilst) (?:i|we) (?:[a-z']+ ){0,3}?[a-z']+(?=\s*(?:[.!?;]|$))", "", text)
+    # A choice left open, said on its own: "either is fine", "either bowl will do", "either way round".
+    text = re.sub(r"(?i)\s*[,.;!?]\s*(?:(?:either|any|whichever)(?: one| of them| of the [a-z]+| [a-z]+)?(?: at all)? "
+                  r"(?:is|will|would|'ll|should)? ?(?:be )?(?:fine|do|ok|okay|work|good)|either way(?: round| around)?|"
+                  r"whichever (?:ones?|way)(?: you like)?)\s*(?=[.!?;]|$)", "", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
                   r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))", r"\1 it", text)

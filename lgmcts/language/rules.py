@@ -287,6 +287,8 @@ def _bare_letter(m: re.Match, letters: set[str]) -> str:
     nxt = re.findall(r"[A-Za-z]+|[,;:.!?]", after)[:1] or [""]
     if x not in letters or x == "I" or prev[0].lower() in ("the", "letter", "a", "an"):
         return x
+    if prev[0].lower() in _HUES:
+        return f"letter {x}"  # "the red A": the red letter A
     if x == "A" and not (prev[0].lower() in ("then", "and", ",") or nxt[0] in (",", ";", ".", "!", "?", "")
                          or nxt[0].lower() in _LIST_WORDS):
         return x
@@ -1373,9 +1375,11 @@ class _Parser:
                 return [self._chain]
             if m.text == "it" and self._implicit is not None:
                 return [self._implicit[1]]
-            if m.text == "it" and pair is not None and all(isinstance(x, int) for x in pair):
-                # "put the cup left of the plate and the bottle behind it": the cup or the plate?
-                raise InputError(f"'{m.text}' is unclear: it may be object {pair[0]} or object {pair[1]}, both named "
+            if m.text == "it" and pair is not None and all(isinstance(x, (int, Choice)) for x in pair):
+                # "put the cup left of the plate and the bottle behind it": the cup or the plate? ("one of
+                # the mugs left of the phone and the other one right of it": the chosen mug or the phone?)
+                said = [f"object {x}" if isinstance(x, int) else f"'{x.text}'" for x in pair]
+                raise InputError(f"'{m.text}' is unclear: it may be {said[0]} or {said[1]}, both named "
                                  f"in the clause before; name the one you mean")
             if m.text == "it" and self.state.last_tower and isinstance(last[-1], int):
                 return [last[-1]]  # "put A on B, then put C on top of it": it is A, the top
