@@ -139,6 +139,36 @@ _HEADING = re.compile(
     r"riddle me this|heads up|come on(?:,? come on)?|no pressure|ready|attention|listen up)\s*[!:]+\s*")
 
 
+#: Words of a sentence that only confirms or hedges ("I think behind, yeah", "Both of them, I think").
+_HEDGES = frozenset("""i think guess suppose yeah yes yep yup like mean sort kind of maybe perhaps that that's is it please ok
+okay so just um uh hmm oh well sure correct exactly both them all those these ones the a an in on at to would be there
+probably i'm pretty really""".split())
+#: Words that mean the same arrangement as another ("row" restates "line").
+_SAME_WORD = {"row": "line", "lined": "line", "file": "line", "ring": "circle", "loop": "circle", "square": "rectangle",
+              "stack": "tower", "pile": "tower", "stacked": "tower", "piled": "tower", "big": "large", "huge": "large",
+              "little": "small", "tiny": "small"}
+
+
+def _restatements(text: str) -> str:
+    """A sentence after the request that only confirms or restates it ("I think
+    behind, yeah.", "Like in a row, I mean.", "Both of them, I think.") asks
+    for nothing new: every word it has besides hedges was said before."""
+    parts = re.split(r"(?<=[.!?])\s+", text.strip())
+    if len(parts) < 2:
+        return text
+    kept = [parts[0]]
+    for p in parts[1:]:
+        said = {_SAME_WORD.get(w, w) for w in re.findall(r"[a-z]+", " ".join(kept).lower())}
+        words = re.findall(r"[a-z']+", p.lower())
+        rest = [w for w in words if w not in _HEDGES]
+        if words and len(words) <= 8 and re.search(r"(?i)\b(?:i think|yeah|yes|i mean|like|i guess|i suppose|probably|"
+                                                    r"that's right|right, yes)\b", p) \
+                and all(_SAME_WORD.get(w, w) in said for w in rest):
+            continue
+        kept.append(p)
+    return " ".join(kept)
+
+
 def _purposes(text: str) -> str:
     """The reasons people give with a request, which ask for nothing: "... so I
     can read the labels", "so the T is hidden from the camera", "to get the
@@ -559,7 +589,7 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bover (on|in|at|by|to|towards)\b", r"\1", text)
     text = re.sub(r"(?i)\b(left|right)[- ]hand(?: side)?\b", r"\1 side", text)
     text = re.sub(r"(?i),\s*(?:resting|sitting|standing|lying) (?:on|upon|on top of) (?:it|them)\b", "", text)
-    text = _corrected(_repairs(_remade(_purposes(_HEADING.sub(r"\1", text)))), relations_only=True)
+    text = _corrected(_repairs(_remade(_purposes(_restatements(_HEADING.sub(r"\1", text))))), relations_only=True)
     # "in a small circle, no wait, a medium one": the corrected size.
     text = re.sub(r"(?i)\b(a|an) (?:small|medium|large|big|little|tiny|huge|wide|tight|short|long)(?:[- ]sized)? ([a-z]+)"
                   r"\s*,\s*no wait,\s*(?:a|an) (small|medium|large|big|little|tiny|huge|wide|tight|short|long)"
