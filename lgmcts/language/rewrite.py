@@ -383,9 +383,15 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\s*[,.;!?]\s*(?:(?:either|any|whichever)(?: one| of them| of the [a-z]+| [a-z]+)?(?: at all)? "
                   r"(?:is|will|would|'ll|should)? ?(?:be )?(?:fine|do|ok|okay|work|good)|either way(?: round| around)?|"
                   r"whichever (?:ones?|way)(?: you like)?)\s*(?=[.!?;]|$)", "", text)
+    # "bottle's in the way", "the star's wandered off": "is" / "has", not a possessive.
+    text = re.sub(r"(?i)\b(?!(?:it|that|there|what|here|let|he|she|who|where|everything|nothing|something|one)'s)([a-z]+)'s "
+                  r"(in|on|too|so|very|really|still|just|not|been|gone|got|wandered|sitting|standing|lying|blocking|taking|"
+                  r"getting|always|already|over|out|under|behind|kind|quite|pretty|way|near|far|close|rolled|fallen|moved)\b",
+                  r"\1 is \2", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
-                  r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))", r"\1 it", text)
+                  r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))",
+                  lambda m: "on top of it" if m.group(1).lower() in ("above", "over") else f"{m.group(1)} it", text)
     text = re.sub(r"(?i)\bone (?:on top of|on|onto|above|upon|atop|over) (?:the other|another)\b", "on top of each other",
                   text)
     text = re.sub(r"(?i)\bany ?(?:way|old way|order) (?:you|u) (?:want|like|please)\b", "", text)

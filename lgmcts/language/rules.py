@@ -1564,6 +1564,26 @@ class _Parser:
                 return ()
         return tuple(out)
 
+    def _articles(self, text: str) -> str:
+        """"red can should have the blue bowl behind it", "move blue mug so red mug sits
+        on its left": a singular object named without its article, at the start of a
+        sentence or after a verb or "so", is read as if "the" were said."""
+        colours = _HUES | set(self.vocab.color_words)
+        verbs = "|".join(sorted(_COMMAND_VERBS))
+
+        def one(m: re.Match) -> str:
+            ws = m.group(2).split()
+            k = 0
+            while k < len(ws) and ws[k].lower() in colours:
+                k += 1
+            noun = ws[k].lower() if k < len(ws) else ""
+            if noun in self._cat_words and not noun.endswith("s") and len(noun) > 1 and (
+                    k > 0 or (noun not in STOPWORDS and noun not in ("can", "a", "i"))) and (
+                    k + 1 == len(ws) or ws[k + 1].lower() not in self._cat_words):
+                return f"{m.group(1)}the {m.group(2)}"
+            return m.group(0)
+        return re.sub(rf"(?i)((?:^|[.;!?:]|\b(?:{verbs}))\s+|^)((?:[a-z]+ ){{0,2}}[a-z]+)\b(?=(?:\s+[a-z]+)?)", one, text)
+
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":
         "the former" / "the latter" replaced by the two references named before."""
@@ -1737,7 +1757,7 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
-        text = rewrite(text)
+        text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
