@@ -388,6 +388,15 @@ def rewrite(text: str) -> str:
                   r"(in|on|too|so|very|really|still|just|not|been|gone|got|wandered|sitting|standing|lying|blocking|taking|"
                   r"getting|always|already|over|out|under|behind|kind|quite|pretty|way|near|far|close|rolled|fallen|moved)\b",
                   r"\1 is \2", text)
+    # A place setting with the cutlery "beside the plate" / "next to it" / "on either side": a side is
+    # left open, and the left one is chosen.
+    if re.search(r"(?i)\b(?:cutlery|silverware|flatware|utensils|fork,? (?:the )?knife,? and (?:the )?spoon)\b", text) \
+            and re.search(r"(?i)\bplate\b", text):
+        text = re.sub(r"(?i)\b(?:beside|next to|alongside|by the side of) (the plate|it)\b(?:\s*[,;]?\s*(?:on )?(?:whichever|"
+                      r"either|any) side(?: you like| you want| is fine| acceptable| will do)?)?", r"to the left of \1", text)
+        text = re.sub(r"(?i)\bon (?:either|whichever|any) side(?: of (?:the plate|it))?\b", "to the left of the plate", text)
+        text = re.sub(r"(?i)\s*[,;]\s*(?:on )?(?:whichever|either|any) side(?: you like| you want| is fine| will do)?"
+                      r"(?=\s*[.!?)]|\s*$)", "", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
                   r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))",
