@@ -603,6 +603,10 @@ class _Parser:
         self._chain: int | None = None
         #: (subject, reference) of the part before, where the part being read has no object but "it".
         self._implicit: tuple | None = None
+        #: The one object named first in the part being read, where nothing was named before it:
+        #: what "it" later in the part means ("the brown box needs to end up with both white
+        #: things in front of it").
+        self._first: Mention | None = None
         #: Each part read with its references, for the check that every object named by itself is
         #: used; the rewritten text.
         self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
@@ -1359,6 +1363,10 @@ class _Parser:
 
     def _select(self, m: Mention) -> list[int] | Choice:
         if m.det == "pronoun":
+            if not self.state.last and self._first is not None and m.text in ("it", "its"):
+                got = self._select(self._first)
+                if isinstance(got, list) and len(got) == 1:
+                    return got
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last
@@ -1903,8 +1911,14 @@ class _Parser:
                         and own[0].det == "pronoun" and own[0].text == "it" and any(w in _DIR_WORDS for w in sub)
                         and not any(w in _VERT_WORDS - {"to", "of"} for w in sub)):
                     self._implicit = pair
+                self._first = None
+                if not self.state.last and own and own[0].det == "the" and not own[0].plural and any(
+                        m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(
+                        w in _DIR_WORDS or w in _VERT_WORDS - {"to", "of"} for w in sub[own[0].end : own[1].start]):
+                    self._first = own[0]
                 pending.extend(self.clause(sub))
                 self._implicit = None
+                self._first = None
                 try:
                     named = self._find(sub)
                 except InputError:
