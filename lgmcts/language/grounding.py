@@ -547,6 +547,13 @@ _PRONOUNS = frozenset({"them", "it", "they", "those", "these"})
 _COORD = frozenset({"and", ",", "or", "&", "plus"})
 
 
+#: Words after "those" / "these" that show it stands alone ("put those in a row").
+_AFTER_PRONOUN = frozenset({"in", "into", "up", "out", "on", "onto", "together", "around", "behind", "to", "next", "beside",
+                            "along", "as", "and", ",", ".", "!", "?", ";", ":", "please", "for", "so", "side", "one",
+                            "down", "over", "under", "at", "neatly", "too"})
+_PUT_VERBS = frozenset({"put", "place", "line", "set", "stack", "arrange", "move", "get", "make", "pile", "lay"})
+
+
 def _starts(words: tuple[str, ...], i: int, seq: tuple[str, ...]) -> bool:
     return words[i : i + len(seq)] == seq
 
@@ -650,6 +657,10 @@ def _mention_at(
         # "one of them", "two of those": a choice among what the pronoun refers to.
         k = 1 if words[i] == "one" else NUMBERS[words[i]]
         return Mention(i, i + 3, " ".join(words[i : i + 3]), "pronoun", k > 1, count=k)
+    if not nested and (words[i] in ("those", "these") or (words[i] == "all" and i > 0 and words[i - 1] in _PUT_VERBS)) and (
+            i + 1 == n or words[i + 1] in _AFTER_PRONOUN):
+        # "put those in a row", "line these up", "put all in a line": what was named before.
+        return Mention(i, i + 1, words[i], "pronoun", True)
     det, j = "", i
     for seq, kind in _DETS:
         if _starts(words, i, seq):
@@ -822,6 +833,12 @@ def _mention_at(
             m = replace(m, end=end, text=" ".join(words[i:end]), excluding=m.excluding + tuple(excl))
             continue
         break
+    if (not nested and m.det in ("all", "other") and m.plural and end < n
+            and words[end] in ("that", "which", "whose", "matching", "sharing", "shares", "share", "matches", "match")
+            and not (words[end] == "that" and end + 1 < n and words[end + 1] in ("way", "is", "it", "order"))):
+        # "all the blocks that aren't, like, red": a qualifier not read would select them all.
+        raise InputError(f"'{' '.join(words[i:min(n, end + 4)])}': cannot tell which objects the words after "
+                         f"'{words[end - 1]}' select")
     return m
 
 

@@ -397,6 +397,14 @@ def rewrite(text: str) -> str:
         text = re.sub(r"(?i)\bon (?:either|whichever|any) side(?: of (?:the plate|it))?\b", "to the left of the plate", text)
         text = re.sub(r"(?i)\s*[,;]\s*(?:on )?(?:whichever|either|any) side(?: you like| you want| is fine| will do)?"
                       r"(?=\s*[.!?)]|\s*$)", "", text)
+    # "whatever is black or white", "whatever matches the cup": everything that is.
+    text = re.sub(r"(?i)\bwhatever (?:is |'s )?(?=(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|gr[ae]y|silver)\b)",
+                  "everything ", text)
+    text = re.sub(r"(?i)\b(?:whatever|everything|anything|all the (?:things|objects|items|stuff)) (?:shares?|has) (?:a|the) "
+                  r"(colou?r|shape) (?:with|as)\b", r"everything with the same \1 as", text)
+    text = re.sub(r"(?i)\bwhatever (?=(?:with the same|is the same|matches|shares|has the same))", "everything ", text)
+    # ", like," set off by commas is a filler ("all the blocks that aren't, like, red").
+    text = re.sub(r"(?i)\b(aren't|are not|isn't|is not|are|is|that|which|the)\s*,\s*like,\s*", r"\1 ", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
                   r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))",
