@@ -22,7 +22,7 @@ FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|ran
                         r"(the )?order (of [a-z ]+ )?(does not|do not|doesn't|won't) matter|(the )?order is up to you|(i )?(do not|don't|do n't) (care|mind)( about)?( the| which)?"
                         r"( order)?|whichever( one)?( goes)? on top( is fine)?|(it )?(does not|doesn't) matter which "
                         r"(one )?goes on top|i am not fussy about the order|any old way|(any|either) (one|[a-z]+) "
-                        r"(will|would) do|whichever (one )?you (like|want)")
+                        r"(will|would) do|whichever (one )?you (like|want)|whichever order( you (like|want))?")
 
 
 #: A question about the scene ("is the knife left of the plate?"), not a request.
@@ -405,6 +405,26 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bwhatever (?=(?:with the same|is the same|matches|shares|has the same))", "everything ", text)
     # ", like," set off by commas is a filler ("all the blocks that aren't, like, red").
     text = re.sub(r"(?i)\b(aren't|are not|isn't|is not|are|is|that|which|the)\s*,\s*like,\s*", r"\1 ", text)
+    # "piled into one tall column": a stack.
+    text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
+                  r"(?:column|pillar)\b", r"\1\2 into a tower", text)
+    # "arrange it so the phone sits on the can's left", "make it so ...": the state asked for.
+    text = re.sub(r"(?i)(^|[.;!?]\s+)(?:please |could you |can you )?(?:arrange|make|set|fix|have|get) (?:it|things) so(?: that)?\s+",
+                  r"\1", text)
+    # "I want two piles. Red on yellow, blue on green.": a count of stacks, then each stack.
+    text = re.sub(r"(?i)(^|[.;!?]\s+)(?:i (?:want|need|would like)|i'd like|make|build|we need|there should be|let's have)"
+                  r"(?: me)? (?:two|three) (?:separate )?(?:piles|stacks|towers)\s*[.:;]\s*(?=\S)", r"\1", text)
+    # "red on yellow in one, blue on green in the other": the two stacks named one by one.
+    text = re.sub(r"(?i)\s*\bin (?:one|the first)(?: one| pile| stack| tower)?(?=\s*[,;])", "", text)
+    text = re.sub(r"(?i)\s*\bin the (?:other|second)(?: one| pile| stack| tower)?\b", "", text)
+    # "the cup on one side of the plate and the bottle on the other": one left, one right.
+    text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) on one side of (the(?: [a-z]+){1,3}?),? and (the(?: [a-z]+){1,3}?) on the other"
+                  r"(?: side)?(?: of it)?\b", r"\1 to the left of \2 and \3 to the right of \2", text)
+    text = re.sub(r"(?i),?\s*\b(?:while|whilst) you(?:'re| are) at it,?", "", text)
+    text = re.sub(r"(?i)\b(?:in )?between (?:them|those|the two|these)(?: two)?\b(?! and)", "in the middle", text)
+    # "green under blue under yellow": two steps of one stack.
+    hue = r"(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|gr[ae]y)"
+    text = re.sub(rf"(?i)\b({hue}) (under|below|beneath|on|above|over) ({hue}) \2 ({hue})\b", r"\1 \2 \3 and \3 \2 \4", text)
     # "and the red block above that": "that" after a place word is the object just placed.
     text = re.sub(r"(?i)\b(on top of|on|onto|above|over|atop|upon|under|below|beneath|underneath|behind|in front of|"
                   r"left of|right of) (?:that|this)(?: one)?(?=\s*(?:[,;.!?]|$|and\b|then\b|please\b))",
@@ -519,7 +539,10 @@ def rewrite(text: str) -> str:
                   r"to its right|behind it|in front of it|on top of it|on it|under it|below it)\b", _has_rel, text)
     # ", with the green bowl on top of the blue bowl": and the green bowl on top of it.
     text = re.sub(r"(?i),\s*with (the (?:[a-z]+ ){0,2}?[a-z]+) (on top of|on|under|underneath|below|beneath|behind|"
-                  r"in front of|to the left of|to the right of)\s+(?=the\b)", r", and \1 \2 ", text)
+                  r"in front of|to the left of|to the right of)\s+(?=the\b)",
+                  lambda m: m.group(0) if m.group(2).lower() in ("on top of", "on", "under", "underneath", "below", "beneath")
+                  and re.search(r"(?i)\b(?:stack|pile|tower)\b", m.string[: m.start()].split(".")[-1])
+                  else f", and {m.group(1)} {m.group(2)} ", text)
     # "put the tiger pan down as the base", "where the green can is the base": the bottom of the stack.
     text = re.sub(r"(?i)\bdown (as (?:the|a) (?:base|bottom layer|bottom|foundation))\b", r"\1", text)
     text = re.sub(r"(?i)\bis the (base|foundation|bottom layer)\b", r"as the \1", text)

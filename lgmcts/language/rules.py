@@ -208,8 +208,9 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
             i += 2
             continue
-        if (w == "," and _asks_after_object(parts[-1], nouns) and words[i + 1 : i + 2] != ("and",)
-                and _asks_after_object(list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns, start=True)):
+        if (w == "," and _asks_after_object(parts[-1], nouns, hues=bare) and words[i + 1 : i + 2] != ("and",)
+                and _asks_after_object(list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns, start=True,
+                                       hues=bare)):
             # "the blocks in a line, the yellow block on the orange one, and ...": a list of such goals.
             parts.append([])
             i += 1

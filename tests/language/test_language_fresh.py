@@ -322,6 +322,47 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [7, 8]}]),
     ("pantry", "build a three-storey tower of the bowls: the red bowl is the top floor, the blue bowl is the ground floor",
      [{"pattern": "tower", "objects": [7, 5, 6]}]),
+    ("toys", "take the tiger pan as the base and put the purple star onto it", [{"pattern": "tower", "objects": [12, 10]}]),
+    # places, orientation and distance in other words; an exception put first; arrows
+    ("blocks", "stack the two bowls in the middle of the right-hand side of the table, with the black bowl beneath the "
+               "white one", [{"pattern": "tower", "objects": [8, 7], "region": "middle right"}]),
+    ("home", "form a rectangle from both mugs and both bottles in the centre of the table, oriented so that it faces west",
+     [{"pattern": "rectangle", "objects": [1, 2, 6, 7], "region": "middle center", "facing": "west"}]),
+    ("dinner", "place the green cup farther from the viewer than the blue bowl", [{"pattern": "behind", "objects": [7],
+                                                                                 "anchor": 2}]),
+    ("home", "arrange the cutlery in a linear formation", [{"pattern": "line", "objects": [9, 10, 11]}]),
+    ("toys", "with the exception of the red A, arrange the letters into a row", [{"pattern": "line", "objects": [2, 3, 4]}]),
+    ("home", "bowls, minus the blue one -> stack, any order", [{"pattern": "tower", "objects": [3, 4]}]),
+    ("blocks", "blocks that aren't red, blue or green - tower, any order", [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    # confirmations and restatements after the request; a sentence's first object as "it"
+    ("pantry", "would it be possible to move the brown box behind the orange cup? I think behind, yeah.",
+     [{"pattern": "behind", "objects": [10], "anchor": 9}]),
+    ("home", "could you maybe line up the three cans? like in a row, I mean.", [{"pattern": "line", "objects": [12, 13, 14]}]),
+    ("pantry", "the goal for the brown box is that the white bowl ends up behind it",
+     [{"pattern": "behind", "objects": [5], "anchor": 10}]),
+    ("toys", "wherever the tiger pan goes, the star should finish in front of it",
+     [{"pattern": "front", "objects": [10], "anchor": 12}]),
+    ("pantry", "red can should have the blue bowl behind it", [{"pattern": "behind", "objects": [7], "anchor": 1}]),
+    ("home", "arrange it so the phone sits on the green can's left", [{"pattern": "left", "objects": [15], "anchor": 14}]),
+    # place settings with the side left open; pronouns standing alone; two stacks; one side and the other
+    ("dinner", "place the bowl on the plate and line the cutlery up beside it",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
+    ("blocks", "whatever is black or white, plus the purple block: put those in a row",
+     [{"pattern": "line", "objects": [6, 7, 8]}]),
+    ("home", "whatever shares a colour with the green bowl, plus the black phone: line those up",
+     [{"pattern": "line", "objects": [4, 14, 15]}]),
+    ("blocks", "all the blocks that aren't, like, red or blue, make a rectangle out of those",
+     [{"pattern": "rectangle", "objects": [3, 4, 5, 6]}]),
+    ("blocks", "I want two piles. Red on yellow in one, blue on green in the other.",
+     [{"pattern": "tower", "objects": [4, 1]}, {"pattern": "tower", "objects": [3, 2]}]),
+    ("dinner", "put the cup on one side of the plate and the bottle on the other",
+     [{"pattern": "left", "objects": [7], "anchor": 1}, {"pattern": "right", "objects": [8], "anchor": 1}]),
+    ("blocks", "put the purple block at the bottom and the orange block on top, with the green block in between them",
+     [{"pattern": "tower", "objects": [6, 3, 5]}]),
+    ("blocks", "green under blue under yellow", [{"pattern": "tower", "objects": [3, 2, 4]}]),
+    ("toys", "every block piled into one tall column, and I don't care about the order",
+     [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
@@ -372,6 +413,10 @@ def test_open_order_sentence_keeps_the_stack(matcher):
      "contradiction"),
     # a reason that names a place is not dropped ("so it ends up behind the box" asks for a goal)
     ("pantry", "put the red can in a line so it ends up behind the box", "."),
+    # a qualifier that is not read does not select the whole group
+    ("blocks", "line up all the blocks that, well, look nice", "cannot tell which objects"),
+    # "it" after a chosen object and its reference object
+    ("home", "put one of the mugs left of the phone and the other one to the right of it", "'it' is unclear"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
