@@ -325,7 +325,7 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("toys", "take the tiger pan as the base and put the purple star onto it", [{"pattern": "tower", "objects": [12, 10]}]),
     # places, orientation and distance in other words; an exception put first; arrows
     ("blocks", "stack the two bowls in the middle of the right-hand side of the table, with the black bowl beneath the "
-               "white one", [{"pattern": "tower", "objects": [8, 7], "region": "middle right"}]),
+               "white one", [{"pattern": "tower", "objects": [8, 7], "region": "right"}]),
     ("home", "form a rectangle from both mugs and both bottles in the centre of the table, oriented so that it faces west",
      [{"pattern": "rectangle", "objects": [1, 2, 6, 7], "region": "middle center", "facing": "west"}]),
     ("dinner", "place the green cup farther from the viewer than the blue bowl", [{"pattern": "behind", "objects": [7],
