@@ -405,6 +405,9 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\bwhatever (?=(?:with the same|is the same|matches|shares|has the same))", "everything ", text)
     # ", like," set off by commas is a filler ("all the blocks that aren't, like, red").
     text = re.sub(r"(?i)\b(aren't|are not|isn't|is not|are|is|that|which|the)\s*,\s*like,\s*", r"\1 ", text)
+    # "stack things up from the bottom: first the plate, ...": "things" without a determiner selects nothing.
+    text = re.sub(r"(?i)\b(stack|pile)( up)? (?:things|stuff)( up)?(?=\s*(?:from\b|:|,|so\b|like\b|as\b|with\b))",
+                  r"\1\2\3", text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)

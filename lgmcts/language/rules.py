@@ -1790,6 +1790,7 @@ class _Parser:
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
         words = self._parentheses(words)
         words = self._context_sentences(words)
+        words = self._trailing_remarks(words)
         words = self._former_latter(words)
         words = self._bare_colour_sets(words)
         # Words that may be read by their own embedding, encoded in one batch
@@ -2008,6 +2009,43 @@ class _Parser:
             self._remember_subject(sent[:-1])
             dropped += len(sent)
         return words[dropped:]
+
+    def _trailing_remarks(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Sentences after the request that name no object and only remark on it
+        ("I'm clearing up, you see.", "Which goes where is totally up to you!",
+        "Remember, a square is just a rectangle with equal sides.", "Go!") ask for
+        nothing: they are dropped. A sentence with a place, size, facing or order
+        word ("At the front.", "Any order.") is kept."""
+        sentences: list[tuple[str, ...]] = []
+        start = 0
+        for k, w in enumerate(words):
+            if w in (".", "!", "?"):
+                sentences.append(words[start : k + 1])
+                start = k + 1
+        if start < len(words):
+            sentences.append(words[start:])
+        if len(sentences) < 2:
+            return words
+        out: list[str] = []
+        asked = False
+        for sent in sentences:
+            body = [w for w in sent if w not in (",", ".", "!", "?", "'")]
+            while body and body[0] in _LEADING:
+                body = body[1:]
+            try:
+                named = self._find(tuple(body)) if body else []
+            except InputError:
+                named = [None]
+            if asked and body and not named and not _command_verb(body[0]) and not any(
+                    w in SIZES or w in ROWS or w in COLS or w in _ROLE_WORDS or w in _DIR_WORDS
+                    or w in ("order", "first", "last", "then", "facing", "instead", "too", "also") for w in body) and (
+                    _STATE_VERB.search(" ".join(body)) or re.search(
+                        r"\b(?:go|see|mean|mind|care|know|think|remember|wins?|done|cheers|thanks|thank|please)\b",
+                        " ".join(body))):
+                continue
+            asked = asked or bool(named)
+            out.extend(sent)
+        return tuple(out)
 
     def _describes(self, sent: tuple[str, ...]) -> bool:
         """Whether ``sent`` states how things are rather than asking for anything."""

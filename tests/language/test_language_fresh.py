@@ -361,6 +361,10 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("blocks", "put the purple block at the bottom and the orange block on top, with the green block in between them",
      [{"pattern": "tower", "objects": [6, 3, 5]}]),
     ("blocks", "green under blue under yellow", [{"pattern": "tower", "objects": [3, 2, 4]}]),
+    ("dinner", "could you stack things up from the bottom: first the plate, then the bowl, and then the mug on top of "
+               "that? I'm clearing up, you see.", [{"pattern": "tower", "objects": [1, 2, 6]}]),
+    ("toys", "put the granite bowl, the tiger pan and the purple star into one stack. which goes where is totally up "
+             "to you!", [{"pattern": "tower", "objects": [9, 12, 10]}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
