@@ -408,6 +408,23 @@ def rewrite(text: str) -> str:
     # "stack things up from the bottom: first the plate, ...": "things" without a determiner selects nothing.
     text = re.sub(r"(?i)\b(stack|pile)( up)? (?:things|stuff)( up)?(?=\s*(?:from\b|:|,|so\b|like\b|as\b|with\b))",
                   r"\1\2\3", text)
+    # "the bottles side by side with the white can", "the bowls in a line with the red block": one line of both.
+    text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) (side by side|in a (?:line|row)|lined up)((?: in a (?:line|row))?) with "
+                  r"(the(?: [a-z]+){1,3}?)(?=\s*(?:[,;.!?]|$|and\b))", r"\1 and \4 \2\3", text)
+    # "the letters, all but the yellow T, in a row"; "the things the same colour as the can, that can included,".
+    text = re.sub(r"(?i),\s*all but (the [^,;.!?]+?)\s*,", r" except \1,", text)
+    text = re.sub(r"(?i),\s*(?:that|the|this) [a-z]+(?: [a-z]+)? (?:included|too|as well),", ",", text)
+    # "take the yellow cup, and could you put it ...": one request.
+    text = re.sub(r"(?i),?\s*\band (?:could|can|would|will) you (?:please |maybe |just )?(?=(?:put|place|move|stack|set|"
+                  r"line|arrange|make|pop|stick|slide|shift|get|lay|pile)\b)", " and ", text)
+    # "tidy up the letters, put 'em in a row": the objects, then the request about them.
+    text = re.sub(r"(?i)(^|[.;!?]\s+)(?:please )?(?:tidy|clean|sort|neaten|organi[sz]e)(?: up)? (the [a-z ]+?),\s*"
+                  r"(?=(?:and |then )?(?:put|place|line|stack|arrange|make|set|get|pile|lay)\b)", r"\1\2, ", text)
+    # "the plate on the bottom, then the bowl, then the mug on top": a stack described without a word for it.
+    if not re.search(r"(?i)\b(?:stack|stacks|stacked|stacking|tower|towers|pile|piles|piled)\b", text) and re.search(
+            r"(?i)\b(?:on top|at the top|then|above it|on it|next)\b", text):
+        text = re.sub(r"(?i)(^|[.;:!?]\s*|\b(?:so|want|like|need|have)\s+)((?:the )?(?:[a-z]+ ){0,2}?[a-z]+ (?:on|at) the "
+                      r"(?:bottom|base)\b)", r"\1build a tower with \2", text, count=1)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)

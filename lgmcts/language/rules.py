@@ -225,7 +225,11 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])  # "the cans are everywhere, so put them in a row": the request after the remark
             i += 2
             continue
-        if (w in (",", "and") and i + 1 < len(words) and (_command_verb(words[i + 1]) or any(
+        if words[i : i + 3] == ("as", "well", "as") and i + 3 < len(words) and _command_verb(words[i + 3]) and parts[-1]:
+            parts.append([])  # "put the mug ... in a ring, as well as lining the cutlery up": two requests
+            i += 3
+            continue
+        if (w in (",", "and", "plus") and i + 1 < len(words) and (_command_verb(words[i + 1]) or any(
                 words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
                 and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
@@ -1997,7 +2001,7 @@ class _Parser:
         sentences: list[tuple[str, ...]] = []
         start = 0
         for k, w in enumerate(words):
-            if w in (".", "!", "?"):
+            if w in (".", "!", "?", ";"):
                 sentences.append(words[start : k + 1])
                 start = k + 1
         if start < len(words):

@@ -365,6 +365,21 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
                "that? I'm clearing up, you see.", [{"pattern": "tower", "objects": [1, 2, 6]}]),
     ("toys", "put the granite bowl, the tiger pan and the purple star into one stack. which goes where is totally up "
              "to you!", [{"pattern": "tower", "objects": [9, 12, 10]}]),
+    ("home", "honestly I just want the bottles side by side with the white can, all in a row",
+     [{"pattern": "line", "objects": [6, 7, 13]}]),
+    ("toys", "could you please put the letters, all but the yellow T, in a row for me?",
+     [{"pattern": "line", "objects": [1, 2, 4]}]),
+    ("pantry", "take the yellow cup, and could you put it behind the red can?", [{"pattern": "behind", "objects": [8],
+                                                                                  "anchor": 1}]),
+    ("toys", "tidy up the letters, put 'em in a row pls", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("toys", "put the granite bowl on the tiger pan, plus line up the star, the heart and the letter E",
+     [{"pattern": "tower", "objects": [12, 9]}, {"pattern": "line", "objects": [10, 11, 4]}]),
+    ("home", "could you put the red mug, the blue mug and the white bottle in a ring, as well as lining the fork, the "
+             "knife and the spoon up in a neat row?", [{"pattern": "circle", "objects": [1, 2, 6]},
+                                                      {"pattern": "line", "objects": [9, 10, 11]}]),
+    ("dinner", "okay so plate on the bottom, then the bowl, and then, uh, the mug goes on top of the bowl",
+     [{"pattern": "tower", "objects": [1, 2, 6]}]),
+    ("dinner", "bottle's in the way; shift it left of the cup", [{"pattern": "left", "objects": [8], "anchor": 7}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
