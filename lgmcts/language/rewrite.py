@@ -425,6 +425,14 @@ def rewrite(text: str) -> str:
             r"(?i)\b(?:on top|at the top|then|above it|on it|next)\b", text):
         text = re.sub(r"(?i)(^|[.;:!?]\s*|\b(?:so|want|like|need|have)\s+)((?:the )?(?:[a-z]+ ){0,2}?[a-z]+ (?:on|at) the "
                       r"(?:bottom|base)\b)", r"\1build a tower with \2", text, count=1)
+    # "to its left and in front of it": the same diagonal as "in front of it and to its left".
+    text = re.sub(r"(?i)\b(?:to|on) (its|their) (left|right)(?: side)? and (in front of|behind) (it|them)\b",
+                  r"\3 \4 and to \1 \2", text)
+    # "behind both of them": behind them.
+    text = re.sub(r"(?i)\b(behind|in front of|left of|right of|next to|beside|on|under|below|above|of) (?:both|all) of "
+                  r"(them|those)\b", r"\1 \2", text)
+    # "the letters side by side": next to each other, in a line.
+    text = re.sub(r"(?i)\bside by side\b(?! with)", "next to each other", text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)

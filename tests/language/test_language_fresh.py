@@ -380,6 +380,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("dinner", "okay so plate on the bottom, then the bowl, and then, uh, the mug goes on top of the bowl",
      [{"pattern": "tower", "objects": [1, 2, 6]}]),
     ("dinner", "bottle's in the way; shift it left of the cup", [{"pattern": "left", "objects": [8], "anchor": 7}]),
+    ("toys", "put all the letters apart from the E side by side", [{"pattern": "line", "objects": [1, 2, 3]}]),
+    ("pantry", "move the cups so the brown box ends up behind both of them",
+     [{"pattern": "front", "objects": [8, 9], "anchor": 10}]),
+    ("blocks", "reposition the yellow block so that the blue block ends up to its left and in front of it",
+     [{"pattern": "right_behind", "objects": [4], "anchor": 2}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
