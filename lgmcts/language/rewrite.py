@@ -432,6 +432,7 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(behind|in front of|left of|right of|next to|beside|on|under|below|above|of) (?:both|all) of "
                   r"(them|those)\b", r"\1 \2", text)
     # "the letters side by side": next to each other, in a line.
+    text = re.sub(r"(?i)\b(?:next to each other|side by side)(?! with)(?=\s*,\s*(?:all )?in a (?:row|line))", "", text)
     text = re.sub(r"(?i)\bside by side\b(?! with)", "next to each other", text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
