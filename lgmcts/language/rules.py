@@ -723,6 +723,8 @@ class _Parser:
             if got is None:
                 continue
             role, end = got
+            if role == "next" and any(m2.start == end and m2.det != "pronoun" for m2 in mentions):
+                continue  # "the purple one goes above the red one": a pair, not a step on the stack before
             roles[m.start] = role
             spans[m.start] = range(m.end, end)
             drop.update(spans[m.start])
