@@ -809,7 +809,7 @@ def _mention_at(
         q = next((s for s in _EXCEPT if _starts(words, end, s)), None)
         if q is None and not nested and m.plural and end + 1 < n and words[end] == ",":
             # "the cans, minus the green one, in a line": the exception set off by commas.
-            q = next((s for s in _EXCEPT if s[0] not in ("but", "without") and _starts(words, end + 1, s)), None)
+            q = next((s for s in _EXCEPT if s not in (("but",), ("without",)) and _starts(words, end + 1, s)), None)
             if q is not None:
                 end += 1
         if q is not None:

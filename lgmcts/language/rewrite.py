@@ -409,8 +409,10 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(stack|pile)( up)? (?:things|stuff)( up)?(?=\s*(?:from\b|:|,|so\b|like\b|as\b|with\b))",
                   r"\1\2\3", text)
     # "the bottles side by side with the white can", "the bowls in a line with the red block": one line of both.
-    text = re.sub(r"(?i)\b(the(?: [a-z]+){1,3}?) (side by side|in a (?:line|row)|lined up)((?: in a (?:line|row))?) with "
-                  r"(the(?: [a-z]+){1,3}?)(?=\s*(?:[,;.!?]|$|and\b))", r"\1 and \4 \2\3", text)
+    text = re.sub(r"(?i)(?:^|(?<=[,;:.!?] )|(?<=\bput )|(?<=\bwant )|(?<=\bplace )|(?<=\bline up )|(?<=\bthe ))"
+                  r"((?:the )?(?:[a-z]+ ){0,2}?[a-z]+) (side by side|in a (?:line|row)|lined up)((?: in a (?:line|row))?) with "
+                  r"(the(?: [a-z]+){1,3}?)(?=\s*(?:[,;.!?]|$|and\b))",
+                  lambda m: f"{m.group(1)} and {m.group(4)} {m.group(2)}{m.group(3)}", text)
     # "the letters, all but the yellow T, in a row"; "the things the same colour as the can, that can included,".
     text = re.sub(r"(?i),\s*all but (the [^,;.!?]+?)\s*,", r" except \1,", text)
     text = re.sub(r"(?i),\s*(?:that|the|this) [a-z]+(?: [a-z]+)? (?:included|too|as well),", ",", text)
@@ -421,7 +423,8 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)(^|[.;!?]\s+)(?:please )?(?:tidy|clean|sort|neaten|organi[sz]e)(?: up)? (the [a-z ]+?),\s*"
                   r"(?=(?:and |then )?(?:put|place|line|stack|arrange|make|set|get|pile|lay)\b)", r"\1\2, ", text)
     # "the plate on the bottom, then the bowl, then the mug on top": a stack described without a word for it.
-    if not re.search(r"(?i)\b(?:stack|stacks|stacked|stacking|tower|towers|pile|piles|piled)\b", text) and re.search(
+    if not re.search(r"(?i)\b(?:stack|stacks|stacked|stacking|tower|towers|pile|piles|piled)\b|on top of (?:each other|one "
+                     r"another|the other)", text) and re.search(
             r"(?i)\b(?:on top|at the top|then|above it|on it|next)\b", text):
         text = re.sub(r"(?i)(^|[.;:!?]\s*|\b(?:so|want|like|need|have)\s+)((?:the )?(?:[a-z]+ ){0,2}?[a-z]+ (?:on|at) the "
                       r"(?:bottom|base)\b)", r"\1build a tower with \2", text, count=1)
@@ -433,7 +436,32 @@ def rewrite(text: str) -> str:
                   r"(them|those)\b", r"\1 \2", text)
     # "the letters side by side": next to each other, in a line.
     text = re.sub(r"(?i)\b(?:next to each other|side by side)(?! with)(?=\s*,\s*(?:all )?in a (?:row|line))", "", text)
-    text = re.sub(r"(?i)\bside by side\b(?! with)", "next to each other", text)
+    text = re.sub(r"(?i)(?<=, )side by side\b(?! with)", "next to each other", text)
+    text = re.sub(r"(?i)\bside by side\b(?! with)", "in a row", text)
+    # "at the far right": the right side ("the far right corner" is the back right).
+    text = re.sub(r"(?i)\b(?:at|on|to|over at|over on) the far (left|right)\b(?! corner| side| of| edge)", r"on the \1 side of the table", text)
+    # "not the cans, not the bowls, just the rest": everything but them.
+    m = re.match(r"(?i)^\s*(?:not|no) (the [a-z ]+?)((?:,\s*(?:and )?(?:not|no) the [a-z ]+?)*),\s*(?:just |only )?(?:the rest|"
+                 r"everything else|all the rest|the others)\b", text)
+    if m is not None:
+        more = re.findall(r"(?i)(?:not|no) (the [a-z ]+?)(?=,|$)", m.group(2) + ",")
+        text = "everything except " + " and ".join([m.group(1), *more]) + text[m.end():]
+    # "the warm coloured blocks, I mean red, orange and yellow": the colours said.
+    hue = r"(?:red|green|blue|yellow|purple|white|black|orange|pink|brown|gr[ae]y)"
+    text = re.sub(rf"(?i)\bthe (?:[a-z-]+ ){{0,2}}?([a-z]+s),\s*(?:i mean|meaning|that is|namely)\s*,?\s*((?:the )?{hue}"
+                  rf"(?:(?:\s*,\s*|\s+and\s+|\s*,\s*and\s+|\s+or\s+)(?:the )?{hue})*)(?: ones)?\b",
+                  lambda k: f"the {k.group(2)} {k.group(1)}", text)
+    # "the letters, the ones that aren't red": the letters that aren't red.
+    text = re.sub(r"(?i)\b(the [a-z]+s),\s*(?:i mean |like )?the ones (that|which|who) ", r"\1 \2 ", text)
+    # "facing east, you know, toward the right": the facing said again.
+    text = re.sub(r"(?i)\b(facing (?:north|south|east|west))\s*,\s*(?:you know,?\s*|like,?\s*|i mean,?\s*)*(?:toward|towards|to|"
+                  r"pointing(?: to| toward| towards)?|so it points) (?:the )?(?:right|left|front|back|me|us|you|the viewer|"
+                  r"away from (?:me|us|you))\b", r"\1", text)
+    # A tag question at the end: ", right?", ", okay?".
+    text = re.sub(r"(?i)\s*,\s*(?:right|okay|ok|yeah|alright)\s*\?\s*$", ".", text)
+    # "that same bowl": the bowl named before.
+    text = re.sub(r"(?i)\bthat same\b", "the same", text)
+    text = re.sub(r"(?i)\bwhichever way (?:up|round|around)\b", "in any order", text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)
@@ -584,7 +612,11 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:supported|held up|carried|borne) by\b", "on", text)
     text = re.sub(r"(?i)\bwhatever(?:'s| is)\b", "everything that is", text)
     # "only the spoon, not the fork, goes behind": the fork is named only to be left out.
-    text = re.sub(r"(?i),\s*(?:but |and )?not (?:the|a|an) (?:[a-z]+ ){0,2}?[a-z]+\s*,", ",", text)
+    # "the bowls, but not the white one, ...": an exception from the group before.
+    text = re.sub(r"(?i),\s*(?:but |and )?not (the|a|an) ((?:[a-z]+ ){0,2}?[a-z]+)\s*,",
+                  lambda m: f" except the {m.group(2)}," if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$",
+                                                                     m.string[: m.start()])
+                  and re.search(r"(?i)\bones?$", m.group(2)) else ",", text)
     # "circle them up", "ring those": the shape's name as the verb.
     text = re.sub(r"(?i)\b(circle|ring|loop)\s+(them|those|these|it|'em|em)(?:\s+up)?\b",
                   lambda m: f"put {'them' if m.group(2).lower() in ('em', chr(39) + 'em') else m.group(2)} in a circle",

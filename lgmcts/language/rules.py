@@ -229,7 +229,10 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])  # "put the mug ... in a ring, as well as lining the cutlery up": two requests
             i += 3
             continue
-        if (w in (",", "and", "plus") and i + 1 < len(words) and (_command_verb(words[i + 1]) or any(
+        nxt_k = i + 1
+        while nxt_k < len(words) - 1 and words[nxt_k] in ("finally", "lastly", "then", "next", "also", "additionally"):
+            nxt_k += 1  # ", and finally put the star below the pan"
+        if (w in (",", "and", "plus") and nxt_k < len(words) and (_command_verb(words[nxt_k]) or any(
                 words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
                 and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
@@ -1579,6 +1582,28 @@ class _Parser:
                 return ()
         return tuple(out)
 
+    def _spelled(self, text: str, letters: set[str]) -> str:
+        """"stack the letters so that, read from the bottom up, they spell RATE": the
+        stack of those letters in that order. Without the direction the reading is
+        open (a word on a stack reads either way), so it is refused."""
+        parts = re.split(r"(?<=[.;!?])\s+", text)
+        for k, sent in enumerate(parts):
+            m = re.search(r"\b(?i:spell|spells|spelling|spelt|reads?|reading|say|says)(?i: out)?(?i: the word)?\s*:?\s*"
+                          r"([A-Z](?:\s+[A-Z]){1,9}|[A-Z]{2,10})\b", sent)
+            if m is None or not re.search(r"(?i)\b(?:stack|stacked|tower|pile|piled)\b", sent):
+                continue
+            word = re.sub(r"\s", "", m.group(1)).upper()
+            if not (len(set(word)) == len(word) and set(word) <= letters):
+                continue
+            up = re.search(r"(?i)\b(?:bottom up|bottom upwards?|from (?:the )?bottom|bottom to top|upwards?|going up)\b", sent)
+            down = re.search(r"(?i)\b(?:top down|top downwards?|from (?:the )?top|top to bottom|downwards?|going down)\b", sent)
+            if bool(up) == bool(down):
+                raise InputError(f"'{sent.strip()}': say whether '{word}' reads from the bottom up or from the top down")
+            order = word if up else word[::-1]
+            named = [f"the letter {c}" for c in order]
+            parts[k] = "stack " + ", ".join(named[:-1]) + f" and {named[-1]}, from the bottom up."
+        return " ".join(parts)
+
     def _articles(self, text: str) -> str:
         """"red can should have the blue bowl behind it", "move blue mug so red mug sits
         on its left": a singular object named without its article, at the start of a
@@ -1776,6 +1801,8 @@ class _Parser:
         self._said = text
         text = self._category_ids(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
+        if letters:
+            text = self._spelled(text, letters)
         if letters:
             # "the T", "the A": a capital letter standing for the letter the scene has.
             text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
