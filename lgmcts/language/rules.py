@@ -1037,6 +1037,8 @@ class _Parser:
                 # "stack the white bowl on the black bowl, but keep the black bowl on top"
                 said = " ".join(w for w in text.split() if w != _ROLE_MARK)
                 raise InputError(f"'{said}' contradicts the stacking order said before it")
+            if params:
+                _add_params(self.state.tower, params, text)  # "..., the red one on top, in the front right corner"
             return []
         if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
                 and self.state.tower_prev in self.state.tower.objects and (roles is None or not any(roles))
@@ -1051,6 +1053,8 @@ class _Parser:
                         tower.remove(x)
                         tower.insert(tower.index(self.state.tower_prev) + 1, x)
                         self.state.tower_prev = x
+            if params:
+                _add_params(self.state.tower, params, text)
             return []
         if roles is not None and not any(self._free_word(w) for w in meaningful):
             phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
@@ -1107,6 +1111,8 @@ class _Parser:
                         tower.objects.remove(x)
                     # Read from the top down, each next object goes below the others.
                     tower.objects.insert(0, x) if self.state.downward else tower.objects.append(x)
+            if params:
+                _add_params(tower, params, text)
             return []
         # Order and emphasis words ("the first one at the bottom", "another")
         # carry no pattern meaning: leave them out of the phrase to match.
@@ -2275,6 +2281,11 @@ class _Parser:
         found = self._find(rest, self.key_vocab)
         if self._unknown_nouns(words, self._find(words)):
             return None  # "put the napkin left of the plate, then set the table": read (and refused) as usual
+        for w, nxt in zip(words, words[1:]):
+            if w in COLOUR_WORDS and w not in self.vocab.color_words and (nxt in self._cat_words
+                                                                         or _stem(nxt) in self._cat_words):
+                # "set the table using the black plate": the scene has no black plate.
+                raise InputError(f"nothing in the scene matches 'the {w} {nxt}' (no {w} object)")
         for m in found:
             if m.names is None and m.det == "all" and m.colors is None and not m.ids and m.text in _EVERYTHING:
                 continue  # "get everything ready for dinner"

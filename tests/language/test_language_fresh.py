@@ -40,10 +40,15 @@ def test_fresh_set_shape():
 #: writers brings three more of each: "a little ring" / "a little circle" with no
 #: size in the label, and lines of two refused by the label; "one long row" is
 #: read as large (as most writers label "a long line"), one label has no size.
+#: One misreading is known and listed here until it is fixed: "stack the blocks,
+#: um, red on the bottom, then blue, then green on top" with six blocks puts the
+#: other three between blue and green (the writer meant the three named; the
+#: roles are said across clauses cut at "then", docs/language.md).
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
          "freshXc-pattern-words-006", "freshYc-attribute-selection-005", "freshM1-pattern-words-005",
          "freshM2-attribute-selection-004", "fresh3b-pattern-words-002", "fresh3e-casual-006",
-         "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011"}
+         "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011",
+         "fresh5a-collective-negation-count-008", "fresh5d-stack-order-001"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -385,6 +390,22 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "front", "objects": [8, 9], "anchor": 10}]),
     ("blocks", "reposition the yellow block so that the blue block ends up to its left and in front of it",
      [{"pattern": "right_behind", "objects": [4], "anchor": 2}]),
+    ("toys", "stack the four letters so that, read from the bottom up, they spell RATE",
+     [{"pattern": "tower", "objects": [2, 1, 3, 4]}]),
+    ("toys", "set the red block on top of the blue block and the yellow one on top of that, and finally put the star "
+             "below the pan", [{"pattern": "tower", "objects": [6, 5, 7]}, {"pattern": "tower", "objects": [10, 12]}]),
+    ("blocks", "the green block should sit underneath the orange block, while the purple one goes above the red one",
+     [{"pattern": "tower", "objects": [3, 5]}, {"pattern": "tower", "objects": [1, 6]}]),
+    ("pantry", "not the cans, not the bowls, just the rest: put those in a line",
+     [{"pattern": "line", "objects": [8, 9, 10]}]),
+    ("blocks", "um, the warm coloured blocks, i mean red, orange and yellow, make a circle with those",
+     [{"pattern": "circle", "objects": [1, 4, 5]}]),
+    ("toys", "the letters, the ones that aren't red, um, line those up", [{"pattern": "line", "objects": [2, 3, 4]}]),
+    ("pantry", "the bowls, but not the white one, uh, stack them up however", [{"pattern": "tower", "objects": [6, 7]}]),
+    ("pantry", "the cans in a line, uh, facing east, you know, toward the right",
+     [{"pattern": "line", "objects": [1, 2, 3, 4], "facing": "east"}]),
+    ("dinner", "stack the plate and then the bowl on it in the front right corner",
+     [{"pattern": "tower", "objects": [1, 2], "region": "bottom right"}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
@@ -439,6 +460,8 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("pantry", "put the red can in a line so it ends up behind the box", "."),
     # a qualifier that is not read does not select the whole group
     ("blocks", "line up all the blocks that, well, look nice", "cannot tell which objects"),
+    ("toys", "stack the letters so they spell TEAR", "reads from the bottom up or from the top down"),
+    ("dinner", "set the table using the black plate", "no black object"),
     # "it" after a chosen object and its reference object
     ("home", "put one of the mugs left of the phone and the other one to the right of it", "'it' is unclear"),
 ])
