@@ -462,6 +462,24 @@ def rewrite(text: str) -> str:
     # "that same bowl": the bowl named before.
     text = re.sub(r"(?i)\bthat same\b", "the same", text)
     text = re.sub(r"(?i)\bwhichever way (?:up|round|around)\b", "in any order", text)
+    # "gather the star, the heart and the pan into a circle": put them there; "gather up X and ...": take them.
+    text = re.sub(r"(?i)\bgather(?: up| together)? (?=[^.;!?]*?\b(?:into|in) (?:a|an|one)\b)", "put ", text)
+    text = re.sub(r"(?i)\bgather(?: up| together)? ", "take ", text)
+    # Fillers between commas after a function word: "the blocks that, uh, aren't red", "as the, uh, the green can".
+    text = re.sub(r"(?i)\b(that|which|the|a|an|are|is|to|of|on|in|with|at|as)\s*,\s*(?:(?:uh|um|er|erm|hmm|like)\s*,?\s*)+",
+                  r"\1 ", text)
+    text = re.sub(r"\b([Tt]he) the\b", r"\1", text)
+    # "the things that match the white can, colour-wise": the same colour as it.
+    text = re.sub(r"(?i)\b(?:that|which) (?:match|matches) (the(?: [a-z]+){1,3}?),?\s*colou?r[- ]?wise\b",
+                  r"with the same colour as \1", text)
+    # "diagonally in front of the bowl, on the left", "behind the can, off to the right", "in front of the
+    # bowl but a bit to the left, like diagonally": one diagonal.
+    text = re.sub(r"(?i),?\s*\b(?:like |sort of |kind of )?diagonally\b(?=\s*[,.;!?]|\s*$)", "", text)
+    text = re.sub(r"(?i)\b(in front of|behind) (the(?: [a-z]+){1,3}?),?\s*(?:but\s+)?(?:a bit |slightly |just |a little )?"
+                  r"(?:on|off to|to|over to|towards|toward) the (left|right)\b(?! of| side of the table)",
+                  r"\1 \2 and to its \3", text)
+    # "on the right side of the table, halfway back": the middle row, which a side alone already means.
+    text = re.sub(r"(?i),?\s*\bhalfway (?:back|up the table|down the table)\b", "", text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)
