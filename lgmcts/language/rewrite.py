@@ -177,7 +177,12 @@ def _purposes(text: str) -> str:
     the blue mug ends up on its left" is a goal)."""
     text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else "", text)
     text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else m.group(1), text)
-    return _REASON_BEFORE.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else m.group(1), text)
+    # Kept where the request after it says "them" / "it": its subject may be what they mean ("the cans are
+    # everywhere, so put them in a row").
+    return _REASON_BEFORE.sub(
+        lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) or re.search(
+            r"(?i)\b(?:it|its|them|they|those|these|'em)\b", re.split(r"[.;!?]", m.string[m.end():])[0]) else m.group(1),
+        text)
 
 
 def _corrected(text: str, relations_only: bool = False) -> str:

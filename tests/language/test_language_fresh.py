@@ -304,6 +304,7 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("blocks", "red on blue, and green left of yellow",
      [{"pattern": "tower", "objects": [2, 1]}, {"pattern": "left", "objects": [3], "anchor": 4}]),
     # reasons given with a request, headings
+    ("pantry", "the cans are everywhere, so put them in a row", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
     ("pantry", "I'm going to sort the shopping later, so for now just stack the cans",
      [{"pattern": "tower", "objects": [1, 2, 3, 4]}]),
     ("home", "put the cans other than the white one in a line so I can read their expiry dates",
