@@ -1613,7 +1613,8 @@ class _Parser:
     def _articles(self, text: str) -> str:
         """"red can should have the blue bowl behind it", "move blue mug so red mug sits
         on its left": a singular object named without its article, at the start of a
-        sentence or after a verb or "so", is read as if "the" were said."""
+        sentence or right after a command verb, is read as if "the" were said ("can"
+        and "a" only after a colour)."""
         colours = _HUES | set(self.vocab.color_words)
         verbs = "|".join(sorted(_COMMAND_VERBS))
 
