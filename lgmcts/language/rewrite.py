@@ -485,6 +485,15 @@ def rewrite(text: str) -> str:
                   r"\1 \2 and to its \3", text)
     # "on the right side of the table, halfway back": the middle row, which a side alone already means.
     text = re.sub(r"(?i),?\s*\bhalfway (?:back|up the table|down the table)\b", "", text)
+    # "build a stack where the red block is at the bottom ...": the stack with those roles.
+    text = re.sub(r"(?i)\b(stack|tower|pile) (?:where|in which|such that|so that) (?=the\b)", r"\1 with ", text)
+    text = re.sub(r"(?i)\bup top\b", "on top", text)
+    # "from top to bottom it's purple, orange, yellow": the list itself.
+    text = re.sub(r"(?i)\b(from (?:top to bottom|bottom to top)),? (?:it's|it is|they're|they are|they go|it goes|"
+                  r"we have|you have) ", r"\1: ", text)
+    # "last thing, ...", "one more thing:": a heading.
+    text = re.sub(r"(?i)(^|[,.;!?]\s*)(?:and )?(?:one )?(?:last|final|first|one more|another|next) thing\s*[,:]\s*", r"\1",
+                  text)
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)

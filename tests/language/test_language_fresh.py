@@ -415,6 +415,14 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "left_front", "objects": [6], "anchor": 8}]),
     ("toys", "line the letters up on the right side of the table, halfway back, facing away from me",
      [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "right", "facing": "north"}]),
+    ("blocks", "build a stack where the red block is at the bottom and the blue block is at the top, with the green "
+               "block in between", [{"pattern": "tower", "objects": [1, 3, 2]}]),
+    ("blocks", "make a tower, uh, yellow block at the base, green block next, and, um, the red block up top",
+     [{"pattern": "tower", "objects": [4, 3, 1]}]),
+    ("blocks", "build me a tower, uh, from top to bottom it's purple, orange, yellow",
+     [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    ("blocks", "alright, uh, last thing, the two bowls, black one on the bottom, white one on it, cheers",
+     [{"pattern": "tower", "objects": [8, 7]}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
 ])
