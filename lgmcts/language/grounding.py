@@ -892,11 +892,8 @@ def _shared_exception(words: tuple[str, ...], mentions: list[Mention]) -> list[M
     them when the last reference shares the list's determiner or a comma sets
     the exception off; otherwise it belongs to the last reference alone."""
     out = list(mentions)
-    k = 0
-    while k < len(out):
-        j = k
-        while j + 1 < len(out) and _coordinated(words, out[j], out[j + 1]):
-            j += 1
+    for run in _coordinated_runs(words, mentions):
+        k, j = run[0], run[-1]
         last = out[j]
         bare = [e for e in last.excluding if e.names is last.names and e.names is not None and e.det == "all"
                 and not e.excluding]
@@ -908,13 +905,23 @@ def _shared_exception(words: tuple[str, ...], mentions: list[Mention]) -> list[M
             for t in range(k, j):
                 m = out[t]
                 out[t] = replace(m, excluding=tuple(replace(e, names=m.names) for e in bare))
-        k = j + 1
     return out
 
 
 def _coordinated(words: tuple[str, ...], a: Mention, b: Mention) -> bool:
     between = words[a.end : b.start]
     return bool(between) and all(w in _COORD for w in between)
+
+
+def _coordinated_runs(words: tuple[str, ...], mentions: list[Mention]) -> list[list[int]]:
+    """Indices of ``mentions`` grouped into runs joined only by "and", commas, "or" ("the cans and bowls")."""
+    groups: list[list[int]] = []
+    for k, m in enumerate(mentions):
+        if groups and _coordinated(words, mentions[groups[-1][-1]], m):
+            groups[-1].append(k)
+        else:
+            groups.append([k])
+    return groups
 
 
 def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Mention],
@@ -932,12 +939,7 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
     one" with no such neighbour keeps any category. An elided mention with
     no noun in its list names nothing.
     """
-    groups: list[list[int]] = []
-    for k, m in enumerate(mentions):
-        if groups and _coordinated(words, mentions[groups[-1][-1]], m):
-            groups[-1].append(k)
-        else:
-            groups.append([k])
+    groups = _coordinated_runs(words, mentions)
     out = list(mentions)
     for g in groups:
         for pos, k in enumerate(g):

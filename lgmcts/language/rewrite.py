@@ -98,8 +98,7 @@ def _remade(text: str) -> str:
     if m is None:
         return text
     new, before, after = m.group(1), text[: m.start()], text[m.end():]
-    shape = _SHAPE_PHRASE.fullmatch(new) or re.fullmatch(r"(?i)(?:a|an|one) (circle|ring|loop|rectangle|square|line|row|"
-                                                          r"tower|stack|pile)", new)
+    shape = _SHAPE_PHRASE.fullmatch(new)
     olds = list(_SHAPE_PHRASE.finditer(before))
     if shape is not None and olds:
         o = olds[-1]

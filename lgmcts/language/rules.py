@@ -72,6 +72,9 @@ _COMMAND_VERBS = frozenset(
      "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
      "use", "find", "stick", "pop", "plonk", "shove", "chuck"}
 )
+#: Where an object said without its article may start: a sentence's start or a command verb.
+_ARTICLE_AT = re.compile(rf"(?i)((?:^|[.;!?:]|\b(?:{'|'.join(sorted(_COMMAND_VERBS))}))\s+|^)((?:[a-z]+ ){{0,2}}[a-z]+)\b"
+                         rf"(?=(?:\s+[a-z]+)?)")
 #: Verbs of a selection clause: it names objects for the next clause ("select
 #: objects that are red. circle"; "take the red mug and put it ...").
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch",
@@ -444,6 +447,19 @@ _PREDICATES = frozenset({"is", "are", "goes", "go", "sits", "sit", "should", "mu
 _EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", "things", "stuff"})
 _TABLE_WORDS = frozenset({"table", "tabletop", "workspace", "desk", "dinner", "setting", "place", "side", "way",
                           "end", "rest"})
+def _sentences(words: tuple[str, ...], ends: tuple[str, ...]) -> list[tuple[str, ...]]:
+    """``words`` cut after each of ``ends``, each sentence keeping its end mark."""
+    out: list[tuple[str, ...]] = []
+    start = 0
+    for k, w in enumerate(words):
+        if w in ends:
+            out.append(words[start : k + 1])
+            start = k + 1
+    if start < len(words):
+        out.append(words[start:])
+    return out
+
+
 def _stacking(w: str) -> bool:
     """Whether ``w`` (in any inflection: "stacked", "piling") speaks of a stack."""
     return any(f in ("stack", "tower", "pile", "foundation", "base") for f in _forms(w))
@@ -1616,7 +1632,6 @@ class _Parser:
         sentence or right after a command verb, is read as if "the" were said ("can"
         and "a" only after a colour)."""
         colours = _HUES | set(self.vocab.color_words)
-        verbs = "|".join(sorted(_COMMAND_VERBS))
 
         def one(m: re.Match) -> str:
             ws = m.group(2).split()
@@ -1629,7 +1644,7 @@ class _Parser:
                     k + 1 == len(ws) or ws[k + 1].lower() not in self._cat_words):
                 return f"{m.group(1)}the {m.group(2)}"
             return m.group(0)
-        return re.sub(rf"(?i)((?:^|[.;!?:]|\b(?:{verbs}))\s+|^)((?:[a-z]+ ){{0,2}}[a-z]+)\b(?=(?:\s+[a-z]+)?)", one, text)
+        return _ARTICLE_AT.sub(one, text)
 
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":
@@ -2034,14 +2049,7 @@ class _Parser:
         white bowl is in my way.", "i keep knocking the blue mug over.", "the mug,
         the cup and the bottle are crowding the plate.") ask for nothing: they are
         dropped, and what their subject names is what a later "it"/"them" means."""
-        sentences: list[tuple[str, ...]] = []
-        start = 0
-        for k, w in enumerate(words):
-            if w in (".", "!", "?", ";"):
-                sentences.append(words[start : k + 1])
-                start = k + 1
-        if start < len(words):
-            sentences.append(words[start:])
+        sentences = _sentences(words, (".", "!", "?", ";"))
         dropped = 0
         for sent in sentences[:-1]:
             if not self._describes(sent[:-1]):
@@ -2056,14 +2064,7 @@ class _Parser:
         "Remember, a square is just a rectangle with equal sides.", "Go!") ask for
         nothing: they are dropped. A sentence with a place, size, facing or order
         word ("At the front.", "Any order.") is kept."""
-        sentences: list[tuple[str, ...]] = []
-        start = 0
-        for k, w in enumerate(words):
-            if w in (".", "!", "?"):
-                sentences.append(words[start : k + 1])
-                start = k + 1
-        if start < len(words):
-            sentences.append(words[start:])
+        sentences = _sentences(words, (".", "!", "?"))
         if len(sentences) < 2:
             return words
         out: list[str] = []
