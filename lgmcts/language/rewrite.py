@@ -258,6 +258,10 @@ _NOUN_BEFORE = frozenset("""the a an this that each every one any red green blue
     brown gray grey silver golden other""".split())
 
 #: Words that ask for an arrangement or a relation.
+#: Words that speak of heights, which make a "column" a stack.
+_HEIGHTS = re.compile(r"(?i)\b(?:tall|taller|topmost|bottommost|stack(?:ed|ing)?|pil(?:e|ed|ing)|on top|at the (?:top|bottom|base)(?! left| right| cent| middle| of the table| edge| side| corner| end| half)|"
+                      r"on the bottom|as the base|(?:bottom|top) to (?:top|bottom)|under(?:neath)?|beneath|above|below|"
+                      r"highest|lowest|high|vertical)\b")
 _ASKS = re.compile(r"(?i)\b(?:in front|behind|left|right|on top|onto|on|under|underneath|below|beneath|above|circle|"
                    r"ring|loop|row|line|lined|stack|stacked|pile|piled|tower|rectangle|square|facing|pointing)\b")
 
@@ -496,6 +500,9 @@ def rewrite(text: str) -> str:
     # "piled into one tall column": a stack.
     text = re.sub(r"(?i)\b(stack|stacked|stacking|pile|piled|piling)( up)? into (?:one |a )?(?:single |tall |neat |straight )*"
                   r"(?:column|pillar)\b", r"\1\2 into a tower", text)
+    # Any other "column" is a line ("the letters in a column", "column, front to back"), unless the command
+    # speaks of heights ("one column of blocks: purple topmost ... yellow at the base").
+    text = re.sub(r"(?i)\bcolumn\b", lambda m: "tower" if _HEIGHTS.search(text) else "line", text)
     # "arrange it so the phone sits on the can's left", "make it so ...": the state asked for.
     text = re.sub(r"(?i)(^|[.;!?]\s+)(?:please |could you |can you )?(?:arrange|make|set|fix|have|get) (?:it|things) so(?: that)?\s+",
                   r"\1", text)

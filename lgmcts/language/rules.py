@@ -132,6 +132,8 @@ class _Pending:
     pose: tuple[float, float, float] | None
     clause: str
     params: dict = field(default_factory=dict)
+    #: A tower's objects whose place in it was said ("red at the bottom", "then blue"): their roles.
+    said: dict = field(default_factory=dict)
 
 
 #: Words of pattern keys too general to name one arrangement by themselves.
@@ -1046,7 +1048,11 @@ class _Parser:
                     # "white at the bottom, then green": one without a role goes right above the one before.
                     after = tower.index(prev) + 1 if prev in tower else len(tower)
                     at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
+                    below = prev if prev is not None else self.state.tower_prev
+                    if r == "under_it" and below in tower:
+                        at = tower.index(below)  # "purple on top, orange under it": right below the one before
                     tower.insert(at, x)
+                    self.state.tower.said[x] = r
                     prev = x
             self.state.tower_prev = prev if roles[-1] != "top" else None
             if self.state.tower_fixed and [x for x in tower if x in before] != before:
@@ -1068,6 +1074,7 @@ class _Parser:
                     if x != self.state.tower_prev and x in tower:
                         tower.remove(x)
                         tower.insert(tower.index(self.state.tower_prev) + 1, x)
+                        self.state.tower.said[x] = "next"
                         self.state.tower_prev = x
             if params:
                 _add_params(self.state.tower, params, text)
@@ -1330,7 +1337,13 @@ class _Parser:
             given = set(roles.values())
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
-            objs = sorted(objs, key=lambda x: rank[roles.get(x)])
+            objs = sorted(objs, key=lambda x: rank.get(roles.get(x), 3))
+            said = list(roles)
+            for k, x in enumerate(said):
+                if roles[x] == "under_it" and k and said[k - 1] in objs and x in objs:
+                    # "purple on top, orange under it": right below the object named before it.
+                    objs.remove(x)
+                    objs.insert(objs.index(said[k - 1]), x)
             placed = [x for x in objs if roles.get(x) in ("bottom", "next")]
             self.state.tower_prev = placed[-1] if placed and pattern == "tower" else None
         n = sum(x.k if isinstance(x, Choice) else 1 for x in objs)
@@ -1350,6 +1363,8 @@ class _Parser:
         self.state.last_tower = pattern == "tower"
         self.state.last_anchor = None
         out = _Pending(pattern, objs, None, pose, text)
+        if roles and pattern == "tower":
+            out.said = {x: r for x, r in roles.items() if x in objs}
         self.state.tower = out if pattern == "tower" else None
         self.state.tower_fixed = pattern == "tower" and vertical is not None  # "A on B": that order is said
         self.state.last_shape = out
@@ -2342,6 +2357,12 @@ class _Parser:
                 if n < self.infos["tower"].min_objects:
                     raise InputError(f"'{p.clause}': a tower needs at least {self.infos['tower'].min_objects} objects, "
                                      f"this names {n} object{'' if n == 1 else 's'}")
+            said = set(p.said.values())
+            if (p.pattern == "tower" and len(p.said) >= 3 and {"bottom", "top"} <= said
+                    and not _WHOLE_GROUP.search(p.clause)):
+                # "stack the blocks: purple on top, orange under it, yellow at the base": a stack
+                # described from its bottom to its top is those objects, not the whole group.
+                p.objects[:] = [x for x in p.objects if not isinstance(x, int) or x in p.said]
             # "stack three blocks: red at the bottom, then blue, then green": the
             # blocks named one by one are the three.
             if p.pattern == "tower":
@@ -2620,6 +2641,9 @@ _ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle",
 
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"
+#: Words that ask for a whole group or a number of it ("all the blocks", "the six blocks").
+_WHOLE_GROUP = re.compile(r"\b(?:all|every|each|both|whole|entire|everything|\d+|two|three|four|five|six|seven|eight|"
+                          r"nine|ten)\b")
 
 #: Words that keep a comma-separated part of a command from being an aside.
 _ASIDE_KEEP = frozenset({"order", "first", "then", "last", "next", "top", "bottom", "base", "middle", "between",

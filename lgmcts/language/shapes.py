@@ -346,6 +346,10 @@ _ROLES = tuple(
             ("finishes it off on the top", "top"), ("finishes it off", "top"), ("tops it off", "top"),
             ("caps it off", "top"), ("caps it", "top"), ("crowns it", "top"), ("on top of them all", "top"),
             ("on top of everything", "top"), ("above them all", "top"), ("above everything", "top"),
+            ("under it", "under_it"), ("below it", "under_it"), ("beneath it", "under_it"),
+            ("underneath it", "under_it"), ("under that", "under_it"), ("below that", "under_it"),
+            ("right under it", "under_it"), ("just under it", "under_it"), ("right below it", "under_it"),
+            ("just below it", "under_it"), ("directly under it", "under_it"), ("directly below it", "under_it"),
         ],
         key=lambda pr: -len(pr[0].split()),
     )

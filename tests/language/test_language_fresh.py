@@ -40,15 +40,11 @@ def test_fresh_set_shape():
 #: writers brings three more of each: "a little ring" / "a little circle" with no
 #: size in the label, and lines of two refused by the label; "one long row" is
 #: read as large (as most writers label "a long line"), one label has no size.
-#: One misreading is known and listed here until it is fixed: "stack the blocks,
-#: um, red on the bottom, then blue, then green on top" with six blocks puts the
-#: other three between blue and green (the writer meant the three named; the
-#: roles are said across clauses cut at "then", docs/language.md).
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
          "freshXc-pattern-words-006", "freshYc-attribute-selection-005", "freshM1-pattern-words-005",
          "freshM2-attribute-selection-004", "fresh3b-pattern-words-002", "fresh3e-casual-006",
          "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011",
-         "fresh5a-collective-negation-count-008", "fresh5d-stack-order-001"}
+         "fresh5a-collective-negation-count-008"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -425,6 +421,22 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [8, 7]}]),
     ("toys", "every block piled into one tall column, and I don't care about the order",
      [{"pattern": "tower", "objects": [5, 6, 7, 8]}]),
+    # "column" with no word of heights is a line; with one, a stack
+    ("toys", "Arrange the letters in a column.", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "put the cans in a column at the top left of the table",
+     [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "top left"}]),
+    ("blocks", "one column: purple topmost, orange under it, and yellow at the base",
+     [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    # "under it" in a list of roles: right below the object named before it, across clauses too
+    ("blocks", "stack the purple, orange and yellow blocks: purple at the top, orange below it, yellow below that",
+     [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    # a stack described from its base to its top is the objects named, unless the whole group is asked for
+    ("blocks", "stack the blocks, um, red on the bottom, then blue, then green on top",
+     [{"pattern": "tower", "objects": [1, 2, 3]}]),
+    ("blocks", "stack the blocks: purple on top, orange under it, and yellow at the base",
+     [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    ("blocks", "stack all the blocks, red on the bottom, then blue, then green on top",
+     [{"pattern": "tower", "objects": [1, 2, 4, 5, 6, 3]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
@@ -470,7 +482,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("blocks", "Stack the white bowl on the black bowl, but keep the black bowl on top.", "contradicts"),
     ("home", "put the red mug behind the plate and put the white bottle to the left of it", "'it' is unclear"),
     # a group named with nothing read for it; cutlery on both sides at once
-    ("toys", "Letters: column, front to back; blocks: square.", "no goal read from the command uses them"),
+    ("toys", "Letters: neat; blocks: square.", "no goal read from the command uses them"),
     ("dinner", "Set the table, but the cutlery has to be on the left AND on the right of the plate at the same time!",
      "contradiction"),
     # a reason that names a place is not dropped ("so it ends up behind the box" asks for a goal)
