@@ -322,6 +322,11 @@ def rewrite(text: str) -> str:
     edge" -> "the centre / left edge of the table", and the reading orders of
     a stack ("from the top down", "bottom up") -> "from top to bottom" /
     "from bottom to top"."""
+    text = re.sub(r"(?i)\b(?:right|just|directly) (next to|beside|alongside)\b", r"\1", text)  # "right next to": next to
+    # A trailing-off "..." is a pause inside the sentence before a lowercase word ("in front of... no,
+    # behind"), and a sentence end before a capital.
+    text = re.sub(r"\s*(?:\.{3,}|\u2026)\s*(?=[a-z])", ", ", text)
+    text = re.sub(r"\s*(?:\.{3,}|\u2026)", ". ", text).strip()
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

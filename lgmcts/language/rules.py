@@ -1301,6 +1301,12 @@ class _Parser:
             if flat[0] and flat[0] == later and sum(len(f) for f in flat[1:]) == len(later):
                 # "stack the cups, yellow on orange": the set first, then its order.
                 sels, gaps = sels[1:], gaps[1:] if gaps else gaps
+            elif isinstance(sels[0][0], list) and len(sels[0]) > 1:
+                # The same where the list ran the set and the first of its members together.
+                head = {x for x in sels[0][0] if isinstance(x, int)}
+                rest = [x for g in [sels[0][1:], *sels[1:]] for y in g for x in (y if isinstance(y, list) else [y])]
+                if len(head) > 1 and all(isinstance(x, int) for x in rest) and sorted(rest) == sorted(head):
+                    sels = [sels[0][1:], *sels[1:]]
         order = list(range(len(sels)))
         if info.ordered and len(sels) > 1:
             if vertical == "on" or (vertical is None and any(

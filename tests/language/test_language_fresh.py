@@ -437,6 +437,14 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [4, 5, 6]}]),
     ("blocks", "stack all the blocks, red on the bottom, then blue, then green on top",
      [{"pattern": "tower", "objects": [1, 2, 4, 5, 6, 3]}]),
+    # a set, then its order in the same list
+    ("pantry", "stack the cups, yellow on orange", [{"pattern": "tower", "objects": [9, 8]}]),
+    ("blocks", "take the bowls and stack them, white on black", [{"pattern": "tower", "objects": [8, 7]}]),
+    # "..." as a pause before a repair; "right next to"
+    ("blocks", "Move the white bowl in front of... no, behind the black bowl.",
+     [{"pattern": "behind", "objects": [7], "anchor": 8}]),
+    ("toys", "the letter E winds up right next to the star, on its left",
+     [{"pattern": "left", "objects": [4], "anchor": 10}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
