@@ -39,7 +39,7 @@ from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
-from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, normalise, stack_roles, take_params
+from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -2499,6 +2499,9 @@ def _add_params(shape: _Pending, params: dict, text: str) -> None:
     """Give ``shape`` the place, size or facing said after it; a second, different one is refused."""
     for key, val in params.items():
         if shape.params.get(key, val) != val:
+            if key == "region" and merged_region(shape.params[key], val) is not None:
+                params = {**params, key: merged_region(shape.params[key], val)}
+                continue
             raise InputError(f"'{text}': two different {key}s for one arrangement")
     shape.params.update(params)
 
@@ -2583,6 +2586,9 @@ def _same_goals_merged(goals: list[dict]) -> list[dict]:
             continue
         for key in _PARAM_KEYS:
             if key in g:
+                if key == "region" and key in same and merged_region(same[key], g[key]) is not None:
+                    same[key] = merged_region(same[key], g[key])
+                    continue
                 if same.get(key, g[key]) != g[key]:
                     raise InputError(f"two different {key}s ({same[key]}, {g[key]}) for one {g['pattern']}")
                 same[key] = g[key]

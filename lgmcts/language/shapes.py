@@ -146,6 +146,20 @@ _FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned
                          "heading"})
 
 
+def merged_region(old: str, new: str) -> str | None:
+    """Two places said for one arrangement as one region, or None where they differ: a row band and a
+    column band are the region where they cross ("along the front edge, on the left" -> "bottom left")."""
+    if old == new:
+        return old
+    a, b = old.split(), new.split()
+    if len(a) == 1 and len(b) == 1:
+        rows = [x for x in (a[0], b[0]) if x in ("top", "middle", "bottom")]
+        cols = [x for x in (a[0], b[0]) if x in ("left", "center", "right")]
+        if len(rows) == 1 and len(cols) == 1:
+            return f"{rows[0]} {cols[0]}"
+    return None
+
+
 def _region_run(words: tuple[str, ...], i: int, stack: bool = False):
     """A region phrase starting at ``i``: ``(row, col, end)`` or None."""
     n = len(words)
@@ -249,8 +263,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             seen_pattern, blocked = True, False
         if w in _FACE_VERBS:
             j = i + 1
-            while j < n and words[j] in ("to", "the", "toward", "towards", "in", "direction", "of"):
-                j += 1
+            while j < n and (words[j] in ("to", "the", "toward", "towards", "in", "direction", "of", ",", "like")
+                             or words[j] in _FACE_VERBS):
+                j += 1  # "facing, uh, north": the pause left by a filler
             if j < n and words[j] in FACINGS:
                 put("facing", FACINGS[words[j]], " ".join(words))
                 i = j + 1
@@ -296,6 +311,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
                 # "at the back of the table, in the middle": the middle of that band.
                 r, c = None, "center"
+            if row == "middle" and col == "center" and r is None and c in ("left", "right"):
+                # "in the middle of the table, on the right side": halfway along that side.
+                col = None
             if c == "center" and r in (None, "middle") and col not in (None, "center") and row is None:
                 # "on the left side, in the middle": halfway along that side.
                 r, c = "middle", None
