@@ -445,6 +445,13 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "behind", "objects": [7], "anchor": 8}]),
     ("toys", "the letter E winds up right next to the star, on its left",
      [{"pattern": "left", "objects": [4], "anchor": 10}]),
+    # a row band and a column band said apart are where they cross; fillers around "facing"
+    ("blocks", "Line the blocks up along the front edge, on the left.",
+     [{"pattern": "line", "objects": [1, 2, 3, 4, 5, 6], "region": "bottom left"}]),
+    ("toys", "put the letters in a large ring in the middle of the table, on the right side",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "large", "region": "middle right"}]),
+    ("dinner", "the cutlery, uh, a line facing, um, north, like pointing away from me",
+     [{"pattern": "line", "objects": [3, 4, 5], "facing": "north"}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
