@@ -1040,9 +1040,14 @@ class _Parser:
                 tower.reverse()
                 self.state.downward = True
                 pairs = [(mm, r) for mm, r in pairs if r is not None]
-            for mm, r in pairs:
+            for mm, role in pairs:
                 got = self._select(mm)
-                for x in got if isinstance(got, list) else [got]:
+                xs = got if isinstance(got, list) else [got]
+                # "..., then green, red at the bottom": a role after a list is the last one's.
+                listed = len(xs) > 1 and role in ("bottom", "top", "under_it") and any(
+                    w in ("and", ",") for w in mm.text.split())
+                for k, x in enumerate(xs):
+                    r = None if listed and k < len(xs) - 1 else role
                     if x in tower:
                         tower.remove(x)
                     # "white at the bottom, then green": one without a role goes right above the one before.
@@ -1730,7 +1735,8 @@ class _Parser:
             j += 1
         rest = clause[j:]
         if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them") or (
-                rest[0].isalpha() and rest[0] not in STOPWORDS and rest[1:2] in (("it",), ("them",))))
+                rest[0].isalpha() and rest[0] not in STOPWORDS and rest[0] not in _GOAL_WORDS
+                and rest[0] not in _NOT_JOIN and rest[1:2] in (("it",), ("them",))))
                 and any(w in ("it", "them", "they") for w in rest[:6])):
             return [clause[start : start + ms[0].end], rest]
         if (clause[start + ms[0].end : start + ms[0].end + 1] == (",",) and rest

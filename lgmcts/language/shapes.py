@@ -296,7 +296,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                              or words[j] in SIZES):
                 j += 1
             if j < n and pattern_nouns(words[j]):
-                put("size", SIZES[w], " ".join(words))
+                if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
+                    put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
                 i += 1
                 continue
         got = _region_run(words, i, stack)
@@ -364,6 +365,9 @@ _ROLES = tuple(
             ("finishes it off on the top", "top"), ("finishes it off", "top"), ("tops it off", "top"),
             ("caps it off", "top"), ("caps it", "top"), ("crowns it", "top"), ("on top of them all", "top"),
             ("on top of everything", "top"), ("above them all", "top"), ("above everything", "top"),
+            ("last of all", "top"), ("next", "next"), ("after that", "next"), ("next up", "next"),
+            ("directly above it", "next_it"), ("right above it", "next_it"), ("just above it", "next_it"),
+            ("directly on top of it", "next_it"), ("right on top of it", "next_it"), ("directly on it", "next_it"),
             ("under it", "under_it"), ("below it", "under_it"), ("beneath it", "under_it"),
             ("underneath it", "under_it"), ("under that", "under_it"), ("below that", "under_it"),
             ("right under it", "under_it"), ("just under it", "under_it"), ("right below it", "under_it"),
@@ -414,6 +418,8 @@ def stack_roles(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
                 return None  # "the bowl underneath the plate": a relation; "with the bowl underneath": the bottom
             if seq in (("top",), ("bottom",)) and words[j + 1 : j + 2] in (("to",), ("down",), ("up",)):
                 return None  # "top to bottom", "bottom up": an order of the list, not a role
+            if seq == ("next",) and words[j + 1 : j + 2] in (("to",), ("door",)):
+                return None  # "next to": a relation
             end = j + len(seq)
             if words[end : end + 1] == ("of",) and words[end + 1 : end + 2] not in _OF_STACK \
                     and words[end + 1 : end + 3] not in _OF_STACK:

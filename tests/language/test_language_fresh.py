@@ -33,18 +33,19 @@ def test_fresh_set_shape():
 #: "every red object in a line" keeps exact colours (the peers' word "objects",
 #: as in StructFormer's and LGMCTS-D's templates); the writer counted the red
 #: swirl heart in.
-#: "put them round in a circle, like a little loop" and "a little tower" are read
-#: as small (most writers label "a little row", "a tight little circle" so; these
-#: labels have no size); a line of the two objects of a colour is a line here (the
+#: "put them round in a circle, like a little loop" is read as small (most
+#: writers label "a little row", "a tight little circle" so; this label has no
+#: size; "a little tower" has none, as a tower has no size); a line of the two objects of a colour is a line here (the
 #: labelling conventions asked for three objects in a line). The third round of
 #: writers brings three more of each: "a little ring" / "a little circle" with no
 #: size in the label, and lines of two refused by the label; "one long row" is
 #: read as large (as most writers label "a long line"), one label has no size.
+#: The sixth round adds one more line of two refused by its label.
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
-         "freshXc-pattern-words-006", "freshYc-attribute-selection-005", "freshM1-pattern-words-005",
+         "freshXc-pattern-words-006", "freshYc-attribute-selection-005",
          "freshM2-attribute-selection-004", "fresh3b-pattern-words-002", "fresh3e-casual-006",
          "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011",
-         "fresh5a-collective-negation-count-008"}
+         "fresh5a-collective-negation-count-008", "fresh6a-attribute-selection-006"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -452,6 +453,16 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "large", "region": "middle right"}]),
     ("dinner", "the cutlery, uh, a line facing, um, north, like pointing away from me",
      [{"pattern": "line", "objects": [3, 4, 5], "facing": "north"}]),
+    # more words for a step of a stack; a role after a list is its last item's; a tower has no size
+    ("pantry", "Stack the cans with the green one at the bottom, the blue one next, then the white, and the red at "
+               "the very top.", [{"pattern": "tower", "objects": [4, 3, 2, 1]}]),
+    ("blocks", "Stack red, then blue, then green, red at the bottom.", [{"pattern": "tower", "objects": [1, 2, 3]}]),
+    ("blocks", "The red block on the bottom, the yellow block directly above it, and the blue block at the very top.",
+     [{"pattern": "tower", "objects": [1, 4, 2]}]),
+    ("pantry", "Stack the blue can on the bottom, the white bowl above it, and the orange cup at the very top.",
+     [{"pattern": "tower", "objects": [3, 5, 9]}]),
+    ("dinner", "Build a little tower: plate first, then the bowl, then the mug on top.",
+     [{"pattern": "tower", "objects": [1, 2, 6]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
