@@ -682,8 +682,10 @@ class _Parser:
 
     def _match(self, phrase: str, text: str, allowed: frozenset[str]):
         dirs = {_DIR_WORDS[w] for w in re.findall(r"[a-z]+", phrase.lower()) if w in _DIR_WORDS}
-        if any((-x, -y) in dirs for x, y in dirs):
-            # "both in front of and behind the bowl"
+        up, down = r"(?:on top of|on|onto|above|over|atop|upon)", r"(?:under|underneath|below|beneath)"
+        if any((-x, -y) in dirs for x, y in dirs) or re.search(
+                rf"\b(?:{up} and {down}|{down} and {up})\b", phrase.lower()):
+            # "both in front of and behind the bowl", "on top of and underneath the green one"
             raise InputError(f"contradiction: '{phrase}' names opposite directions")
         m = self.matcher.match(phrase, allowed=allowed)
         if not m and m.reason != "no arrangement is named" and "'" not in m.reason:

@@ -497,6 +497,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "put none of the bowls in a line", "selects nothing"),
     ("dinner", "set the table for two people", "one plate each"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
+    ("blocks", "Put the blue block on top of and underneath the green one.", "contradiction"),
     ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
     ("blocks", "make two lines of the blocks", "named one by one"),
     # a phrase no goal carries is refused, not dropped
