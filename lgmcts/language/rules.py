@@ -1056,6 +1056,8 @@ class _Parser:
                     after = tower.index(prev) + 1 if prev in tower else len(tower)
                     at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
                     below = prev if prev is not None else self.state.tower_prev
+                    if below is None and self.state.tower.said:
+                        below = list(self.state.tower.said)[-1]  # "orange on top. green underneath it"
                     if r == "under_it" and below in tower:
                         at = tower.index(below)  # "purple on top, orange under it": right below the one before
                     tower.insert(at, x)

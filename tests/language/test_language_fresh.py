@@ -463,6 +463,9 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [3, 5, 9]}]),
     ("dinner", "Build a little tower: plate first, then the bowl, then the mug on top.",
      [{"pattern": "tower", "objects": [1, 2, 6]}]),
+    # "them" at the very start of a stack with roles: the objects named next; "holding them up"
+    ("blocks", "Stack them so the orange block is on top, the green block is underneath it, and the red block is "
+               "holding both of them up.", [{"pattern": "tower", "objects": [1, 3, 5]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
