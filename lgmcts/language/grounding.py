@@ -829,6 +829,10 @@ def _mention_at(
                 e2 = _bare_excluded(vocab, words, kk, m) or _mention_at(vocab, words, kk, pattern_words, nested=True)
                 if e2 is None:
                     break
+                if m.names and e2.names and not set(m.names) & set(e2.names):
+                    # "the bowls except the white one, and the phone": nothing of another kind is left out
+                    # of the bowls, so the phone is one more object of the list.
+                    break
                 k = kk
             if not excl:
                 if q[0] in ("but", "without"):

@@ -225,6 +225,7 @@ _FRAMES = (
     r"\bthe (?:end |final |main )?(?:idea|plan|aim|point|target|result)(?: here)? is(?: that| to have| for)?\s+",
     r"\bwhat i'?m after is\s+|\bwhat i am after is\s+|\bwhat i want is\s+",
     r"\bwhen i (?:come back|get back|return)(?:,)?\s*",
+    r"^\s*(?:can|could|may|might) (?:we|i) (?:please )?(?:have|get|see)\s+(?=the\b|all\b|every|both\b|any\b)",
     r"^\s*(?:okay |ok |so |right )*(?:two|three|four|a couple of|a few) (?:things|jobs|tasks)\b[^.:;!?]*[.:;!?]\s*",
     r"\b(?:tidy[- ]up|clean[- ]up) time\s*[!.]?\s*",
     r"\b(?:the kids?|my (?:son|daughter|wife|husband|partner|kids?|boss|mum|mom|dad)|grandma|grandpa) "
@@ -234,9 +235,20 @@ _OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|h
                      r"basically|like)\b[,\s]*|right\b\s*(?:,|so\b)[,\s]*)+")
 
 
+_WISH = re.compile(r"(?i)\bit(?:'d| would) be (?:really |so |very |just )?(?:great|nice|lovely|good|helpful|awesome|ideal|"
+                   r"perfect|wonderful|brilliant|cool|fantastic|super)(?: (if|to have|to see|to get))?\s+")
+
+
 def unframe(text: str) -> str:
     """The request without the words that frame it as an end state or open it in speech."""
     text = _OPENER.sub("", text)
+    # "It would be great if the cans were in a row", "it'd be nice to have the bowls stacked": the state wished for.
+    m = _WISH.search(text)
+    if m is not None:
+        rest = text[m.end():]
+        if m.group(1) == "if":
+            rest = re.sub(r"(?i)\s+\b(?:were|was|stood|sat|could be|would be|could go|went)\b", "", rest, count=1)
+        text = text[: m.start()] + rest
     for f in _FRAMES:
         text = re.sub(f"(?i){f}", "", text)
     text = re.sub(r"(?i)\bthe (?:final|finished|end) (stack|tower|pile|line|row|circle|ring|rectangle|square|arrangement)\b",
@@ -250,7 +262,8 @@ def unframe(text: str) -> str:
 #: Verb stems of "-ing" forms and their base forms.
 _BASE = {"put": "put", "plac": "place", "stack": "stack", "pil": "pile", "arrang": "arrange", "lin": "line",
          "mov": "move", "sett": "set", "lay": "lay", "build": "build", "form": "form", "position": "position",
-         "align": "align", "group": "group"}
+         "align": "align", "group": "group", "mak": "make", "gett": "get", "bring": "bring", "shift": "shift",
+         "slid": "slide", "organis": "organise", "organiz": "organize", "gather": "gather", "sort": "sort"}
 
 
 #: Words after which "can" is the object ("the white can go ...", "one can goes ...").
@@ -556,6 +569,10 @@ def rewrite(text: str) -> str:
     # "do them in a round shape".
     text = re.sub(r"(?i)\byou(?:'re| are) (put|plac|stack|pil|arrang|lin|mov|sett|lay|build|form|position|align|group)"
                   r"(?:t|e)?ing\b", lambda m: _BASE.get(m.group(1).lower(), m.group(1)), text)
+    # "would you mind laying the table?", "how about setting a place ...": the request itself.
+    text = re.sub(r"(?i)\b(mind|about|try|consider) (put|plac|stack|pil|arrang|lin|mov|sett|lay|build|form|position|align|"
+                  r"group|mak|gett|bring|shift|slid|organis|organiz|gather|sort)(?:t|e)?ing\b",
+                  lambda m: f"{m.group(1)} {_BASE.get(m.group(2).lower(), m.group(2))}", text)
     text = re.sub(r"(?i)\b(everything|anything|all|things|objects) what\b", r"\1 that", text)
     text = re.sub(r"(?i)(^|[,.;:!?]\s*)do (them|it|those|these|the [a-z]+)\b(?= (?:in|into|as|like) )", r"\1put \2", text)
     # "in that order from the bottom": the list before it is bottom first.

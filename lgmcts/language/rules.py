@@ -376,6 +376,12 @@ def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozense
     ]
 
 
+#: Words of a stacking step said between two objects ("on top of", "under").
+_VERTICAL_REL = frozenset({"on", "onto", "atop", "upon", "above", "over", "under", "underneath", "below", "beneath",
+                           "top"})
+_STACK_GAP = _VERTICAL_REL | {"of", "the", "a", "right", "directly", "just"}
+
+
 def _regions(words: tuple[str, ...], gaps: list[tuple[int, int]], vocab: frozenset[str], rel_words: frozenset[str]):
     """Pattern phrases of a clause as (gap index, positions) runs.
 
@@ -384,8 +390,16 @@ def _regions(words: tuple[str, ...], gaps: list[tuple[int, int]], vocab: frozens
     by "and" ("to the left and behind") stay one run.
     """
     out = []
+    # "... in a circle and the red block on the green block": beside an arrangement, a stacking step
+    # between two objects is a phrase of its own.
+    free = any(_pattern_positions(words, lo, hi, vocab) and not any(words[k] in rel_words for k in range(lo, hi))
+               for lo, hi in gaps)
     for g, (lo, hi) in enumerate(gaps):
         pos = _pattern_positions(words, lo, hi, vocab)
+        if not pos and free and 0 < g < len(gaps) - 1 and hi > lo and all(
+                w in _STACK_GAP for w in words[lo:hi]) and any(w in _VERTICAL_REL for w in words[lo:hi]) \
+                and words[hi] not in ("everything", "it", "them", "all", "each", "that", "this", "those"):
+            pos = [k for k in range(lo, hi) if words[k] in _VERTICAL_REL]
         if not pos:
             continue
         run = [pos[0]]
@@ -2297,7 +2311,7 @@ class _Parser:
             return None
         seq = next(s for s in self._DINNER if words[k : k + len(s)] == s)
         many = re.search(r"\bfor (two|three|four|five|six|[2-9]|\d\d+)(?: (people|persons|guests|diners|of us)|"
-                         r"(?= , | \.|$)| ,? like (?:two|three|four|five|six|\d+))\b|\b(?:two|three|four|five|six|[2-9]) "
+                         r"(?= , | \.| \?| !|$)| ,? like (?:two|three|four|five|six|\d+))\b|\b(?:two|three|four|five|six|[2-9]) "
                          r"(?:full )?place settings\b", " ".join(words))
         if many is not None:
             raise InputError(f"'{' '.join(words)}': a setting {many.group(0)} needs one plate each; "

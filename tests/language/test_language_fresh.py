@@ -466,6 +466,22 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     # "them" at the very start of a stack with roles: the objects named next; "holding them up"
     ("blocks", "Stack them so the orange block is on top, the green block is underneath it, and the red block is "
                "holding both of them up.", [{"pattern": "tower", "objects": [1, 3, 5]}]),
+    # wishes and questions that ask for a state; a gerund after "would you mind" / "how about"
+    ("pantry", "Can we have the cans lined up?", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("home", "It would be great to have the white things in a large rectangle.",
+     [{"pattern": "rectangle", "objects": [3, 6, 8, 13], "size": "large"}]),
+    ("home", "It would be great if the objects the same colour as the green can stood in a row with the phone.",
+     [{"pattern": "line", "objects": [4, 14, 15]}]),
+    ("dinner", "Would you mind laying the table?",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
+    # an exception leaves out only objects of its group: the phone is one more object of the line
+    ("home", "put the bowls except the white one, and the phone, in a line", [{"pattern": "line", "objects": [4, 5, 15]}]),
+    ("home", "It would be great if every bowl apart from the white one were in a line with the phone.",
+     [{"pattern": "line", "objects": [4, 5, 15]}]),
+    # a stacking step beside an arrangement in one clause
+    ("toys", "Would you put the letters in a circle and the red block on the green block?",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
 ])
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
@@ -499,6 +515,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "stack everything purple", "no purple object"),
     ("home", "put none of the bowls in a line", "selects nothing"),
     ("dinner", "set the table for two people", "one plate each"),
+    ("dinner", "Would you set the table for two?", "one plate each"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
     ("blocks", "Put the blue block on top of and underneath the green one.", "contradiction"),
     ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
