@@ -195,7 +195,8 @@ class Circle(BasePattern):
     name = "circle"
     keys = (
         "circle", "in a circle", "into a circle", "ring", "in a ring", "circular", "round shape", "around a circle",
-        "circle formation", "arrange in a circle", "form a circle", "on a circle", "loop", "hoop", "O shape",
+        "circle formation", "arrange in a circle", "form a circle", "on a circle", "loop", "hoop", "O shape", "wreath",
+        "halo",
     )
     description = "the objects' centres lie evenly spaced on one circle"
     min_objects = 3

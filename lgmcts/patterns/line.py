@@ -121,7 +121,7 @@ class Line(BasePattern):
     name = "line"
     keys = (
         "line", "in a line", "into a line", "in a row", "row", "straight line", "line up", "align in a line",
-        "arrange in a line", "put in a row", "single file", "queue", "in a straight row",
+        "arrange in a line", "put in a row", "single file", "queue", "in a straight row", "strip", "straight strip",
     )
     description = "the objects' centres lie on one straight line"
     min_objects = 2

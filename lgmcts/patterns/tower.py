@@ -28,7 +28,7 @@ class Tower(BasePattern):
     name = "tower"
     keys = (
         "tower", "stack", "stack up", "pile", "pile up", "on top of each other", "build a tower", "stack them",
-        "one on top of another", "vertical stack", "heap", "heap up",
+        "one on top of another", "vertical stack", "heap", "heap up", "layer", "layer them",
     )
     description = "objects[0] stands on the table and each next object rests centred on the previous one"
     min_objects = 2
