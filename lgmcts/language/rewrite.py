@@ -343,6 +343,8 @@ def rewrite(text: str) -> str:
     # "Stack them so that the blue block is at the top, ...": at the very start, "them" are the objects named next.
     text = re.sub(r"(?i)^\s*((?:please |now |ok(?:ay)?,? )?(?:stack|pile|tower) )them (up )?(?=(?:so that|so|such that|with|"
                   r"in the order|in this order)\b)", r"\1\2", text)
+    # "a big round of the blocks": a circle.
+    text = re.sub(r"(?i)\b(a|one) ((?:[a-z]+ )?)round(?= of\b)", r"\1 \2circle", text)
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

@@ -175,6 +175,8 @@ class _State:
     tower: "_Pending | None" = None
     #: The object a stack role just placed in that tower: "then green" goes right above it.
     tower_prev: int | None = None
+    #: The object a role just put at the top of that tower: "then yellow" goes right below it.
+    tower_down: int | None = None
     #: That tower's order was said by "A on B" / "A under B": a role may not reverse it.
     tower_fixed: bool = False
     #: The last reference selected was a mass ("all the red stuff"): "it" is all of it.
@@ -1078,12 +1080,31 @@ class _Parser:
                     self.state.tower.said[x] = r
                     prev = x
             self.state.tower_prev = prev if roles[-1] != "top" else None
+            # "red highest, then yellow, then blue": after the top, each next one goes right below.
+            self.state.tower_down = prev if roles[-1] == "top" else None
             if self.state.tower_fixed and [x for x in tower if x in before] != before:
                 # "stack the white bowl on the black bowl, but keep the black bowl on top"
                 said = " ".join(w for w in text.split() if w != _ROLE_MARK)
                 raise InputError(f"'{said}' contradicts the stacking order said before it")
             if params:
                 _add_params(self.state.tower, params, text)  # "..., the red one on top, in the front right corner"
+            return []
+        if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
+                and self.state.tower_prev is None and self.state.tower_down in self.state.tower.objects
+                and (roles is None or not any(roles))
+                and all(x in self.state.tower.objects for mm in mentions
+                        for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
+            tower = self.state.tower.objects
+            for mm in mentions:
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    if x != self.state.tower_down and x in tower:
+                        tower.remove(x)
+                        tower.insert(tower.index(self.state.tower_down), x)
+                        self.state.tower.said[x] = "under_it"
+                        self.state.tower_down = x
+            if params:
+                _add_params(self.state.tower, params, text)
             return []
         if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
                 and self.state.tower_prev in self.state.tower.objects and (roles is None or not any(roles))
@@ -2673,7 +2694,7 @@ _DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -
 #: Words of stack roles and orders, which a remark never has.
 _ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle", "summit", "peak", "foundation",
                          "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between",
-                         "finish", "crowning", "layer"})
+                         "finish", "crowning", "layer", "carrying", "supporting", "holding", "capping", "topping"})
 
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"

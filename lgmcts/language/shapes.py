@@ -368,6 +368,8 @@ _ROLES = tuple(
             ("last of all", "top"), ("next", "next"), ("after that", "next"), ("next up", "next"),
             ("directly above it", "next_it"), ("right above it", "next_it"), ("just above it", "next_it"),
             ("directly on top of it", "next_it"), ("right on top of it", "next_it"), ("directly on it", "next_it"),
+            ("down first", "bottom"), ("carrying them all", "bottom"), ("carrying them", "bottom"),
+            ("carrying everything", "bottom"), ("holding everything up", "bottom"),
             ("holding them up", "bottom"), ("holding both of them up", "bottom"), ("holds them up", "bottom"),
             ("holds both of them up", "bottom"), ("supporting them", "bottom"), ("supporting both of them", "bottom"),
             ("supports them", "bottom"), ("supports both of them", "bottom"), ("holding them all up", "bottom"),

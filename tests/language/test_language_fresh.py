@@ -40,12 +40,15 @@ def test_fresh_set_shape():
 #: writers brings three more of each: "a little ring" / "a little circle" with no
 #: size in the label, and lines of two refused by the label; "one long row" is
 #: read as large (as most writers label "a long line"), one label has no size.
-#: The sixth round adds one more line of two refused by its label.
+#: The sixth round adds one more line of two refused by its label, and "a little
+#: wreath" with no size in its label (labels give "little" a size only where the
+#: writer was asked for sizes).
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
          "freshXc-pattern-words-006", "freshYc-attribute-selection-005",
          "freshM2-attribute-selection-004", "fresh3b-pattern-words-002", "fresh3e-casual-006",
          "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011",
-         "fresh5a-collective-negation-count-008", "fresh6a-attribute-selection-006"}
+         "fresh5a-collective-negation-count-008", "fresh6a-attribute-selection-006",
+         "fresh6b-pattern-words-004"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -479,6 +482,15 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("home", "put the bowls except the white one, and the phone, in a line", [{"pattern": "line", "objects": [4, 5, 15]}]),
     ("home", "It would be great if every bowl apart from the white one were in a line with the phone.",
      [{"pattern": "line", "objects": [4, 5, 15]}]),
+    # after the top, "then X" goes right below; "down first" is the base; "a big round of"
+    ("blocks", "Put the purple block down first, the yellow one over it, and the white bowl capping the lot.",
+     [{"pattern": "tower", "objects": [6, 4, 7]}]),
+    ("toys", "stack the four blocks: red highest, then yellow, then blue, then green",
+     [{"pattern": "tower", "objects": [8, 6, 7, 5]}]),
+    ("toys", "Make a big round of the four blocks right in the middle of the table.",
+     [{"pattern": "circle", "objects": [5, 6, 7, 8], "region": "middle center", "size": "large"}]),
+    ("pantry", "Make a little wreath out of all four cans.",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "small"}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
