@@ -345,6 +345,18 @@ def rewrite(text: str) -> str:
                   r"in the order|in this order)\b)", r"\1\2", text)
     # "a big round of the blocks": a circle.
     text = re.sub(r"(?i)\b(a|one) ((?:[a-z]+ )?)round(?= of\b)", r"\1 \2circle", text)
+    # A place setting said as an end state: "everything should be laid out for a meal", "dinner should be set".
+    modal = r"(?:should|must|needs to|need to|ought to|has to|have to|will|is to)\s+be"
+    text = re.sub(rf"(?i)\b(?:everything|things|it all|all of it|the table|the place|the setting)\s+{modal}\s+(?:all )?"
+                  r"(?:laid out|set out|set up|set|laid|ready|prepared)\s+for\s+(?:a |the )?(?:meal|dinner|lunch|supper|"
+                  r"breakfast|eating)\b", "set the table", text)
+    text = re.sub(rf"(?i)\b(?:dinner|lunch|supper|breakfast|the meal)\s+{modal}\s+(?:laid out|set out|set up|set|laid|"
+                  r"ready|served)\b", "set the table", text)
+    text = re.sub(r"(?i)^\s*by the time (?:i|we|you|they|he|she|the [a-z]+) [a-z]+(?: [a-z]+)?,\s*", "", text)
+    text = re.sub(r"(?i)\b(should|must|will) (?:also|too|then) (be|end up)\b", r"\1 \2", text)
+    # "the cup should end up on the bowl": the state, as "should be".
+    text = re.sub(r"(?i)\b(should|must|will|needs to|need to|has to|have to|ought to) (?:end up|wind up|finish up)\b",
+                  r"\1 be", text)
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

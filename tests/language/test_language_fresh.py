@@ -491,6 +491,15 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "circle", "objects": [5, 6, 7, 8], "region": "middle center", "size": "large"}]),
     ("pantry", "Make a little wreath out of all four cans.",
      [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "small"}]),
+    # a place setting said as an end state; "should end up"
+    ("dinner", "Everything should be laid out for a meal, with the green cup in front of the plate.",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}, {"pattern": "front", "objects": [7], "anchor": 1}]),
+    ("dinner", "By the time I sit down, dinner should be laid out.",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [3, 4, 5]},
+      {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
+    ("dinner", "The cup should end up on top of the bowl and the knife to the right of the spoon.",
+     [{"pattern": "tower", "objects": [2, 7]}, {"pattern": "right", "objects": [4], "anchor": 5}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
