@@ -357,6 +357,11 @@ def rewrite(text: str) -> str:
     # "the cup should end up on the bowl": the state, as "should be".
     text = re.sub(r"(?i)\b(should|must|will|needs to|need to|has to|have to|ought to) (?:end up|wind up|finish up)\b",
                   r"\1 be", text)
+    # "put the bowl on the plate with the cutlery in a line to its left": "with" after a relation starts a
+    # second goal (not one line of the bowl and the cutlery).
+    text = re.sub(r"(?i)\b((?:on|onto|on top of|behind|in front of|left of|right of|under|underneath|beneath|below|above) "
+                  r"the(?: [a-z]+){1,3}?),? with (the(?! latter| former)(?: [a-z]+){1,3}?) (?=(?:in a|in one|lined|to the|to its|"
+                  r"on the (?:left|right)|on its|behind|in front|beside|next to|left of|right of)\b)", r"\1, and \2 ", text)
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

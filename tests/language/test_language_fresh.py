@@ -500,6 +500,10 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
       {"pattern": "left", "objects": [3, 4, 5], "anchor": 1}]),
     ("dinner", "The cup should end up on top of the bowl and the knife to the right of the spoon.",
      [{"pattern": "tower", "objects": [2, 7]}, {"pattern": "right", "objects": [4], "anchor": 5}]),
+    # "with" after a relation starts a second goal (the bowl is not one of the line)
+    ("home", "put the white bowl on the plate with the silverware in a line to the left of the plate.",
+     [{"pattern": "tower", "objects": [8, 3]}, {"pattern": "line", "objects": [9, 10, 11]},
+      {"pattern": "left", "objects": [9, 10, 11], "anchor": 8}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
