@@ -759,6 +759,9 @@ def rewrite(text: str) -> str:
     # "starting with the green block, ..., finishing with the blue one": the bottom and the top.
     text = re.sub(r"(?i)\b(?:starting|beginning) with (the (?:[a-z]+ ){0,3}?[a-z]+)(?= *(?:,|;|then\b|and\b|$))",
                   r"\1 at the bottom", text)
+    # "pile up the blocks starting with yellow, then green": a bare colour the same way.
+    text = re.sub(r"(?i),?\s*\b(?:starting|beginning) with (red|green|blue|yellow|purple|white|black|orange|pink|brown|"
+                  r"gr[ae]y|silver)(?= *(?:,|;|then\b|and\b))", r", \1 at the bottom", text)
     text = re.sub(r"(?i)\b(?:finishing|ending|topping it off|finishing off) with (the (?:[a-z]+ ){0,3}?[a-z]+?)"
                   r"(?: at the top| on top| on the top)?(?= *(?:[,.;!?]|$))", r"\1 on top", text)
     # "A on B, which itself sits on C" -> "A on B, and B on C".

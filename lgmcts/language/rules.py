@@ -1755,7 +1755,8 @@ class _Parser:
             return True
         if (st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT or w in _ASIDE_KEEP:
             return True
-        return w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+        return (w in _COMMAND_VERBS or w in SIZES or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+                or w in ("stacked", "piled", "lined"))
 
     def _topic_split(self, clause: tuple[str, ...]) -> list[tuple[str, ...]]:
         """"the bowls, stack them with the white one at the bottom", "the green can

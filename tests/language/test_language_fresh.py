@@ -504,6 +504,10 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("home", "put the white bowl on the plate with the silverware in a line to the left of the plate.",
      [{"pattern": "tower", "objects": [8, 3]}, {"pattern": "line", "objects": [9, 10, 11]},
       {"pattern": "left", "objects": [9, 10, 11], "anchor": 8}]),
+    # "starting with yellow" after a group; "stacked" set off by commas
+    ("toys", "Pile up the blocks starting with yellow, then green, then red, and blue at the top.",
+     [{"pattern": "tower", "objects": [7, 8, 5, 6]}]),
+    ("home", "the two bottles, stacked, whichever way up", [{"pattern": "tower", "objects": [6, 7]}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
