@@ -785,6 +785,12 @@ def _mention_at(
                 of_count=locals().get("of_count"), loose=loose)
     if non is not None:
         m = replace(m, filters=(("value", "ne", Mention(i, end, "non " + " ".join(non), "all", True, None, non, non)),))
+    if (names is None and words[end - 1] in ("piece", "pieces", "item", "items", "bit", "bits") and end + 1 < n
+            and words[end] == "of" and words[end + 1].isalpha()
+            and words[end + 1] not in _OF_OK and _COLOUR_FORMS.get(words[end + 1], words[end + 1]) not in vocab.color_words
+            and vocab.longest(vocab.categories, words, end + 1) is None):
+        # "every piece of fruit": a kind the scene does not have (not every object).
+        raise InputError(f"'{' '.join(words[i:end + 2])}' names nothing in the scene")
     # Qualifiers.
     while end < n:
         if everything is not None and m.colors is None and not m.filters:
@@ -1009,6 +1015,9 @@ _NOT_NOUN = frozenset({"to", "in", "into", "on", "of", "at", "behind", "and", "a
 
 
 #: Generic nouns of everyday speech (not the peers' "objects").
+#: Words after "pieces of" that do not name a kind ("pieces of the set", "items of the same colour").
+_OF_OK = frozenset({"the", "a", "an", "all", "each", "every", "these", "those", "them", "it", "my", "your", "our", "one",
+                    "two", "three", "four", "five", "six", "same", "any", "its", "their", "this", "that", "colour", "color"})
 _LOOSE_NOUNS = frozenset({"things", "thing", "items", "item", "stuff", "ones", "pieces", "piece"})
 
 

@@ -362,6 +362,11 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b((?:on|onto|on top of|behind|in front of|left of|right of|under|underneath|beneath|below|above) "
                   r"the(?: [a-z]+){1,3}?),? with (the(?! latter| former)(?: [a-z]+){1,3}?) (?=(?:in a|in one|lined|to the|to its|"
                   r"on the (?:left|right)|on its|behind|in front|beside|next to|left of|right of)\b)", r"\1, and \2 ", text)
+    # "every piece of cutlery", "the three pieces of silverware": the cutlery (a piece is not any object).
+    text = re.sub(r"(?i)\b(?:every|each|any) (?:single )?(?:piece|item|bit) of (?:the )?(cutlery|silverware|flatware|crockery|"
+                  r"tableware)\b", r"all the \1", text)
+    text = re.sub(r"(?i)\b(the|all|all the|all of the|both) ((?:two|three|four|five|six|\d) )?(?:pieces|items|bits) of (?:the )?"
+                  r"(cutlery|silverware|flatware|crockery|tableware)\b", r"\1 \2\3", text)
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

@@ -508,6 +508,10 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("toys", "Pile up the blocks starting with yellow, then green, then red, and blue at the top.",
      [{"pattern": "tower", "objects": [7, 8, 5, 6]}]),
     ("home", "the two bottles, stacked, whichever way up", [{"pattern": "tower", "objects": [6, 7]}]),
+    # "every piece of cutlery" is the cutlery, not every object
+    ("dinner", "put every piece of cutlery in a line", [{"pattern": "line", "objects": [3, 4, 5]}]),
+    ("dinner", "Put the three pieces of cutlery and the mug in a square.",
+     [{"pattern": "rectangle", "objects": [3, 4, 5, 6]}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
@@ -545,6 +549,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "put none of the bowls in a line", "selects nothing"),
     ("dinner", "set the table for two people", "one plate each"),
     ("dinner", "Would you set the table for two?", "one plate each"),
+    ("dinner", "put every piece of fruit in a line", "'every piece of fruit' names nothing"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
     ("blocks", "Put the blue block on top of and underneath the green one.", "contradiction"),
     ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
