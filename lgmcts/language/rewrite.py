@@ -414,9 +414,17 @@ def rewrite(text: str) -> str:
                   r"(?:it|they|the (?:[a-z]+ ){0,2}[a-z]+) (?:faces|face|is facing|are facing|points|point)(?: towards?)? "
                   r"(?:the )?(north|south|east|west)\b", r" facing \1", text)
     # "farther from the viewer than the blue bowl": behind it.
-    text = re.sub(r"(?i)\b(?:farther|further|more distant) (?:away )?from (?:the viewer|the camera|the observer|the front)"
-                  r" than\b", "behind", text)
-    text = re.sub(r"(?i)\b(?:closer|nearer) to (?:the viewer|the camera|the observer|the front) than\b", "in front of", text)
+    viewer = r"(?:the viewer|the camera|the observer|the front|me|us|you|the robot)"
+    text = re.sub(rf"(?i)\b(?:farther|further|more distant) (?:away )?from {viewer} than\b", "behind", text)
+    text = re.sub(rf"(?i)\b(?:closer|nearer) to {viewer} than\b", "in front of", text)
+    # "... nearer to me than it is": the comparison's own verb.
+    text = re.sub(r"(?i)\b(in front of|behind) (it|them|the(?: [a-z]+){1,3}?) (?:is|are|does|do)(?=\s*(?:[.,;!?]|$))",
+                  r"\1 \2", text)
+    # "to the right of the purple block, further back": that side and behind it (a diagonal).
+    text = re.sub(r"(?i)\b(to the (?:left|right) of the(?: [a-z]+){1,3}?),? (?:and )?(?:a bit |slightly |a little |just )?"
+                  r"(?:further|farther) (back|forward|away|towards me|toward me)\b",
+                  lambda m: m.group(1) + (" and behind it" if m.group(2).lower() in ("back", "away") else " and in front of it"),
+                  text)
     # "in a linear formation", "a circular arrangement".
     text = re.sub(r"(?i)\b(?:an? )?(linear|circular|rectangular) (?:formation|arrangement|configuration|array|layout)\b",
                   lambda k: {"linear": "a line", "circular": "a circle", "rectangular": "a rectangle"}[k.group(1).lower()],

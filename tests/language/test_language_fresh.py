@@ -512,6 +512,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("dinner", "put every piece of cutlery in a line", [{"pattern": "line", "objects": [3, 4, 5]}]),
     ("dinner", "Put the three pieces of cutlery and the mug in a square.",
      [{"pattern": "rectangle", "objects": [3, 4, 5, 6]}]),
+    # nearer to the viewer than; "further back" after a side
+    ("toys", "Move the heart so it is closer to me than the granite bowl.",
+     [{"pattern": "front", "objects": [11], "anchor": 9}]),
+    ("blocks", "The green block belongs to the right of the purple block, further back.",
+     [{"pattern": "right_behind", "objects": [3], "anchor": 6}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
