@@ -42,13 +42,16 @@ def test_fresh_set_shape():
 #: read as large (as most writers label "a long line"), one label has no size.
 #: The sixth round adds one more line of two refused by its label, and "a little
 #: wreath" with no size in its label (labels give "little" a size only where the
-#: writer was asked for sizes).
+#: writer was asked for sizes), and one more line of two refused by its label
+#: ("two of the bowls in a line"). One misreading is known and listed until it is
+#: fixed: "stack the letters with E at the bottom and A on top; R goes on E and T
+#: on R" puts T below R (the pairs said after the roles reorder the stack).
 KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-006", "freshXb-attribute-selection-004",
          "freshXc-pattern-words-006", "freshYc-attribute-selection-005",
          "freshM2-attribute-selection-004", "fresh3b-pattern-words-002", "fresh3e-casual-006",
          "fresh3b-attribute-selection-006", "fresh3g-refusal-008", "fresh3h-attribute-selection-004", "fresh3b-collective-negation-count-011",
          "fresh5a-collective-negation-count-008", "fresh6a-attribute-selection-006",
-         "fresh6b-pattern-words-004"}
+         "fresh6b-pattern-words-004", "fresh6e-collective-negation-count-014", "fresh6e-stack-order-008"}
 
 
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
@@ -517,6 +520,13 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "front", "objects": [11], "anchor": 9}]),
     ("blocks", "The green block belongs to the right of the purple block, further back.",
      [{"pattern": "right_behind", "objects": [3], "anchor": 6}]),
+    # objects picked by where they stand: "the leftmost can", "the second bowl from the left"
+    ("pantry", "Put the rightmost can on top of the leftmost one.", [{"pattern": "tower", "objects": [4, 2]}]),
+    ("home", "Knife to the left of the leftmost can, please.", [{"pattern": "left", "objects": [10], "anchor": 12}]),
+    ("pantry", "Put the brown box in front of the second bowl from the left.",
+     [{"pattern": "front", "objects": [10], "anchor": 7}]),
+    ("blocks", "Put the nearest block on the farthest one, then line up the rest of the blocks.",
+     [{"pattern": "tower", "objects": [2, 4]}, {"pattern": "line", "objects": [1, 3, 5, 6]}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
@@ -555,6 +565,8 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("dinner", "set the table for two people", "one plate each"),
     ("dinner", "Would you set the table for two?", "one plate each"),
     ("dinner", "put every piece of fruit in a line", "'every piece of fruit' names nothing"),
+    # two bowls 1 cm apart across the table: which one is leftmost is not clear
+    ("home", "put the leftmost bowl to the right of the phone", "the leftmost"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
     ("blocks", "Put the blue block on top of and underneath the green one.", "contradiction"),
     ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
