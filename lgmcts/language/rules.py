@@ -373,11 +373,13 @@ def _table_place(words: tuple[str, ...], k: int) -> bool:
 def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozenset[str]) -> list[int]:
     return [
         k for k in range(lo, hi)
-        if words[k] not in STOPWORDS and words[k] not in FILLERS and _stem(words[k]) in vocab
+        if words[k] not in STOPWORDS and words[k] not in FILLERS
+        and (_stem(words[k]) in vocab or (words[k] in ("stacked", "piled") and _stem(words[k]) not in vocab))
         and _stem(words[k]) not in _NOT_PATTERN and not _table_place(words, k)
     ]
 
 
+_TOWER_STEMS = frozenset({"stack", "stacked", "pile", "piled", "tower", "heap", "column", "layer"})
 #: Words of a stacking step said between two objects ("on top of", "under").
 _VERTICAL_REL = frozenset({"on", "onto", "atop", "upon", "above", "over", "under", "underneath", "below", "beneath",
                            "top"})
@@ -394,8 +396,8 @@ def _regions(words: tuple[str, ...], gaps: list[tuple[int, int]], vocab: frozens
     out = []
     # "... in a circle and the red block on the green block": beside an arrangement, a stacking step
     # between two objects is a phrase of its own.
-    free = any(_pattern_positions(words, lo, hi, vocab) and not any(words[k] in rel_words for k in range(lo, hi))
-               for lo, hi in gaps)
+    free = any(any(_stem(words[k]) not in _TOWER_STEMS for k in _pattern_positions(words, lo, hi, vocab))
+               and not any(words[k] in rel_words for k in range(lo, hi)) for lo, hi in gaps)
     for g, (lo, hi) in enumerate(gaps):
         pos = _pattern_positions(words, lo, hi, vocab)
         if not pos and free and 0 < g < len(gaps) - 1 and hi > lo and all(

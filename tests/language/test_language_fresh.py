@@ -527,6 +527,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "front", "objects": [10], "anchor": 7}]),
     ("blocks", "Put the nearest block on the farthest one, then line up the rest of the blocks.",
      [{"pattern": "tower", "objects": [2, 4]}, {"pattern": "line", "objects": [1, 3, 5, 6]}]),
+    # "stacked" after its objects, then a second goal
+    ("pantry", "I'd like the bowls stacked in any order and the cups to the left of the brown box.",
+     [{"pattern": "tower", "objects": [5, 6, 7]}, {"pattern": "left", "objects": [8, 9], "anchor": 10}]),
+    ("pantry", "Hey, end result should be the cups stacked, yellow one on the orange one. Cheers!",
+     [{"pattern": "tower", "objects": [9, 8]}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
