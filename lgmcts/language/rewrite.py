@@ -367,6 +367,14 @@ def rewrite(text: str) -> str:
                   r"tableware)\b", r"all the \1", text)
     text = re.sub(r"(?i)\b(the|all|all the|all of the|both) ((?:two|three|four|five|six|\d) )?(?:pieces|items|bits) of (?:the )?"
                   r"(cutlery|silverware|flatware|crockery|tableware)\b", r"\1 \2\3", text)
+    # "crown the orange block with the purple one", "use the pan to support the bowl": the second on the first.
+    text = re.sub(r"(?i)\b(?:crown|cap|top off|top) (the(?: [a-z]+){1,3}?) with (the(?: [a-z]+){1,3}?)(?=\s*(?:[,.;!?]|$|and\b))",
+                  r"put \2 on \1", text)
+    text = re.sub(r"(?i)\buse (the(?: [a-z]+){1,3}?) to (?:support|hold up|carry|hold) (the(?: [a-z]+){1,3}?)"
+                  r"(?=\s*(?:[,.;!?]|$|and\b))", r"put \2 on \1", text)
+    # "stand them one on the next", "lay them out one beside the next": a stack, a row.
+    text = re.sub(r"(?i)\bone (?:on|atop|upon|on top of) (?:the next|the next one)\b", "on top of each other", text)
+    text = re.sub(r"(?i)\bone (?:beside|next to|after|behind) the next(?: one)?\b", "in a row", text)
     # "it doesn't matter which one goes at the bottom", "either one can go on top": the order is open.
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"

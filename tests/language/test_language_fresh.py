@@ -532,6 +532,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "tower", "objects": [5, 6, 7]}, {"pattern": "left", "objects": [8, 9], "anchor": 10}]),
     ("pantry", "Hey, end result should be the cups stacked, yellow one on the orange one. Cheers!",
      [{"pattern": "tower", "objects": [9, 8]}]),
+    # "crown X with Y", "use X to support Y", "one on the next", "one beside the next"
+    ("blocks", "Crown the orange block with the purple one.", [{"pattern": "tower", "objects": [5, 6]}]),
+    ("toys", "Use the tiger pan to support the granite bowl.", [{"pattern": "tower", "objects": [12, 9]}]),
+    ("dinner", "Lay all the cutlery out one beside the next in a straight strip.",
+     [{"pattern": "line", "objects": [3, 4, 5]}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
