@@ -1482,6 +1482,8 @@ class _Parser:
                 return [self._chain]
             if m.text == "it" and self._implicit is not None:
                 return [self._implicit[1]]
+            if m.text == "it" and pair is not None and getattr(self, "_it_beside", False):
+                return [pair[1]]
             if m.text == "it" and pair is not None and all(isinstance(x, (int, Choice)) for x in pair):
                 # "put the cup left of the plate and the bottle behind it": the cup or the plate? ("one of
                 # the mugs left of the phone and the other one right of it": the chosen mug or the phone?)
@@ -2073,6 +2075,10 @@ class _Parser:
                         and own[0].det == "pronoun" and own[0].text == "it" and any(w in _DIR_WORDS for w in sub)
                         and not any(w in _VERT_WORDS - {"to", "of"} for w in sub)):
                     self._implicit = pair
+                # "put the phone left of the mug and the knife to its right": "it" as the reference object of
+                # a side or depth is the reference object of the relation before (the mug).
+                self._it_beside = (pair is not None and isinstance(pair[1], int) and any(w in _DIR_WORDS for w in sub)
+                                   and not any(w in _VERT_WORDS - {"to", "of"} for w in sub))
                 self._first = None
                 if not self.state.last and own and own[0].det == "the" and not own[0].plural and any(
                         m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(

@@ -445,11 +445,15 @@ RELABELLED: dict[str, dict] = {
     "grounding-040": {"goals": [_g("line", [6, 13, 15])]},
     # "into the bowl": one object inside the other is a stack (as the free-form writers label it).
     "grounding-045": {"goals": [_g("tower", [9, 12])]},
+    "grounding-023": {"goals": [_g("front", [1], 4), _g("behind", [2], 4)]},
 }
 
-#: Cases that became refusals: "it" after "A in front of B" may be A or B, and
-#: a wrong goal is worse than asking back (read as A, the object placed, before).
-REFUSED: dict[str, str] = {"grounding-023": "is unclear"}
+#: Cases that became refusals (none left). "it" after "A in front of B" was read
+#: as A, then refused as unclear; it is now B, the reference object, as every
+#: free-form writer of the fresh sets reads it where a side or depth follows
+#: ("the phone left of the mug and the knife to its right": eight dev labels say
+#: the mug, four accept either, none says the phone or refuses).
+REFUSED: dict[str, str] = {}
 
 
 def main() -> None:

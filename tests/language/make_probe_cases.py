@@ -136,7 +136,8 @@ cases=[
 ("refusal","blocks","put the red block on the blue block and the blue block on the red block",R),
 ("refusal","pantry","put the white can left of the box and right of the box",R),
 ("refusal","home","take the red mug and the blue bowl and put it behind the plate",R),
-("refusal","dinner","put the cup left of the plate and the bottle behind it",R),
+# "it" as the reference object of a side after "A left of B" is B (as the fresh sets' writers read it).
+("refusal","dinner","put the cup left of the plate and the bottle behind it",[{"pattern":"left","objects":[7],"anchor":1},{"pattern":"behind","objects":[8],"anchor":1}]),
 ("refusal","blocks","stack the red block on the blue block and put the green block left of it",R),
 ("refusal","pantry","move the red can and the white can, then put them behind it",R),
 ("refusal","home","pick up the red can and the blue mug, and put it in front of the phone",R),

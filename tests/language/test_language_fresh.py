@@ -537,6 +537,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("toys", "Use the tiger pan to support the granite bowl.", [{"pattern": "tower", "objects": [12, 9]}]),
     ("dinner", "Lay all the cutlery out one beside the next in a straight strip.",
      [{"pattern": "line", "objects": [3, 4, 5]}]),
+    # "it" as the reference object of a side or depth after "A left of B" is B
+    ("home", "Put the phone to the left of the red mug and the knife to its right.",
+     [{"pattern": "left", "objects": [15], "anchor": 1}, {"pattern": "right", "objects": [10], "anchor": 1}]),
+    ("home", "put one of the mugs left of the phone and the other one to the right of it",
+     [{"pattern": "left", "objects": [1], "anchor": 15}, {"pattern": "right", "objects": [2], "anchor": 15}]),
     # a stacking step beside an arrangement in one clause
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
@@ -579,7 +584,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "put the leftmost bowl to the right of the phone", "the leftmost"),
     ("pantry", "put the red can both in front of and behind the white bowl", "contradiction"),
     ("blocks", "Put the blue block on top of and underneath the green one.", "contradiction"),
-    ("dinner", "put the cup left of the plate and the bottle behind it", "'it' is unclear"),
+    ("dinner", "put the cup left of the plate and the bottle on it", "'it' is unclear"),
     ("blocks", "make two lines of the blocks", "named one by one"),
     # a phrase no goal carries is refused, not dropped
     ("home", "Put the mugs on top of each other and the bottles in front of the phone", "is not part of any goal"),
@@ -588,7 +593,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("home", "Leave the plate and the bowl where they are. Everything else goes in a ring.", "'the bowl' is ambiguous"),
     ("home", "Do the same for the mugs.", "the same as what"),
     ("blocks", "Stack the white bowl on the black bowl, but keep the black bowl on top.", "contradicts"),
-    ("home", "put the red mug behind the plate and put the white bottle to the left of it", "'it' is unclear"),
+    ("home", "put the red mug behind the plate and put the white bottle on top of it", "'it' is unclear"),
     # a group named with nothing read for it; cutlery on both sides at once
     ("toys", "Letters: neat; blocks: square.", "no goal read from the command uses them"),
     ("dinner", "Set the table, but the cutlery has to be on the left AND on the right of the plate at the same time!",
@@ -599,8 +604,8 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     ("blocks", "line up all the blocks that, well, look nice", "cannot tell which objects"),
     ("toys", "stack the letters so they spell TEAR", "reads from the bottom up or from the top down"),
     ("dinner", "set the table using the black plate", "no black object"),
-    # "it" after a chosen object and its reference object
-    ("home", "put one of the mugs left of the phone and the other one to the right of it", "'it' is unclear"),
+    # "it" as a support after a chosen object and its reference object
+    ("home", "put one of the mugs left of the phone and the other one on it", "'it' is unclear"),
 ])
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):

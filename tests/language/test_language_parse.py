@@ -70,9 +70,12 @@ def test_another_line_is_disjoint_from_the_first(scenes, matcher):
 
 
 def test_the_other_and_pronouns(scenes, matcher):
-    # After "A in front of B", "it" may be A or B: asked back, not guessed.
+    # After "A in front of B", "it" as the reference object of a side or depth is B (as the free-form
+    # writers read it); as a support ("on it") it may be A or B: asked back, not guessed.
+    g = _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind it")
+    assert g == [{"pattern": "front", "objects": [1], "anchor": 4}, {"pattern": "behind", "objects": [2], "anchor": 4}]
     with pytest.raises(InputError, match="'it' is unclear: it may be object 1 or object 4"):
-        _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind it")
+        _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug on it")
     g = _goals(scenes["kitchen"], "put the red mug in front of the green bowl and the other mug behind the red mug")
     assert g == [{"pattern": "front", "objects": [1], "anchor": 4}, {"pattern": "behind", "objects": [2], "anchor": 1}]
     # After a selection, "it" is the object taken.
