@@ -379,6 +379,8 @@ def rewrite(text: str) -> str:
     text = re.sub(r"(?i)\b(?:(?:it )?(?:does not|doesn't|does n't) matter which|(?:either|any|whichever))(?: one| of them| "
                   r"of the (?:two|three|four|[a-z]+))? (?:can |may |could |will )?(?:goes|go|sits|sit|is|ends up|end up|"
                   r"comes|come|lands|land|be) (?:on|at) (?:the )?(?:bottom|top|base)\b", "in any order", text)
+    text = re.sub(r"(?i)\bwhichever(?: one)?(?: goes)? (?:on top|at the top|at the bottom|on the bottom|underneath)\b",
+                  "in any order", text)
     # "arranged around a common centre to form a circle": what a circle is, not a place on the table.
     text = re.sub(r"(?i)\s*\b(?:around|round|about) (?:a|one|the) (?:common|shared|single|central|same) (?:centre|center|point|"
                   r"middle|spot)\b", "", text)
