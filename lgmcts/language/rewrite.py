@@ -270,11 +270,12 @@ _BASE = {"put": "put", "plac": "place", "stack": "stack", "pil": "pile", "arrang
 _NOUN_BEFORE = frozenset("""the a an this that each every one any red green blue yellow purple white black orange pink
     brown gray grey silver golden other""".split())
 
-#: Words that ask for an arrangement or a relation.
 #: Words that speak of heights, which make a "column" a stack.
-_HEIGHTS = re.compile(r"(?i)\b(?:tall|taller|topmost|bottommost|stack(?:ed|ing)?|pil(?:e|ed|ing)|on top|at the (?:top|bottom|base)(?! left| right| cent| middle| of the table| edge| side| corner| end| half)|"
+_HEIGHTS = re.compile(r"(?i)\b(?:tall|taller|topmost|bottommost|stack(?:ed|ing)?|pil(?:e|ed|ing)|on top|"
+                      r"at the (?:top|bottom|base)(?! left| right| cent| middle| of the table| edge| side| corner| end| half)|"
                       r"on the bottom|as the base|(?:bottom|top) to (?:top|bottom)|under(?:neath)?|beneath|above|below|"
                       r"highest|lowest|high|vertical)\b")
+#: Words that ask for an arrangement or a relation.
 _ASKS = re.compile(r"(?i)\b(?:in front|behind|left|right|on top|onto|on|under|underneath|below|beneath|above|circle|"
                    r"ring|loop|row|line|lined|stack|stacked|pile|piled|tower|rectangle|square|facing|pointing)\b")
 

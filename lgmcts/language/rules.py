@@ -374,11 +374,12 @@ def _pattern_positions(words: tuple[str, ...], lo: int, hi: int, vocab: frozense
     return [
         k for k in range(lo, hi)
         if words[k] not in STOPWORDS and words[k] not in FILLERS
-        and (_stem(words[k]) in vocab or (words[k] in ("stacked", "piled") and _stem(words[k]) not in vocab))
+        and (_stem(words[k]) in vocab or words[k] in ("stacked", "piled"))
         and _stem(words[k]) not in _NOT_PATTERN and not _table_place(words, k)
     ]
 
 
+#: Stems of words that name a stack (a stacking step beside one belongs to it).
 _TOWER_STEMS = frozenset({"stack", "stacked", "pile", "piled", "tower", "heap", "column", "layer"})
 #: Words of a stacking step said between two objects ("on top of", "under").
 _VERTICAL_REL = frozenset({"on", "onto", "atop", "upon", "above", "over", "under", "underneath", "below", "beneath",
@@ -647,6 +648,8 @@ class _Parser:
         self._chain: int | None = None
         #: (subject, reference) of the part before, where the part being read has no object but "it".
         self._implicit: tuple | None = None
+        #: The part being read has a side or depth and no support word: its "it" after "A left of B" is B.
+        self._it_beside = False
         #: The one object named first in the part being read, where nothing was named before it:
         #: what "it" later in the part means ("the brown box needs to end up with both white
         #: things in front of it").
@@ -1482,7 +1485,7 @@ class _Parser:
                 return [self._chain]
             if m.text == "it" and self._implicit is not None:
                 return [self._implicit[1]]
-            if m.text == "it" and pair is not None and getattr(self, "_it_beside", False):
+            if m.text == "it" and pair is not None and self._it_beside:
                 return [pair[1]]
             if m.text == "it" and pair is not None and all(isinstance(x, (int, Choice)) for x in pair):
                 # "put the cup left of the plate and the bottle behind it": the cup or the plate? ("one of
