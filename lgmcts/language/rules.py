@@ -1076,11 +1076,14 @@ class _Parser:
                     # "white at the bottom, then green": one without a role goes right above the one before.
                     after = tower.index(prev) + 1 if prev in tower else len(tower)
                     at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
-                    below = prev if prev is not None else self.state.tower_prev
-                    if below is None and self.state.tower.said:
-                        below = list(self.state.tower.said)[-1]  # "orange on top. green underneath it"
-                    if r == "under_it" and below in tower:
-                        at = tower.index(below)  # "purple on top, orange under it": right below the one before
+                    if r == "under_it":
+                        # "purple on top, orange under it": right below the one before ("orange on top.
+                        # green underneath it": the last one given a place, where none was given here).
+                        below = prev if prev is not None else self.state.tower_prev
+                        if below is None and self.state.tower.said:
+                            below = list(self.state.tower.said)[-1]
+                        if below in tower:
+                            at = tower.index(below)
                     tower.insert(at, x)
                     self.state.tower.said[x] = r
                     prev = x
@@ -1094,37 +1097,28 @@ class _Parser:
             if params:
                 _add_params(self.state.tower, params, text)  # "..., the red one on top, in the front right corner"
             return []
-        if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
-                and self.state.tower_prev is None and self.state.tower_down in self.state.tower.objects
+        # "white at the bottom, then green": the next one up, right above the one placed before; after the
+        # top ("red highest, then yellow"), the next one down, right below it.
+        objs = self.state.tower.objects if self.state.tower is not None else []
+        up = self.state.tower_prev in objs
+        ref = self.state.tower_prev if up else (
+            self.state.tower_down if self.state.tower_prev is None and self.state.tower_down in objs else None)
+        if (mentions and not meaningful and ref is not None and self.state.header is None
                 and (roles is None or not any(roles))
-                and all(x in self.state.tower.objects for mm in mentions
+                and all(x in objs for mm in mentions
                         for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
-            tower = self.state.tower.objects
             for mm in mentions:
                 got = self._select(mm)
                 for x in got if isinstance(got, list) else [got]:
-                    if x != self.state.tower_down and x in tower:
-                        tower.remove(x)
-                        tower.insert(tower.index(self.state.tower_down), x)
-                        self.state.tower.said[x] = "under_it"
-                        self.state.tower_down = x
-            if params:
-                _add_params(self.state.tower, params, text)
-            return []
-        if (mentions and not meaningful and self.state.tower is not None and self.state.header is None
-                and self.state.tower_prev in self.state.tower.objects and (roles is None or not any(roles))
-                and all(x in self.state.tower.objects for mm in mentions
-                        for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
-            # "white at the bottom, then green": the next one up.
-            tower = self.state.tower.objects
-            for mm in mentions:
-                got = self._select(mm)
-                for x in got if isinstance(got, list) else [got]:
-                    if x != self.state.tower_prev and x in tower:
-                        tower.remove(x)
-                        tower.insert(tower.index(self.state.tower_prev) + 1, x)
-                        self.state.tower.said[x] = "next"
-                        self.state.tower_prev = x
+                    if x != ref and x in objs:
+                        objs.remove(x)
+                        objs.insert(objs.index(ref) + up, x)
+                        self.state.tower.said[x] = "next" if up else "under_it"
+                        ref = x
+            if up:
+                self.state.tower_prev = ref
+            else:
+                self.state.tower_down = ref
             if params:
                 _add_params(self.state.tower, params, text)
             return []
