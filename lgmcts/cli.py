@@ -63,6 +63,7 @@ def plan(
     llm_base_url: Optional[str] = typer.Option(None, "--llm-base-url"),
     output: Optional[str] = typer.Option(None, "-o", "--output", help="Write the plan JSON here (default stdout)."),
     viz: Optional[Path] = typer.Option(None, "--viz", help="Write pictures of the plan into this folder."),
+    robot: Optional[str] = typer.Option(None, "--robot", help="Plan for this arm (ur5e): every pick and place within its reach."),
     verbose: int = typer.Option(0, "-v", "--verbose", count=True, help="-v: search log, -vv: debug."),
 ) -> None:
     """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
@@ -85,7 +86,8 @@ def plan(
             from .language import parse
 
             goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
-        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime)
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime,
+                          robot=robot)
     except InputError as exc:
         fail(str(exc))
     if instruction is not None:
@@ -110,12 +112,13 @@ def check(
     goals: Path = typer.Argument(..., help="Goal JSON file."),
     plan_file: Path = typer.Argument(..., metavar="PLAN", help="Plan JSON file."),
     as_json: bool = typer.Option(False, "--json", help="Print the verdict as JSON."),
+    robot: Optional[str] = typer.Option(None, "--robot", help="Also require every pick and place within this arm's reach (ur5e)."),
 ) -> None:
     """Replay PLAN on SCENE and judge it against GOALS (exit 0 valid, 1 invalid, 2 bad input)."""
     from .validate import check as run_check
 
     try:
-        verdict = run_check(scene, goals, plan_file)
+        verdict = run_check(scene, goals, plan_file, robot=robot)
     except InputError as exc:
         fail(str(exc))
     if as_json:

@@ -24,6 +24,7 @@ from ..feasibility import precheck
 from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..patterns import registry
 from ..patterns.base import fit_json, goal_xy
+from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from .polish import polished
 from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
@@ -67,8 +68,20 @@ def _stacks(pattern) -> bool:
 
 
 def _accept(opts: SearchOptions) -> Accept:
-    """Found plans are polished (:mod:`.polish`) as they are validated, unless ``opts.polish`` is off."""
-    return polished if opts.polish else validated
+    """Found plans are polished (:mod:`.polish`) as they are validated, unless ``opts.polish`` is off;
+    with a robot (``opts.step.reach``), a plan is accepted only when the robot reaches every pick and place."""
+    base = polished if opts.polish else validated
+    robot = opts.step.reach
+    if robot is None:
+        return base
+
+    def within_reach(problem: Problem, actions: list, worlds: list | None) -> list | None:
+        out = base(problem, actions, worlds)
+        if out is None or plan_reach_problems(problem.scene, out, robot):
+            return None
+        return out
+
+    return within_reach
 
 
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
@@ -110,6 +123,7 @@ def plan(
     time_limit: float | None = None,
     anytime: bool = False,
     options: SearchOptions | None = None,
+    robot: str | None = None,
 ) -> PlanSpec:
     """Plan pick-and-place actions that bring ``scene`` to a state meeting ``goals``.
 
@@ -124,6 +138,9 @@ def plan(
     anytime : keep searching within the budget for a plan with fewer actions.
     options : full :class:`SearchOptions`; ``max_iter``, ``time_limit`` and
         ``anytime`` override its fields.
+    robot : a robot's name (``"ur5e"``, see :mod:`lgmcts.robot`): every pick
+        and placement of the plan is then one the robot reaches from above.
+        ``None`` (default): no robot, the plan is the same as before.
 
     Returns
     -------
@@ -149,6 +166,8 @@ def plan(
     problem = Problem.build(sc, gspec)
     opts = options or SearchOptions()
     opts = replace(opts, max_iter=max_iter, time_limit=time_limit, anytime=anytime or opts.anytime)
+    if robot is not None:
+        opts = replace(opts, step=replace(opts.step, reach=robot_of(robot)))
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
     res, extra = METHODS[method](problem, rng, opts)
@@ -164,6 +183,8 @@ def plan(
         "relocations": sum(a.purpose != "goal" for a in res.actions),
         "max_iter": max_iter,
     }
+    if robot is not None:
+        stats["robot"] = robot
     if res.solved and found != len(res.actions):
         stats["actions_before_polish"] = found
     if time_limit is not None:

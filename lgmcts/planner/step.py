@@ -10,7 +10,7 @@ outside every remaining goal region — together with the successor state.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -45,11 +45,33 @@ class StepOptions:
     obstacles : ``"all"`` (every table-level object is an obstacle) or
         ``"placed"`` (only objects committed to goals, and anchors that no
         goal moves; used to sample goal arrangements for the PMCTS baseline).
+    reach : a robot (:class:`lgmcts.robot.Robot`) or ``None``: with one, an
+        object is picked and placed only where the robot reaches a top-down
+        grasp of it (:func:`reachable`).
     """
 
     samples: int = 24
     clearance: float = CLEARANCE
     obstacles: str = "all"
+    reach: Any = None
+
+
+def reachable(problem: "Problem", world: State, o: int, poses: np.ndarray, opts: StepOptions,
+              support: int = TABLE) -> np.ndarray:
+    """Mask over poses ``(k, >=2)`` of ``o`` on ``support`` in ``world``:
+    whether ``opts.reach`` grasps ``o`` there from above (all true without a
+    robot)."""
+    if opts.reach is None:
+        return np.ones(len(poses), dtype=bool)
+    sc = problem.scene
+    base = 0.0 if support == TABLE else world.base_z(support) + float(sc.heights[support])
+    top = np.full(len(poses), base + float(sc.heights[o]))
+    return opts.reach.reachable(sc.bounds, np.asarray(poses)[:, :2], top)
+
+
+def _pickable(problem: "Problem", world: State, o: int, opts: StepOptions) -> bool:
+    """Whether ``o`` can be picked where it is in ``world``."""
+    return bool(reachable(problem, world, o, world.poses[o][None], opts, world.on[o])[0])
 
 
 @dataclass(frozen=True)
@@ -330,6 +352,7 @@ def _pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray,
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
+    inside &= reachable(problem, world, o, poses, opts)
     # Disc against discs is decided on circles: no polygons needed then.
     polys = None if scene.discs[o] > 0 and problem.all_discs else shapely.polygons(verts)
     if scene.n <= 1:
@@ -363,7 +386,7 @@ def _free(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts: St
     ``contact``, inside and at most touching (see :func:`touching_only`)."""
     inside, ci, oi, polys, verts = _pairs(problem, ss, o, poses, opts)
     if contact:
-        inside = geo.inside_workspace(verts, problem.scene.bounds)
+        inside = geo.inside_workspace(verts, problem.scene.bounds) & reachable(problem, ss.world, o, poses, opts)
         if len(ci):
             world, scene = ss.world, problem.scene
             mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
@@ -437,10 +460,16 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     goals is taken only when there is no other.
     """
     scene, world = problem.scene, ss.world
+    if not _pickable(problem, world, b, opts):
+        return None
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
-    check = StepOptions(opts.samples, opts.clearance, "all")
-    off = _off_target(problem, b, avoid)
+    check = replace(opts, obstacles="all")
+    target = _off_target(problem, b, avoid)
+
+    def off(poses: np.ndarray) -> np.ndarray:
+        return target(poses) & reachable(problem, world, b, poses, opts)
+
     # Candidates from the grid of clear centres first, then, if it has none
     # (elongated neighbours make it pessimistic), larger uniform batches.
     room = clear_centres(scene, world, b, opts.clearance)
@@ -584,7 +613,7 @@ def _to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: 
     # A fixed target (a pose goal) has no other pose: where it lies closer
     # than the clearance to a neighbour or the edge, contact is allowed.
     # Obstacles are then only what it would overlap.
-    edge = geo.inside_workspace(verts, problem.scene.bounds)
+    edge = geo.inside_workspace(verts, problem.scene.bounds) & reachable(problem, ss.world, o, cand, opts)
     hard = _hard(problem, ss, o, cand, polys, hits, np.flatnonzero(edge))
     touch = edge & np.array([not h for h in hard])
     if touch.any():
@@ -601,7 +630,8 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int], opts: St
     """
     world = ss.world
     feet = problem.fixed_footprints
-    objs = [o for o in objs if o in feet and world.clear(o) and _required_support(problem, ss, o) == TABLE]
+    objs = [o for o in objs if o in feet and world.clear(o) and _required_support(problem, ss, o) == TABLE
+            and _pickable(problem, world, o, opts) and reachable(problem, world, o, problem.fixed[o][None], opts)[0]]
     out: dict[int, list[int]] = {o: [] for o in objs}
     if objs and problem.scene.n > 1:
         polys = np.empty(len(objs), dtype=object)
@@ -635,6 +665,8 @@ def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     table candidate collides, the obstacles of its least obstructed one."""
     if not ss.world.clear(o) or _required_support(problem, ss, o) != TABLE:
         return attempt(problem, ss, o, rng, opts, direct=True), ()
+    if not _pickable(problem, ss.world, o, opts):
+        return None, ()
     cand = _sample(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
         return None, ()
@@ -671,7 +703,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
             return None
         return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", o)
     support = _required_support(problem, ss, o)
-    if support is None:
+    if support is None or not _pickable(problem, world, o, opts):
         return None
     cand = _sample(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
@@ -683,6 +715,8 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
             return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", o)
         pose = _wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
+            return None
+        if not reachable(problem, world, o, pose[None], opts, support)[0]:
             return None
         return _place(problem, ss, o, pose, support, rng)
     tr, inside, hits = _to_table(problem, ss, o, cand, rng, opts)

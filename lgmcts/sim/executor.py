@@ -395,6 +395,7 @@ def execute_plan(
     options: ExecOptions | None = None,
     video: str | Path | None = None,
     plan_scene: SceneSpec | dict | str | Path | None = None,
+    robot: str | None = None,
 ) -> Execution:
     """Execute ``plan`` on ``scene`` in MuJoCo and judge the final state.
 
@@ -412,6 +413,8 @@ def execute_plan(
         makes in ``plan_scene``, which keeps the planned footprint where the
         planner put it even when the observed pose frame differs from the
         true one.
+    robot : ``"ur5e"``: execute with a UR5e arm and suction cup
+        (:mod:`lgmcts.sim.arm_exec`) instead of the floating cup.
 
     Returns
     -------
@@ -433,7 +436,7 @@ def execute_plan(
         if set(ps.ids) != set(sc.ids):
             raise InputError("plan_scene and scene do not hold the same object ids")
         offsets = {i: _relative(ps.initial.poses[ps.index[i]], sc.initial.poses[sc.index[i]]) for i in sc.ids}
-    sim = build_model(sc, options=opts.model)
+    sim = build_model(sc, options=opts.model, robot=robot)
     if video is not None:
         from .render import VideoRecorder
 
@@ -451,7 +454,13 @@ def _run(
     offsets: dict[int, np.ndarray] | None,
     hook: FrameHook | None,
 ) -> Execution:
-    ex = Executor(sim, options=opts, on_step=hook)
+    ex: Executor
+    if sim.arm is not None:
+        from .arm_exec import ArmExecutor
+
+        ex = ArmExecutor(sim, options=opts, on_step=hook)
+    else:
+        ex = Executor(sim, options=opts, on_step=hook)
     ex.settle()
     steps: list[StepOutcome] = []
     targets: dict[int, tuple[np.ndarray, int]] = {}

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -135,6 +136,8 @@ class SimModel:
     geom_object : ``(ngeom,)`` object index of each geom, -1 for the rest.
     geom_who : ``(ngeom,)`` object index of each geom, ``-1`` for the table,
         ``-2`` for the floor, ``-3`` for the rest (contact bookkeeping).
+    arm : the robot arm's parts (:class:`lgmcts.sim.arm.ArmParts`), or
+        ``None`` for a scene with the floating gripper only.
     """
 
     scene: Scene
@@ -149,6 +152,7 @@ class SimModel:
     mocap: int
     geom_object: np.ndarray
     geom_who: np.ndarray
+    arm: Any = None
 
     @property
     def heights(self) -> np.ndarray:
@@ -179,7 +183,7 @@ def _add_object(spec: mujoco.MjSpec, scene: Scene, k: int, base_z: float, opts: 
         body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"obj{o.id}_mesh", **common)
 
 
-def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None) -> SimModel:
+def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None, robot: str | None = None) -> SimModel:
     """Compile a MuJoCo model of ``scene`` with every object at its pose.
 
     Stacked objects start resting on their supports: an object's bottom is at
@@ -189,6 +193,9 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     ----------
     scene : the scene (a validated spec or a :class:`lgmcts.scene.Scene`).
     options : physical parameters; defaults to :class:`ModelOptions`.
+    robot : ``"ur5e"`` adds a UR5e arm with a suction cup, its base at the
+        centre of the table's front edge (:mod:`lgmcts.sim.arm`), and one
+        inactive weld per object between the cup and the object.
     """
     opts = options or ModelOptions()
     sc = scene if isinstance(scene, Scene) else Scene.from_spec(scene)
@@ -271,6 +278,12 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
             data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
             solref=[opts.weld_timeconst, 1.0],
         )
+    if robot is not None:
+        from .arm import add_arm, add_cup_welds, base_pose, robot_spec
+
+        arm_spec = robot_spec(robot)
+        add_arm(spec, base_pose(sc.bounds, opts.table_margin, arm_spec), arm_spec)
+        add_cup_welds(spec, sc.ids, opts.weld_timeconst)
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -287,6 +300,11 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     geom_who[geoms] = np.arange(sc.n)
     geom_who[model.geom("table").id] = TABLE
     geom_who[model.geom("floor").id] = -2
+    arm = None
+    if robot is not None:
+        from .arm import arm_parts
+
+        arm = arm_parts(model, sc.ids, robot_spec(robot), base_pose(sc.bounds, opts.table_margin, robot_spec(robot)))
     return SimModel(
         scene=sc,
         model=model,
@@ -300,5 +318,6 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
         mocap=int(model.body_mocapid[model.body(GRIPPER).id]),
         geom_object=geom_object,
         geom_who=geom_who,
+        arm=arm,
     )
 
