@@ -440,7 +440,9 @@ def execute_plan(
     if video is not None:
         from .render import VideoRecorder
 
-        with VideoRecorder(sim, video) as rec:
+        from .model import ARM_VIEW_CAMERA, VIEW_CAMERA
+
+        with VideoRecorder(sim, video, camera=ARM_VIEW_CAMERA if sim.arm is not None else VIEW_CAMERA) as rec:
             return _run(sim, sc, pl, gs, opts, offsets, rec.capture)
     return _run(sim, sc, pl, gs, opts, offsets, None)
 

@@ -28,7 +28,7 @@ from ..errors import InputError
 from ..formats import SceneSpec
 from ..scene import TABLE, Scene
 
-__all__ = ["ModelOptions", "SimModel", "build_model", "yaw_quat", "look_at", "GRIPPER", "SIDE_CAMERA", "OVERHEAD_CAMERA", "VIEW_CAMERA"]
+__all__ = ["ModelOptions", "SimModel", "build_model", "yaw_quat", "look_at", "GRIPPER", "SIDE_CAMERA", "OVERHEAD_CAMERA", "VIEW_CAMERA", "ARM_VIEW_CAMERA"]
 
 #: Name of the mocap body that plays the suction gripper.
 GRIPPER = "gripper"
@@ -36,6 +36,9 @@ GRIPPER = "gripper"
 OVERHEAD_CAMERA = "overhead"
 #: Name of the angled camera used for videos.
 VIEW_CAMERA = "view"
+#: Name of the camera that films a scene with the arm (from the front right,
+#: so the arm does not hide the table).
+ARM_VIEW_CAMERA = "arm_view"
 #: Prefix of the four angled perception cameras (``side0`` ... ``side3``).
 SIDE_CAMERA = "side"
 
@@ -284,6 +287,10 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
         arm_spec = robot_spec(robot)
         add_arm(spec, base_pose(sc.bounds, opts.table_margin, arm_spec), arm_spec)
         add_cup_welds(spec, sc.ids, opts.weld_timeconst)
+        reach = max(hx, hy) * 2.2 + 0.6
+        eye = np.array([cx + 0.75 * reach, cy - 0.55 * reach, 0.7 * reach])
+        look = np.array([cx, cy - 0.2 * hy, 0.1])
+        wb.add_camera(name=ARM_VIEW_CAMERA, pos=eye.tolist(), quat=look_at(eye, look).tolist(), fovy=fovy)
     try:
         model = spec.compile()
     except ValueError as exc:
