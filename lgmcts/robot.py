@@ -22,10 +22,11 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -107,7 +108,7 @@ class Robot:
         return float(self.z[ok].max()) if ok.any() else -math.inf
 
 
-@lru_cache(maxsize=None)
+@cache
 def load_robot(name: str) -> Robot:
     """The :class:`Robot` called ``name`` (one of :data:`ROBOTS`), its map
     read from the package once."""
@@ -120,14 +121,14 @@ def load_robot(name: str) -> Robot:
     return Robot(name=name, z=np.array(data["z"], dtype=float), rmin=rmin, rmax=rmax, base_gap=float(data["base_gap"]))
 
 
-def robot_of(robot: "str | Robot | None") -> Robot | None:
+def robot_of(robot: str | Robot | None) -> Robot | None:
     """``robot`` as a :class:`Robot` (a name is loaded), or ``None``."""
     if robot is None or isinstance(robot, Robot):
         return robot
     return load_robot(str(robot))
 
 
-def plan_reach_problems(scene: Any, actions: Sequence[Any], robot: "str | Robot") -> list[str]:
+def plan_reach_problems(scene: Any, actions: Sequence[Any], robot: str | Robot) -> list[str]:
     """One line per pick or placement of ``actions`` (plan actions) that
     ``robot`` cannot reach from above, replaying them on ``scene`` (a
     :class:`lgmcts.scene.Scene`)."""

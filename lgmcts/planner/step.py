@@ -56,7 +56,7 @@ class StepOptions:
     reach: Any = None
 
 
-def reachable(problem: "Problem", world: State, o: int, poses: np.ndarray, opts: StepOptions,
+def reachable(problem: Problem, world: State, o: int, poses: np.ndarray, opts: StepOptions,
               support: int = TABLE) -> np.ndarray:
     """Mask over poses ``(k, >=2)`` of ``o`` on ``support`` in ``world``:
     whether ``opts.reach`` grasps ``o`` there from above (all true without a
@@ -69,7 +69,7 @@ def reachable(problem: "Problem", world: State, o: int, poses: np.ndarray, opts:
     return opts.reach.reachable(sc.bounds, np.asarray(poses)[:, :2], top)
 
 
-def _pickable(problem: "Problem", world: State, o: int, opts: StepOptions) -> bool:
+def _pickable(problem: Problem, world: State, o: int, opts: StepOptions) -> bool:
     """Whether ``o`` can be picked where it is in ``world``."""
     return bool(reachable(problem, world, o, world.poses[o][None], opts, world.on[o])[0])
 

@@ -29,7 +29,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-__all__ = ["ArmSpec", "ArmParts", "UR5E", "ArmIK", "IKResult", "add_arm", "add_cup_welds", "arm_parts", "base_pose", "arm_only_model", "robot_spec"]
+__all__ = ["UR5E", "ArmIK", "ArmParts", "ArmSpec", "IKResult", "add_arm", "add_cup_welds", "arm_only_model", "arm_parts", "base_pose", "robot_spec"]
 
 ASSETS = Path(__file__).parent / "assets" / "ur5e"
 
@@ -356,21 +356,27 @@ class ArmIK:
         self.data = mujoco.MjData(self.model)
         self.site = self.model.site(CUP_SITE).id
         self._elbow = self.model.body(PREFIX + "forearm_link").id
+        self._links = np.array([self.model.body(PREFIX + b).id for b in ("wrist_1_link", "wrist_2_link", "wrist_3_link")])
         self.lower = np.array(arm.lower)
         self.upper = np.array(arm.upper)
         self.pos_tol = pos_tol
         self.rot_tol = rot_tol
         self._jp = np.zeros((3, self.model.nv))
         self._jr = np.zeros((3, self.model.nv))
-        # A canonical top-down configuration straight ahead (elbow up, wrist down),
-        # the seed that every other seed is turned from.
-        q0 = np.array([0.0, -1.9, 1.9, -1.57, -1.57, 0.0])
-        self._canon: list[tuple[float, np.ndarray]] = []
-        for r in (0.3, 0.5, 0.7):
-            res = self._solve(np.array([0.0, r, 0.1]), 0.0, q0, limits=True)
-            if res.ok:
-                q0 = res.q
-                self._canon.append((r, res.q.copy()))
+        # Canonical top-down configurations straight ahead, elbow up, in two
+        # branches: wrist 2 at -90 deg (BRANCHES[0], the wrist outward: reaches
+        # from about 0.28 to 0.92 m) and at +90 deg (BRANCHES[1], the wrist
+        # folded back towards the base: about 0.16 to 0.72 m). Every other seed
+        # is turned from these.
+        self._canon: dict[int, list[tuple[float, np.ndarray]]] = {}
+        for b, q0, radii in ((0, np.array([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]), (0.3, 0.5, 0.7, 0.85)),
+                             (1, np.array([-0.5, -1.09, 2.27, 0.39, 1.57, 0.0]), (0.3, 0.2, 0.45, 0.6))):
+            self._canon[b] = []
+            for r in radii:
+                res = self._solve(np.array([0.0, r, 0.1]), 0.0, q0, limits=True)
+                if res.ok and branch_of(res.q) == b:
+                    q0 = res.q
+                    self._canon[b].append((r, res.q.copy()))
 
     def fk(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Cup-face position and rotation matrix at joint angles ``q``."""
@@ -410,38 +416,43 @@ class ArmIK:
         r = d.site_xmat[s].reshape(3, 3)
         pe = float(np.linalg.norm(pos - d.site_xpos[s]))
         re = float(np.linalg.norm(_rot_error(r, down_rotation(tool_yaw(r) if yaw is None else yaw))))
-        # The elbow stays above the table top (the base plane) by 5 cm.
-        ok = pe <= self.pos_tol and re <= self.rot_tol and _elbow_up(q) and float(d.xpos[self._elbow, 2]) > 0.05
+        # The elbow stays above the table top (the base plane) by 5 cm, the wrist by 3 cm.
+        ok = (pe <= self.pos_tol and re <= self.rot_tol and _elbow_up(q) and float(d.xpos[self._elbow, 2]) > 0.05
+              and float(d.xpos[self._links, 2].min()) > 0.03)
         return IKResult(ok, q, pe, re, "" if ok else "out of reach")
 
-    def seeds(self, pos: np.ndarray) -> list[np.ndarray]:
-        """Seeds for a target: the canonical configurations turned to face it,
+    def seeds(self, pos: np.ndarray, branch: int | None = None) -> list[np.ndarray]:
+        """Seeds for a target: the canonical configurations of ``branch``
+        (both when ``None``, the first branch first) turned to face it,
         nearest in reach first."""
         bearing = math.atan2(-float(pos[0]), float(pos[1]))
         r = math.hypot(float(pos[0]), float(pos[1]))
         out = []
-        for _, q in sorted(self._canon, key=lambda c: abs(c[0] - r)):
-            qs = q.copy()
-            qs[0] = _wrap(qs[0] + bearing)
-            out.append(qs)
+        for b in BRANCHES if branch is None else (branch,):
+            for _, q in sorted(self._canon[b], key=lambda c: abs(c[0] - r)):
+                qs = q.copy()
+                qs[0] = _wrap(qs[0] + bearing)
+                out.append(qs)
         return out
 
-    def solve(self, pos: np.ndarray, yaw: float | None = None, seed: np.ndarray | None = None, *, why: bool = True) -> IKResult:
+    def solve(self, pos: np.ndarray, yaw: float | None = None, seed: np.ndarray | None = None, *, why: bool = True,
+              branch: int | None = None) -> IKResult:
         """A configuration putting the cup face at ``pos`` (base frame, m)
         pointing straight down, turned to ``yaw`` (rad; ``None``: any yaw,
         the one nearest the seed).
 
-        Tries ``seed`` first, then the canonical seeds; when none converges
+        Tries ``seed`` first, then the canonical seeds; with ``branch`` only a
+        solution in that branch (:func:`branch_of`) counts. When none converges
         within the joint limits but one does without them, the reason is
         ``"joint limit"``, else ``"out of reach"`` (``why=False`` skips that
         test and says ``"out of reach"``).
         """
         pos = np.asarray(pos, dtype=float)
-        tries = ([np.asarray(seed, dtype=float)] if seed is not None else []) + self.seeds(pos)
+        tries = ([np.asarray(seed, dtype=float)] if seed is not None else []) + self.seeds(pos, branch)
         best: IKResult | None = None
         for q0 in tries:
             res = self._solve(pos, yaw, q0, limits=True)
-            if res.ok:
+            if res.ok and (branch is None or branch_of(res.q) == branch):
                 return res
             if best is None or res.pos_err < best.pos_err:
                 best = res
@@ -456,6 +467,16 @@ class ArmIK:
 
 def _wrap(a: float) -> float:
     return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+#: The two wrist branches the arm works in (see :class:`ArmIK`).
+BRANCHES = (0, 1)
+
+
+def branch_of(q: np.ndarray) -> int:
+    """The wrist branch of a configuration: 0 with wrist 2 at -90 deg (modulo a
+    full turn), 1 at +90 deg."""
+    return 0 if math.sin(float(q[4])) < 0 else 1
 
 
 def _elbow_up(q: np.ndarray) -> bool:

@@ -31,19 +31,19 @@ the object moved; a joint at its limit; the carried object dropped.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import mujoco
 import numpy as np
 
 from ..scene import TABLE
 from . import physics
-from .arm import ArmIK, ArmParts, IKResult, tool_yaw
-from .executor import Executor, ExecOptions, StepOutcome
+from .arm import ArmIK, ArmParts, IKResult, branch_of, tool_yaw
+from .executor import ExecOptions, Executor, StepOutcome
 from .model import SimModel
 
-__all__ = ["ArmOptions", "ArmExecutor"]
+__all__ = ["ArmExecutor", "ArmOptions"]
 
 _IK: dict[str, ArmIK] = {}
 
@@ -90,6 +90,17 @@ class ArmOptions:
     waypoint: float = 0.02
     home: tuple[float, float] = (0.35, 0.35)
     moved_tol: float = 0.002
+
+
+@dataclass(frozen=True)
+class _Motion:
+    """The solved configurations of one pick and place."""
+
+    down_pick: list[np.ndarray]
+    down_place: list[np.ndarray]
+    z_tr: float
+    yaw_pick: float
+    yaw_place: float
 
 
 class _Events:
@@ -151,8 +162,10 @@ class ArmExecutor(Executor):
     def _to_base(self, p: np.ndarray) -> np.ndarray:
         return np.asarray(p, dtype=float) - self.parts.base
 
-    def _solve(self, p_world: np.ndarray, yaw: float | None, seed: np.ndarray) -> IKResult:
-        return self.ik.solve(self._to_base(p_world), yaw, seed)
+    def _solve(self, p_world: np.ndarray, yaw: float | None, seed: np.ndarray, branch: int | None = None) -> IKResult:
+        if branch is not None and branch_of(seed) != branch:
+            seed = None  # type: ignore[assignment]
+        return self.ik.solve(self._to_base(p_world), yaw, seed, branch=branch)
 
     def _watch(self) -> bool:
         """Record arm contacts, joint limits and a broken hold after a physics
@@ -203,18 +216,23 @@ class ArmExecutor(Executor):
                 d.ctrl[acts] = d.qpos[self.parts.qpos_adr]
                 return True
         if len(path):
-            self._hold(path[-1])
+            return self._hold(path[-1], stop)
         return False
 
-    def _hold(self, q: np.ndarray) -> None:
-        """Keep ``q`` as the target until the joints reach it (or ``settle_time``)."""
+    def _hold(self, q: np.ndarray, stop: Callable[[], bool] | None = None) -> bool:
+        """Keep ``q`` as the target until the joints reach it (or
+        ``settle_time``); return ``True`` if ``stop`` fired on the way."""
         d, acts = self.data, self.parts.actuators
         d.ctrl[acts] = q
         for _ in range(max(1, round(self.aopts.settle_time / self._dt))):
             if float(np.abs(d.qpos[self.parts.qpos_adr] - q).max()) < self.aopts.settle_tol:
-                return
+                break
             self.step()
             self._watch()
+            if stop is not None and stop():
+                d.ctrl[acts] = d.qpos[self.parts.qpos_adr]
+                return True
+        return stop is not None and stop()
 
     def _profile(self, qs: list[np.ndarray], cart_len: float = 0.0, speed: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities, one per step, along the joint-space
@@ -253,14 +271,14 @@ class ArmExecutor(Executor):
         dqds = seg[idx] / np.maximum(seg_t[idx], 1e-12)[:, None]
         return pos, dqds * sdot[:, None]
 
-    def _line(self, p0: np.ndarray, p1: np.ndarray, yaw: float, seed: np.ndarray) -> list[np.ndarray] | None:
+    def _line(self, p0: np.ndarray, p1: np.ndarray, yaw: float, seed: np.ndarray, branch: int | None = None) -> list[np.ndarray] | None:
         """Joint waypoints along the straight segment ``p0``-``p1`` of the cup
         face (world, m) at tool yaw ``yaw``, or ``None`` if one is unreachable."""
         n = max(1, math.ceil(float(np.linalg.norm(p1 - p0)) / self.aopts.waypoint))
         out = []
         q = seed
         for i in range(n + 1):
-            res = self._solve(p0 + (p1 - p0) * i / n, yaw, q)
+            res = self._solve(p0 + (p1 - p0) * i / n, yaw, q, branch)
             if not res.ok:
                 return None
             q = res.q
@@ -310,47 +328,38 @@ class ArmExecutor(Executor):
         body = sim.body[k]
         h = float(sim.heights[k])
         here = d.xpos[body].copy()
-        top = float(physics.tops(sim, d)[k])
+        # The top of the object as it stands (a slight tilt raises one edge).
+        tilt = float(physics.tilts(sim, d)[k])
+        top_c = float(here[2]) + h / 2 * math.cos(tilt)
+        top = top_c + float(sim.scene.radii[k]) * math.sin(tilt)
         z_place = (h if on is None else float(d.xpos[sim.body[on], 2]) + float(sim.heights[on]) / 2 + h)
         others = np.delete(physics.tops(sim, d), k)
         z_tr_want = max(float(others.max(initial=0.0)) + a.clearance + h, top + a.approach, z_place + a.approach)
-        # 1. Reach, before any motion.
-        q0 = self.q
-        pick = self._solve(np.array([here[0], here[1], top]), None, q0)
-        if not pick.ok:
-            return self._refuse(index, oid, pick, f"object {oid} at ({here[0]:.3f}, {here[1]:.3f})")
-        _, rot = self.ik.fk(pick.q)
-        yaw_pick = tool_yaw(rot)
+        # 1. Reach, before any motion: the wrist branch of the current
+        # configuration first, then the other, then one branch for the pick and
+        # the other for the place (the wrist flips at the transfer height).
         obj_yaw = float(physics.poses(sim, d)[k, 2])
         turn = math.remainder(float(to[2]) - obj_yaw, 2 * math.pi)
-        yaw_place = yaw_pick + turn
-        place = self._solve(np.array([to[0], to[1], z_place]), yaw_place, pick.q)
-        if not place.ok:
-            return self._refuse(index, oid, place, f"the place ({to[0]:.3f}, {to[1]:.3f}) of object {oid}")
-        place_q = self._wrist_turn(pick.q, place.q)
-        z_tr = z_tr_want
-        above_pick = above_place = None
-        while z_tr >= max(top, z_place) + a.approach - 1e-9:
-            above_pick = self._solve(np.array([here[0], here[1], z_tr]), yaw_pick, pick.q)
-            above_place = self._solve(np.array([to[0], to[1], z_tr]), yaw_place, place_q)
-            if above_pick.ok and above_place.ok:
+        cur = branch_of(self.q)
+        fail: tuple[IKResult, str] | None = None
+        mo: _Motion | None = None
+        for bp, bl in ((cur, cur), (1 - cur, 1 - cur), (cur, 1 - cur), (1 - cur, cur)):
+            got = self._motion(oid, here, top, top_c, to, z_place, z_tr_want, turn, bp, bl)
+            if isinstance(got, _Motion):
+                mo = got
                 break
-            z_tr -= 0.02
-        if above_pick is None or above_place is None or not (above_pick.ok and above_place.ok):
-            res = above_pick if above_pick is not None and not above_pick.ok else above_place
-            assert res is not None
-            return self._refuse(index, oid, res, f"the way above object {oid}")
-        # The straight moves, solved before moving too.
-        down_pick = self._line(np.array([here[0], here[1], z_tr]), np.array([here[0], here[1], top - 0.01]), yaw_pick, above_pick.q)
-        down_place = self._line(np.array([to[0], to[1], z_tr]), np.array([to[0], to[1], z_place - o.overshoot]), yaw_place,
-                                self._wrist_turn(pick.q, above_place.q))
-        if down_pick is None or down_place is None:
-            return self._refuse(index, oid, IKResult(False, q0, math.inf, math.inf, "out of reach"), f"the approach to object {oid}")
+            if fail is None or (fail[0].reason != "joint limit" and got[0].reason == "joint limit"):
+                fail = got
+        if mo is None:
+            assert fail is not None
+            return self._refuse(index, oid, fail[0], fail[1])
+        down_pick, down_place, z_tr, yaw_pick, yaw_place = mo.down_pick, mo.down_place, mo.z_tr, mo.yaw_pick, mo.yaw_place
         # 2. Approach and touch.
         self._joint_move(down_pick[0])
-        fast = max(0, len(down_pick) - 1 - math.ceil((a.touch_band + 0.01) / a.waypoint))
-        self._straight(down_pick[1 : fast + 1], z_tr - top, a.cart_speed)
-        touched = self._straight(down_pick[fast + 1 :], a.touch_band + 0.01, a.touch_speed, stop=lambda: self._cup_touch(k))
+        fast = max(0, len(down_pick) - 1 - math.ceil((a.touch_band + 0.01 + top - top_c) / a.waypoint))
+        self._straight(down_pick[1 : fast + 1], z_tr - top, a.cart_speed, stop=lambda: self._cup_touch(k))
+        touched = self._cup_touch(k) or self._straight(down_pick[fast + 1 :], a.touch_band + 0.01, a.touch_speed,
+                                                       stop=lambda: self._cup_touch(k))
         if not touched:
             self._retreat(here[0], here[1], z_tr, yaw_pick)
             return self._outcome(index, oid, k, to, on, start_poses, None, "the cup never touched the object's top")
@@ -360,7 +369,7 @@ class ArmExecutor(Executor):
         up = self._line(self._cup_pos(), np.array([here[0], here[1], z_tr]), yaw_pick, self.q)
         if up is not None:
             self._straight(up[1:], z_tr - top, a.cart_speed)
-        self._joint_move(self._wrist_turn(pick.q, above_place.q))
+        self._joint_move(down_place[0])
         fast = max(0, len(down_place) - 1 - math.ceil((a.touch_band + o.approach_height + o.overshoot) / a.waypoint))
         self._straight(down_place[1 : fast + 1], z_tr - z_place, a.cart_speed)
         landed = False
@@ -374,6 +383,42 @@ class ArmExecutor(Executor):
         self._retreat(float(to[0]), float(to[1]), min(z_place + a.approach, z_tr), yaw_place)
         self.settle()
         return self._outcome(index, oid, k, to, on, start_poses, landed, "dropped" if dropped else "")
+
+    def _motion(self, oid: int, here: np.ndarray, top: float, top_c: float, to: np.ndarray, z_place: float, z_tr_want: float,
+                turn: float, bp: int, bl: int) -> _Motion | tuple[IKResult, str]:
+        """Every configuration of one pick and place with the pick in wrist
+        branch ``bp`` and the place in ``bl``, or the first pose that has
+        none and what it is."""
+        a, o = self.aopts, self.opts
+        pick = self._solve(np.array([here[0], here[1], top]), None, self.q, bp)
+        if not pick.ok:
+            return pick, f"object {oid} at ({here[0]:.3f}, {here[1]:.3f})"
+        _, rot = self.ik.fk(pick.q)
+        yaw_pick = tool_yaw(rot)
+        yaw_place = yaw_pick + turn
+        place = self._solve(np.array([to[0], to[1], z_place]), yaw_place, pick.q, bl)
+        if not place.ok:
+            return place, f"the place ({to[0]:.3f}, {to[1]:.3f}) of object {oid}"
+        place_q = self._wrist_turn(pick.q, place.q)
+        z_tr = z_tr_want
+        above_pick = above_place = None
+        while z_tr >= max(top, z_place) + a.approach - 1e-9:
+            above_pick = self._solve(np.array([here[0], here[1], z_tr]), yaw_pick, pick.q, bp)
+            above_place = self._solve(np.array([to[0], to[1], z_tr]), yaw_place, place_q, bl)
+            if above_pick.ok and above_place.ok:
+                break
+            z_tr -= 0.02
+        if above_pick is None or above_place is None or not (above_pick.ok and above_place.ok):
+            res = above_pick if above_pick is not None and not above_pick.ok else above_place
+            return (res or pick), f"the way above object {oid}"
+        down_pick = self._line(np.array([here[0], here[1], z_tr]), np.array([here[0], here[1], top_c - 0.01]), yaw_pick,
+                               above_pick.q, bp)
+        down_place = self._line(np.array([to[0], to[1], z_tr]), np.array([to[0], to[1], z_place - o.overshoot]), yaw_place,
+                                self._wrist_turn(pick.q, above_place.q), bl)
+        if down_pick is None or down_place is None:
+            return IKResult(False, pick.q, math.inf, math.inf, "out of reach"), f"the approach to object {oid}"
+        down_place[0] = self._wrist_turn(pick.q, down_place[0])
+        return _Motion(down_pick, down_place, z_tr, yaw_pick, yaw_place)
 
     def _cup_pos(self) -> np.ndarray:
         return self.data.site_xpos[self.parts.cup_site].copy()

@@ -438,9 +438,8 @@ def execute_plan(
         offsets = {i: _relative(ps.initial.poses[ps.index[i]], sc.initial.poses[sc.index[i]]) for i in sc.ids}
     sim = build_model(sc, options=opts.model, robot=robot)
     if video is not None:
-        from .render import VideoRecorder
-
         from .model import ARM_VIEW_CAMERA, VIEW_CAMERA
+        from .render import VideoRecorder
 
         with VideoRecorder(sim, video, camera=ARM_VIEW_CAMERA if sim.arm is not None else VIEW_CAMERA) as rec:
             return _run(sim, sc, pl, gs, opts, offsets, rec.capture)
