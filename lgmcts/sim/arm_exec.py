@@ -301,14 +301,14 @@ class ArmExecutor(Executor):
         cup, g = self.parts.cup_geom, self.sim.geom[k]
         return bool((((g1 == cup) & (g2 == g)) | ((g2 == cup) & (g1 == g))).any())
 
-    def _wrist_turn(self, q_pick: np.ndarray, q_place: np.ndarray) -> np.ndarray:
+    def _wrist_turn(self, q_ref: np.ndarray, q_place: np.ndarray) -> np.ndarray:
         """``q_place`` with wrist 3 at the angle, among those a full turn
-        apart and within its limits, nearest to where it was at the pick."""
+        apart and within its limits, nearest to its angle in ``q_ref``."""
         q = q_place.copy()
         best = q[5]
         for k in (-2, -1, 0, 1, 2):
             c = q_place[5] + 2 * math.pi * k
-            if self._lower[5] <= c <= self._upper[5] and abs(c - q_pick[5]) < abs(best - q_pick[5]):
+            if self._lower[5] <= c <= self._upper[5] and abs(c - q_ref[5]) < abs(best - q_ref[5]):
                 best = c
         q[5] = best
         return q
@@ -395,15 +395,23 @@ class ArmExecutor(Executor):
             return pick, f"object {oid} at ({here[0]:.3f}, {here[1]:.3f})"
         _, rot = self.ik.fk(pick.q)
         yaw_pick = tool_yaw(rot)
-        yaw_place = yaw_pick + turn
-        place = self._solve(np.array([to[0], to[1], z_place]), yaw_place, pick.q, bl)
+        place = self._solve(np.array([to[0], to[1], z_place]), yaw_pick + turn, pick.q, bl)
         if not place.ok:
             return place, f"the place ({to[0]:.3f}, {to[1]:.3f}) of object {oid}"
         place_q = self._wrist_turn(pick.q, place.q)
+        # The cup is symmetric: any wrist-3 angle grasps. Centre the pick's and
+        # the place's angles on zero, so the wrist never drifts to its limit
+        # over many actions; the turn between them stays the smallest one.
+        mid = (float(pick.q[5]) + float(place_q[5])) / 2
+        pick_q = pick.q.copy()
+        pick_q[5] -= mid
+        place_q[5] -= mid
+        yaw_pick = tool_yaw(self.ik.fk(pick_q)[1])
+        yaw_place = tool_yaw(self.ik.fk(place_q)[1])
         z_tr = z_tr_want
         above_pick = above_place = None
         while z_tr >= max(top, z_place) + a.approach - 1e-9:
-            above_pick = self._solve(np.array([here[0], here[1], z_tr]), yaw_pick, pick.q, bp)
+            above_pick = self._solve(np.array([here[0], here[1], z_tr]), yaw_pick, pick_q, bp)
             above_place = self._solve(np.array([to[0], to[1], z_tr]), yaw_place, place_q, bl)
             if above_pick.ok and above_place.ok:
                 break
@@ -412,12 +420,13 @@ class ArmExecutor(Executor):
             res = above_pick if above_pick is not None and not above_pick.ok else above_place
             return (res or pick), f"the way above object {oid}"
         down_pick = self._line(np.array([here[0], here[1], z_tr]), np.array([here[0], here[1], top_c - 0.01]), yaw_pick,
-                               above_pick.q, bp)
+                               self._wrist_turn(pick_q, above_pick.q), bp)
         down_place = self._line(np.array([to[0], to[1], z_tr]), np.array([to[0], to[1], z_place - o.overshoot]), yaw_place,
-                                self._wrist_turn(pick.q, above_place.q), bl)
+                                self._wrist_turn(place_q, above_place.q), bl)
         if down_pick is None or down_place is None:
             return IKResult(False, pick.q, math.inf, math.inf, "out of reach"), f"the approach to object {oid}"
-        down_place[0] = self._wrist_turn(pick.q, down_place[0])
+        down_pick = [self._wrist_turn(pick_q, q) for q in down_pick]
+        down_place = [self._wrist_turn(place_q, q) for q in down_place]
         return _Motion(down_pick, down_place, z_tr, yaw_pick, yaw_place)
 
     def _cup_pos(self) -> np.ndarray:

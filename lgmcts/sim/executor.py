@@ -47,6 +47,9 @@ __all__ = ["ExecOptions", "StepOutcome", "Execution", "execute_plan", "Executor"
 
 FrameHook = Callable[[mujoco.MjData], None]
 
+#: Step failures that only the arm causes; each fails an execution with the arm.
+ARM_FAILURES = ("out of reach", "joint limit", "arm collision", "dropped in transfer")
+
 
 @dataclass(frozen=True)
 class ExecOptions:
@@ -474,6 +477,9 @@ def _run(
         on = None if a.on is None else sc.index[a.on]
         out = ex.pick_and_place(k, to, on, index=n)
         steps.append(out)
+        if sim.arm is not None and out.reached is not None and any(c in out.message for c in ARM_FAILURES):
+            # A real arm stops on these: the plan fails even if the scene ends right.
+            reasons.append(f"action {n}: {out.message}")
         if out.reached is None:
             reasons.append(f"action {n}: {out.message}")
             if opts.stop_on_failure:
