@@ -496,7 +496,7 @@ def reach_map(ik: ArmIK, *, table_margin: float = 0.05, r_step: float = 0.01, z_
     intervals."""
     rs = np.arange(0.0, r_max + 1e-9, r_step)
     zs = np.arange(0.0, z_max + 1e-9, z_step)
-    rows = []
+    rows: list[list[float] | None] = []
     for z in zs:
         ok_r = []
         prev: np.ndarray | None = None

@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 import lgmcts
 from lgmcts.cli import app
-from lgmcts.formats import load_goals, load_scene, parse_plan, parse_scene, save_json
+from lgmcts.formats import load_goals, load_scene, parse_plan, parse_scene
 from lgmcts.robot import load_robot
 from lgmcts.sim import execute_plan
 from lgmcts.sim.arm import UR5E, ArmIK, ArmSpec, _rot_error, branch_of, down_rotation
@@ -87,7 +87,7 @@ def _beyond_map(robot, r: float, z: float, gap: float) -> bool:
     """Whether ``r`` lies ``gap`` outside the map's raw interval at both grid
     heights around ``z``."""
     dz = float(robot.z[1] - robot.z[0])
-    rows = [int(math.floor(z / dz)), int(math.ceil(z / dz))]
+    rows = [math.floor(z / dz), math.ceil(z / dz)]
     return bool(r > np.nanmax(robot.rmax[rows]) + gap or r < np.nanmin(robot.rmin[rows]) - gap)
 
 
