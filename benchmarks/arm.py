@@ -1,18 +1,20 @@
-"""The UR5e arm on the ELGR-style suite, beside the floating suction cup.
+"""The UR5e arm on the ELGR-style suite (or the StructFormer-style one), beside the floating suction cup.
 
 Usage::
 
-    python benchmarks/arm.py run --n 400 [--start 0] [--out out/arm.jsonl] [--plain-arm]
+    python benchmarks/arm.py run --n 400 [--start 0] [--out out/arm.jsonl] [--suite elgr] [--plain-arm] [--budget S]
     python benchmarks/arm.py summary [--out out/arm.jsonl] [--ik 1000]
 
 ``run`` generates the ELGR-style suite (``lgmcts bench-generate --suite elgr``,
-seed 0) and, for tasks ``start`` .. ``start + n - 1`` not already in the
+seed 0; ``--suite structformer`` for the other) and, for tasks ``start`` .. ``start + n - 1`` not already in the
 results file (so a run can be split into short pieces and resumed), plans
 with the ground-truth goals twice (``lgmcts.plan`` without a robot and with
 ``robot="ur5e"``), judges each plan with the validator (with ``robot`` for the
 arm's plan: every pick and place within reach), executes the plain plan with
 the floating cup and the arm's plan with the arm, and appends one JSON line
-per task. ``--plain-arm`` also executes the plain plan with the arm.
+per task. ``--plain-arm`` also executes the plain plan with the arm;
+``--budget`` stops starting tasks after that many seconds (short runs on a
+shared machine; rerun to go on).
 
 ``summary`` prints SR_p, SR_ep, simulated seconds per action, wall time per
 pick-and-place and the failure classes, and with ``--ik N`` the inverse
@@ -74,7 +76,7 @@ def run(args: argparse.Namespace) -> None:
     done = set()
     if out.exists():
         done = {json.loads(line)["id"] for line in out.read_text().splitlines() if line.strip()}
-    tasks = list(iter_generate("elgr", n=args.start + args.n, seed=0))[args.start :]
+    tasks = list(iter_generate(args.suite, n=args.start + args.n, seed=0))[args.start :]
     t_run = time.perf_counter()
     for t in tasks:
         if t.id in done:
@@ -109,10 +111,16 @@ def _pct(a: int, b: int) -> str:
 
 
 def summary(args: argparse.Namespace) -> None:
-    recs = [json.loads(line) for line in Path(args.out).read_text().splitlines() if line.strip()]
+    by_id = {}
+    for line in Path(args.out).read_text().splitlines():
+        if line.strip():
+            rec = json.loads(line)
+            by_id[rec["id"]] = rec  # a task run twice counts once (the last run)
+    recs = list(by_id.values())
     n = len(recs)
+    suite = recs[0]["id"].split("-")[0] if recs else "?"
     print(f"date: {datetime.now(UTC):%Y-%m-%d %H:%M} UTC; machine: {platform.node()}, Python {platform.python_version()}")
-    print(f"tasks: {n} (ELGR-style suite, seed 0, ground-truth goals, lgmcts, seed = task seed)\n")
+    print(f"tasks: {n} ({suite} suite, seed 0, ground-truth goals, lgmcts, seed = task seed)\n")
     print("| executor | plans | SR_p | SR_ep | SR_ep / SR_p | sim s / action (median) | wall s / pick-and-place (median, p95) |")
     print("|---|---|---|---|---|---|---|")
     rows = [("floating cup", "cup", "exec"), ("UR5e arm (plans with --robot ur5e)", "arm", "exec")]
@@ -155,6 +163,7 @@ def main() -> None:
     r.add_argument("--n", type=int, default=400)
     r.add_argument("--start", type=int, default=0)
     r.add_argument("--out", default="out/arm.jsonl")
+    r.add_argument("--suite", default="elgr", help="elgr (default) or structformer")
     r.add_argument("--plain-arm", action="store_true", help="also execute the plain plans with the arm")
     r.add_argument("--budget", type=float, default=0.0, help="stop starting tasks after this many seconds (0: no limit)")
     s = sub.add_parser("summary")
