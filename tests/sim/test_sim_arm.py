@@ -244,3 +244,14 @@ def test_unknown_robot_is_bad_input(example_scene, example_goals):
     with pytest.raises(lgmcts.InputError, match="unknown robot"):
         lgmcts.plan(load_scene(example_scene), load_goals(example_goals), robot="ur9")
 
+
+
+@pytest.mark.slow
+def test_arm_execution_is_deterministic():
+    scene = parse_scene(BOTTLE)
+    plan = parse_plan(_plan([{"object": 2, "to": [-0.3, 0.2, 0.0], "on": None},
+                             {"object": 1, "to": [0.2, 0.0, 1.0], "on": None}], 1))
+    a = execute_plan(scene, plan, robot="ur5e")
+    b = execute_plan(scene, plan, robot="ur5e")
+    assert [o.pose for o in a.final.objects] == [o.pose for o in b.final.objects]
+    assert a.sim_time == b.sim_time
