@@ -423,12 +423,14 @@ class ArmIK:
 
     def seeds(self, pos: np.ndarray, branch: int | None = None) -> list[np.ndarray]:
         """Seeds for a target: the canonical configurations of ``branch``
-        (both when ``None``, the first branch first) turned to face it,
-        nearest in reach first."""
+        (both when ``None``, the outward branch first except near the base)
+        turned to face it, nearest in reach first."""
         bearing = math.atan2(-float(pos[0]), float(pos[1]))
         r = math.hypot(float(pos[0]), float(pos[1]))
         out = []
-        for b in BRANCHES if branch is None else (branch,):
+        # Near the base only the folded branch reaches: try it first there.
+        order = BRANCHES if r >= 0.3 else BRANCHES[::-1]
+        for b in order if branch is None else (branch,):
             for _, q in sorted(self._canon[b], key=lambda c: abs(c[0] - r)):
                 qs = q.copy()
                 qs[0] = _wrap(qs[0] + bearing)
