@@ -185,6 +185,13 @@ def plan(
     }
     if robot is not None:
         stats["robot"] = robot
+        rb = opts.step.reach
+        w = sc.initial
+        tops = np.array([w.base_z(k) + float(sc.heights[k]) for k in range(sc.n)])
+        far = ~rb.reachable(sc.bounds, w.poses[:, :2], tops)
+        if far.any():
+            # Objects the arm cannot pick where they stand: a goal that must move one is not solved.
+            stats["out_of_reach"] = [sc.ids[k] for k in np.flatnonzero(far)]
     if res.solved and found != len(res.actions):
         stats["actions_before_polish"] = found
     if time_limit is not None:

@@ -125,6 +125,9 @@ def test_target_out_of_reach_fails_before_moving():
     ]})
     plan = parse_plan(_plan([{"object": 1, "to": [0.62, 0.52, 0.0], "on": None}], 1))
     assert execute_plan(scene, plan).success
+    # The planner neither goes there nor says the block is out of reach.
+    assert not lgmcts.plan(scene, plan.goals, seed=0, max_iter=50, robot="ur5e").solved
+    assert "out_of_reach" not in lgmcts.plan(scene, plan.goals, seed=0, max_iter=50, robot="ur5e").stats
     res = execute_plan(scene, plan, robot="ur5e")
     assert not res.success
     step = res.steps[0]
@@ -255,3 +258,14 @@ def test_arm_execution_is_deterministic():
     b = execute_plan(scene, plan, robot="ur5e")
     assert [o.pose for o in a.final.objects] == [o.pose for o in b.final.objects]
     assert a.sim_time == b.sim_time
+
+
+def test_plan_names_objects_out_of_reach():
+    scene = parse_scene({"workspace": WIDE, "objects": [
+        {"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.62, 0.52, 0.0]},
+        {"id": 2, "name": "block", "color": "blue", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.0, 0.1, 0.0]},
+    ]})
+    goals = {"goals": [{"pattern": "left", "objects": [1], "anchor": 2}]}
+    plan = lgmcts.plan(scene, goals, seed=0, max_iter=50, robot="ur5e")
+    assert not plan.solved and plan.stats["out_of_reach"] == [1]
+    assert lgmcts.plan(scene, goals, seed=0, max_iter=50).solved
