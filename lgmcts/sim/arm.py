@@ -52,7 +52,8 @@ class ArmSpec:
     armature : reflected rotor inertia of each joint (kg m^2).
     force : torque limit of each actuator (N m).
     cup_radius : radius of the suction cup (m).
-    cup_length : distance from the tool flange to the cup face (m).
+    cup_length : distance from the tool flange to the cup face (m): a long
+        tool keeps the wrist above taller neighbours of a picked object.
     base_clear : how far in front of the table's front edge the base centre
         stands (m); the base (7.5 cm in radius) then touches the edge.
     """
@@ -67,8 +68,8 @@ class ArmSpec:
     kv: tuple[float, ...] = (200.0, 200.0, 150.0, 30.0, 30.0, 15.0)
     armature: tuple[float, ...] = (0.5, 0.5, 0.3, 0.05, 0.05, 0.05)
     force: tuple[float, ...] = (150.0, 150.0, 150.0, 28.0, 28.0, 28.0)
-    cup_radius: float = 0.02
-    cup_length: float = 0.06
+    cup_radius: float = 0.015
+    cup_length: float = 0.12
     base_clear: float = 0.08
 
 

@@ -21,7 +21,8 @@ physics moves the links. For each action:
    the wrist turned by the object's yaw change (the cup is symmetric, so the
    smallest turn is used), and down along the tool axis until the object
    lands.
-5. **Release** and retreat along the tool axis; the scene settles.
+5. **Release** and retreat along the tool axis until the cup clears every
+   object; the scene settles.
 
 Every physics step is watched: a link of the arm (the cup included) touching
 an object other than the one carried, or the table, is recorded with whether
@@ -67,8 +68,8 @@ class ArmOptions:
         starts and the retreat ends (m).
     clearance : gap between the carried object's bottom and the highest
         other object during the transfer (m).
-    hold_force : largest force the suction cup holds (N): about a 40 mm cup
-        at 40 kPa of vacuum.
+    hold_force : largest force the suction cup holds (N): about a 30 mm cup
+        at 70 kPa of vacuum.
     settle_tol : a move ends when every joint is this close to its target
         (rad), or after ``settle_time``.
     settle_time : longest wait for the joints after a move (s).
@@ -380,7 +381,10 @@ class ArmExecutor(Executor):
         # 5. Release and retreat.
         dropped = self._carried != k
         self._release()
-        self._retreat(float(to[0]), float(to[1]), min(z_place + a.approach, z_tr), yaw_place)
+        # Up along the tool axis until the cup clears every object, so that the
+        # next joint-space move starts above the scene.
+        clear = float(physics.tops(sim, d).max(initial=0.0)) + a.clearance
+        self._retreat(float(to[0]), float(to[1]), max(z_place + a.approach, clear), yaw_place, low=z_place + a.approach)
         self.settle()
         return self._outcome(index, oid, k, to, on, start_poses, landed, "dropped" if dropped else "")
 
@@ -453,12 +457,18 @@ class ArmExecutor(Executor):
             self.data.eq_active[int(self.parts.welds[self._carried])] = 0
         self._carried = -1
 
-    def _retreat(self, x: float, y: float, z: float, yaw: float) -> None:
+    def _retreat(self, x: float, y: float, z: float, yaw: float, low: float | None = None) -> None:
+        """Straight up to height ``z`` (m) above ``x, y``, or as high as the arm
+        reaches down to ``low``."""
         p0 = self._cup_pos()
         z = max(z, float(p0[2]) + 0.02)
-        up = self._line(p0, np.array([x, y, z]), yaw, self.q)
-        if up is not None:
-            self._straight(up[1:], z - float(p0[2]), self.aopts.cart_speed)
+        floor = z if low is None else max(low, float(p0[2]) + 0.02)
+        while z >= floor - 1e-9:
+            up = self._line(p0, np.array([x, y, z]), yaw, self.q)
+            if up is not None:
+                self._straight(up[1:], z - float(p0[2]), self.aopts.cart_speed)
+                return
+            z -= 0.02
 
     def _refuse(self, index: int, oid: int, res: IKResult, what: str) -> StepOutcome:
         if res.reason == "joint limit":
