@@ -366,8 +366,8 @@ class ArmIK:
         self._jr = np.zeros((3, self.model.nv))
         # Canonical top-down configurations straight ahead, elbow up, in two
         # branches: wrist 2 at -90 deg (BRANCHES[0], the wrist outward: reaches
-        # from about 0.28 to 0.92 m) and at +90 deg (BRANCHES[1], the wrist
-        # folded back towards the base: about 0.16 to 0.72 m). Every other seed
+        # from about 0.3 to 0.9 m) and at +90 deg (BRANCHES[1], the wrist
+        # folded back towards the base: about 0.15 to 0.7 m). Every other seed
         # is turned from these.
         self._canon: dict[int, list[tuple[float, np.ndarray]]] = {}
         for b, q0, radii in ((0, np.array([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]), (0.3, 0.5, 0.7, 0.85)),
