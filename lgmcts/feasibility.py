@@ -26,6 +26,15 @@ on the table are disjoint, so these discs are too.
 * the objects placed in one direction of one anchor have their centres in a
   90-degree sector of radius ``MAX_RELATION_DIST`` about the anchor; their
   discs must fit in that sector grown by the largest ``rho``.
+
+One test is about order rather than area: an ordered pattern places its
+objects after something else (a tower level after the level below it, a
+relation's objects after their anchor, which they are placed relative to).
+When these orders form a cycle, as in a tower ``[1, 2]`` with "1 right of 2"
+(1 carries 2, and 2 is the place 1 is put beside), no object of the cycle
+can be placed first; the goal format already refuses cycles of towers alone
+and of relations alone (:meth:`lgmcts.formats.GoalSpec.check_against`),
+this test the mixed ones.
 """
 
 from __future__ import annotations
@@ -38,6 +47,7 @@ import shapely
 from . import geometry as geo
 from .errors import InputError
 from .formats import RELATIONS, GoalSpec, SceneSpec, pattern_format
+from .patterns import registry
 from .scene import Scene
 from .validate import MAX_RELATION_DIST as _MAX_RELATION_DIST
 from .validate import OVERLAP_AREA as _OVERLAP_AREA
@@ -77,6 +87,7 @@ def precheck(scene: Scene | SceneSpec, goals: GoalSpec) -> None:
         fmt = pattern_format(g.pattern)
         if fmt is not None and fmt.on_table:
             on_table.update(g.objects)
+    _order(goals)
     _pose_goals(sc, goals, in_tower, (xmin, xmax, ymin, ymax))
     area = {i: float(shapely.area(shapely.Polygon(sc.local[sc.index[i]]))) for i in on_table}
     need = sum(area.values())
@@ -151,3 +162,55 @@ def _pose_goals(sc: Scene, goals: GoalSpec, in_tower: set[int], bounds: tuple[fl
             f"objects {i} and {j} have pose goals whose footprints overlap by {areas[hit] * 1e4:.2f} cm^2 "
             "(only a tower goal stacks objects)"
         )
+
+
+def _order(goals: GoalSpec) -> None:
+    """Refuse goals whose ordered patterns make objects wait for each other in a cycle."""
+    reg = registry()
+    after: dict[int, list[tuple[int, str]]] = {}  # object -> (object it is placed after, why)
+    for k, g in enumerate(goals.goals):
+        pattern = reg.get(g.pattern)
+        if pattern is None or not getattr(pattern, "ordered", False):
+            continue
+        if g.anchor is not None:
+            for o in g.objects:
+                after.setdefault(o, []).append((g.anchor, f"goal {k} puts it '{g.pattern}' of {g.anchor}"))
+        else:
+            for a, b in zip(g.objects, g.objects[1:]):
+                after.setdefault(b, []).append((a, f"goal {k}, a {g.pattern}, puts it on {a}"))
+    cycle = _cycle(after)
+    if cycle is not None:
+        steps = "; ".join(f"{o} after {d} ({why})" for o, d, why in cycle)
+        raise InputError(f"the goals order objects in a cycle, so none of them can be placed first: {steps}")
+
+
+def _cycle(after: dict[int, list[tuple[int, str]]]) -> list[tuple[int, int, str]] | None:
+    """A cycle of the graph ``after`` as its edges ``(node, successor, label)``, or ``None``.
+
+    One iterative depth-first search: linear in nodes plus edges.
+    """
+    state: dict[int, int] = {}  # 1: on the current path, 2: done
+    for root in sorted(after):
+        if root in state:
+            continue
+        state[root] = 1
+        path: list[tuple[int, int, str]] = []  # edges taken from the root to the current node
+        stack = [(root, iter(after.get(root, ())))]
+        while stack:
+            node, edges = stack[-1]
+            nxt = next(edges, None)
+            if nxt is None:
+                state[node] = 2
+                stack.pop()
+                if path:
+                    path.pop()
+                continue
+            succ, why = nxt
+            if state.get(succ) == 1:
+                start = next((i for i, e in enumerate(path) if e[0] == succ), len(path))
+                return path[start:] + [(node, succ, why)]
+            if succ not in state:
+                state[succ] = 1
+                path.append((node, succ, why))
+                stack.append((succ, iter(after.get(succ, ()))))
+    return None

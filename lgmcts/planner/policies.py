@@ -126,7 +126,8 @@ def plan(
     method : ``"lgmcts"``, ``"greedy"`` or ``"pmcts"``.
     seed : seed of the random generator; the same seed gives the same plan
         when no ``time_limit`` cuts the search.
-    max_iter : iteration budget (expansions for MCTS, steps for greedy).
+    max_iter : iteration budget (passes of the tree search, each at most one
+        expansion; steps for greedy, a rollout without a step counting one).
     time_limit : optional wall-clock budget (s).
     anytime : keep searching within the budget for a plan with fewer actions.
     options : full :class:`SearchOptions`; ``max_iter``, ``time_limit`` and

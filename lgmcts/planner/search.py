@@ -210,7 +210,9 @@ def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = S
     Each iteration runs four phases: select a node (:func:`_select`),
     expand one child there (:func:`_expand`), simulate from it
     (:func:`_simulate`, a default-policy rollout) and back up the value
-    (:func:`_backup`). Accepted plans go to the :class:`Incumbent`.
+    (:func:`_backup`). Accepted plans go to the :class:`Incumbent`. A pass
+    that only prunes a dead or too deep node counts as an iteration too, so
+    ``opts.max_iter`` bounds the loop whatever the domain returns.
     """
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
@@ -230,6 +232,9 @@ def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = S
             root.dead = False
             root.attempts.clear()
             restarts += 1
+        # Every pass counts, the ones that only prune the tree too, so the
+        # budget ends the search whatever the domain's steps return.
+        it += 1
         node = _select(domain, root, rng, opts)
         if node.dead:
             _mark_dead(node)
@@ -238,7 +243,6 @@ def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = S
             node.dead = True
             _mark_dead(node.parent)
             continue
-        it += 1
         child = _expand(domain, node, rng, opts)
         if child is None:
             if _fully_expanded(domain, node, opts) and all(c.dead for c in node.children):
@@ -301,7 +305,8 @@ def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions =
     """Sequential sampling with the same step and relocation rules, no tree.
 
     Each rollout places random ready objects one after another; a dead end
-    restarts from the initial scene. Every step counts as one iteration.
+    restarts from the initial scene. Every step counts as one iteration, and
+    a rollout that takes no step counts as one.
     """
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
@@ -315,6 +320,7 @@ def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions =
         ss = domain.root()
         actions: list[A] = []
         trace = [ss]
+        start = it
         for _ in range(max_depth):
             if domain.terminal(ss):
                 break
@@ -329,6 +335,10 @@ def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions =
             if tr.action is not None:
                 actions.append(tr.action)
                 trace.append(ss)
+        if it == start:
+            # A rollout that took no step (nothing to choose, or nothing to
+            # do) still counts, or such rollouts would repeat for ever.
+            it += 1
         r = domain.reward(ss)
         if r > best_partial[0]:
             best_partial = (r, actions)

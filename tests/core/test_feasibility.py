@@ -144,3 +144,71 @@ def test_cylinder_pose_goals_in_contact_are_not_refused():
     with pytest.raises(InputError, match="objects 1 and 2 have pose goals"):
         precheck(sc, parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},
                                             {"pattern": "pose", "objects": [2], "pose": overlap}]}))
+
+
+# ------------------------------------------------------------ order cycles
+
+_TWO = [box(1, -0.1, 0.0), box(2, 0.1, 0.0), box(3, 0.0, 0.2), box(4, 0.0, -0.2)]
+
+
+@pytest.mark.parametrize("gs, shown", [
+    # 1 carries 2, and 2 is the anchor 1 is placed beside.
+    ([{"pattern": "tower", "objects": [1, 2]}, {"pattern": "right", "objects": [1], "anchor": 2}],
+     ["1 after 2", "2 after 1"]),
+    ([{"pattern": "tower", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [1], "anchor": 3}],
+     ["1 after 3", "3 after 2", "2 after 1"]),
+    # Through a relation between two other objects: 1 after 3 after 2 after 1.
+    ([{"pattern": "tower", "objects": [1, 2]}, {"pattern": "behind", "objects": [3], "anchor": 2},
+      {"pattern": "front", "objects": [1], "anchor": 3}], ["1 after 3", "3 after 2", "2 after 1"]),
+], ids=["tower-and-relation", "three-high", "through-a-third-object"])
+def test_a_tower_and_relations_that_wait_for_each_other_are_refused(gs, shown):
+    with pytest.raises(InputError, match="order objects in a cycle") as err:
+        precheck(parse_scene(scene(*_TWO)), parse_goals(goals(*gs)))
+    msg = str(err.value)
+    assert "\n" not in msg and all(s in msg for s in shown), msg
+
+
+@pytest.mark.parametrize("gs", [
+    [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "right", "objects": [3], "anchor": 2}],
+    [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "right", "objects": [1], "anchor": 3}],
+    [{"pattern": "tower", "objects": [3, 4]}, {"pattern": "left", "objects": [1, 2], "anchor": 3},
+     {"pattern": "line", "objects": [1, 2, 3]}],
+])
+def test_orders_without_a_cycle_pass_and_are_solved(gs):
+    sc, g = parse_scene(scene(*_TWO)), parse_goals(goals(*gs))
+    precheck(sc, g)
+    assert plan(sc, g, max_iter=2000).solved
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_every_method_ends_with_its_budget_on_goals_it_cannot_order(method):
+    """Past the pre-check (called directly), no object is ever ready: each
+    method must still stop at its budget; greedy and pmcts ran for ever."""
+    import numpy as np
+
+    from lgmcts.planner import METHODS, SearchOptions
+    from lgmcts.planner.problem import Problem
+
+    sc = Scene.from_spec(parse_scene(scene(*_TWO)))
+    g = parse_goals(goals({"pattern": "tower", "objects": [1, 2]}, {"pattern": "right", "objects": [1], "anchor": 2}))
+    res, _ = METHODS[method](Problem.build(sc, g), np.random.default_rng(0), SearchOptions(max_iter=5))
+    assert not res.solved and not res.actions
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(120)
+@pytest.mark.parametrize("method", ["lgmcts", "greedy", "pmcts"])
+def test_the_cli_refuses_a_tower_that_contradicts_a_relation(method, tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    (tmp_path / "s.json").write_text(json.dumps(scene(*_TWO)))
+    (tmp_path / "g.json").write_text(json.dumps(goals({"pattern": "tower", "objects": [1, 2]},
+                                                      {"pattern": "right", "objects": [1], "anchor": 2})))
+    r = subprocess.run([sys.executable, "-m", "lgmcts", "plan", str(tmp_path / "s.json"), "--goal",
+                        str(tmp_path / "g.json"), "--method", method, "--max-iter", "5"],
+                       capture_output=True, text=True, timeout=100)
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.count("\n") == 1 and "order objects in a cycle" in r.stderr, r.stderr

@@ -29,6 +29,7 @@ class Walk:
 
     edges: dict[int, tuple[int, ...]] = field(default_factory=lambda: dict(EDGES))
     only: list[int] | None = None  # accept only this plan (``None``: every plan that reaches the goal)
+    start: int = 0
     steps: int = 0
     rejected: int = 0
 
@@ -37,7 +38,7 @@ class Walk:
         return len(self.edges) + 2
 
     def root(self) -> int:
-        return 0
+        return self.start
 
     def choices(self, state: int) -> Sequence[int]:
         return self.edges[state]
@@ -146,3 +147,32 @@ def test_greedy_counts_its_steps_against_the_budget():
     res = greedy(walk, np.random.default_rng(0), SearchOptions(max_iter=40))
     assert not res.solved and res.iterations == 40 and walk.steps == 40
     assert walk.rejected >= 1
+
+
+# A domain whose steps add nothing must still end with the budget: the
+# loops count every pass (tree search) and every rollout without a step
+# (greedy), so these ran for ever before.
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("method", [mcts, greedy])
+@pytest.mark.parametrize("budget", [1, 5, 300])
+def test_a_root_with_no_choice_ends_with_the_budget(method, budget):
+    walk = Walk(edges={0: (), 1: (), 2: (), 3: (), 4: (), 5: ()})
+    res = method(walk, np.random.default_rng(0), SearchOptions(max_iter=budget))
+    assert not res.solved and res.reason == "iteration budget exhausted"
+    assert res.iterations == budget and walk.steps == 0
+
+
+@pytest.mark.timeout(60)
+@pytest.mark.parametrize("method", [mcts, greedy])
+def test_a_rejected_root_ends_with_the_budget(method):
+    walk = Walk(start=GOAL, only=[9])  # the root reaches the goal, but no plan is accepted
+    res = method(walk, np.random.default_rng(0), SearchOptions(max_iter=5))
+    assert not res.solved and res.iterations == 5 and walk.rejected >= 1
+
+
+@pytest.mark.timeout(60)
+def test_a_tree_pruned_at_the_root_ends_with_the_budget():
+    res = mcts(Walk(), np.random.default_rng(0), SearchOptions(max_iter=5, max_depth=0))
+    assert not res.solved and res.iterations == 5
