@@ -15,6 +15,8 @@ import lgmcts
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_scene
 
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())
 GOALS = json.loads((ROOT / "examples" / "goals.json").read_text())

@@ -19,6 +19,8 @@ from lgmcts import limits
 
 from .conftest import start_server, stop_server
 
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())
 GOALS = json.loads((ROOT / "examples" / "goals.json").read_text())
