@@ -18,6 +18,8 @@ from lgmcts.formats import parse_scene
 from lgmcts.scene import TABLE, Scene
 from lgmcts.validate import OVERLAP_AREA
 
+pytestmark = pytest.mark.slow
+
 REPO = Path(__file__).resolve().parents[2]
 
 

@@ -139,6 +139,7 @@ def test_ray_runs_the_same_task_function(tmp_path, tasks):
         run_suite(tasks[:1], tmp_path / "ray2", options=PLAN_ONLY, ray_address="127.0.0.1:1", source="r")
 
 
+@pytest.mark.slow
 def test_bench_cli_writes_results_and_summaries(tmp_path):
     out = tmp_path / "cli"
     cmd = [sys.executable, "-m", "lgmcts", "bench", "--suite", "structformer", "--n", "4", "--no-exec",

@@ -168,6 +168,7 @@ def test_suite_file_round_trip_and_bad_files(tmp_path):
         read_suite(tmp_path / "missing.jsonl")
 
 
+@pytest.mark.slow
 def test_generate_cli_writes_the_same_file_for_the_same_seed(tmp_path):
     outs = []
     for name in ("a.jsonl", "b.jsonl"):

@@ -9,6 +9,8 @@ import sys
 
 import pytest
 
+pytestmark = pytest.mark.slow
+
 SCENE = "examples/tabletop.json"
 GOALS = "examples/goals.json"
 

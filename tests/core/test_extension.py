@@ -92,6 +92,7 @@ def _cli(*args: str, env: dict | None = None):
     return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300, env=e)
 
 
+@pytest.mark.slow
 def test_cli_loads_pattern_modules(root, tmp_path):
     import json
 

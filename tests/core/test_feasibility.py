@@ -84,6 +84,7 @@ def test_inradius():
     assert inradius(sc.local[0]) == pytest.approx(0.02)
 
 
+@pytest.mark.slow
 def test_bundled_and_generated_scenes_pass_the_start_rules_and_precheck():
     """The overlap rule and the pre-check refuse nothing that exists: bundled scenes, generated cases and suites."""
     import json

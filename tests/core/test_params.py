@@ -343,6 +343,7 @@ def _cli(*args: str):
     return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.slow
 def test_cli_plans_and_checks_goals_with_params(example_scene, root, tmp_path):
     goals_file = root / "examples" / "goals_params.json"
     spec = json.loads(goals_file.read_text())
@@ -362,6 +363,7 @@ def test_cli_plans_and_checks_goals_with_params(example_scene, root, tmp_path):
     assert r.returncode == 1 and "outside region 'bottom left'" in r.stdout
 
 
+@pytest.mark.slow
 def test_cli_bad_param_exits_2(example_scene, tmp_path):
     goals_file = tmp_path / "goals.json"
     goals_file.write_text(json.dumps({"goals": [{"pattern": "line", "objects": [1, 2], "region": "upstairs"}]}))

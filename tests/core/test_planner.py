@@ -114,7 +114,10 @@ def test_anytime_never_longer():
 def test_time_limit_is_respected():
     sc = scene(*[box(i, -0.08 + 0.04 * i, 0.0, size=0.03) for i in range(5)], x=(-0.1, 0.2), y=(-0.03, 0.03))
     p = plan(sc, goals({"pattern": "circle", "objects": [0, 1, 2, 3, 4]}), seed=0, time_limit=0.3)
-    assert not p.solved and p.stats["time_s"] < 2.0
+    # Without the limit this search runs its 10,000 iterations (about 8 s here);
+    # 4 s leaves room for a machine several times slower and still catches a
+    # limit that is ignored.
+    assert not p.solved and p.stats["time_s"] < 4.0
 
 
 @pytest.mark.parametrize("kw,needle", [

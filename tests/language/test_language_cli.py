@@ -8,8 +8,11 @@ import subprocess
 import sys
 
 from typer.testing import CliRunner
+import pytest
 
 from .conftest import ROOT
+
+pytestmark = pytest.mark.slow
 
 PY = sys.executable
 TABLETOP = str(ROOT / "examples" / "tabletop.json")

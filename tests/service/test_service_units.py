@@ -10,6 +10,8 @@ from lgmcts.service import ServiceOptions
 from lgmcts.service import viewer
 from lgmcts.service.app import validation_message
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.mark.parametrize(
     "errors, line",

@@ -15,6 +15,8 @@ from lgmcts import check, plan
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
 from lgmcts.sim import ExecOptions, execute_plan
 
+pytestmark = pytest.mark.slow
+
 R = 0.0375
 WS = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 PARK = [0.25, 0.2]
@@ -81,7 +83,6 @@ def test_picking_out_of_a_packed_ring_and_back():
     assert _pushes(scene, res, {7}) < 1e-3
 
 
-@pytest.mark.slow
 def test_planned_protocol_cases_with_touching_placements_execute():
     # Labbé protocol cases at N = 37 (about 1 in 5 placements lands within
     # 1 mm of a neighbour): every plan executes.

@@ -11,6 +11,8 @@ from lgmcts.errors import InputError
 from lgmcts.formats import load_goals, load_scene
 from lgmcts.sim import ExecOptions, execute_plan
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def example(example_scene, example_goals):

@@ -17,6 +17,8 @@ from lgmcts.sim.executor import Executor
 
 from sim_scenes import ALL_SHAPES
 
+pytestmark = pytest.mark.slow
+
 
 def _single(obj: dict) -> dict:
     o = {**obj, "on": None}

@@ -13,6 +13,8 @@ from lgmcts.formats import load_goals, load_scene, parse_scene
 from lgmcts.sim import CameraOptions, execute_plan, footprint_iou, observe
 from lgmcts.sim.render import backproject
 
+pytestmark = pytest.mark.slow
+
 #: On the example the lowest footprint IoU measured is 0.986 (the cylinders,
 #: whose reference footprint is a 32-gon) and the mean 0.995 (docs/sim.md).
 MIN_IOU = 0.97

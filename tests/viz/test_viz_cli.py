@@ -11,6 +11,8 @@ from typer.testing import CliRunner
 
 from lgmcts.cli import app
 
+pytestmark = pytest.mark.slow
+
 DATA = Path(__file__).parent / "data"
 SCENE = str(DATA / "cluttered_scene.json")
 PLAN = str(DATA / "cluttered_plan.json")

@@ -16,6 +16,8 @@ from lgmcts.validate import check
 from lgmcts.viz import FigureOptions, heatmap_fields, write_plan_figures
 from lgmcts.viz.model import goal_shapes, replay
 
+pytestmark = pytest.mark.slow
+
 DATA = Path(__file__).parent / "data"
 SCENE = DATA / "cluttered_scene.json"
 PLAN = DATA / "cluttered_plan.json"

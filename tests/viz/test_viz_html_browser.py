@@ -26,7 +26,7 @@ ARGS = [
 ]
 
 sync_api = pytest.importorskip("playwright.sync_api", reason="the playwright package is not installed")
-pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (run scripts/system-deps.sh)")
+pytestmark = [pytest.mark.slow, pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (run scripts/system-deps.sh)")]
 
 
 @pytest.fixture(scope="module")

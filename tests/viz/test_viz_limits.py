@@ -5,11 +5,14 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pytest
 
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
 from lgmcts.viz.fields import MAX_FIELD_CELLS, pose_fields
 from lgmcts.scene import Scene
 from lgmcts.viz.figures import FigureOptions, pictured_steps, write_plan_figures
+
+pytestmark = pytest.mark.slow
 
 
 def test_pictured_steps():

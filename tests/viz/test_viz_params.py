@@ -54,6 +54,7 @@ def test_describe_goal_names_the_params():
     assert describe_goal(plain) == "line of 1, 2"
 
 
+@pytest.mark.slow
 def test_pictures_of_a_plan_with_params(solved, tmp_path):
     paths = write_plan_figures(EXAMPLE, solved, tmp_path, options=FigureOptions(dpi=50, gif_width_px=320))
     assert (tmp_path / "final.png").exists() and all(p.exists() for p in paths)

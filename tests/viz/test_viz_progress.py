@@ -70,11 +70,13 @@ def _draw(tmp_path, stderr, monkeypatch):
     return stderr.getvalue()
 
 
+@pytest.mark.slow
 def test_no_bar_when_piped(tmp_path, monkeypatch):
     monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
     assert "drawing steps" not in _draw(tmp_path, io.StringIO(), monkeypatch)
 
 
+@pytest.mark.slow
 def test_bar_on_a_terminal_unless_switched_off(tmp_path, monkeypatch):
     monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
     assert "drawing steps" in _draw(tmp_path / "a", _Tty(), monkeypatch)
@@ -82,6 +84,7 @@ def test_bar_on_a_terminal_unless_switched_off(tmp_path, monkeypatch):
     assert "drawing steps" not in _draw(tmp_path / "b", _Tty(), monkeypatch)
 
 
+@pytest.mark.slow
 def test_cli_verbose_shows_the_search_log():
     runner = CliRunner()
     base = ["plan", str(DATA / "cluttered_scene.json"), "--goal", str(DATA / "cluttered_goals.json"), "--seed", "2"]
