@@ -17,7 +17,7 @@ still to come (the rest is unchanged). The replay checks every
 pick of a clear object, every table placement inside the workspace and
 keeping the search's clearance from every other footprint (or, for a goal
 placement on a fixed target, at most touching it: the contact that the
-search itself allows, see :func:`lgmcts.planner.step.touching_only`), every
+search itself allows, see :func:`lgmcts.planner.placement.touching_only`), every
 stacking onto a clear
 support over its footprint, and every goal met at the end (firmly, still
 met when every centre moves by up to 2 mm, for a goal whose objects no
@@ -37,8 +37,9 @@ from ..formats import Action
 from ..patterns import CLEARANCE
 from ..scene import TABLE, replay
 from ..validate import goal_satisfied
-from .search import valid_plan
-from .step import CONTACT_AREA, Problem, touching_only
+from .domain import valid_plan
+from .placement import CONTACT_AREA, touching_only
+from .problem import Problem
 
 __all__ = ["polished"]
 
@@ -137,7 +138,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
     near = np.flatnonzero(shapely.dwithin(poly, placed, CLEARANCE * 0.99))
     if not len(near):
         return False
-    # A fixed target placed in contact is no conflict (the search allows that, see step.touching_only).
+    # A fixed target placed in contact is no conflict (the search allows that, see placement.touching_only).
     a = sc.index[obj]
     b = np.array([sc.index[actions[ks[t]].object] for t in near])
     xy_a = np.array(shapely.get_coordinates(shapely.centroid(poly)))[0] if sc.discs[a] > 0 else np.zeros(2)
@@ -150,7 +151,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
 
 def _contact_ok(problem: Problem, action: Action, i: int) -> bool:
     """Whether the search may place ``action``'s object ``i`` closer than the
-    clearance: a goal placement on a fixed target (see step._to_table)."""
+    clearance: a goal placement on a fixed target (see placement.to_table)."""
     return action.purpose == "goal" and i in problem.fixed
 
 
@@ -208,7 +209,7 @@ def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None
 
 
 def polished(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:
-    """The search's acceptance step with polishing (a :data:`~lgmcts.planner.search.Accept`).
+    """The search's acceptance step with polishing (a :data:`~lgmcts.planner.domain.Accept`).
 
     ``actions`` reach every goal in the planner's model but have not been
     validated. The polished plan is returned when the validator accepts it,

@@ -1,19 +1,26 @@
-"""Relocation geometry: where an obstacle can be parked, and which parking
-spot is best.
+"""Relocation: moving an obstacle out of the way, and the geometry behind it.
 
-Pure functions of a scene, a world state and candidate poses; the
-transition that moves the obstacle (:func:`lgmcts.planner.step.relocate`)
-draws the candidates and builds the successor state.
+:func:`relocate` is the transition that parks an obstacle on a free table
+pose. Where it can be parked (:func:`clear_centres`), how much a spot is in
+the way of goals still to be filled (:func:`region_scores`) and which spot
+is snuggest (:func:`snuggest`) are pure functions of a scene, a world state
+and candidate poses.
 """
 
 from __future__ import annotations
 
+import math
+from typing import Callable
+
 import numpy as np
 import shapely
 
-from ..scene import Scene, State
+from ..scene import TABLE, Scene, State
+from .base import Transition
+from .placement import StepOptions, free_mask, make_action, wrapped
+from .problem import Problem, SearchState, uncommit
 
-__all__ = ["GRID_STEP", "clear_centres", "region_scores", "snuggest"]
+__all__ = ["GRID_STEP", "clear_centres", "region_scores", "relocate", "snuggest"]
 
 #: Spacing of the grid on which :func:`clear_centres` looks for room (m).
 GRID_STEP = 0.01
@@ -84,3 +91,130 @@ def snuggest(scene: Scene, world: State, b: int, xy: np.ndarray) -> int:
     slack = (gap - scene.radii[others][None, :]).min(axis=1, initial=np.inf)
     slack = np.minimum.reduce([slack, px - xmin, xmax - px, py - ymin, ymax - py])
     return int(np.argmin(slack))
+
+
+def _goal_regions(problem: Problem, ss: SearchState, mover: int = -1, avoid: int = -1) -> tuple[np.ndarray, np.ndarray]:
+    """Regions where the remaining goal objects will go, as a shapely array
+    (may be empty), and which of them belong to a goal of ``avoid``.
+
+    A goal of ``mover`` alone is left out: parked over its own target, an
+    object is in nobody's way but its own, and it is the next to move there.
+    """
+    parts, theirs = [], []
+    static = problem.static_regions
+    for k, g in enumerate(problem.goals):
+        if len(ss.progress[k].placed) == len(g.objects) or g.objects == (mover,):
+            continue
+        reg = static[k] if k in static else problem.patterns[k].region(ss.ctx(problem, k))
+        if reg is not None:
+            parts.append(reg)
+            theirs.append(avoid in g.objects)
+    out = np.empty(len(parts), dtype=object)
+    out[:] = parts
+    return out, np.asarray(theirs, dtype=bool)
+
+
+def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions, purpose: str,
+             avoid: int = -1) -> Transition | None:
+    """Move obstacle ``b`` to a free table pose, outside remaining goal regions when possible.
+
+    ``avoid`` is the object ``b`` is moved for: a pose in the way of its
+    goals is taken only when there is no other.
+    """
+    scene, world = problem.scene, ss.world
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b])
+    check = StepOptions(opts.samples, opts.clearance, "all")
+    off = _off_target(problem, b, avoid)
+    # Candidates from the grid of clear centres first, then, if it has none
+    # (elongated neighbours make it pessimistic), larger uniform batches.
+    room = clear_centres(scene, world, b, opts.clearance)
+    batches = [2 * opts.samples, 16 * opts.samples]
+    if len(room):
+        batches.insert(0, -1)
+    for n in batches:
+        grid = n < 0
+        if grid:
+            k = 4 * opts.samples
+            pick = room[rng.choice(len(room), size=min(len(room), k), replace=False)]
+            poses = np.empty((len(pick), 3))
+            poses[:, :2] = pick
+            n = len(pick)
+        else:
+            poses = np.empty((n, 3))
+            poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
+            poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
+        poses[:, 2] = np.where(rng.random(n) < 0.5, world.poses[b, 2], rng.uniform(-math.pi, math.pi, n))
+        if grid:
+            # Circumscribed circles apart by the clearance: free at any yaw.
+            free = off(poses)
+            if free.any():
+                break
+            continue
+        free = free_mask(problem, ss, b, poses, check) & off(poses)
+        if free.any():
+            break
+    else:
+        # No room with the clearance anywhere: park touching neighbours.
+        poses = _contact_spots(problem, ss, b, rng, check, off)
+        if not len(poses):
+            return None
+        free = np.ones(len(poses), dtype=bool)
+    idx = np.flatnonzero(free)
+    regions, theirs = _goal_regions(problem, ss, b, avoid)
+    if len(regions):
+        # The free pose that overlaps the fewest regions still to be filled
+        # (none, when there is one), so the obstacle is not in the way again;
+        # above all not in the way of the object it makes room for.
+        score = region_scores(regions, theirs, poses[idx, :2], r)
+        idx = idx[score == score.min()]
+    if len(idx) > 1:
+        # Of the best, the snuggest (see :func:`.relocate.snuggest`).
+        idx = idx[[snuggest(scene, world, b, poses[idx, :2])]]
+    pose = wrapped(poses[idx[0]])
+    new_world = world.moved(b, pose, TABLE)
+    act = make_action(scene, b, pose, None, purpose)
+    return Transition(act, SearchState(new_world, uncommit(problem, ss.progress, b)))
+
+
+def _off_target(problem: Problem, b: int, avoid: int) -> Callable[[np.ndarray], np.ndarray]:
+    """A mask function over poses ``(k, 3)`` of ``b``: whether ``b`` there
+    leaves ``avoid``'s fixed target free (its circle, or its circumscribed
+    circle for other shapes, at most touching the target's). All true when
+    ``avoid`` has no fixed target: parking on a fixed target would not make
+    the room the move is for, so such a spot is never taken."""
+    if avoid not in problem.fixed:
+        return lambda poses: np.ones(len(poses), dtype=bool)
+    sc = problem.scene
+    t = problem.fixed[avoid][:2]
+    both = sc.discs[b] > 0 and sc.discs[avoid] > 0
+    reach = float(sc.discs[b] + sc.discs[avoid]) if both else float(sc.radii[b] + sc.radii[avoid])
+    return lambda poses: np.hypot(poses[:, 0] - t[0], poses[:, 1] - t[1]) >= reach - 1e-9
+
+
+def _contact_spots(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator, opts: StepOptions,
+                   keep) -> np.ndarray:
+    """Poses ``(k, 3)`` where ``b`` fits at most touching other objects and
+    the workspace edge, and that pass the mask function ``keep``: grid
+    centres whose circumscribed circles do not overlap, else uniform draws
+    that pass the contact test."""
+    scene, world = problem.scene, ss.world
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b])
+    room = clear_centres(scene, world, b, 0.0)
+    if len(room):
+        poses = np.empty((len(room), 3))
+        poses[:, :2] = room
+        poses[:, 2] = world.poses[b, 2]
+        poses = poses[keep(poses)]
+        if len(poses):
+            return poses[rng.choice(len(poses), size=min(len(poses), 4 * opts.samples), replace=False)]
+    n = 16 * opts.samples
+    poses = np.empty((n, 3))
+    poses[:, 0] = rng.uniform(xmin + r, max(xmin + r, xmax - r), n)
+    poses[:, 1] = rng.uniform(ymin + r, max(ymin + r, ymax - r), n)
+    poses[:, 2] = world.poses[b, 2]
+    keep_mask = keep(poses)
+    poses = poses[keep_mask]
+    return poses[free_mask(problem, ss, b, poses, opts, contact=True)] if len(poses) else poses
+
