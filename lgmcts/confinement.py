@@ -112,13 +112,8 @@ def _core(h: np.ndarray, d: float):
     if span < 1e-6:
         # A point, to rounding: the disc about it, shrunk by the span, is inside the core.
         return shapely.Point(pts.mean(axis=0)).buffer(d - span, quad_segs=16)
-    core = None
-    for x, y in pts:
-        disc = shapely.Point(x, y).buffer(d, quad_segs=16)
-        core = disc if core is None else core.intersection(disc)
-        if core.is_empty:
-            return None
-    return core
+    core = shapely.intersection_all(shapely.buffer(shapely.points(pts), d, quad_segs=16))
+    return None if core.is_empty else core
 
 
 def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | None:
@@ -136,7 +131,7 @@ def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | N
         return None
     t0 = time.perf_counter()
     n = sc.n
-    targets = {sc.index[g.objects[0]]: np.asarray(g.pose[:2], dtype=float) for g in goals.goals}
+    targets = {sc.index[g.objects[0]]: np.asarray(g.pose[:2], dtype=float) for g in goals.goals if g.pose is not None}
     start = sc.initial.poses[:, :2]
     if all(math.dist(start[i], t) <= TOL for i, t in targets.items()):
         return None
@@ -146,24 +141,35 @@ def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | N
     xmin, xmax, ymin, ymax = sc.bounds
     order = np.argsort(rho)
     d = np.empty(n)
+    known: dict[tuple[float, float], float] = {}
     for j in range(n):
-        other = order[0] if order[0] != j else order[1]
-        d[j] = contact_distance(float(rho[other]), float(rho[j]))
-    boxes = []
+        pair = (float(rho[order[0] if order[0] != j else order[1]]), float(rho[j]))
+        if pair not in known:
+            known[pair] = contact_distance(*pair)
+        d[j] = known[pair]
+    boxes: list = []
+    by_rho: dict[float, object] = {}
     for i in range(n):
+        if float(rho[i]) in by_rho:
+            boxes.append(by_rho[float(rho[i])])
+            continue
         m = rho[i] - _EDGE_TOL
         lo_x, hi_x = max(xmin, xmin + m), min(xmax, xmax - m)
         lo_y, hi_y = max(ymin, ymin + m), min(ymax, ymax - m)
         if lo_x > hi_x or lo_y > hi_y:
             return None
         boxes.append(shapely.box(lo_x, lo_y, hi_x, hi_y))
+        by_rho[float(rho[i])] = boxes[-1]
     # Each region is the convex polygon of its support numbers along _DIRS.
     regions = [_support(shapely.Point(start[i])) + _GROW for i in range(n)]
     dmax = float(d.max())
     for rnd in range(_ROUNDS):
         if time.perf_counter() - t0 > budget_s:
             return None
-        cores = [_core(h, float(d[j])) for j, h in enumerate(regions)]
+        if rnd == 0:
+            cores = [shapely.Point(start[j]).buffer(float(d[j]), quad_segs=16) for j in range(n)]
+        else:
+            cores = [_core(h, float(d[j])) for j, h in enumerate(regions)]
         live = [j for j in range(n) if cores[j] is not None]
         if not live:
             return None  # nothing is kept anywhere: every region becomes its whole box
@@ -176,18 +182,21 @@ def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | N
                 return None
         grown = False
         new = []
+        shared: dict[int, np.ndarray] = {}
         for i in range(n):
             if time.perf_counter() - t0 > budget_s:
                 return None
-            free = boxes[i].difference(union)
+            key = id(boxes[i])
+            if key not in shared:
+                shared[key] = _support(boxes[i].difference(union))
+            h = shared[key]
             if cores[i] is not None:
                 # Points of i's own core are open to i unless another core covers them.
                 near = [live[k] for k in tree.query(cores[i]) if live[k] != i]
                 mine = boxes[i].intersection(cores[i])
                 if near:
                     mine = mine.difference(shapely.union_all([cores[j] for j in near]))
-                free = free.union(mine)
-            h = _support(free)
+                h = np.maximum(h, _support(mine))
             if (h > regions[i]).any():
                 grown = True
                 new.append(np.maximum(regions[i], h + _GROW))

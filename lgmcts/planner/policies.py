@@ -179,6 +179,8 @@ def plan(
         stats["solutions"] = res.solutions
     if not res.solved:
         stats["reason"] = res.reason
+        if res.proved:
+            stats["infeasible"] = True
     stats.update(extra)
     return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
                     fits=final_fits(sc, gspec, res.actions))
