@@ -201,11 +201,15 @@ def _trlb_row(d: float, n: int, files: tuple[Path, Path], a: argparse.Namespace,
     try:
         p = plan(case.scene, case.goals, seed=a.seed, max_iter=a.max_iter, time_limit=a.time_limit)
     except InputError as e:
-        # A refusal is a proof that no plan exists (lgmcts.feasibility).
+        # A refusal is a proof that no plan exists (lgmcts.feasibility), as is
+        # an unsolved plan marked infeasible below.
         row.update(time_s=time.perf_counter() - t, cpu_s=time.process_time() - tc, refused=str(e), actions=0)
     else:
         row.update(time_s=time.perf_counter() - t, cpu_s=time.process_time() - tc, actions=len(p.actions),
                    iterations=p.stats["iterations"], reason=p.stats.get("reason", ""))
+        if p.stats.get("infeasible"):
+            # The planner's proof that no table-only plan exists (lgmcts.confinement).
+            row["refused"] = row["reason"]
         verdict = check(case.scene, case.goals, p)
         row["solved"] = bool(p.solved and verdict.valid)
         if p.solved and not verdict.valid:
@@ -266,7 +270,7 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
             if s is None:
                 line += " - | - | - |"
                 continue
-            solved = f"{s['solved']}/{s['pairs']}" + (f" ({s['refused']} refused)" if s["refused"] else "")
+            solved = f"{s['solved']}/{s['pairs']}" + (f" ({s['refused']} proved impossible)" if s["refused"] else "")
             line += f" {solved} | {s['time_median_s']:.3f} / {s['time_p95_s']:.3f} | {s['actions_per_object']:.2f} |"
         first = out["cells"][f"{d:g}/{n}"].get(names[0])
         line += f" {first['process_median_s']:.2f} |" if first and first["process_median_s"] == first["process_median_s"] else " - |"
@@ -330,7 +334,7 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
     print("\n".join(md))
     for r in rows:
         if r.get("refused"):
-            print(f"refused D={r['density']:g} n={r['n']} {r['pair']}: {r['refused']} ({r['time_s']:.3f} s)")
+            print(f"proved impossible D={r['density']:g} n={r['n']} {r['pair']}: {r['refused']} ({r['time_s']:.3f} s)")
     if a.markdown:
         a.markdown.parent.mkdir(parents=True, exist_ok=True)
         a.markdown.write_text("\n".join(md) + "\n")

@@ -44,15 +44,21 @@ def clear_centres(scene: Scene, world: State, b: int, clearance: float) -> np.nd
     gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
     others = np.flatnonzero(np.arange(scene.n) != b)
     cx, cy = world.poses[others, 0], world.poses[others, 1]
-    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
-    dx2 = (gx[None, :] - cx[:, None]) ** 2
-    dy2 = (gy[None, :] - cy[:, None]) ** 2
+    reach = scene.radii[others] + scene.radii[b] + clearance + 1e-9
+    reach2 = reach**2
     free = np.ones((len(gy), len(gx)), dtype=bool)
-    # All objects at once, in chunks that keep the temporary under ~2 MB.
-    step = max(1, 250_000 // max(1, free.size))
-    for k in range(0, len(others), step):
-        s = slice(k, k + step)
-        free &= ((dy2[s, :, None] + dx2[s, None, :]) > reach2[s, None, None]).all(axis=0)
+    # Each object rules out only the grid points in the square around it
+    # (a window a little wider than its reach; points outside are farther
+    # than the reach along one axis), so the cost grows with the objects,
+    # not with objects x grid points.
+    x0 = np.searchsorted(gx, cx - reach - 1e-9, side="left")
+    x1 = np.searchsorted(gx, cx + reach + 1e-9, side="right")
+    y0 = np.searchsorted(gy, cy - reach - 1e-9, side="left")
+    y1 = np.searchsorted(gy, cy + reach + 1e-9, side="right")
+    for k in np.flatnonzero((x1 > x0) & (y1 > y0)).tolist():
+        dx2 = (gx[x0[k]:x1[k]] - cx[k]) ** 2
+        dy2 = (gy[y0[k]:y1[k]] - cy[k]) ** 2
+        free[y0[k]:y1[k], x0[k]:x1[k]] &= (dy2[:, None] + dx2[None, :]) > reach2[k]
     jj, ii = np.nonzero(free)
     return np.stack([gx[ii], gy[jj]], axis=1)
 

@@ -4,6 +4,7 @@ parked and which spot is best, as pure functions of a scene and a state."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -70,3 +71,30 @@ def test_snuggest_parks_next_to_a_neighbour_or_the_edge():
     assert snuggest(sc, sc.initial, 0, xy) == 1  # nearest its neighbour (object 2)
     xy = np.array([[-0.1, 0.1], [-0.29, 0.0]])
     assert snuggest(sc, sc.initial, 0, xy) == 1  # against the left edge
+
+
+def _clear_centres_dense(scene, world, b, clearance):
+    # The plain definition: every grid point against every other object.
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b]) + clearance / 2
+    gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
+    gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
+    others = np.flatnonzero(np.arange(scene.n) != b)
+    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
+    d2 = (gy[None, :, None] - world.poses[others, 1][:, None, None]) ** 2 + (
+        gx[None, None, :] - world.poses[others, 0][:, None, None]) ** 2
+    free = (d2 > reach2[:, None, None]).all(axis=0)
+    jj, ii = np.nonzero(free)
+    return np.stack([gx[ii], gy[jj]], axis=1)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_clear_centres_matches_the_dense_definition(seed):
+    from lgmcts.casegen import random_case
+
+    case = random_case(seed, dense=True)
+    sc = Scene.from_spec(case.scene)
+    for b in range(0, sc.n, 3):
+        for clearance in (0.0, 0.004, 0.02):
+            np.testing.assert_array_equal(clear_centres(sc, sc.initial, b, clearance),
+                                          _clear_centres_dense(sc, sc.initial, b, clearance))
