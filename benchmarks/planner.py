@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import platform
 import resource
 import subprocess
@@ -46,9 +47,10 @@ from pathlib import Path
 
 import numpy as np
 
-from lgmcts import InputError, check, plan, save_json
+from lgmcts import Action, InputError, PlanSpec, check, plan, save_json
 from lgmcts.casegen import (
     LABBE_VARIANTS,
+    TRLB_UNIT,
     labbe_case,
     random_case,
     trlb_case,
@@ -236,6 +238,44 @@ def _process_time(case, a: argparse.Namespace) -> float:
         return time.perf_counter() - t
 
 
+def _trlb_peer_plan(case, moves: list) -> PlanSpec:
+    """A plan of TRLB's ``[object, from, to]`` moves (TRLB units, objects from 0) for ``case``."""
+    goal = {g.objects[0]: g.pose for g in case.goals.goals}
+    acts = []
+    for obj, _, to in moves:
+        pose = (to[0] * TRLB_UNIT, to[1] * TRLB_UNIT, 0.0)
+        target = goal[obj + 1]
+        at_goal = math.hypot(pose[0] - target[0], pose[1] - target[1]) < 1e-6
+        acts.append(Action(object=obj + 1, to=pose, purpose="goal" if at_goal else "relocate"))
+    return PlanSpec(solved=True, actions=acts, goals=case.goals)
+
+
+def _trlb_peer_checks(rows: list[dict], a: argparse.Namespace) -> None:
+    """Judge TRLB's plans with the validator (``valid``); replay a sample in MuJoCo (``physics``)."""
+    root = Path(a.instances)
+    sample = 0
+    for r in sorted(rows, key=lambda r: (r["n"], r["density"])):
+        if not r.get("plan"):
+            continue
+        tag = f"{r['density']:g}"
+        case = trlb_case(*(root / f"D={tag}" / f"n={r['n']}" / name for name in r["pair"]))
+        plan_ = _trlb_peer_plan(case, r["plan"])
+        verdict = check(case.scene, case.goals, plan_)
+        r["valid"] = bool(verdict.valid)
+        if not verdict.valid:
+            r["invalid_reasons"] = list(verdict.reasons[:3])
+        if sample < a.peer_physics and r["n"] <= a.peer_physics_max_n and r["setting"] == "preprocessing":
+            from lgmcts.sim import execute_plan
+
+            t = time.perf_counter()
+            ex = execute_plan(case.scene, plan_, case.goals)
+            r["physics"] = bool(ex.success)
+            r["physics_s"] = time.perf_counter() - t
+            if not ex.success:
+                r["physics_reasons"] = list(ex.reasons[:3])
+            sample += 1
+
+
 def _trlb_cell(rows: list[dict]) -> dict:
     ok = [r for r in rows if r["solved"]]
     t = [r["time_s"] for r in ok]
@@ -328,6 +368,8 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
     if a.peer:
         peer = json.loads(a.peer.read_text())
         peer_meta = peer.get("meta")
+        if a.instances.is_dir():
+            _trlb_peer_checks(peer["rows"], a)
         for r in peer["rows"]:
             groups.setdefault(f"TRLB {r['setting']}", []).append(r)
     summary, md = _trlb_table(groups)
@@ -335,10 +377,25 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
     for r in rows:
         if r.get("refused"):
             print(f"proved impossible D={r['density']:g} n={r['n']} {r['pair']}: {r['refused']} ({r['time_s']:.3f} s)")
+    if a.peer:
+        judged = [r for m, g in groups.items() if m != "lgmcts" for r in g if "valid" in r]
+        for m in [m for m in groups if m != "lgmcts"]:
+            mine = [r for r in groups[m] if "valid" in r]
+            line = (f"{m}: {sum(r['valid'] for r in mine)} of {len(mine)} plans accepted by the validator")
+            md.append(line)
+            print(line)
+        phys = [r for r in judged if "physics" in r]
+        if phys:
+            agree = sum(r["physics"] == r["valid"] for r in phys)
+            line = (f"MuJoCo replay of {len(phys)} TRLB plans (preprocessing setting, n <= {a.peer_physics_max_n}): "
+                    f"{sum(r['physics'] for r in phys)} succeed, {sum(r['valid'] for r in phys)} valid; "
+                    f"physics and validator agree on {agree} of {len(phys)}")
+            md.append(line)
+            print(line)
     if a.markdown:
         a.markdown.parent.mkdir(parents=True, exist_ok=True)
         a.markdown.write_text("\n".join(md) + "\n")
-    return {"rows": rows, "summary": summary, "peer_meta": peer_meta}
+    return {"rows": rows, "summary": summary, "peer_meta": peer_meta, "peer_rows": peer["rows"] if a.peer else None}
 
 
 def main() -> None:
@@ -370,6 +427,9 @@ def main() -> None:
     tr.add_argument("--process-sample", type=int, default=1,
                     help="per cell, time this many cases also as a whole 'lgmcts plan' process")
     tr.add_argument("--peer", type=Path, help="TRLB's own runs on the same pairs (JSON with 'rows')")
+    tr.add_argument("--peer-physics", type=int, default=0,
+                    help="replay this many of TRLB's plans (preprocessing setting) in MuJoCo")
+    tr.add_argument("--peer-physics-max-n", type=int, default=20, help="only plans of at most this many discs")
     tr.add_argument("--results", type=Path, help="summarise the rows of an earlier --json instead of planning")
     tr.add_argument("--markdown", type=Path, help="also write the tables here")
     for p in (r, lb, mem, tr):
