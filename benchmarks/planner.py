@@ -287,6 +287,10 @@ def _trlb_cell(rows: list[dict]) -> dict:
         "time_median_s": float(np.median(t)) if t else float("nan"),
         "time_p95_s": float(np.percentile(t, 95)) if t else float("nan"),
         "time_median_all_s": float(np.median([r["time_s"] for r in rows])),
+        # Process CPU time of the planner alone: on a shared machine, less
+        # affected by other tenants than wall time (absent for peers' rows without it).
+        "cpu_median_s": (float(np.median([r["cpu_s"] for r in ok])) if ok and all("cpu_s" in r for r in ok)
+                         else float("nan")),
         "process_median_s": float(np.median(proc)) if proc else float("nan"),
         "actions_per_object": float(np.mean([r["actions"] / r["n"] for r in ok])) if ok else float("nan"),
         "refuse_time_max_s": max([r["time_s"] for r in rows if r.get("refused")], default=float("nan")),
@@ -298,9 +302,9 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
     names = list(groups)
     cells = sorted({(r["density"], r["n"]) for rows in groups.values() for r in rows})
     out: dict = {"cells": {}, "densities": {}, "exponent_d04": {}}
-    md = ["| D | n | " + " | ".join(f"{m}: solved | {m}: median / p95 plan (s) | {m}: actions/object" for m in names)
-          + " | lgmcts: process (s) |",
-          "|---|---|" + "---|---|---|" * len(names) + "---|"]
+    md = ["| D | n | " + " | ".join(f"{m}: solved | {m}: median / p95 plan (s) | {m}: median CPU (s) | {m}: actions/object"
+                                     for m in names) + " | lgmcts: process (s) |",
+          "|---|---|" + "---|---|---|---|" * len(names) + "---|"]
     for d, n in cells:
         line = f"| {d:g} | {n} |"
         for m in names:
@@ -308,36 +312,40 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
                 (r["density"], r["n"]) == (d, n) for r in groups[m]) else None
             out["cells"].setdefault(f"{d:g}/{n}", {})[m] = s
             if s is None:
-                line += " - | - | - |"
+                line += " - | - | - | - |"
                 continue
             solved = f"{s['solved']}/{s['pairs']}" + (f" ({s['refused']} proved impossible)" if s["refused"] else "")
-            line += f" {solved} | {s['time_median_s']:.3f} / {s['time_p95_s']:.3f} | {s['actions_per_object']:.2f} |"
+            line += (f" {solved} | {s['time_median_s']:.3f} / {s['time_p95_s']:.3f} | {s['cpu_median_s']:.3f} |"
+                     f" {s['actions_per_object']:.2f} |")
         first = out["cells"][f"{d:g}/{n}"].get(names[0])
         line += f" {first['process_median_s']:.2f} |" if first and first["process_median_s"] == first["process_median_s"] else " - |"
         md.append(line)
-    md += ["", "| D | " + " | ".join(f"{m}: solved | {m}: median plan (s) | {m}: actions/object" for m in names) + " |",
-           "|---|" + "---|---|---|" * len(names)]
+    md += ["", "| D | " + " | ".join(f"{m}: solved | {m}: median plan (s) | {m}: median CPU (s) | {m}: actions/object"
+                                     for m in names) + " |",
+           "|---|" + "---|---|---|---|" * len(names)]
     for d in sorted({c[0] for c in cells}):
         line = f"| {d:g} |"
         for m in names:
             s = _trlb_cell([r for r in groups[m] if r["density"] == d]) if any(r["density"] == d for r in groups[m]) else None
             out["densities"].setdefault(f"{d:g}", {})[m] = s
-            line += " - | - | - |" if s is None else (
-                f" {s['solved']}/{s['pairs']} | {s['time_median_s']:.3f} | {s['actions_per_object']:.2f} |")
+            line += " - | - | - | - |" if s is None else (
+                f" {s['solved']}/{s['pairs']} | {s['time_median_s']:.3f} | {s['cpu_median_s']:.3f} |"
+                f" {s['actions_per_object']:.2f} |")
         md.append(line)
     md.append("")
     for m in names:
         # Median planning time per n at D = 0.4, n = 50-200, fitted as t = c n^k (least squares in log-log).
-        pts = []
-        for n in sorted({r["n"] for r in groups[m] if r["density"] == 0.4 and 50 <= r["n"] <= 200}):
-            t = [r["time_s"] for r in groups[m] if r["density"] == 0.4 and r["n"] == n and r["solved"]]
-            if t:
-                pts.append((n, float(np.median(t))))
-        if len(pts) >= 2:
-            k, _ = np.polyfit(np.log([p[0] for p in pts]), np.log([p[1] for p in pts]), 1)
-            out["exponent_d04"][m] = {"exponent": float(k), "points": pts}
-            md.append(f"{m}: median planning time at D = 0.4, n = {pts[0][0]}-{pts[-1][0]} grows as n^{k:.2f} "
-                      f"({len(pts)} values of n)")
+        for key, what in (("time_s", "wall"), ("cpu_s", "CPU")):
+            pts = []
+            for n in sorted({r["n"] for r in groups[m] if r["density"] == 0.4 and 50 <= r["n"] <= 200}):
+                t = [r[key] for r in groups[m] if r["density"] == 0.4 and r["n"] == n and r["solved"] and key in r]
+                if t:
+                    pts.append((n, float(np.median(t))))
+            if len(pts) >= 2:
+                k, _ = np.polyfit(np.log([p[0] for p in pts]), np.log([p[1] for p in pts]), 1)
+                out["exponent_d04"][f"{m} ({what})"] = {"exponent": float(k), "points": pts}
+                md.append(f"{m}: median planning {what} time at D = 0.4, n = {pts[0][0]}-{pts[-1][0]} grows as "
+                          f"n^{k:.2f} ({len(pts)} values of n)")
     return out, md
 
 
@@ -365,12 +373,20 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
             print(file=sys.stderr)
     groups = {"lgmcts": rows}
     peer_meta = None
+    peer_rows: list[dict] = []
     if a.peer:
-        peer = json.loads(a.peer.read_text())
-        peer_meta = peer.get("meta")
+        # Several files may be given; a later file's row for the same setting and pair wins.
+        keyed: dict[tuple, dict] = {}
+        peer_meta = []
+        for f in a.peer:
+            peer = json.loads(f.read_text())
+            peer_meta.append(peer.get("meta"))
+            for r in peer["rows"]:
+                keyed[(r["setting"], r["density"], r["n"], tuple(r["pair"]))] = r
+        peer_rows = list(keyed.values())
         if a.instances.is_dir():
-            _trlb_peer_checks(peer["rows"], a)
-        for r in peer["rows"]:
+            _trlb_peer_checks(peer_rows, a)
+        for r in peer_rows:
             groups.setdefault(f"TRLB {r['setting']}", []).append(r)
     summary, md = _trlb_table(groups)
     print("\n".join(md))
@@ -395,7 +411,7 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
     if a.markdown:
         a.markdown.parent.mkdir(parents=True, exist_ok=True)
         a.markdown.write_text("\n".join(md) + "\n")
-    return {"rows": rows, "summary": summary, "peer_meta": peer_meta, "peer_rows": peer["rows"] if a.peer else None}
+    return {"rows": rows, "summary": summary, "peer_meta": peer_meta, "peer_rows": peer_rows}
 
 
 def main() -> None:
@@ -426,7 +442,8 @@ def main() -> None:
     tr.add_argument("--seed", type=int, default=0)
     tr.add_argument("--process-sample", type=int, default=1,
                     help="per cell, time this many cases also as a whole 'lgmcts plan' process")
-    tr.add_argument("--peer", type=Path, help="TRLB's own runs on the same pairs (JSON with 'rows')")
+    tr.add_argument("--peer", type=Path, action="append",
+                    help="TRLB's own runs on the same pairs (JSON with 'rows'); may be repeated")
     tr.add_argument("--peer-physics", type=int, default=0,
                     help="replay this many of TRLB's plans (preprocessing setting) in MuJoCo")
     tr.add_argument("--peer-physics-max-n", type=int, default=20, help="only plans of at most this many discs")
