@@ -217,12 +217,12 @@ def _trlb_row(d: float, n: int, files: tuple[Path, Path], a: argparse.Namespace,
         if p.solved and not verdict.valid:
             row["reason"] = "rejected by the validator: " + "; ".join(verdict.reasons[:2])
     if process:
-        row["process_s"] = _process_time(case, a)
+        row["process_s"], row["process_cpu_s"] = _process_time(case, a)
     return row
 
 
-def _process_time(case, a: argparse.Namespace) -> float:
-    """Wall time of one whole ``lgmcts plan`` process (start-up, reading, planning, writing) on ``case``."""
+def _process_time(case, a: argparse.Namespace) -> tuple[float, float]:
+    """Wall and CPU time of one whole ``lgmcts plan`` process (start-up, reading, planning, writing) on ``case``."""
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -233,9 +233,12 @@ def _process_time(case, a: argparse.Namespace) -> float:
                "--seed", str(a.seed), "--max-iter", str(a.max_iter)]
         if a.time_limit:
             cmd += ["--time-limit", str(a.time_limit)]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t = time.perf_counter()
         subprocess.run(cmd, capture_output=True, text=True, check=False)
-        return time.perf_counter() - t
+        wall = time.perf_counter() - t
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def _trlb_peer_plan(case, moves: list) -> PlanSpec:
@@ -280,6 +283,7 @@ def _trlb_cell(rows: list[dict]) -> dict:
     ok = [r for r in rows if r["solved"]]
     t = [r["time_s"] for r in ok]
     proc = [r["process_s"] for r in rows if r.get("process_s") is not None]
+    proc_cpu = [r["process_cpu_s"] for r in rows if r.get("process_cpu_s") is not None]
     return {
         "pairs": len(rows),
         "solved": len(ok),
@@ -292,6 +296,7 @@ def _trlb_cell(rows: list[dict]) -> dict:
         "cpu_median_s": (float(np.median([r["cpu_s"] for r in ok])) if ok and all("cpu_s" in r for r in ok)
                          else float("nan")),
         "process_median_s": float(np.median(proc)) if proc else float("nan"),
+        "process_cpu_median_s": float(np.median(proc_cpu)) if proc_cpu else float("nan"),
         "actions_per_object": float(np.mean([r["actions"] / r["n"] for r in ok])) if ok else float("nan"),
         "refuse_time_max_s": max([r["time_s"] for r in rows if r.get("refused")], default=float("nan")),
     }
@@ -318,7 +323,8 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
             line += (f" {solved} | {s['time_median_s']:.3f} / {s['time_p95_s']:.3f} | {s['cpu_median_s']:.3f} |"
                      f" {s['actions_per_object']:.2f} |")
         first = out["cells"][f"{d:g}/{n}"].get(names[0])
-        line += f" {first['process_median_s']:.2f} |" if first and first["process_median_s"] == first["process_median_s"] else " - |"
+        has = first is not None and first["process_median_s"] == first["process_median_s"]
+        line += f" {first['process_median_s']:.2f} / {first['process_cpu_median_s']:.2f} |" if has else " - |"
         md.append(line)
     md += ["", "| D | " + " | ".join(f"{m}: solved | {m}: median plan (s) | {m}: median CPU (s) | {m}: actions/object"
                                      for m in names) + " |",
