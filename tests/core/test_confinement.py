@@ -92,6 +92,10 @@ def test_without_the_proof_the_search_runs_its_budget():
     scene, goals = _case(JAMMED, _swap(JAMMED, 3, 4), R_JAMMED)
     p = run_plan(scene, goals, seed=0, max_iter=60, options=SearchOptions(proof_after=0))
     assert not p.solved and "infeasible" not in p.stats and p.stats["iterations"] == 60
+    # The one line says what was tried.
+    reason = p.stats["reason"]
+    assert reason.startswith("iteration budget exhausted after 60 iterations") and "\n" not in reason
+    assert "of 5 goals" in reason and reason.endswith("no proof was found that no plan exists")
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
