@@ -10,7 +10,6 @@ from pathlib import Path
 from typing import NoReturn
 
 import typer
-from tqdm import tqdm
 
 
 def fail(message: str, code: int = 2) -> NoReturn:
@@ -153,6 +152,8 @@ class _StderrHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         try:
+            from tqdm import tqdm  # on first use: importing it costs every command start-up
+
             tqdm.write(self.format(record), file=sys.stderr)
             sys.stderr.flush()
         except Exception:  # pragma: no cover - logging must never raise

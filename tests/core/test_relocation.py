@@ -144,3 +144,30 @@ def test_a_relocation_on_a_huge_workspace_costs_little_memory(method, half):
     assert peak < 200 * 2**20, f"{peak / 2**20:.0f} MiB"
     assert p.solved and check(scene, goals, p).valid
     assert [a.purpose for a in p.actions] == ["relocate", "goal"]
+
+
+def _clear_centres_dense(scene, world, b, clearance):
+    # The plain definition: every grid point against every other object.
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b]) + clearance / 2
+    gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
+    gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
+    others = np.flatnonzero(np.arange(scene.n) != b)
+    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
+    d2 = (gy[None, :, None] - world.poses[others, 1][:, None, None]) ** 2 + (
+        gx[None, None, :] - world.poses[others, 0][:, None, None]) ** 2
+    free = (d2 > reach2[:, None, None]).all(axis=0)
+    jj, ii = np.nonzero(free)
+    return np.stack([gx[ii], gy[jj]], axis=1)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_clear_centres_matches_the_dense_definition(seed):
+    from lgmcts.casegen import random_case
+
+    case = random_case(seed, dense=True)
+    sc = Scene.from_spec(case.scene)
+    for b in range(0, sc.n, 3):
+        for clearance in (0.0, 0.004, 0.02):
+            np.testing.assert_array_equal(clear_centres(sc, sc.initial, b, clearance),
+                                          _clear_centres_dense(sc, sc.initial, b, clearance))
