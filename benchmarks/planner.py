@@ -254,29 +254,44 @@ def _trlb_peer_plan(case, moves: list) -> PlanSpec:
 
 
 def _trlb_peer_checks(rows: list[dict], a: argparse.Namespace) -> None:
-    """Judge TRLB's plans with the validator (``valid``); replay a sample in MuJoCo (``physics``)."""
+    """Judge TRLB's plans with the validator (a plan it rejects does not count
+    as solved); replay a sample in MuJoCo (``physics``): up to
+    ``--peer-physics`` plans of the preprocessing setting with at most
+    ``--peer-physics-max-n`` discs, the smallest first, taken from each
+    density in turn."""
     root = Path(a.instances)
-    sample = 0
-    for r in sorted(rows, key=lambda r: (r["n"], r["density"])):
+    cases = {}
+    for r in rows:
         if not r.get("plan"):
             continue
         tag = f"{r['density']:g}"
-        case = trlb_case(*(root / f"D={tag}" / f"n={r['n']}" / name for name in r["pair"]))
-        plan_ = _trlb_peer_plan(case, r["plan"])
-        verdict = check(case.scene, case.goals, plan_)
+        case = cases[id(r)] = trlb_case(*(root / f"D={tag}" / f"n={r['n']}" / name for name in r["pair"]))
+        verdict = check(case.scene, case.goals, _trlb_peer_plan(case, r["plan"]))
         r["valid"] = bool(verdict.valid)
         if not verdict.valid:
+            r["solved"] = False
             r["invalid_reasons"] = list(verdict.reasons[:3])
-        if sample < a.peer_physics and r["n"] <= a.peer_physics_max_n and r["setting"] == "preprocessing":
-            from lgmcts.sim import execute_plan
+    by_density: dict[float, list[dict]] = {}
+    for r in sorted(rows, key=lambda r: (r["n"], r["pair"])):
+        if r.get("valid") and r["setting"] == "preprocessing" and r["n"] <= a.peer_physics_max_n:
+            by_density.setdefault(r["density"], []).append(r)
+    queues = [by_density[d] for d in sorted(by_density)]
+    picked: list[dict] = []
+    while len(picked) < a.peer_physics and any(queues):
+        for q in queues:
+            if q and len(picked) < a.peer_physics:
+                picked.append(q.pop(0))
+    if picked:
+        from lgmcts.sim import execute_plan
 
+        for r in picked:
+            case = cases[id(r)]
             t = time.perf_counter()
-            ex = execute_plan(case.scene, plan_, case.goals)
+            ex = execute_plan(case.scene, _trlb_peer_plan(case, r["plan"]), case.goals)
             r["physics"] = bool(ex.success)
             r["physics_s"] = time.perf_counter() - t
             if not ex.success:
                 r["physics_reasons"] = list(ex.reasons[:3])
-            sample += 1
 
 
 def _trlb_cell(rows: list[dict]) -> dict:
@@ -403,13 +418,16 @@ def cmd_trlb(a: argparse.Namespace) -> dict:
         judged = [r for m, g in groups.items() if m != "lgmcts" for r in g if "valid" in r]
         for m in [m for m in groups if m != "lgmcts"]:
             mine = [r for r in groups[m] if "valid" in r]
-            line = (f"{m}: {sum(r['valid'] for r in mine)} of {len(mine)} plans accepted by the validator")
+            line = (f"{m}: {sum(r['valid'] for r in mine)} of {len(mine)} plans accepted by the validator "
+                    "(a rejected plan counts as unsolved)")
             md.append(line)
             print(line)
         phys = [r for r in judged if "physics" in r]
         if phys:
             agree = sum(r["physics"] == r["valid"] for r in phys)
-            line = (f"MuJoCo replay of {len(phys)} TRLB plans (preprocessing setting, n <= {a.peer_physics_max_n}): "
+            cells = sorted({(r["density"], r["n"]) for r in phys})
+            line = (f"MuJoCo replay of {len(phys)} TRLB plans (preprocessing setting, n <= {a.peer_physics_max_n}, "
+                    f"cells {', '.join(f'{d:g}/{n}' for d, n in cells)}): "
                     f"{sum(r['physics'] for r in phys)} succeed, {sum(r['valid'] for r in phys)} valid; "
                     f"physics and validator agree on {agree} of {len(phys)}")
             md.append(line)
