@@ -30,8 +30,21 @@ from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count",
-           "TrlbArrangement", "read_trlb_arrangement", "trlb_case", "trlb_pairs", "TRLB_UNIT"]
+__all__ = [
+    "LABBE_VARIANTS",
+    "TRLB_UNIT",
+    "Case",
+    "TrlbArrangement",
+    "labbe_case",
+    "labbe_protocol_case",
+    "lower_bound",
+    "pack_clutter",
+    "random_case",
+    "read_trlb_arrangement",
+    "reference_count",
+    "trlb_case",
+    "trlb_pairs",
+]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")

@@ -152,7 +152,8 @@ class _StderrHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         try:
-            from tqdm import tqdm  # on first use: importing it costs every command start-up
+            # Imported on first use: at module level it costs every command's start-up.
+            from tqdm import tqdm
 
             tqdm.write(self.format(record), file=sys.stderr)
             sys.stderr.flush()

@@ -10,7 +10,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lgmcts.formats import parse_scene
-from lgmcts.planner.relocate import GRID_STEP, MAX_GRID_CELLS, clear_centres, grid_step, region_scores, snuggest
+from lgmcts.planner.relocate import (
+    GRID_STEP,
+    MAX_GRID_CELLS,
+    clear_centres,
+    grid_step,
+    region_scores,
+    snuggest,
+)
 from lgmcts.scene import Scene
 
 
