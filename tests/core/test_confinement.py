@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -124,3 +125,24 @@ def test_never_refuses_what_the_planner_solves(n, r, seed, shape):
     p = run_plan(scene, goals, seed=0, max_iter=300, options=SearchOptions(proof_after=0))
     if p.solved and check(scene, goals, p).valid:
         assert confined(Scene.from_spec(scene), goals, budget_s=30) is None
+
+
+@pytest.mark.slow
+def test_cli_says_in_one_line_that_no_plan_exists(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    from lgmcts import save_json
+
+    scene, goals = _case(JAMMED, _swap(JAMMED, 3, 4), R_JAMMED)
+    save_json(scene, tmp_path / "scene.json")
+    save_json(goals, tmp_path / "goals.json")
+    r = subprocess.run([sys.executable, "-m", "lgmcts", "plan", str(tmp_path / "scene.json"), "--goal",
+                        str(tmp_path / "goals.json"), "-o", str(tmp_path / "plan.json")],
+                       capture_output=True, text=True, check=False)
+    assert r.returncode == 1
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("not solved (no plan keeping the objects on the table exists")
+    plan_json = json.loads((tmp_path / "plan.json").read_text())
+    assert plan_json["solved"] is False and plan_json["stats"]["infeasible"] is True
