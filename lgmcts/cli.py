@@ -48,6 +48,14 @@ def _root(
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 
+#: Default wall-clock budget of ``lgmcts plan`` (s). A plan that the
+#: iteration budget would decide takes seconds on a tabletop; the limit only
+#: stops searches that no budget ends in reasonable time (goals the planner
+#: cannot meet but the pre-check cannot prove impossible). The library's
+#: ``plan()`` has no default limit, so its plans depend on the seed alone.
+PLAN_TIME_LIMIT = 120.0
+
+
 @app.command()
 def plan(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
@@ -56,7 +64,9 @@ def plan(
     method: str = typer.Option("lgmcts", help="lgmcts, greedy or pmcts."),
     seed: int = typer.Option(0, help="Random seed; the same seed gives the same plan."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Iteration budget."),
-    time_limit: Optional[float] = typer.Option(None, "--time-limit", help="Wall-clock budget in seconds."),
+    time_limit: float = typer.Option(
+        PLAN_TIME_LIMIT, "--time-limit", help="Wall-clock budget in seconds; 0 for none (only --max-iter then)."
+    ),
     anytime: bool = typer.Option(False, help="Keep searching within the budget for a shorter plan."),
     parser: str = typer.Option("rules", help="Instruction parser: rules or llm."),
     llm_model: Optional[str] = typer.Option(None, "--llm-model"),
@@ -85,7 +95,8 @@ def plan(
             from .language import parse
 
             goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
-        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime)
+        limit = None if time_limit == 0 else time_limit
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=limit, anytime=anytime)
     except InputError as exc:
         fail(str(exc))
     if instruction is not None:
