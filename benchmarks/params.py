@@ -47,7 +47,9 @@ def with_params(goals: dict, rng: np.random.Generator) -> dict:
                 if g["pattern"] != "tower" and rng.random() < 0.5:
                     g["size"] = str(rng.choice(["small", "medium", "large"]))
                 if rng.random() < 0.5:
-                    g["facing"] = str(rng.choice(list(HEADINGS))) if rng.random() < 0.5 else float(rng.uniform(-math.pi, math.pi))
+                    g["facing"] = (
+                        str(rng.choice(list(HEADINGS))) if rng.random() < 0.5 else float(rng.uniform(-math.pi, math.pi))
+                    )
                 if any(k in g for k in ("region", "size", "facing")):
                     break
         out.append(g)

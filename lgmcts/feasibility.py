@@ -43,7 +43,7 @@ from .validate import MAX_RELATION_DIST as _MAX_RELATION_DIST
 from .validate import OVERLAP_AREA as _OVERLAP_AREA
 from .validate import TOL as _TOL
 
-__all__ = ["precheck", "inradius"]
+__all__ = ["inradius", "precheck"]
 
 def inradius(local: np.ndarray) -> float:
     """Distance from the object-frame origin (the pose centre) to the footprint's boundary; 0 if outside."""
@@ -139,14 +139,16 @@ def _pose_goals(sc: Scene, goals: GoalSpec, in_tower: set[int], bounds: tuple[fl
     if len(ids) < 2:
         return
     idx = [sc.index[i] for i in ids]
-    polys = np.array([shapely.Polygon(sc.footprint(k, np.asarray(p, dtype=float))) for k, p in zip(idx, poses)], dtype=object)
+    polys = np.array(
+        [shapely.Polygon(sc.footprint(k, np.asarray(p, dtype=float))) for k, p in zip(idx, poses)], dtype=object
+    )
     # Two cylinders may touch, as the validator allows: judged on their circles.
     a, b, areas = geo.overlap_pairs(polys, sc.discs[idx], np.array([p[:2] for p in poses], dtype=float))
-    for k in np.flatnonzero(areas > _OVERLAP_AREA):
-        i, j = ids[a[k]], ids[b[k]]
+    for pair in np.flatnonzero(areas > _OVERLAP_AREA):
+        i, j = ids[int(a[pair])], ids[int(b[pair])]
         if i in in_tower and j in in_tower:
             continue
         raise InputError(
-            f"objects {i} and {j} have pose goals whose footprints overlap by {areas[k] * 1e4:.2f} cm^2 "
+            f"objects {i} and {j} have pose goals whose footprints overlap by {areas[pair] * 1e4:.2f} cm^2 "
             "(only a tower goal stacks objects)"
         )

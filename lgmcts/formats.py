@@ -14,7 +14,7 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
@@ -22,31 +22,31 @@ from . import limits
 from .errors import InputError
 
 __all__ = [
+    "PATTERN_NAMES",
+    "RELATIONS",
+    "Action",
     "BoxShape",
     "CylinderShape",
-    "PolygonShape",
-    "PointsShape",
-    "ObjectSpec",
-    "Workspace",
-    "SceneSpec",
     "Goal",
     "GoalSpec",
-    "Action",
-    "PlanSpec",
-    "RELATIONS",
-    "PATTERN_NAMES",
+    "ObjectSpec",
     "PatternFormat",
+    "PlanSpec",
+    "PointsShape",
+    "PolygonShape",
+    "SceneSpec",
+    "Workspace",
     "declare_pattern",
-    "pattern_format",
-    "pattern_names",
-    "load_scene",
     "load_goals",
     "load_plan",
-    "save_json",
-    "to_dict",
-    "parse_scene",
+    "load_scene",
     "parse_goals",
     "parse_plan",
+    "parse_scene",
+    "pattern_format",
+    "pattern_names",
+    "save_json",
+    "to_dict",
 ]
 
 #: Unit direction of each spatial relation in the table frame.
@@ -192,7 +192,7 @@ class CylinderShape(_Model):
     height: float
 
     @model_validator(mode="after")
-    def _positive(self) -> "CylinderShape":
+    def _positive(self) -> CylinderShape:
         _finite((self.radius, self.height), "cylinder radius and height")
         if self.radius <= 0 or self.height <= 0:
             raise ValueError("cylinder radius and height must be positive")
@@ -208,7 +208,7 @@ class PolygonShape(_Model):
     height: float
 
     @model_validator(mode="after")
-    def _convex(self) -> "PolygonShape":
+    def _convex(self) -> PolygonShape:
         _finite((c for p in self.points for c in p), "polygon points")
         _finite((self.height,), "polygon height")
         if self.height <= 0:
@@ -232,7 +232,7 @@ class PointsShape(_Model):
     points: list[tuple[float, float, float]] = Field(max_length=limits.MAX_CLOUD_POINTS)
 
     @model_validator(mode="after")
-    def _enough(self) -> "PointsShape":
+    def _enough(self) -> PointsShape:
         _finite((c for p in self.points for c in p), "cloud points")
         _bounded((c for p in self.points for c in p), "cloud points", limits.MAX_COORD)
         if len(self.points) < 3:
@@ -245,7 +245,7 @@ class PointsShape(_Model):
         return self
 
 
-Shape = Annotated[Union[BoxShape, CylinderShape, PolygonShape, PointsShape], Field(discriminator="type")]
+Shape = Annotated[BoxShape | CylinderShape | PolygonShape | PointsShape, Field(discriminator="type")]
 
 
 class ObjectSpec(_Model):
@@ -267,7 +267,7 @@ class ObjectSpec(_Model):
         return v
 
     @model_validator(mode="after")
-    def _pose_needed(self) -> "ObjectSpec":
+    def _pose_needed(self) -> ObjectSpec:
         if self.pose is None and self.shape.type != "points":
             raise ValueError("pose is required unless the shape is a point cloud")
         return self
@@ -280,7 +280,7 @@ class Workspace(_Model):
     y: tuple[float, float]
 
     @model_validator(mode="after")
-    def _ordered(self) -> "Workspace":
+    def _ordered(self) -> Workspace:
         _finite((*self.x, *self.y), "workspace bounds")
         _bounded((*self.x, *self.y), "workspace bounds", limits.MAX_COORD)
         if not (self.x[0] < self.x[1] and self.y[0] < self.y[1]):
@@ -340,7 +340,7 @@ class SceneSpec(_Model):
     objects: list[ObjectSpec] = Field(max_length=limits.MAX_OBJECTS)
 
     @model_validator(mode="after")
-    def _consistent(self) -> "SceneSpec":
+    def _consistent(self) -> SceneSpec:
         ids = [o.id for o in self.objects]
         seen: set[int] = set()
         for i in ids:
@@ -394,7 +394,7 @@ class Goal(_Model):
             raise ValueError(f"'{info.field_name}' must be a name or a number")
         return v
 
-    def _check_params(self, fmt: "PatternFormat") -> None:
+    def _check_params(self, fmt: PatternFormat) -> None:
         from . import params as gp
 
         p = self.pattern
@@ -415,7 +415,7 @@ class Goal(_Model):
             gp.heading_of(self.facing)
 
     @model_validator(mode="after")
-    def _shape(self) -> "Goal":
+    def _shape(self) -> Goal:
         p = self.pattern
         fmt = _FORMATS.get(p)
         if fmt is None:
@@ -454,9 +454,29 @@ class GoalSpec(_Model):
 
     def check_against(self, scene: SceneSpec) -> None:
         """Raise :class:`InputError` when a goal cannot refer to ``scene``."""
-        ids = {o.id for o in scene.objects}
         if not self.goals:
             raise InputError("the goal list is empty")
+        self._check_references(scene)
+        from .params import conflict
+
+        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
+        if why is not None:
+            raise InputError(why)
+        self._check_fixed_poses()
+        below = self._check_towers()
+        self._check_relations()
+        for g in self.goals:
+            if _FORMATS[g.pattern].on_table:
+                for o in g.objects:
+                    if o in below:
+                        raise InputError(
+                            f"object {o} must be on the table for its {g.pattern} goal but on object {below[o]} "
+                            "for a tower"
+                        )
+
+    def _check_references(self, scene: SceneSpec) -> None:
+        """Every named object is in the scene; every region box meets the workspace."""
+        ids = {o.id for o in scene.objects}
         for k, g in enumerate(self.goals):
             for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]:
                 if i not in ids:
@@ -466,20 +486,20 @@ class GoalSpec(_Model):
                 x0, x1, y0, y1 = g.region
                 if x1 <= ws.x[0] or x0 >= ws.x[1] or y1 <= ws.y[0] or y0 >= ws.y[1]:
                     raise InputError(f"goal {k} ({g.pattern}): region box {list(g.region)} lies outside the workspace")
-        from .params import conflict
 
-        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
-        if why is not None:
-            raise InputError(why)
-        # A pose goal and another fixed pose for the same object contradict.
-        fixed: dict[int, tuple[float, float, float]] = {}
+    def _check_fixed_poses(self) -> None:
+        """A pose goal and another fixed pose for the same object contradict."""
+        fixed: dict[int, tuple[float, float, float] | None] = {}
         for g in self.goals:
             if g.pattern == "pose":
                 o = g.objects[0]
                 if o in fixed and fixed[o] != g.pose:
                     raise InputError(f"object {o} has two different pose goals")
-                fixed[o] = g.pose  # type: ignore[assignment]
-        # Tower order must not contradict itself or put an object on itself.
+                fixed[o] = g.pose
+
+    def _check_towers(self) -> dict[int, int]:
+        """Tower order must not contradict itself or put an object on itself;
+        returns the object each tower member rests on."""
         below: dict[int, int] = {}
         for g in self.goals:
             if g.pattern == "tower":
@@ -487,25 +507,21 @@ class GoalSpec(_Model):
                     if b in below and below[b] != a:
                         raise InputError(f"object {b} must rest on both {below[b]} and {a}")
                     below[b] = a
-        o = _on_cycle({b: (a,) for b, a in below.items()})
-        if o is not None:
-            raise InputError(f"tower goals form a cycle through object {o}")
-        # Relations among the same goal objects must not form a cycle of dependencies.
+        on_cycle = _on_cycle({b: (a,) for b, a in below.items()})
+        if on_cycle is not None:
+            raise InputError(f"tower goals form a cycle through object {on_cycle}")
+        return below
+
+    def _check_relations(self) -> None:
+        """Relations among the same goal objects must not form a cycle of dependencies."""
         dep: dict[int, set[int]] = {}
         for g in self.goals:
             if g.anchor is not None:
                 for o in g.objects:
                     dep.setdefault(o, set()).add(g.anchor)
-        o = _on_cycle(dep)
-        if o is not None:
-            raise InputError(f"spatial relations form a cycle through object {o}")
-        for g in self.goals:
-            if _FORMATS[g.pattern].on_table:
-                for o in g.objects:
-                    if o in below:
-                        raise InputError(
-                            f"object {o} must be on the table for its {g.pattern} goal but on object {below[o]} for a tower"
-                        )
+        on_cycle = _on_cycle(dep)
+        if on_cycle is not None:
+            raise InputError(f"spatial relations form a cycle through object {on_cycle}")
 
 
 class Action(_Model):
@@ -592,17 +608,17 @@ def parse_plan(data: Any) -> PlanSpec:
         raise InputError(_one_line(err, "plan")) from None
 
 
-def load_scene(source: str | Path | dict) -> SceneSpec:
+def load_scene(source: str | Path | dict | SceneSpec) -> SceneSpec:
     """Read and validate a scene JSON file (or dict)."""
     return parse_scene(_read(source, "scene"))
 
 
-def load_goals(source: str | Path | dict) -> GoalSpec:
+def load_goals(source: str | Path | dict | list | GoalSpec) -> GoalSpec:
     """Read and validate a goal JSON file (or dict)."""
     return parse_goals(_read(source, "goals"))
 
 
-def load_plan(source: str | Path | dict) -> PlanSpec:
+def load_plan(source: str | Path | dict | PlanSpec) -> PlanSpec:
     """Read and validate a plan JSON file (or dict)."""
     return parse_plan(_read(source, "plan"))
 

@@ -8,6 +8,7 @@ which every object above takes from its support. A tower has no size.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -81,7 +82,7 @@ class Tower(BasePattern):
         idx = [scene.index[i] for i in goal.objects]
         if on[idx[0]] != TABLE:
             return f"tower base {goal.objects[0]} is not on the table"
-        for a, b in zip(idx, idx[1:]):
+        for a, b in itertools.pairwise(idx):
             if on[b] != a:
                 return f"object {scene.ids[b]} is not on object {scene.ids[a]}"
             if math.hypot(*(poses[b, :2] - poses[a, :2])) > TOWER_TOL:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from core_helpers import can, goals, scene
+
 from lgmcts.formats import RELATIONS, parse_goals, parse_scene
 from lgmcts.patterns import Context, GoalProgress, registry
 from lgmcts.patterns.line import LineParams
