@@ -14,15 +14,17 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from . import limits
 from .errors import InputError
 
+if TYPE_CHECKING:  # at run time RELATIONS comes from __getattr__ below
+    from .patterns.spatial import RELATIONS
+
 __all__ = [
-    "PATTERN_NAMES",
     "RELATIONS",
     "Action",
     "BoxShape",
@@ -49,22 +51,6 @@ __all__ = [
     "to_dict",
 ]
 
-#: Unit direction of each spatial relation in the table frame.
-RELATIONS: dict[str, tuple[float, float]] = {
-    "left": (-1.0, 0.0),
-    "right": (1.0, 0.0),
-    "front": (0.0, -1.0),
-    "behind": (0.0, 1.0),
-    "left_front": (-math.sqrt(0.5), -math.sqrt(0.5)),
-    "left_behind": (-math.sqrt(0.5), math.sqrt(0.5)),
-    "right_front": (math.sqrt(0.5), -math.sqrt(0.5)),
-    "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
-}
-
-#: The built-in pattern names (:func:`pattern_names` adds declared ones).
-PATTERN_NAMES: tuple[str, ...] = ("line", "circle", "rectangle", "tower", *RELATIONS, "pose")
-
-
 @dataclass(frozen=True)
 class PatternFormat:
     """What the goal format asks of one pattern's goals.
@@ -76,6 +62,8 @@ class PatternFormat:
     anchor : the goal needs an ``anchor`` (and must not list it as an object).
     pose : the goal needs a ``pose`` and exactly one object.
     on_table : the goal's objects must end on the table (not stacked).
+    size : the goal may carry a ``size`` (the pattern measures it, or, for a
+        tower, accepts and ignores it).
     """
 
     name: str
@@ -83,6 +71,7 @@ class PatternFormat:
     anchor: bool = False
     pose: bool = False
     on_table: bool = True
+    size: bool = False
 
 
 _FORMATS: dict[str, PatternFormat] = {}
@@ -103,22 +92,41 @@ def declare_pattern(fmt: PatternFormat) -> PatternFormat:
     return fmt
 
 
+def _builtins() -> dict[str, PatternFormat]:
+    """The declared formats, the built-in patterns' among them: each built-in
+    pattern module declares its own (through :func:`lgmcts.patterns.register`)
+    when it is imported, which the first look-up here makes happen."""
+    if not _BUILTINS_LOADED:
+        _BUILTINS_LOADED.append(True)
+        from .patterns.base import registry
+
+        registry()
+    return _FORMATS
+
+
+_BUILTINS_LOADED: list[bool] = []
+
+
 def pattern_format(name: str) -> PatternFormat | None:
     """The declared format of pattern ``name``, or ``None`` when unknown."""
-    return _FORMATS.get(name)
+    return _builtins().get(name)
 
 
 def pattern_names() -> tuple[str, ...]:
     """Every pattern name the goal format accepts now, built-ins first."""
-    return tuple(_FORMATS)
+    return tuple(_builtins())
 
 
-for _name, _need in (("line", 2), ("circle", 3), ("rectangle", 4)):
-    declare_pattern(PatternFormat(_name, min_objects=_need))
-declare_pattern(PatternFormat("tower", min_objects=2, on_table=False))
-for _name in RELATIONS:
-    declare_pattern(PatternFormat(_name, anchor=True))
-declare_pattern(PatternFormat("pose", pose=True, on_table=False))
+def __getattr__(name: str) -> Any:
+    # RELATIONS (each spatial relation's unit direction in the table frame)
+    # belongs to the relation patterns' module; it is read here for the
+    # modules that have always imported it from the formats.
+    if name == "RELATIONS":
+        _builtins()  # every built-in module, in the registry's order
+        from .patterns.spatial import RELATIONS
+
+        return RELATIONS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class _Model(BaseModel):
@@ -404,7 +412,7 @@ class Goal(_Model):
         if self.region is not None:
             gp.region_box(self.region, (0.0, 1.0, 0.0, 1.0))
         if self.size is not None:
-            if p not in gp.SIZED and p != "tower":
+            if not fmt.size:
                 raise ValueError(f"a {p} goal takes no 'size'")
             if isinstance(self.size, str):
                 if self.size not in gp.SIZES:
@@ -417,7 +425,7 @@ class Goal(_Model):
     @model_validator(mode="after")
     def _shape(self) -> Goal:
         p = self.pattern
-        fmt = _FORMATS.get(p)
+        fmt = pattern_format(p)
         if fmt is None:
             raise ValueError(f"unknown pattern '{p}' (known: {', '.join(pattern_names())})")
         if len(set(self.objects)) != len(self.objects):
@@ -466,7 +474,7 @@ class GoalSpec(_Model):
         below = self._check_towers()
         self._check_relations()
         for g in self.goals:
-            if _FORMATS[g.pattern].on_table:
+            if _builtins()[g.pattern].on_table:
                 for o in g.objects:
                     if o in below:
                         raise InputError(

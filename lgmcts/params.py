@@ -63,7 +63,6 @@ __all__ = [
     "REGION_NAMES",
     "REGION_TOL",
     "ROWS",
-    "SIZED",
     "SIZES",
     "SIZE_TOL",
     "GoalParams",
@@ -73,6 +72,7 @@ __all__ = [
     "region_name",
     "resolve",
     "size_range",
+    "sized_pattern",
     "turn_relation",
 ]
 
@@ -99,12 +99,7 @@ SIZE_TOL = 0.015
 FACING_TOL = 0.1
 #: Heading tolerance of a named facing (rad): half an eight-point compass sector.
 NAMED_FACING_TOL = math.pi / 8
-#: Patterns whose goals have a size (a tower's size is accepted and ignored).
-SIZED: tuple[str, ...] = ("line", "circle", "rectangle")
 
-#: Smallest circle radius and rectangle side the acceptance rules allow (m).
-_MIN_CIRCLE_RADIUS = 0.05
-_MIN_RECT_SIDE = 0.05
 
 
 def _norm(name: str) -> str:
@@ -184,6 +179,16 @@ def _shrunk(box: Sequence[float], bounds: Sequence[float], margin: float) -> tup
     )
 
 
+def sized_pattern(name: str) -> Any:
+    """The registered pattern ``name`` when it measures a size (its
+    ``size_word`` is set), else ``None`` (no such pattern, no size, or a size
+    accepted and ignored, as a tower's)."""
+    from .patterns.base import registry
+
+    pat = registry().get(name)
+    return pat if pat is not None and pat.size_word is not None else None
+
+
 def size_range(
     pattern: str, n: int, rmax: float, room: Sequence[float], size: str | float, heading: float | None = None
 ) -> tuple[float, float]:
@@ -192,6 +197,8 @@ def size_range(
     ``n`` objects of largest circumradius ``rmax``; ``room`` the box their
     centres may take (region and workspace, see :func:`resolve`). Named sizes
     split [L_min, L_max] into thirds:
+
+    [L_min, L_max] is the pattern's own (its ``size_band``):
 
     * circle: L_min = max(0.05, rmax / sin(pi / n)) (neighbours' circles
       touch), L_max = half the room's shorter side;
@@ -206,22 +213,11 @@ def size_range(
     if not isinstance(size, str):
         s = float(size)
         return s, s
-    w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
-    if pattern == "circle":
-        lo = max(_MIN_CIRCLE_RADIUS, rmax / math.sin(math.pi / max(n, 3)))
-        hi = min(w, h) / 2
-    elif pattern == "line":
-        lo = 2 * rmax * (max(n, 2) - 1)
-        if heading is None:
-            hi = max(w, h)
-        else:
-            ux, uy = abs(math.sin(heading)), abs(math.cos(heading))  # the line's direction
-            hi = min(w / ux if ux > 1e-9 else math.inf, h / uy if uy > 1e-9 else math.inf)
-    elif pattern == "rectangle":
-        lo = max(_MIN_RECT_SIDE, n * rmax / 2)
-        hi = max(w, h)
-    else:
+    pat = sized_pattern(pattern)
+    if pat is None:
         raise ValueError(f"a {pattern} goal has no size")
+    r = (float(room[0]), float(room[1]), float(room[2]), float(room[3]))
+    lo, hi = pat.size_band(n, rmax, r, heading)
     hi = max(hi, lo)
     a, b = lo + (hi - lo) / 3, lo + 2 * (hi - lo) / 3
     key = _norm(size)
@@ -284,7 +280,7 @@ def resolve(goal: Any, bounds: Sequence[float], radii: Sequence[float]) -> GoalP
     room = _shrunk(box if box is not None else bounds, bounds, rmax)
     heading, tol = (None, FACING_TOL) if facing is None else heading_of(facing)
     band = None
-    if size is not None and pattern in SIZED:
+    if size is not None and sized_pattern(pattern) is not None:
         band = size_range(pattern, len(objects), rmax, room, size, heading)
     return GoalParams(box, room, band, heading, tol)
 

@@ -54,7 +54,6 @@ import shapely
 from . import geometry as geo
 from .errors import InputError
 from .formats import (
-    PATTERN_NAMES,
     Goal,
     GoalSpec,
     PlanSpec,
@@ -127,7 +126,8 @@ def register_rule(name: str, rule: Rule) -> Rule:
     """
     if pattern_format(name) is None:
         raise ValueError(f"declare pattern '{name}' (lgmcts.formats.declare_pattern) before its rule")
-    if name in PATTERN_NAMES:
+    built_in = registry().get(name)
+    if built_in is not None and type(built_in).__module__.startswith(f"{__package__}.patterns."):
         raise ValueError(f"'{name}' is a built-in pattern; its rule cannot be replaced")
     _RULES[name] = rule
     return rule

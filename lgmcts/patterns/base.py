@@ -11,7 +11,10 @@ itself here; adding a pattern means adding a module.
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import Any, ClassVar, Protocol
 
 import numpy as np
@@ -141,7 +144,11 @@ class Pattern(Protocol):
     anchored : whether a goal names an ``anchor`` (relations).
     needs_pose : whether a goal gives a ``pose`` (and one object).
     size_word : what a goal's ``size`` measures ("radius", "length"...), or
-        ``None`` when the pattern has no size of its own.
+        ``None`` when the pattern has no size of its own; a pattern with one
+        also defines ``size`` (the measure) and ``size_band`` (the lengths
+        small, medium and large divide).
+    size_ignored : a goal may carry a ``size`` that the pattern ignores (a
+        tower, whose footprint is its base object's).
     deterministic : whether ``sample`` returns the same poses whatever the
         branch and the random generator (a fixed target), and ``region`` the
         same region for as long as the goal is unfinished; the planner may
@@ -219,6 +226,15 @@ class Pattern(Protocol):
     def size(self, fitted: Any) -> float:
         """The characteristic length a goal's ``size`` is compared with (m)."""
 
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        """``(L_min, L_max)``: the shortest and longest characteristic length
+        (m) of ``n`` objects of largest circumradius ``rmax`` whose centres
+        lie in ``room`` (``xmin, xmax, ymin, ymax``), for a facing ``heading``
+        (rad) or none; :func:`lgmcts.params.size_range` splits it into the
+        named sizes."""
+
     def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
         """The arrangement's own direction for a ``facing``: ``(angle, period,
         what)``, the angle compared with the heading modulo ``period``, or ``None``."""
@@ -244,6 +260,7 @@ def register(pattern: Pattern) -> Pattern:
             anchor=bool(getattr(pattern, "anchored", False)),
             pose=bool(getattr(pattern, "needs_pose", False)),
             on_table=pattern.on_table,
+            size=getattr(pattern, "size_word", None) is not None or bool(getattr(pattern, "size_ignored", False)),
         )
     )
     _REGISTRY[pattern.name] = pattern
@@ -251,10 +268,21 @@ def register(pattern: Pattern) -> Pattern:
 
 
 def registry() -> dict[str, Pattern]:
-    """All registered patterns by name (importing every built-in module)."""
-    from . import circle, line, pose, rectangle, spatial, tower  # noqa: F401  (registration side effect)
-
+    """All registered patterns by name (importing every built-in module: each
+    module of this package but this one registers its patterns on import)."""
+    if not _BUILTINS_IMPORTED:
+        _BUILTINS_IMPORTED.append(True)
+        for m in sorted(pkgutil.iter_modules(_package_path()), key=lambda m: m.name):
+            if m.name != "base":
+                importlib.import_module(f"{__package__}.{m.name}")
     return dict(_REGISTRY)
+
+
+_BUILTINS_IMPORTED: list[bool] = []
+
+
+def _package_path() -> list[str]:
+    return [str(Path(__file__).resolve().parent)]
 
 
 #: Environment variable naming pattern modules to import (separated by the
@@ -411,6 +439,7 @@ class BasePattern:
     anchored: ClassVar[bool] = False
     needs_pose: ClassVar[bool] = False
     size_word: ClassVar[str | None] = None
+    size_ignored: ClassVar[bool] = False
     deterministic: ClassVar[bool] = False
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
@@ -464,6 +493,11 @@ class BasePattern:
         return f"{self.name} of " + ", ".join(str(i) for i in goal.objects)
 
     def size(self, fitted: Any) -> float:
+        raise NotImplementedError(f"pattern '{self.name}' has no size")
+
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
         raise NotImplementedError(f"pattern '{self.name}' has no size")
 
     def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:

@@ -326,6 +326,13 @@ class Circle(BasePattern):
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "radius"
 
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # Neighbours' circles touch at the smallest radius; the largest fits the room.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        return max(MIN_CIRCLE_RADIUS, rmax / math.sin(math.pi / max(n, 3))), min(w, h) / 2
+
     def fit(self, xy: np.ndarray) -> CircleParams:
         return circle_params(xy)
 

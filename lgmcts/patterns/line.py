@@ -340,6 +340,18 @@ class Line(BasePattern):
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "length"
 
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # Objects side by side at the shortest; the room's extent along the
+        # line (which runs across a facing) at the longest.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        lo = 2 * rmax * (max(n, 2) - 1)
+        if heading is None:
+            return lo, max(w, h)
+        ux, uy = abs(math.sin(heading)), abs(math.cos(heading))  # the line's direction
+        return lo, min(w / ux if ux > 1e-9 else math.inf, h / uy if uy > 1e-9 else math.inf)
+
     def fit(self, xy: np.ndarray) -> LineParams:
         return fit_line(xy)
 

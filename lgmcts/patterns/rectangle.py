@@ -372,6 +372,13 @@ class Rectangle(BasePattern):
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "longer side"
 
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # The perimeter holds all n objects at the shortest; the room's longer side at the longest.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        return max(MIN_RECT_SIDE, n * rmax / 2), max(w, h)
+
     def fit(self, xy: np.ndarray) -> RectangleParams | None:
         return fit_rectangle(xy)
 

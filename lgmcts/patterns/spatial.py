@@ -14,10 +14,22 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..formats import RELATIONS
 from ..geometry import wrap_angle
 from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
 from .base import CLEARANCE, BasePattern, Context, GoalProgress, goal_xy, params_mask, register, with_heading
+
+#: Unit direction of each spatial relation in the table frame; each is a
+#: pattern of its own (also readable as ``lgmcts.formats.RELATIONS``).
+RELATIONS: dict[str, tuple[float, float]] = {
+    "left": (-1.0, 0.0),
+    "right": (1.0, 0.0),
+    "front": (0.0, -1.0),
+    "behind": (0.0, 1.0),
+    "left_front": (-math.sqrt(0.5), -math.sqrt(0.5)),
+    "left_behind": (-math.sqrt(0.5), math.sqrt(0.5)),
+    "right_front": (math.sqrt(0.5), -math.sqrt(0.5)),
+    "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
+}
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
 HALF_ANGLE = math.pi / 4 - 0.06

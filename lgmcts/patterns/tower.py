@@ -35,6 +35,8 @@ class Tower(BasePattern):
     min_objects = 2
     ordered = True
     on_table = False
+    # A tower's footprint is its base object's: a size is accepted and ignored.
+    size_ignored = True
 
     def _position(self, ctx: Context, obj: int) -> int:
         return ctx.goal.objects.index(obj)

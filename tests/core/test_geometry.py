@@ -159,9 +159,9 @@ def test_overlapping_matches_exact_shapes(r1, r2, gap, ang, yaw, discs):
 def test_colliding_near_decides_disc_pairs_on_circles(obs, x, y, r, clearance):
     xy = np.array([[a, b] for a, b, _ in obs])
     radii = np.array([c for _, _, c in obs])
-    polys = np.array([shapely.polygons((*geo.circle_footprint(c), a, b)) for a, b, c in obs])
+    polys = np.array([shapely.polygons(geo.circle_footprint(c) + np.array([a, b])) for a, b, c in obs])
     rr = radii / np.cos(np.pi / geo.CIRCLE_SEGMENTS)
-    me = shapely.polygons((*geo.circle_footprint(r), x, y))
+    me = shapely.polygons(geo.circle_footprint(r) + np.array([x, y]))
     _, oi = geo.colliding_near(
         np.array([me]),
         np.array([[x, y]]),
