@@ -74,7 +74,7 @@ def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> 
     """
     if path in (None, "-"):
         return
-    p = Path(path)  # type: ignore[arg-type]
+    p = Path(path)
     if p.is_dir():
         fail(f"cannot write {p}: it is a folder")
     if p.exists() and not p.is_file():
@@ -120,7 +120,7 @@ def write_text(text: str, path: str | None) -> None:
         sys.stdout.write(text + "\n")
         sys.stdout.flush()
         return
-    target = Path(path)  # type: ignore[arg-type]
+    target = Path(path)
     tmp = None
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
