@@ -14,7 +14,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo-deps llm-local demo test golden golden-parse bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo-deps llm-local demo check test golden golden-parse bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)

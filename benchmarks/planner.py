@@ -39,6 +39,7 @@ import argparse
 import json
 import math
 import platform
+import resource
 import subprocess
 import sys
 import time
