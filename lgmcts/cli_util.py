@@ -59,6 +59,10 @@ def run_app(app: typer.Typer, prog_name: str = "lgmcts") -> NoReturn:
             raise
         typer.echo(message, err=True)
         sys.exit(2)
+    except MemoryError:
+        # A last resort: every input has bounds (docs/limits.md) that keep far below this.
+        typer.echo("out of memory: the input is too large for this machine (see docs/limits.md)", err=True)
+        sys.exit(2)
     except (typer.Abort, KeyboardInterrupt):
         typer.echo("interrupted", err=True)
         sys.exit(130)

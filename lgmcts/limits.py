@@ -28,6 +28,7 @@ __all__ = [
     "MAX_INSTRUCTION",
     "START_OVERLAP_AREA",
     "MAX_INPUT_BYTES",
+    "MAX_VIEW_CELLS",
     "MAX_INPUT_BYTES_ENV",
     "max_input_bytes",
     "truncate",
@@ -71,6 +72,12 @@ MAX_INSTRUCTION = 2_000
 #: share; the validator's own overlap tolerance. Touching objects (distance
 #: 0, no area in common) are legal.
 START_OVERLAP_AREA = 1e-6
+
+#: Largest ``(objects + goal members) x (actions + 1)`` the viewer data
+#: (``lgmcts viz --html``, the service's ``/view``) is computed for: the
+#: replay compares every pose at every step and redraws the goals of each
+#: moved object. At the cap it takes about 7 s and 30 MB on a 2-core VM.
+MAX_VIEW_CELLS = 10_000_000
 
 #: Default cap on the bytes of one input file (or one line of a JSONL file).
 MAX_INPUT_BYTES = 16 * 1024 * 1024

@@ -619,7 +619,8 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             req = await off_loop(parse_body, ViewRequest, raw, deadline=arrived + opts.timeout)
             deadline = deadline_of(req.timeout, arrived)
             job = jobs.ViewJob(req.scene, req.plan, req.goals, req.instruction)
-            return await pool.run(jobs.run_view, job, deadline=deadline)
+            body = await pool.run(jobs.run_view, job, deadline=deadline)
+            return Response(content=body, media_type="application/json")
 
         return await guarded(work, "drawing")
 

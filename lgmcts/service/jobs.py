@@ -234,11 +234,19 @@ class ViewJob:
     instruction: str | None = None
 
 
-def run_view(job: ViewJob) -> dict:
-    """The viewer's data (:func:`lgmcts.viz.viewer_data`): states, footprints, paints and goal shapes."""
+def run_view(job: ViewJob) -> bytes:
+    """The viewer's data (:func:`lgmcts.viz.viewer_data`) as JSON bytes.
+
+    Serialised here, in the worker, so that the server's event loop only
+    passes the bytes on; the size is bounded by
+    :data:`lgmcts.limits.MAX_VIEW_CELLS` (frames are deltas).
+    """
+    import json
+
     from ..viz.html import viewer_data
 
-    return viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
+    data = viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
+    return json.dumps(data, separators=(",", ":"), allow_nan=False).encode()
 
 
 def warm_up(pause: float) -> int:
