@@ -121,7 +121,7 @@ def loads(text: str | bytes, where: str) -> Any:
     except RecursionError:
         raise InputError(f"{where} is nested too deeply") from None
     except _DuplicateKey as exc:
-        raise InputError(f"{where} names the key '{limits.truncate(_printable(exc.key), 40)}' twice in one object") from None
+        raise InputError(f"{where} names the key '{limits.truncate(limits.printable(exc.key), 40)}' twice in one object") from None
     except json.JSONDecodeError:
         raise
     except UnicodeDecodeError:
@@ -129,8 +129,3 @@ def loads(text: str | bytes, where: str) -> Any:
     except ValueError:
         # json raises a bare ValueError for an integer with too many digits.
         raise InputError(f"{where} holds a number with too many digits") from None
-
-
-def _printable(text: str) -> str:
-    """``text`` with control characters escaped (``\\x1b``), safe to print on a terminal."""
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)

@@ -32,6 +32,7 @@ __all__ = [
     "MAX_INPUT_BYTES_ENV",
     "max_input_bytes",
     "truncate",
+    "printable",
 ]
 
 #: Largest absolute value of a table-frame coordinate (poses, workspace
@@ -108,3 +109,15 @@ def truncate(text: str, limit: int = 80) -> str:
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"
+
+
+def printable(text: str) -> str:
+    """``text`` with every control character escaped (``\\x1b``, ``\\n``), safe to print on a terminal.
+
+    Names and other text from input files reach error messages; raw escape
+    sequences there could retitle or reprogram the reader's terminal.
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)

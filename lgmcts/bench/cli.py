@@ -58,7 +58,7 @@ def bench(
     parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
     seed: int = typer.Option(0, "--seed", help="Suite seed when --suite names a suite."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Local processes (default: every core)."),
+    workers: Optional[int] = typer.Option(None, "--workers", help="Local processes (default and most: the CPUs this run may use)."),
     ray: Optional[str] = typer.Option(None, "--ray", help="Run as Ray tasks: 'local' or a cluster address."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Planner iteration budget per task."),
     time_limit: Optional[float] = typer.Option(None, "--time-limit", help="Planner wall-clock budget per task (s)."),

@@ -50,7 +50,7 @@ from pydantic.json_schema import models_json_schema
 
 from .. import __version__
 from ..errors import InputError
-from ..limits import truncate
+from ..limits import printable, truncate
 from . import jobs
 from .bodies import Body, Policy, parse_body, validation_message
 from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut, ViewRequest
@@ -285,7 +285,7 @@ class BodyLimit:
         host = headers.get(b"host", [None])[0]
         host_text = None if host is None else host.decode("latin-1")
         if len(headers.get(b"host", ())) > 1 or self._host_refused(host_text):
-            shown = truncate(_printable(host_text or ""), 60)
+            shown = truncate(printable(host_text or ""), 60)
             await _error(421, f"this server does not serve host '{shown}' (see --allow-host)", connection="close")(
                 scope, receive, send
             )
@@ -374,11 +374,6 @@ def _json_type(values: list[bytes]) -> bool:
         return False
     kind = values[0].split(b";", 1)[0].strip().lower()
     return kind == b"application/json"
-
-
-def _printable(text: str) -> str:
-    """``text`` with control characters escaped, for echoing in a message."""
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 # ---------------------------------------------------------------- bodies

@@ -17,7 +17,7 @@ from pydantic import BaseModel, ValidationError
 
 from .. import inputs
 from ..errors import InputError
-from ..limits import truncate
+from ..limits import printable, truncate
 from .models import CheckRequest, ParseRequest, PlanRequest, ViewRequest
 
 __all__ = ["Policy", "Body", "parse_body", "validation_message", "read_body", "llm_endpoint", "MODELS"]
@@ -111,10 +111,6 @@ def parse_body(model: type[BaseModel], raw: bytes) -> Any:
         raise InputError("invalid request: the body is nested too deeply") from None
 
 
-def _printable(text: str) -> str:
-    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
-
-
 def llm_endpoint(policy: Policy, url: str | None, parser: str, model: str | None) -> tuple[str | None, str | None]:
     """The endpoint and key override of a request's LLM parse.
 
@@ -126,7 +122,7 @@ def llm_endpoint(policy: Policy, url: str | None, parser: str, model: str | None
     if url is None:
         if parser != "rules" and model is not None and model not in policy.llm_models:
             raise InputError(
-                f"llm_model '{truncate(_printable(model), 60)}' is not allowed: the server uses its operator's "
+                f"llm_model '{truncate(printable(model), 60)}' is not allowed: the server uses its operator's "
                 "model (leave llm_model out), or those listed in LGMCTS_SERVICE_LLM_MODELS"
             )
         return policy.llm_base_url, None
