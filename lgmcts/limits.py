@@ -29,6 +29,7 @@ __all__ = [
     "START_OVERLAP_AREA",
     "MAX_INPUT_BYTES",
     "MAX_VIEW_CELLS",
+    "MAX_VIEW_DRAWN",
     "MAX_INPUT_BYTES_ENV",
     "max_input_bytes",
     "truncate",
@@ -79,6 +80,11 @@ START_OVERLAP_AREA = 1e-6
 #: replay compares every pose at every step and redraws the goals of each
 #: moved object. At the cap it takes about 7 s and 30 MB on a 2-core VM.
 MAX_VIEW_CELLS = 10_000_000
+
+#: Most objects and goal members the viewer's frames may list in all (each
+#: frame lists the objects that changed and the goals drawn anew, whole):
+#: bounds the answer of ``/view`` to tens of megabytes.
+MAX_VIEW_DRAWN = 1_000_000
 
 #: Default cap on the bytes of one input file (or one line of a JSONL file).
 MAX_INPUT_BYTES = 16 * 1024 * 1024

@@ -75,7 +75,7 @@ def bench(
     meeting them.
     """
     from .report import summarise, to_csv, to_markdown
-    from .runner import RunOptions, run_suite
+    from .runner import RunOptions, check_workers, run_suite
     from .tasks import write_suite
 
     try:
@@ -88,6 +88,7 @@ def bench(
         opts = RunOptions(method=method, parser=chosen, max_iter=max_iter, time_limit=time_limit,
                           execute=not no_exec, llm_model=llm_model, llm_base_url=llm_base_url)
         opts.check()
+        check_workers(workers, ray)
         output.mkdir(parents=True, exist_ok=True)
         if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")

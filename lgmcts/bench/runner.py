@@ -369,6 +369,17 @@ def usable_cpus() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def check_workers(workers: int | None, ray_address: str | None = None) -> None:
+    """Refuse a worker count below 1, or above the usable CPUs for a run on this machine."""
+    if workers is not None and workers < 1:
+        raise InputError("--workers must be at least 1")
+    cpus = usable_cpus()
+    if workers is not None and workers > cpus and ray_address in (None, "local"):
+        # Each worker is a process with its own planner and simulator: more
+        # than the cores only multiplies memory.
+        raise InputError(f"--workers {workers} is more than the {cpus} CPUs this machine lets the run use")
+
+
 def run_suite(
     tasks: list[Task],
     out_dir: str | Path,
@@ -399,13 +410,8 @@ def run_suite(
     Every record of the run in task order (those resumed included).
     """
     options.check()
-    if workers is not None and workers < 1:
-        raise InputError("--workers must be at least 1")
+    check_workers(workers, ray_address)
     cpus = usable_cpus()
-    if workers is not None and workers > cpus and ray_address in (None, "local"):
-        # Each worker is a process with its own planner and simulator: more
-        # than the cores only multiplies memory.
-        raise InputError(f"--workers {workers} is more than the {cpus} CPUs this machine lets the run use")
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)

@@ -30,7 +30,7 @@ import json
 import re
 from functools import lru_cache
 from importlib import resources
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -67,20 +67,41 @@ def _inline_safe(js: str) -> str:
     return re.sub(r"</(script)", r"<\\/\1", js, flags=re.IGNORECASE).replace("<!--", "<\\!--")
 
 
-def check_view_size(objects: int, actions: int, goals: GoalSpec | None) -> None:
-    """Refuse, in one line, a plan whose viewer data would cost more than :data:`~lgmcts.limits.MAX_VIEW_CELLS`.
+def check_view_size(objects: int, actions: list | int, goals: GoalSpec | None) -> None:
+    """Refuse, in one line, a plan whose viewer data would cost more than the caps of docs/limits.md.
 
-    The cost counts each object and each goal member once per plan state
-    (``(objects + goal members) x (actions + 1)``): the replay compares every
-    pose at every step, and a goal is drawn again whenever one of its objects
-    moves.
+    * :data:`~lgmcts.limits.MAX_VIEW_CELLS` bounds the work,
+      ``(objects + goal members) x (actions + 1)``: the replay compares every
+      pose at every step, and a goal is drawn again whenever one of its
+      objects moves;
+    * :data:`~lgmcts.limits.MAX_VIEW_DRAWN` bounds the answer: what the
+      frames list (every object and goal member once, then at each action
+      the moved object and the members of each goal over it or its new
+      support) is counted from the actions before any is replayed.
     """
-    members = sum(len(g.objects) + (g.anchor is not None) for g in goals.goals) if goals is not None else 0
-    cells = (objects + members) * (actions + 1)
+    n = actions if isinstance(actions, int) else len(actions)
+    sizes = [len(g.objects) + 1 for g in goals.goals] if goals is not None else []
+    members = sum(sizes)
+    cells = (objects + members) * (n + 1)
     if cells > limits.MAX_VIEW_CELLS:
         raise InputError(
-            f"the plan is too large to draw: ({objects} objects + {members} goal members) x {actions + 1} states "
+            f"the plan is too large to draw: ({objects} objects + {members} goal members) x {n + 1} states "
             f"= {cells} exceeds {limits.MAX_VIEW_CELLS} (docs/limits.md)"
+        )
+    if isinstance(actions, int):
+        return
+    over: dict[int, int] = {}
+    if goals is not None:
+        for k, g in enumerate(goals.goals):
+            for i in {*g.objects, *([g.anchor] if g.anchor is not None else [])}:
+                over[i] = over.get(i, 0) + sizes[k]
+    drawn = objects + 2 * members
+    for a in actions:
+        drawn += 1 + over.get(a.object, 0) + (over.get(a.on, 0) if a.on is not None else 0)
+    if drawn > limits.MAX_VIEW_DRAWN:
+        raise InputError(
+            f"the plan is too large to draw: its frames would list about {drawn} objects and goal members, "
+            f"more than {limits.MAX_VIEW_DRAWN} (docs/limits.md)"
         )
 
 
@@ -95,13 +116,24 @@ def _frames(sc: Scene, actions: list, gs: GoalSpec | None, fits: list | None) ->
     """
     ids = sc.ids
     by_object: dict[int, list[int]] = {}
+    sizes = [len(g.objects) + 1 for g in gs.goals] if gs is not None else []
+    drawn = 0
     if gs is not None:
         for k, g in enumerate(gs.goals):
             for i in {*g.objects, *([g.anchor] if g.anchor is not None else [])}:
                 by_object.setdefault(sc.index[i], []).append(k)
     n = len(actions)
 
-    def entry(st: State, which: Iterable[int], only: Iterable[int] | None, last: bool) -> dict:
+    def entry(st: State, which: list[int], only: list[int] | None, last: bool) -> dict:
+        # What the answer holds grows with the objects listed and the members
+        # of the goals drawn: bounded, so the answer stays tens of megabytes.
+        nonlocal drawn
+        drawn += len(which) + sum(sizes[k] for k in (range(len(sizes)) if only is None else only))
+        if drawn > limits.MAX_VIEW_DRAWN:
+            raise InputError(
+                f"the plan is too large to draw: its frames would list more than {limits.MAX_VIEW_DRAWN} "
+                "objects and goal members (docs/limits.md)"
+            )
         return {
             "poses": {str(ids[k]): [float(v) for v in st.poses[k]] for k in which},
             "on": {str(ids[k]): (None if st.on[k] == TABLE else ids[st.on[k]]) for k in which},
@@ -109,7 +141,7 @@ def _frames(sc: Scene, actions: list, gs: GoalSpec | None, fits: list | None) ->
         }
 
     st = sc.initial
-    yield entry(st, range(len(ids)), None, n == 0)
+    yield entry(st, list(range(len(ids))), None, n == 0)
     for number, a in enumerate(actions, start=1):
         nxt = advance(st, number, a)
         changed = np.flatnonzero(
@@ -157,7 +189,7 @@ def viewer_data(
         extra = pl.model_extra or {}
         instruction = extra.get("instruction") if isinstance(extra.get("instruction"), str) else None
     actions = list(pl.actions)
-    check_view_size(len(sc.ids), len(actions), gs)
+    check_view_size(len(sc.ids), actions, gs)
     # The plan's own fits draw its final state when it is drawn against its own goals.
     fits = pl.fits if goals is None else None
     footprints = {str(i): np.round(sc.local[k], 6).tolist() for k, i in enumerate(sc.ids)}
