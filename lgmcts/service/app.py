@@ -184,6 +184,10 @@ class ServiceOptions:
                 raise InputError("the token must not start or end with spaces nor hold control characters")
             if len(self.token) < 16:
                 raise InputError("the token must be at least 16 characters long")
+            try:
+                self.token.encode("utf-8")
+            except UnicodeEncodeError:
+                raise InputError("the token is not valid UTF-8 text") from None
 
 
 # ---------------------------------------------------------------- errors
