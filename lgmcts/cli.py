@@ -10,7 +10,7 @@ from pathlib import Path
 
 import typer
 
-from .cli_util import check_output_dir, check_output_file, configure_logging, fail, run_app, write_text
+from .cli_util import check_output_dir, check_output_file, configure_logging, fail, one_line, run_app, write_text
 from .errors import InputError
 
 app = typer.Typer(
@@ -76,6 +76,8 @@ def plan(
     """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
 
     Exit status: 0 solved, 1 not solved (the partial plan is still written), 2 bad input.
+    Pictures that cannot be written (--viz on a full disk) are one line on
+    stderr; the status stays the plan's, the plan being written.
     """
     from . import formats
     from .planner import plan as run_plan
@@ -104,8 +106,12 @@ def plan(
     if viz is not None:
         from .viz import write_plan_figures
 
-        paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
-        typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        try:
+            paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
+            typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        except InputError as exc:
+            # The plan is written; its exit status stays the plan's, the pictures' failure is one line.
+            typer.echo(f"the plan was written but not its pictures: {one_line(exc)}", err=True)
     st = result.stats
     status = "solved" if result.solved else f"not solved ({st.get('reason', '')})"
     typer.echo(
