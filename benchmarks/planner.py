@@ -88,11 +88,17 @@ def _summary(rows: list[dict]) -> dict:
         "iterations_mean": float(np.mean([r["iterations"] for r in rows])),
         "actions_mean": float(np.mean([r["actions"] for r in ok])) if ok else float("nan"),
         "lower_bound_mean": float(np.mean([r["lower_bound"] for r in ok])) if ok else float("nan"),
-        "actions_over_bound": (float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["lower_bound"] for r in ok])))
-                               if ok else float("nan")),
+        "actions_over_bound": (
+            float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["lower_bound"] for r in ok])))
+            if ok
+            else float("nan")
+        ),
         "reference_mean": float(np.mean([r["reference"] for r in ok])) if ok else float("nan"),
-        "actions_over_reference": (float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["reference"] for r in ok])))
-                                   if ok else float("nan")),
+        "actions_over_reference": (
+            float(np.sum([r["actions"] for r in ok]) / max(1, np.sum([r["reference"] for r in ok])))
+            if ok
+            else float("nan")
+        ),
     }
 
 
@@ -114,14 +120,18 @@ def cmd_random(a: argparse.Namespace) -> dict:
         s["time_median_by_objects"] = {n: float(np.median(v)) for n, v in sorted(by_n.items())}
         s["by_kind"] = {k: _summary([r for r in rows if r["kind"] == k]) for k in sorted({r["kind"] for r in rows})}
         out[m] = s
-    print("| method | cases | success | median time (s) | p95 time (s) | max time (s) | mean iterations | mean actions "
-          "| mean reference | actions / reference | mean lower bound | actions / bound |")
+    print(
+        "| method | cases | success | median time (s) | p95 time (s) | max time (s) | mean iterations | mean actions "
+        "| mean reference | actions / reference | mean lower bound | actions / bound |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for m, s in out.items():
-        print(f"| {m} | {s['cases']} | {100 * s['success']:.1f}% | {s['time_median_s']:.3f} | {s['time_p95_s']:.3f} | "
-              f"{s['time_max_s']:.2f} | {s['iterations_mean']:.1f} | {s['actions_mean']:.2f} | "
-              f"{s['reference_mean']:.2f} | {s['actions_over_reference']:.3f} | {s['lower_bound_mean']:.2f} | "
-              f"{s['actions_over_bound']:.3f} |")
+        print(
+            f"| {m} | {s['cases']} | {100 * s['success']:.1f}% | {s['time_median_s']:.3f} | {s['time_p95_s']:.3f} | "
+            f"{s['time_max_s']:.2f} | {s['iterations_mean']:.1f} | {s['actions_mean']:.2f} | "
+            f"{s['reference_mean']:.2f} | {s['actions_over_reference']:.3f} | {s['lower_bound_mean']:.2f} | "
+            f"{s['actions_over_bound']:.3f} |"
+        )
     return out
 
 
@@ -152,8 +162,11 @@ def cmd_labbe(a: argparse.Namespace) -> dict:
             ok = [r for r in rows if r["solved"]]
             s["actions_per_object"] = float(np.mean([r["actions"] / n for r in ok])) if ok else float("nan")
             out[f"{n}/{m}"] = s
-            print(f"| {n} | {m} | {100 * s['success']:.0f}% | {s['actions_per_object']:.3f} | {s['time_median_s']:.4f} | "
-                  f"{s['time_p95_s']:.4f} | {s['cpu_median_s']:.4f} | {s['cpu_p95_s']:.4f} |", flush=True)
+            print(
+                f"| {n} | {m} | {100 * s['success']:.0f}% | {s['actions_per_object']:.3f} | {s['time_median_s']:.4f} | "
+                f"{s['time_p95_s']:.4f} | {s['cpu_median_s']:.4f} | {s['cpu_p95_s']:.4f} |",
+                flush=True,
+            )
             if a.json:
                 # Partial results survive a run cut short.
                 a.json.parent.mkdir(parents=True, exist_ok=True)
@@ -188,7 +201,9 @@ print(json.dumps({"objects": n, "solved": p.solved, "iterations": p.stats["itera
 
 
 def cmd_memory(a: argparse.Namespace) -> dict:
-    r = subprocess.run([sys.executable, "-c", _MEMORY_CHILD, str(a.objects), str(a.max_iter)], capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-c", _MEMORY_CHILD, str(a.objects), str(a.max_iter)], capture_output=True, text=True
+    )
     if r.returncode != 0:
         raise SystemExit(r.stderr.strip().splitlines()[-1])
     out = json.loads(r.stdout)
@@ -445,12 +460,19 @@ def main() -> None:
     r.add_argument("--n", type=int, default=300)
     r.add_argument("--first-seed", type=int, default=0)
     r.add_argument("--methods", default="lgmcts,greedy,pmcts")
-    r.add_argument("--dense", action="store_true",
-                   help="the dense variant: 4-10 extra clutter objects packed edge to edge around the goal region")
+    r.add_argument(
+        "--dense",
+        action="store_true",
+        help="the dense variant: 4-10 extra clutter objects packed edge to edge around the goal region",
+    )
     lb = sub.add_parser("labbe")
     lb.add_argument("--ns", default="1-37", help="N values: a list (1,4,8) and/or ranges (1-37)")
-    lb.add_argument("--variant", default="protocol", choices=LABBE_VARIANTS,
-                    help="protocol: as the authors' evaluator samples it; spaced: the earlier, easier generator")
+    lb.add_argument(
+        "--variant",
+        default="protocol",
+        choices=LABBE_VARIANTS,
+        help="protocol: as the authors' evaluator samples it; spaced: the earlier, easier generator",
+    )
     lb.add_argument("--per-n", type=int, default=100)
     lb.add_argument("--methods", default="lgmcts")
     lb.add_argument("--repeat", type=int, default=1, help="plan each case this many times and keep the fastest time")

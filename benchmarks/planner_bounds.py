@@ -1,6 +1,6 @@
 """Costs of small requests that used to cost gigabytes or minutes in the planner.
 
-    PYTHONPATH=$PWD .venv/bin/python benchmarks/planner_bounds.py [--only memory|probes]
+    PYTHONPATH=$PWD .venv/bin/python benchmarks/planner_bounds.py [--only memory|probes] [--stop-after S]
 
 Prints one line per measurement, each request in a fresh process (so peaks
 do not mix): the traced peak (tracemalloc) and the process's maximum RSS.
@@ -47,8 +47,12 @@ def box(i: int, x: float, y: float, size: float = 0.05, on: int | None = None) -
 
 
 def measure(req: dict, timeout: float = 600) -> dict:
-    r = subprocess.run([sys.executable, "-c", _RUN], input=json.dumps(req), capture_output=True, text=True,
-                       timeout=timeout, cwd=ROOT)
+    try:
+        r = subprocess.run([sys.executable, "-c", _RUN], input=json.dumps(req), capture_output=True, text=True,
+                           timeout=timeout, cwd=ROOT)
+    except subprocess.TimeoutExpired:
+        return {"time_s": float("nan"), "peak_mib": float("nan"), "rss_mib": float("nan"),
+                "answer": f"no answer within {timeout:.0f} s (stopped)"}
     if r.returncode != 0:
         return {"time_s": float("nan"), "peak_mib": float("nan"), "rss_mib": float("nan"),
                 "answer": "failed: " + (r.stderr.strip().splitlines() or ["?"])[-1]}
@@ -57,7 +61,8 @@ def measure(req: dict, timeout: float = 600) -> dict:
 
 def memory() -> None:
     for half in (1, 10, 100, 1000):
-        scene = {"workspace": {"x": [-half, half], "y": [-half, half]}, "objects": [box(1, -0.1, 0.0), box(2, 0.1, 0.0)]}
+        objs = [box(1, -0.1, 0.0), box(2, 0.1, 0.0)]
+        scene = {"workspace": {"x": [-half, half], "y": [-half, half]}, "objects": objs}
         goals = {"goals": [{"pattern": "pose", "objects": [1], "pose": [0.1, 0.0, 0.0]}]}
         for method in ("lgmcts", "greedy", "pmcts"):
             m = measure({"scene": scene, "goals": goals, "method": method, "max_iter": 1000})
@@ -76,10 +81,14 @@ def probes() -> dict[str, dict]:
         "line below L_min": {
             "scene": {"workspace": ws, "objects": six},
             "goals": {"goals": [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.05}]}},
-        "same objects in a line and a circle": {
+        "same 4 objects in a line and a circle": {
             "scene": {"workspace": ws, "objects": six},
             "goals": {"goals": [{"pattern": "line", "objects": [1, 2, 3, 4]},
                                 {"pattern": "circle", "objects": [1, 2, 3, 4]}]}},
+        "same 6 objects in a line and a circle": {
+            "scene": {"workspace": ws, "objects": six},
+            "goals": {"goals": [{"pattern": "line", "objects": [1, 2, 3, 4, 5, 6]},
+                                {"pattern": "circle", "objects": [1, 2, 3, 4, 5, 6]}]}},
         "line through three non-collinear pose targets": {
             "scene": {"workspace": ws, "objects": six},
             "goals": {"goals": [{"pattern": "line", "objects": [1, 2, 3]},
@@ -96,12 +105,15 @@ def probes() -> dict[str, dict]:
     out[f"unstack a {n}-high tower on a small table"] = {
         "scene": {"workspace": {"x": [-0.3, 0.3], "y": [-0.3, 0.3]}, "objects": tall},
         "goals": {"goals": [{"pattern": "pose", "objects": [1], "pose": [0.2, 0.2, 0.0]}]}}
+    out[f"unstack a {n}-high tower on a 2 m x 2 m table"] = {
+        "scene": {"workspace": {"x": [-1.0, 1.0], "y": [-1.0, 1.0]}, "objects": tall},
+        "goals": {"goals": [{"pattern": "pose", "objects": [1], "pose": [0.2, 0.2, 0.0]}]}}
     return out
 
 
-def run_probes(max_iter: int, time_limit: float | None) -> None:
+def run_probes(max_iter: int, time_limit: float | None, timeout: float) -> None:
     for name, req in probes().items():
-        m = measure({**req, "max_iter": max_iter, "time_limit": time_limit})
+        m = measure({**req, "max_iter": max_iter, "time_limit": time_limit}, timeout)
         print(f"{name}: {m['time_s']:.2f} s, traced peak {m['peak_mib']:.1f} MiB: {m['answer'][:200]}")
 
 
@@ -110,11 +122,12 @@ def main() -> None:
     ap.add_argument("--only", choices=["memory", "probes"])
     ap.add_argument("--max-iter", type=int, default=10_000, help="iteration budget of the probes")
     ap.add_argument("--time-limit", type=float, default=None, help="time limit of the probes (s)")
+    ap.add_argument("--stop-after", type=float, default=600, help="stop a probe's process after this many seconds")
     args = ap.parse_args()
     if args.only in (None, "memory"):
         memory()
     if args.only in (None, "probes"):
-        run_probes(args.max_iter, args.time_limit)
+        run_probes(args.max_iter, args.time_limit, args.stop_after)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass
-from itertools import combinations, product
+from itertools import combinations, pairwise, product
 from pathlib import Path
 
 import numpy as np
@@ -65,9 +65,16 @@ def _shape(rng: np.random.Generator) -> tuple[str, dict]:
     k = rng.integers(3)
     if k == 0:
         s = rng.uniform(0.03, 0.055)
-        return "block", {"type": "box", "size": [float(s), float(rng.uniform(0.03, 0.055)), float(rng.uniform(0.03, 0.06))]}
+        return "block", {
+            "type": "box",
+            "size": [float(s), float(rng.uniform(0.03, 0.055)), float(rng.uniform(0.03, 0.06))],
+        }
     if k == 1:
-        return "can", {"type": "cylinder", "radius": float(rng.uniform(0.016, 0.03)), "height": float(rng.uniform(0.04, 0.1))}
+        return "can", {
+            "type": "cylinder",
+            "radius": float(rng.uniform(0.016, 0.03)),
+            "height": float(rng.uniform(0.04, 0.1)),
+        }
     r = rng.uniform(0.02, 0.032)
     m = int(rng.integers(3, 7))
     a = np.arange(m) * 2 * math.pi / m
@@ -85,7 +92,12 @@ class _Placer:
     def fits(self, i: int, pose: np.ndarray) -> bool:
         v = self.scene.footprint(i, pose)
         xmin, xmax, ymin, ymax = self.scene.bounds
-        if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+        if (
+            v[:, 0].min() < xmin + 0.003
+            or v[:, 0].max() > xmax - 0.003
+            or v[:, 1].min() < ymin + 0.003
+            or v[:, 1].max() > ymax - 0.003
+        ):
             return False
         p = shapely.Polygon(v)
         return all(p.distance(q) > self.gap for q in self.polys.values())
@@ -103,7 +115,9 @@ class _Placer:
         return None
 
 
-def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, anchor_pose=None) -> list[np.ndarray]:
+def _pattern_poses(
+    kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, anchor_pose=None
+) -> list[np.ndarray]:
     rmax = float(scene.radii[objs].max())
     n = len(objs)
     c = np.array([rng.uniform(-0.25, 0.25), rng.uniform(-0.17, 0.17)])
@@ -115,12 +129,22 @@ def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gene
     if kind == "circle":
         r = max(0.06, (2 * rmax + 0.02) / (2 * math.sin(math.pi / n)))
         a0 = rng.uniform(-math.pi, math.pi)
-        return [np.array([c[0] + r * math.cos(a0 + 2 * math.pi * k / n), c[1] + r * math.sin(a0 + 2 * math.pi * k / n), a0 + 2 * math.pi * k / n + math.pi / 2]) for k in range(n)]
+        return [
+            np.array(
+                [
+                    c[0] + r * math.cos(a0 + 2 * math.pi * k / n),
+                    c[1] + r * math.sin(a0 + 2 * math.pi * k / n),
+                    a0 + 2 * math.pi * k / n + math.pi / 2,
+                ]
+            )
+            for k in range(n)
+        ]
     if kind == "rectangle":
         side = max(0.07, 2 * rmax + 0.02)
         w = side * (1 + (n > 4))
         h = side
-        pts = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2)] + [(0.0, -h / 2), (0.0, h / 2)][: n - 4]
+        mids = [(0.0, -h / 2), (0.0, h / 2)][: n - 4]
+        pts = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2), *mids]
         return [np.array([c[0] + x, c[1] + y, 0.0]) for x, y in pts]
     if kind == "tower":
         return [np.array([c[0], c[1], 0.0]) for _ in objs]
@@ -147,7 +171,9 @@ def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = N
 _PACK_STEP, _PACK_BISECT = 0.003, 10
 
 
-def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
+def _pack_clutter(
+    scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator
+) -> list[dict]:
     """Extra clutter objects (4-10, shapes as in the base cases) packed in
     contact around the goal region (see :func:`pack_clutter`)."""
     n0 = len(objects)
@@ -158,8 +184,13 @@ def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet
     return pack_clutter(scene.bounds, specs, goal_feet, other_feet, rng)
 
 
-def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], goal_feet: list, other_feet: list,
-                 rng: np.random.Generator) -> list[dict]:
+def pack_clutter(
+    bounds: tuple[float, float, float, float],
+    specs: list[dict],
+    goal_feet: list,
+    other_feet: list,
+    rng: np.random.Generator,
+) -> list[dict]:
     """Object ``specs`` (dicts with id, name, color, shape) packed edge to
     edge around the goal region; returns those placed, with ``pose`` and
     ``on`` set, in order.
@@ -178,20 +209,31 @@ def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], g
     xmin, xmax, ymin, ymax = bounds
     goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
     placed = list(goal_feet) + list(other_feet)
-    out = []
+    out: list[dict] = []
     if not goal_centres:
         return out
     for spec in specs:
         full = {**spec, "pose": [0.0, 0.0, 0.0], "on": None}
-        local = Scene.from_spec(parse_scene({"workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
-                                             "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}]})).local[0]
+        local = Scene.from_spec(
+            parse_scene(
+                {
+                    "workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
+                    "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}],
+                }
+            )
+        ).local[0]
 
-        def poly_at(p):
+        def poly_at(p, local=local):
             return shapely.polygons(geo.transform(local, p))
 
-        def fits(p) -> bool:
+        def fits(p, local=local) -> bool:
             v = geo.transform(local, p)
-            if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+            if (
+                v[:, 0].min() < xmin + 0.003
+                or v[:, 0].max() > xmax - 0.003
+                or v[:, 1].min() < ymin + 0.003
+                or v[:, 1].max() > ymax - 0.003
+            ):
                 return False
             arr = np.empty(len(placed), dtype=object)
             arr[:] = placed
@@ -226,14 +268,24 @@ def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], g
     return out
 
 
-def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
-              dense_rng: np.random.Generator | None = None) -> Case | None:
+def _try_case(
+    rng: np.random.Generator, n_objects: int | None, kind: str | None, dense_rng: np.random.Generator | None = None
+) -> Case | None:
     n = int(n_objects or rng.integers(6, 17))
     kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
     objects = []
     for i in range(n):
         name, shape = _shape(rng)
-        objects.append({"id": i + 1, "name": name, "color": _COLORS[i % len(_COLORS)], "shape": shape, "pose": [0.0, 0.0, 0.0], "on": None})
+        objects.append(
+            {
+                "id": i + 1,
+                "name": name,
+                "color": _COLORS[i % len(_COLORS)],
+                "shape": shape,
+                "pose": [0.0, 0.0, 0.0],
+                "on": None,
+            }
+        )
     scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}), overlap_ok=True)
     order = list(rng.permutation(n))
     n_goals = int(rng.integers(1, 3))
@@ -298,10 +350,10 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
             return None
         final_pose[o] = p
     gspec = parse_goals({"goals": goals})
-    poses = np.array([final_pose[o] for o in range(n)])
+    final_poses = np.array([final_pose[o] for o in range(n)])
     on = tuple(final_on.get(o, TABLE) for o in range(n))
     for g in gspec.goals:
-        if goal_satisfied(g, scene, poses, on) is not None:
+        if goal_satisfied(g, scene, final_poses, on) is not None:
             return None
     # Start state: goal targets scattered, non-goal objects as blockers or clutter.
     targets = sorted({scene.index[i] for g in gspec.goals for i in g.objects})
@@ -367,7 +419,9 @@ def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
         # The rest of the circle's objects must spread over more than half of
         # it, so the circle cannot be much larger than the table.
         c, r = fit_circle(xy)
-        return bool(np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL)
+        return bool(
+            np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL
+        )
     if pattern == "rectangle":
         # Kept centres lie inside the final rectangle, so one deeper than the
         # tolerance inside their own convex hull is off its perimeter.
@@ -386,7 +440,11 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
     if g.pattern in ("line", "circle", "rectangle"):
         best: list[frozenset[int]] = [frozenset(c) for c in combinations(on_table, min(2, len(on_table)))]
         for k in range(3, len(on_table) + 1):
-            more = [frozenset(c) for c in combinations(on_table, k) if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)]
+            more = [
+                frozenset(c)
+                for c in combinations(on_table, k)
+                if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)
+            ]
             if not more:
                 break
             best = more
@@ -395,13 +453,15 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
         keep: list[int] = []
         if st.on[idx[0]] == TABLE:
             keep.append(idx[0])
-            for a, b in zip(idx, idx[1:]):
+            for a, b in pairwise(idx):
                 if st.on[b] != a:
                     break
                 keep.append(b)
         return [frozenset(keep)]
     if g.pattern in RELATIONS:
-        ok = frozenset(i for i in idx if goal_satisfied(g.model_copy(update={"objects": [sc.ids[i]]}), sc, st.poses, st.on) is None)
+        ok = frozenset(
+            i for i in idx if goal_satisfied(g.model_copy(update={"objects": [sc.ids[i]]}), sc, st.poses, st.on) is None
+        )
         return [ok]
     return [frozenset()]
 
@@ -524,7 +584,9 @@ def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: st
          "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
         for i in range(n)
     ]
-    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    goals = [
+        {"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)
+    ]
     sspec = parse_scene({"workspace": ws, "objects": objs})
     gspec = parse_goals({"goals": goals})
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
@@ -618,16 +680,16 @@ def labbe_case(n: int, seed: int, *, variant: str = "spaced") -> Case:
                 if len(pts) == n:
                     return np.array(pts)
         cols, rows = 6, 7
-        grid = []
+        grid: list[tuple[float, float]] = []
         for j in range(rows):
             for i in range(cols):
                 x = r + 0.003 + i * (2 * r + 0.006) + (j % 2) * (r + 0.003)
                 y = r + 0.003 + j * 0.0685
                 if x <= 0.5 - r - 0.003 and y <= 0.5 - r - 0.003:
                     grid.append((x, y))
-        grid = np.array(grid)
-        pick = rng.choice(len(grid), n, replace=False)
-        return grid[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
+        cells = np.array(grid)
+        pick = rng.choice(len(cells), n, replace=False)
+        return cells[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
 
     start, goal = config(), config()
     return _disc_case(start, goal, r, ws, "labbe")

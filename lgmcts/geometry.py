@@ -10,7 +10,7 @@ and containment of many candidate placements cost one vectorised call.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 import shapely
@@ -20,17 +20,17 @@ __all__ = [
     "CIRCLE_SEGMENTS",
     "box_footprint",
     "circle_footprint",
+    "colliding",
+    "colliding_near",
     "convex_footprint",
-    "transform",
-    "place_each",
-    "polygons",
     "inside_workspace",
     "lens_area",
     "overlap_pairs",
     "overlapping",
-    "colliding",
-    "colliding_near",
+    "place_each",
+    "polygons",
     "radius_of",
+    "transform",
     "wrap_angle",
 ]
 
@@ -57,7 +57,9 @@ def circle_footprint(radius: float, segments: int = CIRCLE_SEGMENTS) -> np.ndarr
 def convex_footprint(points: np.ndarray) -> np.ndarray:
     """Convex hull of ``(n, 2)`` points as CCW vertices (no repeated end)."""
     hull = shapely.MultiPoint(np.asarray(points, dtype=float)[:, :2]).convex_hull
-    hull = shapely.orient_polygons(hull) if hasattr(shapely, "orient_polygons") else shapely.geometry.polygon.orient(hull)
+    hull = (
+        shapely.orient_polygons(hull) if hasattr(shapely, "orient_polygons") else shapely.geometry.polygon.orient(hull)
+    )
     return np.asarray(hull.exterior.coords, dtype=float)[:-1]
 
 
@@ -149,9 +151,18 @@ def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[
     return pairs[0], pairs[1]
 
 
-def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
-                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float, *, cand_disc: np.ndarray | float | None = None,
-                   obs_disc: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def colliding_near(
+    candidates: np.ndarray | None,
+    cand_xy: np.ndarray,
+    cand_r: np.ndarray | float,
+    obstacles: np.ndarray,
+    obs_xy: np.ndarray,
+    obs_r: np.ndarray,
+    clearance: float,
+    *,
+    cand_disc: np.ndarray | float | None = None,
+    obs_disc: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``, as
     :func:`colliding`, without an R-tree.
 
@@ -179,12 +190,14 @@ def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: n
             hit[disc] = d2[ci[disc], oi[disc]] <= (cd[disc] + od[disc] + clearance + 1e-12) ** 2
             rest = np.flatnonzero(~disc)
             if len(rest):
+                assert candidates is not None, "candidates are needed for pairs that are not both discs"
                 if clearance > 0:
                     hit[rest] = shapely.dwithin(candidates[ci[rest]], obstacles[oi[rest]], clearance)
                 else:
                     hit[rest] = shapely.intersects(candidates[ci[rest]], obstacles[oi[rest]])
             return ci[hit], oi[hit]
     if len(ci):
+        assert candidates is not None, "candidates are needed for pairs that are not both discs"
         if clearance > 0:
             hit = shapely.dwithin(candidates[ci], obstacles[oi], clearance)
         else:
@@ -193,8 +206,15 @@ def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: n
     return ci, oi
 
 
-def overlapping(a_polys: np.ndarray, a_xy: np.ndarray, a_disc: np.ndarray, b_polys: np.ndarray, b_xy: np.ndarray,
-                b_disc: np.ndarray, max_area: float) -> np.ndarray:
+def overlapping(
+    a_polys: np.ndarray,
+    a_xy: np.ndarray,
+    a_disc: np.ndarray,
+    b_polys: np.ndarray,
+    b_xy: np.ndarray,
+    b_disc: np.ndarray,
+    max_area: float,
+) -> np.ndarray:
     """Elementwise, whether shape pairs overlap by more than legal contact.
 
     Pairs of discs (both ``*_disc`` radii > 0, m) overlap when their true

@@ -86,18 +86,41 @@ def clear_centres(scene: Scene, world: State, b: int, clearance: float) -> np.nd
             s = slice(k, k + chunk)
             free &= ((dy2[s, :, None] + dx2[s, None, :]) > reach2[s, None, None]).all(axis=0)
     else:
-        # Each object rules out only points within its reach: test the window
-        # one grid step wider than it (the same arithmetic as above, so the
-        # same points are kept).
-        half = np.sqrt(reach2) + step
-        x0, x1 = np.searchsorted(gx, cx - half), np.searchsorted(gx, cx + half, side="right")
-        y0, y1 = np.searchsorted(gy, cy - half), np.searchsorted(gy, cy + half, side="right")
-        for k in np.flatnonzero((x1 > x0) & (y1 > y0)).tolist():
-            wx2 = (gx[x0[k]:x1[k]] - cx[k]) ** 2
-            wy2 = (gy[y0[k]:y1[k]] - cy[k]) ** 2
-            free[y0[k]:y1[k], x0[k]:x1[k]] &= (wy2[:, None] + wx2[None, :]) > reach2[k]
+        _clear_windows(free, gx, gy, cx, cy, reach2, step)
     jj, ii = np.nonzero(free)
     return np.stack([gx[ii], gy[jj]], axis=1)
+
+
+def _clear_windows(free: np.ndarray, gx: np.ndarray, gy: np.ndarray, cx: np.ndarray, cy: np.ndarray,
+                   reach2: np.ndarray, step: float) -> None:
+    """Clear, in ``free`` ``(len(gy), len(gx))``, the points within the reach
+    of each object (centres ``cx, cy``, squared reaches ``reach2``).
+
+    Each object rules out only points in the window one grid step wider than
+    its reach; the windows of equal shape are tested together, in chunks of
+    about 250,000 points, with the arithmetic of the dense test (so the same
+    points are kept).
+    """
+    half = np.sqrt(reach2) + step
+    x0, x1 = np.searchsorted(gx, cx - half), np.searchsorted(gx, cx + half, side="right")
+    y0, y1 = np.searchsorted(gy, cy - half), np.searchsorted(gy, cy + half, side="right")
+    wx, wy = x1 - x0, y1 - y0
+    live = np.flatnonzero((wx > 0) & (wy > 0))
+    if not len(live):
+        return
+    shapes, group = np.unique(np.stack([wx[live], wy[live]], axis=1), axis=0, return_inverse=True)
+    group = group.ravel()
+    for g, (w, h) in enumerate(shapes.tolist()):
+        members = live[group == g]
+        per = max(1, 250_000 // (w * h))
+        for c in range(0, len(members), per):
+            m = members[c:c + per]
+            ix = x0[m, None] + np.arange(w)
+            iy = y0[m, None] + np.arange(h)
+            dx2 = (gx[ix] - cx[m, None]) ** 2
+            dy2 = (gy[iy] - cy[m, None]) ** 2
+            k, a, b = np.nonzero((dy2[:, :, None] + dx2[:, None, :]) <= reach2[m, None, None])
+            free[iy[k, a], ix[k, b]] = False
 
 
 def region_scores(regions: np.ndarray, theirs: np.ndarray, xy: np.ndarray, r: float) -> np.ndarray:

@@ -32,7 +32,9 @@ def test_clear_centres_on_an_empty_table_fill_the_room():
     xy = clear_centres(sc, sc.initial, 0, 0.002)
     r = float(sc.radii[0]) + 0.001
     xmin, xmax, ymin, ymax = sc.bounds
-    assert len(xy) == len(np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)) * len(np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP))
+    assert len(xy) == len(np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)) * len(
+        np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
+    )
     assert (xy[:, 0] >= xmin + r).all() and (xy[:, 0] <= xmax - r + 1e-12).all()
 
 
@@ -41,8 +43,11 @@ def test_no_room_in_a_workspace_smaller_than_the_object():
     assert clear_centres(sc, sc.initial, 0, 0.002).shape == (0, 2)
 
 
-boxes = st.lists(st.tuples(st.floats(-0.25, 0.25), st.floats(-0.15, 0.15), st.floats(-3.1, 3.1), st.floats(0.02, 0.06)),
-                 min_size=2, max_size=6)
+boxes = st.lists(
+    st.tuples(st.floats(-0.25, 0.25), st.floats(-0.15, 0.15), st.floats(-3.1, 3.1), st.floats(0.02, 0.06)),
+    min_size=2,
+    max_size=6,
+)
 
 
 @settings(max_examples=25, deadline=None)
