@@ -337,8 +337,9 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
     names = list(groups)
     cells = sorted({(r["density"], r["n"]) for rows in groups.values() for r in rows})
     out: dict = {"cells": {}, "densities": {}, "exponent_d04": {}}
-    md = ["| D | n | " + " | ".join(f"{m}: solved | {m}: median / p95 plan (s) | {m}: median CPU (s) | {m}: actions/object"
-                                     for m in names) + " | lgmcts: process (s) |",
+    head = " | ".join(f"{m}: solved | {m}: median / p95 plan (s) | {m}: median CPU (s) | {m}: actions/object"
+                      for m in names)
+    md = ["| D | n | " + head + " | lgmcts: process wall / CPU (s) |",
           "|---|---|" + "---|---|---|---|" * len(names) + "---|"]
     for d, n in cells:
         line = f"| {d:g} | {n} |"
@@ -362,7 +363,8 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
     for d in sorted({c[0] for c in cells}):
         line = f"| {d:g} |"
         for m in names:
-            s = _trlb_cell([r for r in groups[m] if r["density"] == d]) if any(r["density"] == d for r in groups[m]) else None
+            band = [r for r in groups[m] if r["density"] == d]
+            s = _trlb_cell(band) if band else None
             out["densities"].setdefault(f"{d:g}", {})[m] = s
             line += " - | - | - | - |" if s is None else (
                 f" {s['solved']}/{s['pairs']} | {s['time_median_s']:.3f} | {s['cpu_median_s']:.3f} |"
@@ -385,72 +387,81 @@ def _trlb_table(groups: dict[str, list[dict]]) -> tuple[dict, list[str]]:
     return out, md
 
 
-def cmd_trlb(a: argparse.Namespace) -> dict:
-    if a.results:
-        rows = json.loads(a.results.read_text())["results"]["rows"]
-    else:
-        ds = {float(x) for x in a.densities.split(",")} if a.densities else None
-        ns = set(_ns(a.ns)) if a.ns else None
-        todo = [(d, n, f) for d, n, f in trlb_pairs(a.instances, a.pairs)
-                if (ds is None or d in ds) and (ns is None or n in ns)]
-        rows = []
-        seen: dict[tuple[float, int], int] = {}
-        for k, (d, n, files) in enumerate(todo):
-            seen[(d, n)] = seen.get((d, n), 0) + 1
-            rows.append(_trlb_row(d, n, files, a, process=seen[(d, n)] <= a.process_sample))
-            if a.progress:
-                r = rows[-1]
-                print(f"\r{k + 1}/{len(todo)} D={d:g} n={n}: {'ok' if r['solved'] else 'refused' if r['refused'] else 'unsolved'} "
-                      f"{r['time_s']:.2f} s   ", end="", file=sys.stderr, flush=True)
-            if a.json:
-                a.json.parent.mkdir(parents=True, exist_ok=True)
-                a.json.with_suffix(".partial.json").write_text(json.dumps({"rows": rows}))
+def _trlb_plan_all(a: argparse.Namespace) -> list[dict]:
+    """Plan every selected pair; one row each (partial results saved as they come)."""
+    ds = {float(x) for x in a.densities.split(",")} if a.densities else None
+    ns = set(_ns(a.ns)) if a.ns else None
+    todo = [(d, n, f) for d, n, f in trlb_pairs(a.instances, a.pairs)
+            if (ds is None or d in ds) and (ns is None or n in ns)]
+    rows: list[dict] = []
+    seen: dict[tuple[float, int], int] = {}
+    for k, (d, n, files) in enumerate(todo):
+        seen[(d, n)] = seen.get((d, n), 0) + 1
+        r = _trlb_row(d, n, files, a, process=seen[(d, n)] <= a.process_sample)
+        rows.append(r)
         if a.progress:
-            print(file=sys.stderr)
+            verdict = "ok" if r["solved"] else "refused" if r["refused"] else "unsolved"
+            print(f"\r{k + 1}/{len(todo)} D={d:g} n={n}: {verdict} {r['time_s']:.2f} s   ",
+                  end="", file=sys.stderr, flush=True)
+        if a.json:
+            a.json.parent.mkdir(parents=True, exist_ok=True)
+            a.json.with_suffix(".partial.json").write_text(json.dumps({"rows": rows}))
+    if a.progress:
+        print(file=sys.stderr)
+    return rows
+
+
+def _trlb_peer_rows(a: argparse.Namespace) -> tuple[list[dict], list]:
+    """TRLB's runs from the ``--peer`` files (a later file's row for the same setting and pair wins), judged."""
+    keyed: dict[tuple, dict] = {}
+    meta = []
+    for f in a.peer or []:
+        peer = json.loads(f.read_text())
+        meta.append(peer.get("meta"))
+        for r in peer["rows"]:
+            keyed[(r["setting"], r["density"], r["n"], tuple(r["pair"]))] = r
+    rows = list(keyed.values())
+    if rows and a.instances.is_dir():
+        _trlb_peer_checks(rows, a)
+    return rows, meta
+
+
+def _trlb_peer_lines(groups: dict[str, list[dict]], max_n: int) -> list[str]:
+    """Lines on the peers' plans: how many the validator accepts, and physics against the validator."""
+    lines = []
+    for m in [m for m in groups if m != "lgmcts"]:
+        mine = [r for r in groups[m] if "valid" in r]
+        lines.append(f"{m}: {sum(r['valid'] for r in mine)} of {len(mine)} plans accepted by the validator "
+                     "(a rejected plan counts as unsolved)")
+    phys = [r for m, g in groups.items() if m != "lgmcts" for r in g if "physics" in r]
+    if phys:
+        agree = sum(r["physics"] == r["valid"] for r in phys)
+        cells = sorted({(r["density"], r["n"]) for r in phys})
+        lines.append(f"MuJoCo replay of {len(phys)} TRLB plans (preprocessing setting, n <= {max_n}, "
+                     f"cells {', '.join(f'{d:g}/{n}' for d, n in cells)}): "
+                     f"{sum(r['physics'] for r in phys)} succeed, {sum(r['valid'] for r in phys)} valid; "
+                     f"physics and validator agree on {agree} of {len(phys)}")
+    return lines
+
+
+def cmd_trlb(a: argparse.Namespace) -> dict:
+    rows = json.loads(a.results.read_text())["results"]["rows"] if a.results else _trlb_plan_all(a)
     groups = {"lgmcts": rows}
-    peer_meta = None
-    peer_rows: list[dict] = []
-    if a.peer:
-        # Several files may be given; a later file's row for the same setting and pair wins.
-        keyed: dict[tuple, dict] = {}
-        peer_meta = []
-        for f in a.peer:
-            peer = json.loads(f.read_text())
-            peer_meta.append(peer.get("meta"))
-            for r in peer["rows"]:
-                keyed[(r["setting"], r["density"], r["n"], tuple(r["pair"]))] = r
-        peer_rows = list(keyed.values())
-        if a.instances.is_dir():
-            _trlb_peer_checks(peer_rows, a)
-        for r in peer_rows:
-            groups.setdefault(f"TRLB {r['setting']}", []).append(r)
+    peer_rows, peer_meta = _trlb_peer_rows(a)
+    for r in peer_rows:
+        groups.setdefault(f"TRLB {r['setting']}", []).append(r)
     summary, md = _trlb_table(groups)
     print("\n".join(md))
     for r in rows:
         if r.get("refused"):
             print(f"proved impossible D={r['density']:g} n={r['n']} {r['pair']}: {r['refused']} ({r['time_s']:.3f} s)")
-    if a.peer:
-        judged = [r for m, g in groups.items() if m != "lgmcts" for r in g if "valid" in r]
-        for m in [m for m in groups if m != "lgmcts"]:
-            mine = [r for r in groups[m] if "valid" in r]
-            line = (f"{m}: {sum(r['valid'] for r in mine)} of {len(mine)} plans accepted by the validator "
-                    "(a rejected plan counts as unsolved)")
-            md.append(line)
-            print(line)
-        phys = [r for r in judged if "physics" in r]
-        if phys:
-            agree = sum(r["physics"] == r["valid"] for r in phys)
-            cells = sorted({(r["density"], r["n"]) for r in phys})
-            line = (f"MuJoCo replay of {len(phys)} TRLB plans (preprocessing setting, n <= {a.peer_physics_max_n}, "
-                    f"cells {', '.join(f'{d:g}/{n}' for d, n in cells)}): "
-                    f"{sum(r['physics'] for r in phys)} succeed, {sum(r['valid'] for r in phys)} valid; "
-                    f"physics and validator agree on {agree} of {len(phys)}")
-            md.append(line)
-            print(line)
+    extra = _trlb_peer_lines(groups, a.peer_physics_max_n)
+    print("\n".join(extra))
+    md += extra
     if a.markdown:
         a.markdown.parent.mkdir(parents=True, exist_ok=True)
         a.markdown.write_text("\n".join(md) + "\n")
-    return {"rows": rows, "summary": summary, "peer_meta": peer_meta, "peer_rows": peer_rows}
+    return {"rows": rows, "summary": summary, "peer_meta": peer_meta or None, "peer_rows": peer_rows}
 
 
 def main() -> None:

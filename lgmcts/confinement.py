@@ -116,6 +116,68 @@ def _core(h: np.ndarray, d: float):
     return None if core.is_empty else core
 
 
+def _distances(rho: np.ndarray) -> np.ndarray:
+    """Per object j, the contact distance to the smallest other object (a lower bound over every partner)."""
+    order = np.argsort(rho)
+    d = np.empty(len(rho))
+    known: dict[tuple[float, float], float] = {}
+    for j in range(len(rho)):
+        pair = (float(rho[order[0] if order[0] != j else order[1]]), float(rho[j]))
+        if pair not in known:
+            known[pair] = contact_distance(*pair)
+        d[j] = known[pair]
+    return d
+
+
+def _boxes(bounds: tuple[float, float, float, float], rho: np.ndarray) -> list | None:
+    """Per object, the box its centre stays in on the table (shared between equal radii); ``None`` if one has none."""
+    xmin, xmax, ymin, ymax = bounds
+    boxes: list = []
+    by_rho: dict[float, object] = {}
+    for r in rho.tolist():
+        if r not in by_rho:
+            m = r - _EDGE_TOL
+            lo_x, hi_x = max(xmin, xmin + m), min(xmax, xmax - m)
+            lo_y, hi_y = max(ymin, ymin + m), min(ymax, ymax - m)
+            if lo_x > hi_x or lo_y > hi_y:
+                return None
+            by_rho[r] = shapely.box(lo_x, lo_y, hi_x, hi_y)
+        boxes.append(by_rho[r])
+    return boxes
+
+
+def _grow(regions: list[np.ndarray], cores: list, boxes: list, deadline: float) -> tuple[list[np.ndarray], bool] | None:
+    """One round: each region joined with the points of its box outside every other object's core.
+
+    Returns the new regions and whether any grew, or ``None`` past ``deadline``.
+    """
+    live = [j for j in range(len(cores)) if cores[j] is not None]
+    union = shapely.union_all([cores[j] for j in live])
+    tree = shapely.STRtree([cores[j] for j in live])
+    grown = False
+    new = []
+    shared: dict[int, np.ndarray] = {}
+    for i, box in enumerate(boxes):
+        if time.perf_counter() > deadline:
+            return None
+        if id(box) not in shared:
+            shared[id(box)] = _support(box.difference(union))
+        h = shared[id(box)]
+        if cores[i] is not None:
+            # Points of i's own core are open to i unless another core covers them.
+            near = [live[k] for k in tree.query(cores[i]) if live[k] != i]
+            mine = box.intersection(cores[i])
+            if near:
+                mine = mine.difference(shapely.union_all([cores[j] for j in near]))
+            h = np.maximum(h, _support(mine))
+        if (h > regions[i]).any():
+            grown = True
+            new.append(np.maximum(regions[i], h + _GROW))
+        else:
+            new.append(regions[i])
+    return new, grown
+
+
 def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | None:
     """One line saying why no table-only plan can meet ``goals``, or ``None`` when none is proved.
 
@@ -127,87 +189,39 @@ def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | N
     sc = scene
     if not goals.goals or any(g.pattern != "pose" or g.pose is None for g in goals.goals):
         return None
-    if any(o != TABLE for o in sc.initial.on):
+    if any(o != TABLE for o in sc.initial.on) or sc.n < 2:
         return None
-    t0 = time.perf_counter()
-    n = sc.n
+    deadline = time.perf_counter() + budget_s
     targets = {sc.index[g.objects[0]]: np.asarray(g.pose[:2], dtype=float) for g in goals.goals if g.pose is not None}
     start = sc.initial.poses[:, :2]
-    if all(math.dist(start[i], t) <= TOL for i, t in targets.items()):
+    rho = np.array([_rho(sc, i) for i in range(sc.n)])
+    if all(math.dist(start[i], t) <= TOL for i, t in targets.items()) or (rho <= 0).any():
         return None
-    rho = np.array([_rho(sc, i) for i in range(n)])
-    if n < 2 or (rho <= 0).any():
+    d = _distances(rho)
+    boxes = _boxes(sc.bounds, rho)
+    if boxes is None:
         return None
-    xmin, xmax, ymin, ymax = sc.bounds
-    order = np.argsort(rho)
-    d = np.empty(n)
-    known: dict[tuple[float, float], float] = {}
-    for j in range(n):
-        pair = (float(rho[order[0] if order[0] != j else order[1]]), float(rho[j]))
-        if pair not in known:
-            known[pair] = contact_distance(*pair)
-        d[j] = known[pair]
-    boxes: list = []
-    by_rho: dict[float, object] = {}
-    for i in range(n):
-        if float(rho[i]) in by_rho:
-            boxes.append(by_rho[float(rho[i])])
-            continue
-        m = rho[i] - _EDGE_TOL
-        lo_x, hi_x = max(xmin, xmin + m), min(xmax, xmax - m)
-        lo_y, hi_y = max(ymin, ymin + m), min(ymax, ymax - m)
-        if lo_x > hi_x or lo_y > hi_y:
-            return None
-        boxes.append(shapely.box(lo_x, lo_y, hi_x, hi_y))
-        by_rho[float(rho[i])] = boxes[-1]
     # Each region is the convex polygon of its support numbers along _DIRS.
-    regions = [_support(shapely.Point(start[i])) + _GROW for i in range(n)]
-    dmax = float(d.max())
+    regions = [_support(shapely.Point(p)) + _GROW for p in start]
+    cores: list = [shapely.Point(start[j]).buffer(float(d[j]), quad_segs=16) for j in range(sc.n)]
+    # Room left by every start core joins every region; wide room empties every core at once.
+    room = _support(boxes[int(np.argmax(rho))].difference(shapely.union_all(cores)))
+    if (room + np.roll(room, len(_DIRS) // 2)).max() >= 2 * float(d.max()):
+        return None
     for rnd in range(_ROUNDS):
-        if time.perf_counter() - t0 > budget_s:
-            return None
-        if rnd == 0:
-            cores = [shapely.Point(start[j]).buffer(float(d[j]), quad_segs=16) for j in range(n)]
-        else:
+        if rnd:
             cores = [_core(h, float(d[j])) for j, h in enumerate(regions)]
-        live = [j for j in range(n) if cores[j] is not None]
-        if not live:
-            return None  # nothing is kept anywhere: every region becomes its whole box
-        union = shapely.union_all([cores[j] for j in live])
-        tree = shapely.STRtree([cores[j] for j in live])
-        if rnd == 0:
-            # Room left by every core joins every region; wide room empties every core.
-            room = _support(boxes[int(order[-1])].difference(union))
-            if (room + np.roll(room, len(_DIRS) // 2)).max() >= 2 * dmax:
-                return None
-        grown = False
-        new = []
-        shared: dict[int, np.ndarray] = {}
-        for i in range(n):
-            if time.perf_counter() - t0 > budget_s:
-                return None
-            key = id(boxes[i])
-            if key not in shared:
-                shared[key] = _support(boxes[i].difference(union))
-            h = shared[key]
-            if cores[i] is not None:
-                # Points of i's own core are open to i unless another core covers them.
-                near = [live[k] for k in tree.query(cores[i]) if live[k] != i]
-                mine = boxes[i].intersection(cores[i])
-                if near:
-                    mine = mine.difference(shapely.union_all([cores[j] for j in near]))
-                h = np.maximum(h, _support(mine))
-            if (h > regions[i]).any():
-                grown = True
-                new.append(np.maximum(regions[i], h + _GROW))
-            else:
-                new.append(regions[i])
-        regions = new
+        if all(c is None for c in cores) or time.perf_counter() > deadline:
+            return None  # nothing is kept anywhere (every region becomes its box), or out of time
+        step = _grow(regions, cores, boxes, deadline)
+        if step is None:
+            return None
+        regions, grown = step
         polys = {i: shapely.Polygon(_corners(regions[i])) for i in targets}
-        if all(polys[i].distance(shapely.Point(t)) <= TOL for i, t in targets.items()):
+        far = [i for i, t in targets.items() if polys[i].distance(shapely.Point(t)) > TOL]
+        if not far:
             return None
         if not grown:
-            far = [i for i, t in targets.items() if polys[i].distance(shapely.Point(t)) > TOL]
             i = min(far, key=lambda k: sc.ids[k])
             gap = polys[i].distance(shapely.Point(targets[i]))
             return (f"no plan keeping the objects on the table exists: object {sc.ids[i]} can never come within "

@@ -1,4 +1,4 @@
-"""benchmarks/planner.py trlb end to end, on TRLB-format files written here (the real ones are not in the repository)."""
+"""benchmarks/planner.py trlb end to end, on TRLB-format files written here (the real ones are not in the repo)."""
 
 from __future__ import annotations
 

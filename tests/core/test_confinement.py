@@ -100,7 +100,8 @@ def test_without_the_proof_the_search_runs_its_budget():
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(n=st.integers(2, 5), r=st.floats(0.12, 0.2), seed=st.integers(0, 10_000), shape=st.sampled_from(["cylinder", "box"]))
+@given(n=st.integers(2, 5), r=st.floats(0.12, 0.2), seed=st.integers(0, 10_000),
+       shape=st.sampled_from(["cylinder", "box"]))
 def test_never_refuses_what_the_planner_solves(n, r, seed, shape):
     # Soundness: a proof of confinement and a valid plan cannot both exist.
     rng = np.random.default_rng(seed)
