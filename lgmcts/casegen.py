@@ -580,7 +580,8 @@ def _rsa(n: int, rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, dist:
 def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str, height: float = 0.02) -> Case:
     n = len(start)
     objs = [
-        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": height},
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)],
+         "shape": {"type": "cylinder", "radius": r, "height": height},
          "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
         for i in range(n)
     ]
