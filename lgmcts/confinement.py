@@ -94,7 +94,9 @@ def _support(geom) -> np.ndarray:
 
 
 def _corners(h: np.ndarray) -> np.ndarray:
-    """Corners of the polygon ``{x : x . u_k <= h_k for every k}`` (it contains every set of support ``<= h``)."""
+    """Where each pair of consecutive lines ``x . u_k = h_k`` meet: the corners of the polygon
+    ``{x : x . u_k <= h_k for every k}``, or, where a line does not bound it, points beyond it; their
+    convex hull holds the polygon either way."""
     u, v = _DIRS, np.roll(_DIRS, -1, axis=0)
     hv = np.roll(h, -1)
     det = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
@@ -217,7 +219,8 @@ def confined(scene: Scene, goals: GoalSpec, *, budget_s: float = 0.5) -> str | N
         if step is None:
             return None
         regions, grown = step
-        polys = {i: shapely.Polygon(_corners(regions[i])) for i in targets}
+        # The hull of the corners holds the region whatever lines are redundant.
+        polys = {i: shapely.MultiPoint(_corners(regions[i])).convex_hull for i in targets}
         far = [i for i, t in targets.items() if polys[i].distance(shapely.Point(t)) > TOL]
         if not far:
             return None

@@ -147,3 +147,21 @@ def test_cli_says_in_one_line_that_no_plan_exists(tmp_path):
     assert len(lines) == 1 and lines[0].startswith("not solved (no plan keeping the objects on the table exists")
     plan_json = json.loads((tmp_path / "plan.json").read_text())
     assert plan_json["solved"] is False and plan_json["stats"]["infeasible"] is True
+
+
+@settings(max_examples=50, deadline=None)
+@given(seed=st.integers(0, 10_000), slack=st.floats(0.0, 0.2))
+def test_region_corners_hold_the_region_even_with_redundant_sides(seed, slack):
+    import shapely
+
+    from lgmcts.confinement import _DIRS, _corners, _support
+
+    rng = np.random.default_rng(seed)
+    pts = rng.uniform(0, 1, (int(rng.integers(1, 12)), 2))
+    h = _support(shapely.MultiPoint(pts)) + rng.uniform(0, slack, len(_DIRS))  # some sides no longer touch
+    hull = shapely.MultiPoint(_corners(h)).convex_hull
+    # Points of the region {x : x . u_k <= h_k}: the given ones and random ones that pass every side.
+    probe = rng.uniform(-0.5, 1.5, (4000, 2))
+    inside = probe[(probe @ _DIRS.T <= h).all(axis=1)]
+    for p in np.vstack([pts, inside]):
+        assert hull.buffer(1e-9).covers(shapely.Point(p))
