@@ -14,7 +14,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo-deps llm-local demo test golden golden-parse bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo-deps llm-local demo check test golden golden-parse bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -49,6 +49,13 @@ demo: install demo-deps
 	@cat out/demo/plan.json
 	$(PY) -m lgmcts execute examples/tabletop.json out/demo/plan.json
 	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/before_after.png, out/demo/plan.gif, out/demo/heatmaps_step_01.png"
+
+# Lint (ruff), types (mypy) and the quick tests (-m "not slow", about 80 s on
+# 2 cores); what each leaves out and why: docs/design.md, "Lint and types".
+check: install
+	$(PY) -m ruff check .
+	$(PY) -m mypy
+	$(PY) -m pytest tests -m "not slow"
 
 test: install system-deps
 	$(PY) -m pytest tests

@@ -69,7 +69,7 @@ from .validate import MAX_RELATION_DIST as _MAX_RELATION_DIST
 from .validate import OVERLAP_AREA as _OVERLAP_AREA
 from .validate import TOL as _TOL
 
-__all__ = ["precheck", "inradius"]
+__all__ = ["inradius", "precheck"]
 
 def inradius(local: np.ndarray) -> float:
     """Distance from the object-frame origin (the pose centre) to the footprint's boundary; 0 if outside."""

@@ -13,6 +13,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..confinement import confined
 from ..formats import Action, PlanSpec
 from ..scene import State
 from ..validate import check
@@ -67,6 +68,15 @@ class Rearrangement:
     @property
     def depth_limit(self) -> int:
         return 3 * self.problem.scene.n + 8
+
+    def impossible(self) -> str | None:
+        """Why no plan can meet the judged goals (see :mod:`lgmcts.confinement`), or ``None`` when not proved.
+
+        Asked by the search loops once (``SearchOptions.proof_after``). The
+        proof covers plans that keep the objects on the table, the only
+        plans this domain makes for pose goals.
+        """
+        return confined(self.judge.scene, self.judge.spec)
 
     def root(self) -> SearchState:
         return self.problem.root()

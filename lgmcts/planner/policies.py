@@ -26,6 +26,7 @@ from ..formats import Action, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, l
 from ..patterns import Pattern, registry
 from ..patterns.base import fit_json, goal_xy
 from ..scene import Scene, replay
+from ..validate import goal_satisfied
 from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
@@ -180,6 +181,15 @@ def plan(
         stats["solutions"] = res.solutions
     if not res.solved:
         stats["reason"] = res.reason
+        if res.proved:
+            stats["infeasible"] = True
+        else:
+            # What was tried, in the same line: the budget spent and how far the best partial plan got.
+            final = replay(sc, list(res.actions))[-1]
+            met = sum(goal_satisfied(g, sc, final.poses, final.on) is None for g in gspec.goals)
+            stats["reason"] = (f"{res.reason} after {res.iterations} iterations and {res.nodes} search nodes; the best "
+                               f"partial plan ({len(res.actions)} actions) meets {met} of {len(gspec.goals)} goals; "
+                               "no proof was found that no plan exists")
     stats.update(extra)
     return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
                     fits=final_fits(sc, gspec, res.actions))

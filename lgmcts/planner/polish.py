@@ -188,9 +188,10 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
         if a.purpose != "goal" or moves[a.object] > 1:
             trial = actions[:i] + actions[i + 1 :]
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
-            stays = worlds[i].polys[problem.scene.index[a.object]]
-            after = (None if _crowds(problem, actions, worlds, stays, i, nxt)
-                     else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1))
+            o = problem.scene.index[a.object]
+            stays = worlds[i].polys[o]
+            skip = _crowds(problem, actions, worlds, stays, i, nxt) or _last_move_needed(problem, worlds, i, o, nxt, ref)
+            after = None if skip else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1)
             if after is not None:
                 moves[a.object] -= 1
                 actions = trial
@@ -198,6 +199,25 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
                 continue
         i += 1
     return actions
+
+
+def _last_move_needed(problem: Problem, worlds: list, i: int, o: int, nxt: int, ref: np.ndarray) -> bool:
+    """Whether dropping action ``i``, the last move of object ``o`` (``nxt``
+    past the end), surely leaves a goal unmet.
+
+    A replay of the plan without that move can never rejoin the plan's
+    states (``o`` stands elsewhere in all of them), so if it succeeds it
+    ends in the final state with ``o`` left where it stood before ``i``; the
+    goals are judged on that state now, as the replay would judge them at
+    its end, without the replay's steps. Same answer, without replaying to
+    the end of a long plan.
+    """
+    if nxt < len(worlds) - 1:
+        return False
+    before, last = worlds[i], worlds[-1]
+    if before.on[o] == last.on[o] and np.array_equal(before.poses[o], last.poses[o]):
+        return False
+    return not _goals_hold_firmly(problem, last.moved(o, before.poses[o], before.on[o]), ref)
 
 
 def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action]:

@@ -123,6 +123,11 @@ class Problem:
         return bool((self.scene.discs > 0).all())
 
     @cached_property
+    def free_objects(self) -> frozenset[int]:
+        """Objects that no goal moves."""
+        return frozenset(range(self.scene.n)) - frozenset(self.member)
+
+    @cached_property
     def targets(self) -> tuple[int, ...]:
         return tuple(sorted(self.member))
 
@@ -156,8 +161,7 @@ class SearchState:
         """Objects that will not move for a goal any more in this branch."""
         s = self.__dict__.get("_settled_set")
         if s is None:
-            free = frozenset(o for o in range(problem.scene.n) if o not in problem.member)
-            s = self.__dict__["_settled_set"] = free | self._committed(problem)
+            s = self.__dict__["_settled_set"] = problem.free_objects | self._committed(problem)
         return s
 
     def goal_done(self, problem: Problem, k: int, settled: frozenset[int] | None = None) -> bool:
@@ -182,17 +186,19 @@ class SearchState:
     def reward(self, problem: Problem) -> float:
         """Share of goals solved, blended with the share of goal objects placed (in [0, 1])."""
         nt = len(problem.targets)
-        placed = sum(self.committed(problem, o) for o in problem.targets)
+        placed = len(self._committed(problem))  # committed objects are targets
         return 0.5 * self.solved_goals(problem) / len(problem.goals) + 0.5 * placed / nt
 
     def ready(self, problem: Problem) -> list[int]:
         """Goal objects that may be placed now, in index order."""
         settled = self.settled(problem)
+        done = self._committed(problem)
+        gates = problem.gates
         out = []
         for o in problem.targets:
-            if self.committed(problem, o):
+            if o in done:
                 continue
-            if all(problem.patterns[k].ready(self.ctx(problem, k), o, settled) for k in problem.gates[o]):
+            if not gates[o] or all(problem.patterns[k].ready(self.ctx(problem, k), o, settled) for k in gates[o]):
                 out.append(o)
         return out
 
@@ -204,7 +210,42 @@ def commit(problem: Problem, ss: SearchState, world: State, o: int, pose: np.nda
     for k in problem.member[o]:
         ctx = Context(problem.scene, world, problem.goals[k], ss.progress[k])
         prog[k] = problem.patterns[k].commit(ctx, o, pose, rng)
-    return SearchState(world, tuple(prog))
+    out = SearchState(world, tuple(prog))
+    _carry_counts(problem, ss, out, problem.member[o])
+    return out
+
+
+def _carry_counts(problem: Problem, parent: SearchState, child: SearchState, changed: tuple[int, ...]) -> None:
+    """Derive ``child``'s committed set and solved-goal count from ``parent``'s
+    when only the goals ``changed`` differ between them: the work of one step
+    grows with the goals it touches, not with the scene.
+
+    The result is what the child would compute from scratch: an object's
+    commitment depends only on its first goal's progress, and a goal's
+    completion only on its own progress and on whether its anchor is settled.
+    """
+    before = parent.__dict__.get("_committed_set")
+    if before is None:
+        return
+    member = problem.member
+    flips = []
+    for k in changed:
+        for p in problem.goals[k].objects:
+            ks = member.get(p)
+            if ks and ks[0] == k and (p in before) != (p in child.progress[k].placed):
+                flips.append(p)
+    after = before.symmetric_difference(flips) if flips else before
+    child.__dict__["_committed_set"] = after
+    solved = parent.__dict__.get("_solved")
+    if solved is None:
+        return
+    touched = set(changed)
+    for p in flips:
+        touched.update(problem.anchored.get(p, ()))
+    s_parent, s_child = parent.settled(problem), child.settled(problem)
+    for k in touched:
+        solved += int(child.goal_done(problem, k, s_child)) - int(parent.goal_done(problem, k, s_parent))
+    child.__dict__["_solved"] = solved
 
 
 def uncommit(problem: Problem, progress: tuple[GoalProgress, ...], o: int) -> tuple[GoalProgress, ...]:

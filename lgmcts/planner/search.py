@@ -58,6 +58,14 @@ class SearchOptions:
     direct_tries : in rollouts, how many random ready objects are tried for a
         placement that needs no obstacle moved before one clears its way.
     step : options of the simulation step.
+    proof_after : after this many iterations, or ``proof_after_s`` seconds,
+        without a plan (whichever comes first), ask the domain once (its
+        optional ``impossible()``) whether the goals are provably out of
+        reach; a reason it gives ends the search unsolved with that reason.
+        ``0`` never asks. The question uses no random numbers, and a proof
+        means the search could not have succeeded, so solved plans are the
+        same with or without it.
+    proof_after_s : see ``proof_after``.
     """
 
     max_iter: int = 10_000
@@ -71,6 +79,8 @@ class SearchOptions:
     polish: bool = True
     direct_tries: int = 64
     step: StepOptions = field(default_factory=StepOptions)
+    proof_after: int = 20
+    proof_after_s: float = 0.25
 
 
 @dataclass(frozen=True)
@@ -87,6 +97,22 @@ class SearchResult(Generic[A]):
     solutions: int = 0
     #: Actions of the found plan before ``accept`` rewrote it (0 when unsolved).
     found: int = 0
+    #: Whether ``reason`` is the domain's proof that no plan exists.
+    proved: bool = False
+
+
+class _Prover:
+    """Asks the domain once, when the iteration or time threshold of the options is passed, why no plan exists."""
+
+    def __init__(self, domain: object, opts: SearchOptions, t0: float) -> None:
+        self.ask = getattr(domain, "impossible", None) if opts.proof_after > 0 else None
+        self.after, self.at = opts.proof_after, t0 + opts.proof_after_s
+
+    def __call__(self, it: int) -> str | None:
+        if self.ask is None or (it < self.after and time.perf_counter() < self.at):
+            return None
+        ask, self.ask = self.ask, None
+        return ask()
 
 
 def _expand(domain: Domain[S, A], node: Node[S, A], rng: np.random.Generator, opts: SearchOptions) -> Node[S, A] | None:
@@ -221,6 +247,7 @@ def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = S
     root.reward = domain.reward(root.state)
     inc: Incumbent[S, A] = Incumbent(partial=(root.reward, 0, root))
     nodes, it, rollout_steps, restarts = 1, 0, 0, 0
+    prover = _Prover(domain, opts, t0)
     if domain.terminal(root.state) and domain.accept([], None) is not None:
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
@@ -243,6 +270,10 @@ def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = S
             node.dead = True
             _mark_dead(node.parent)
             continue
+        why = prover(it) if inc.plan is None else None
+        if why is not None:
+            return SearchResult(False, tuple(inc.partial[2].path()), it, nodes, time.perf_counter() - t0, reason=why,
+                                rejected=inc.rejected, proved=True)
         child = _expand(domain, node, rng, opts)
         if child is None:
             if _fully_expanded(domain, node, opts) and all(c.dead for c in node.children):
@@ -313,6 +344,7 @@ def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions =
     max_depth = opts.max_depth if opts.max_depth is not None else domain.depth_limit
     it, rollouts = 0, 0
     best_partial: tuple[float, list[A]] = (-1.0, [])
+    prover = _Prover(domain, opts, t0)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
             break
@@ -346,5 +378,9 @@ def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions =
         if kept is not None:
             return SearchResult(True, tuple(kept), it, rollouts, time.perf_counter() - t0, solutions=1,
                                 found=len(actions))
+        why = prover(it)
+        if why is not None:
+            return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason=why,
+                                proved=True)
     return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0,
                         reason="iteration budget exhausted")

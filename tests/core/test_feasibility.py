@@ -50,7 +50,8 @@ def test_pose_goal_off_the_workspace_is_refused():
 
 
 def test_line_longer_than_the_workspace_is_refused():
-    sc = _scene(40, size=0.04)  # 40 blocks of 4 cm: 39 gaps of at least sqrt(0.04^2 - 0.03^2) = 2.6 cm, over the 1.0 m diagonal
+    # 40 blocks of 4 cm: 39 gaps of at least sqrt(0.04^2 - 0.03^2) = 2.6 cm, over the 1.0 m diagonal
+    sc = _scene(40, size=0.04)
     with pytest.raises(InputError, match="line of 40 objects"):
         precheck(sc, parse_goals(goals({"pattern": "line", "objects": list(range(1, 41))})))
     precheck(sc, parse_goals(goals({"pattern": "line", "objects": list(range(1, 11))})))
@@ -132,15 +133,33 @@ def test_cylinder_pose_goals_in_contact_are_not_refused():
     import math
 
     r = 0.0375
-    objs = [{"id": i + 1, "name": "disc", "color": "red", "shape": {"type": "cylinder", "radius": r, "height": 0.02},
-             "pose": [0.1, 0.1 + 0.1 * i, 0.0], "on": None} for i in range(2)]
+    objs = [
+        {
+            "id": i + 1,
+            "name": "disc",
+            "color": "red",
+            "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+            "pose": [0.1, 0.1 + 0.1 * i, 0.0],
+            "on": None,
+        }
+        for i in range(2)
+    ]
     sc = Scene.from_spec(parse_scene({"workspace": {"x": [0, 0.5], "y": [0, 0.5]}, "objects": objs}))
     for k in range(40):
         th = k * math.pi / 80
         for yaw in (0.0, 0.07, 0.13):
             target = [0.25 + 2 * r * math.cos(th), 0.25 + 2 * r * math.sin(th), yaw]
-            precheck(sc, parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},
-                                                {"pattern": "pose", "objects": [2], "pose": target}]}))
+            precheck(
+                sc,
+                parse_goals(
+                    {
+                        "goals": [
+                            {"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},
+                            {"pattern": "pose", "objects": [2], "pose": target},
+                        ]
+                    }
+                ),
+            )
     overlap = [0.25 + 1.9 * r, 0.25, 0.0]
     with pytest.raises(InputError, match="objects 1 and 2 have pose goals"):
         precheck(sc, parse_goals({"goals": [{"pattern": "pose", "objects": [1], "pose": [0.25, 0.25, 0.0]},

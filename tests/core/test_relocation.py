@@ -25,7 +25,9 @@ def test_clear_centres_on_an_empty_table_fill_the_room():
     xy = clear_centres(sc, sc.initial, 0, 0.002)
     r = float(sc.radii[0]) + 0.001
     xmin, xmax, ymin, ymax = sc.bounds
-    assert len(xy) == len(np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)) * len(np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP))
+    assert len(xy) == len(np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)) * len(
+        np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
+    )
     assert (xy[:, 0] >= xmin + r).all() and (xy[:, 0] <= xmax - r + 1e-12).all()
 
 
@@ -34,8 +36,11 @@ def test_no_room_in_a_workspace_smaller_than_the_object():
     assert clear_centres(sc, sc.initial, 0, 0.002).shape == (0, 2)
 
 
-boxes = st.lists(st.tuples(st.floats(-0.25, 0.25), st.floats(-0.15, 0.15), st.floats(-3.1, 3.1), st.floats(0.02, 0.06)),
-                 min_size=2, max_size=6)
+boxes = st.lists(
+    st.tuples(st.floats(-0.25, 0.25), st.floats(-0.15, 0.15), st.floats(-3.1, 3.1), st.floats(0.02, 0.06)),
+    min_size=2,
+    max_size=6,
+)
 
 
 @settings(max_examples=25, deadline=None)
@@ -144,3 +149,30 @@ def test_a_relocation_on_a_huge_workspace_costs_little_memory(method, half):
     assert peak < 200 * 2**20, f"{peak / 2**20:.0f} MiB"
     assert p.solved and check(scene, goals, p).valid
     assert [a.purpose for a in p.actions] == ["relocate", "goal"]
+
+
+def _clear_centres_dense(scene, world, b, clearance):
+    # The plain definition: every grid point against every other object.
+    xmin, xmax, ymin, ymax = scene.bounds
+    r = float(scene.radii[b]) + clearance / 2
+    gx = np.arange(xmin + r, xmax - r + 1e-12, GRID_STEP)
+    gy = np.arange(ymin + r, ymax - r + 1e-12, GRID_STEP)
+    others = np.flatnonzero(np.arange(scene.n) != b)
+    reach2 = (scene.radii[others] + scene.radii[b] + clearance + 1e-9) ** 2
+    d2 = (gy[None, :, None] - world.poses[others, 1][:, None, None]) ** 2 + (
+        gx[None, None, :] - world.poses[others, 0][:, None, None]) ** 2
+    free = (d2 > reach2[:, None, None]).all(axis=0)
+    jj, ii = np.nonzero(free)
+    return np.stack([gx[ii], gy[jj]], axis=1)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_clear_centres_matches_the_dense_definition(seed):
+    from lgmcts.casegen import random_case
+
+    case = random_case(seed, dense=True)
+    sc = Scene.from_spec(case.scene)
+    for b in range(0, sc.n, 3):
+        for clearance in (0.0, 0.004, 0.02):
+            np.testing.assert_array_equal(clear_centres(sc, sc.initial, b, clearance),
+                                          _clear_centres_dense(sc, sc.initial, b, clearance))

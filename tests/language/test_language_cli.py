@@ -7,8 +7,8 @@ import os
 import subprocess
 import sys
 
-from typer.testing import CliRunner
 import pytest
+from typer.testing import CliRunner
 
 from .conftest import ROOT
 

@@ -101,7 +101,8 @@ def test_viewer_page_and_api_docs(client):
     page = client.get("/")
     assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
     assert "LGMCTSViewer" in page.text and 'id="scene"' in page.text
-    assert client.get("/docs").status_code == 200
+    # The interactive page loads Swagger UI from a public CDN: off unless the operator asks (--docs).
+    assert client.get("/docs").status_code == 404 and "cdn" not in page.text.lower()
     spec = client.get("/openapi.json").json()
     assert {"/plan", "/parse", "/check", "/healthz"} <= set(spec["paths"])
     # The test-only methods stay out of the public description.
@@ -160,20 +161,48 @@ def test_bad_scene_message_equals_the_command_line(client, tmp_path):
 @pytest.mark.parametrize(
     "body, message",
     [
-        ({"scene": SCENE, "goals": {"goals": [{"pattern": "line", "objects": [1, 99]}]}}, "goal 0 (line) names unknown object id 99"),
-        ({"scene": SCENE, "goals": {"goals": [{"pattern": "circle", "objects": [1, 2]}]}}, "invalid goals at goals.0: a circle needs at least 3 objects, got 2 objects"),
+        (
+            {"scene": SCENE, "goals": {"goals": [{"pattern": "line", "objects": [1, 99]}]}},
+            "goal 0 (line) names unknown object id 99",
+        ),
+        (
+            {"scene": SCENE, "goals": {"goals": [{"pattern": "circle", "objects": [1, 2]}]}},
+            "invalid goals at goals.0: a circle needs at least 3 objects, got 2 objects",
+        ),
         ({"scene": SCENE}, "give either goals or an instruction, not both or neither"),
-        ({"scene": SCENE, "goals": GOALS, "instruction": "x"}, "give either goals or an instruction, not both or neither"),
-        ({"scene": SCENE, "goals": GOALS, "options": {"method": "astar"}}, "unknown method 'astar' (known: lgmcts, greedy, pmcts)"),
+        (
+            {"scene": SCENE, "goals": GOALS, "instruction": "x"},
+            "give either goals or an instruction, not both or neither",
+        ),
+        (
+            {"scene": SCENE, "goals": GOALS, "options": {"method": "astar"}},
+            "unknown method 'astar' (known: lgmcts, greedy, pmcts)",
+        ),
         ({"scene": SCENE, "goals": GOALS, "options": {"max_iter": 0}}, "max_iter must be at least 1"),
         ({"scene": SCENE, "goals": GOALS, "options": {"time_limit": -1}}, "time_limit must be positive"),
         ({"scene": SCENE, "goals": GOALS, "options": {"seed": -1}}, "seed must be a non-negative integer"),
         ({"scene": SCENE, "goals": GOALS, "options": {"timeout": 0}}, "timeout must be positive"),
-        ({"scene": SCENE, "goals": GOALS, "options": {"seed": "x"}}, "invalid request at options.seed: Input should be a valid integer, unable to parse string as an integer"),
+        (
+            {"scene": SCENE, "goals": GOALS, "options": {"seed": "x"}},
+            "invalid request at options.seed: Input should be a valid integer, unable to parse string as an integer",
+        ),
         ({"scene": SCENE, "goals": GOALS, "colour": 1}, "invalid request at colour: Extra inputs are not permitted"),
         ({"goals": GOALS}, "invalid request: 'scene' is required"),
     ],
-    ids=["unknown-id", "small-circle", "neither", "both", "method", "max-iter", "time-limit", "negative-seed", "timeout", "seed", "extra", "no-scene"],
+    ids=[
+        "unknown-id",
+        "small-circle",
+        "neither",
+        "both",
+        "method",
+        "max-iter",
+        "time-limit",
+        "negative-seed",
+        "timeout",
+        "seed",
+        "extra",
+        "no-scene",
+    ],
 )
 def test_bad_plan_request_is_one_line_422(client, body, message):
     r = client.post("/plan", json=body)

@@ -36,7 +36,7 @@ class Sink:
         sink = self
 
         class Handler(BaseHTTPRequestHandler):
-            def do_POST(self) -> None:  # noqa: N802 - http.server's naming
+            def do_POST(self) -> None:
                 n = int(self.headers.get("content-length") or 0)
                 sink.requests.append({"path": self.path, "headers": dict(self.headers), "body": self.rfile.read(n)})
                 self.send_response(500)
@@ -116,7 +116,7 @@ def test_slow_headers_are_disconnected(secure):
                 if s.recv(1024) == b"":
                     closed = True
                     break
-            except socket.timeout:
+            except TimeoutError:
                 pass
         assert closed, "a client trickling its headers was never disconnected"
         # 1 s allowed; the headers would trickle for 30 s. 15 s is wide enough
@@ -128,7 +128,7 @@ def test_slow_body_gets_408(secure):
     url, _ = secure
     u = urlparse(url)
     body = json.dumps({"scene": SCENE, "goals": GOALS, "plan": {"solved": True, "actions": []}}).encode()
-    head = (f"POST /check HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
+    head = (f"POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
             f"Content-Length: {len(body)}\r\n\r\n").encode()
     with socket.create_connection((u.hostname, u.port), timeout=10) as s:
         s.sendall(head + body[:10])
@@ -141,7 +141,7 @@ def test_slow_body_gets_408(secure):
                 if not chunk:
                     break
                 data += chunk
-        except socket.timeout:
+        except TimeoutError:
             pass
     assert data.startswith(b"HTTP/1.1 408"), data[:200]
 
@@ -150,8 +150,14 @@ def test_client_chosen_llm_url_is_refused_and_gets_nothing(secure, sink):
     url, _ = secure
     with httpx.Client(base_url=url, timeout=60, headers=_auth()) as c:
         for path, body in (
-            ("/parse", {"scene": SCENE, "instruction": "put the blocks in a line", "parser": "llm", "llm_base_url": sink.url}),
-            ("/plan", {"scene": SCENE, "instruction": "put the blocks in a line", "parser": "llm", "llm_base_url": sink.url}),
+            (
+                "/parse",
+                {"scene": SCENE, "instruction": "put the blocks in a line", "parser": "llm", "llm_base_url": sink.url},
+            ),
+            (
+                "/plan",
+                {"scene": SCENE, "instruction": "put the blocks in a line", "parser": "llm", "llm_base_url": sink.url},
+            ),
         ):
             r = c.post(path, json=body)
             assert r.status_code == 422 and "operator" in r.json()["detail"]
@@ -171,8 +177,17 @@ def test_client_llm_url_when_allowed_never_gets_the_server_key(tmp_path, sink):
             os.environ["OPENAI_API_KEY"] = old
     try:
         before = len(sink.requests)
-        r = httpx.post(url + "/parse", json={"scene": SCENE, "instruction": "put the blocks in a line",
-                                             "parser": "llm", "llm_model": "m", "llm_base_url": sink.url}, timeout=120)
+        r = httpx.post(
+            url + "/parse",
+            json={
+                "scene": SCENE,
+                "instruction": "put the blocks in a line",
+                "parser": "llm",
+                "llm_model": "m",
+                "llm_base_url": sink.url,
+            },
+            timeout=120,
+        )
         assert r.status_code in (422, 500, 502, 504) and "\n" not in r.json()["detail"]
         got = sink.requests[before:]
         assert got, "the allowed client URL was never called"
@@ -196,9 +211,18 @@ def test_deep_and_big_bodies_are_one_line_422(secure):
         plan["actions"][0]["to"] = [100.0, 100.0, 0.0]
         r = c.post("/check", json={"scene": SCENE, "goals": GOALS, "plan": plan})
         assert r.status_code == 200 and r.json()["valid"] is False
-        r = c.post("/plan", json={"scene": SCENE, "goals": {"goals": [
-            {"pattern": "pose", "objects": [1], "pose": [0.1, 0.1, 0]},
-            {"pattern": "pose", "objects": [2], "pose": [0.1, 0.1, 0]}]}})
+        r = c.post(
+            "/plan",
+            json={
+                "scene": SCENE,
+                "goals": {
+                    "goals": [
+                        {"pattern": "pose", "objects": [1], "pose": [0.1, 0.1, 0]},
+                        {"pattern": "pose", "objects": [2], "pose": [0.1, 0.1, 0]},
+                    ]
+                },
+            },
+        )
         assert r.status_code == 422 and "pose goals" in r.json()["detail"]
 
 
@@ -207,7 +231,7 @@ def test_timeout_runs_from_arrival(secure):
     url, _ = secure
     u = urlparse(url)
     body = json.dumps({"scene": SCENE, "goals": GOALS, "plan": {"solved": True, "actions": []}, "timeout": 2}).encode()
-    head = (f"POST /check HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
+    head = (f"POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
             f"Content-Length: {len(body)}\r\n\r\n").encode()
     with socket.create_connection((u.hostname, u.port), timeout=10) as s:
         s.sendall(head)
@@ -215,7 +239,7 @@ def test_timeout_runs_from_arrival(secure):
         # Pieces 0.2 s apart (the read timeout is 1 s: a wide margin on a busy
         # machine) for 3 s, past the request's own 2 s.
         for k in range(0, len(body), 50):
-            s.sendall(body[k:k + 50])
+            s.sendall(body[k : k + 50])
             time.sleep(0.2 if time.monotonic() - t0 < 3 else 0)
         s.settimeout(20)
         data = s.recv(4096)
@@ -230,8 +254,11 @@ def test_sigint_with_a_request_in_flight_answers_json(tmp_path):
 
     def call() -> None:
         try:
-            result["r"] = httpx.post(url + "/plan", json={"scene": SCENE, "goals": GOALS,
-                                                          "options": {"method": "_sleep", "time_limit": 20}}, timeout=60)
+            result["r"] = httpx.post(
+                url + "/plan",
+                json={"scene": SCENE, "goals": GOALS, "options": {"method": "_sleep", "time_limit": 20}},
+                timeout=60,
+            )
         except httpx.HTTPError as exc:  # pragma: no cover - reported below
             result["error"] = exc
 

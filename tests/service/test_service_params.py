@@ -37,4 +37,6 @@ def test_bad_param_is_one_line_422(client):
     goals = {"goals": [{"pattern": "line", "objects": [1, 2], "facing": "upwards"}]}
     r = client.post("/plan", json={"scene": SCENE, "goals": goals})
     assert r.status_code == 422
-    assert r.json() == {"detail": "invalid goals at goals.0: unknown facing 'upwards' (north|east|south|west or an angle in radians)"}
+    assert r.json() == {
+        "detail": "invalid goals at goals.0: unknown facing 'upwards' (north|east|south|west or an angle in radians)"
+    }

@@ -63,9 +63,7 @@ def test_observe_plan_execute_on_a_dense_elgr_scene(render_ok):
 
 
 def test_observe_plan_execute_with_touching_discs(render_ok):
-    from lgmcts.casegen import labbe_protocol_case
-
-    from lgmcts.casegen import LABBE_RADIUS
+    from lgmcts.casegen import LABBE_RADIUS, labbe_protocol_case
 
     c = labbe_protocol_case(25, 25_005)
     xy = np.array([o.pose[:2] for o in c.scene.objects])

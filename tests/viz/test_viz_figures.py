@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 from pathlib import Path
 
@@ -72,7 +73,7 @@ def test_frames_share_one_size(figures):
 def test_consecutive_step_frames_differ(figures):
     out, _ = figures
     frames = [np.asarray(Image.open(p).convert("RGB"), dtype=int) for p in sorted(out.glob("step_*.png"))]
-    for a, b in zip(frames, frames[1:]):
+    for a, b in itertools.pairwise(frames):
         assert np.abs(a - b).sum() > 0
 
 

@@ -107,7 +107,9 @@ def test_viewer_draws_the_regions_computed_in_python(solved):
         page.set_content(f"<html><body><div id='v'></div><script>{viewer_js()}</script></body></html>")
         page.evaluate("d => { window.v = LGMCTSViewer.render(document.getElementById('v'), d); }",
                       json.loads(json.dumps(viewer_data(scene, plan))))
-        rects = page.eval_on_selector_all(".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])")
+        rects = page.eval_on_selector_all(
+            ".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])"
+        )
         assert page.locator(".lgv-heading").count() == 2
         b.close()
     assert not errors

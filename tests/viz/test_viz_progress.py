@@ -30,7 +30,9 @@ class _Tty(io.StringIO):
         return True
 
 
-@pytest.mark.parametrize("verbose, info, debug", [(0, False, False), (1, True, False), (2, True, True), (5, True, True), (-1, False, False)])
+@pytest.mark.parametrize(
+    "verbose, info, debug", [(0, False, False), (1, True, False), (2, True, True), (5, True, True), (-1, False, False)]
+)
 def test_levels(capsys, verbose, info, debug):
     configure_logging(verbose)
     log = logging.getLogger("lgmcts.planner")
@@ -58,9 +60,9 @@ def test_other_libraries_stay_quiet(capsys):
 
 
 def _draw(tmp_path, stderr, monkeypatch):
-    from lgmcts.viz import write_plan_figures
-
     import json
+
+    from lgmcts.viz import write_plan_figures
 
     plan = json.loads((DATA / "cluttered_plan.json").read_text())
     plan["actions"] = plan["actions"][:1]  # one step is enough for a bar, and quick to draw
