@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 from ..errors import InputError
 from ..formats import SceneSpec
 from . import lexicon
+from .ir import Token
 from .matcher import STOPWORDS
 
 __all__ = [
@@ -123,19 +124,11 @@ def _pattern_context(words: tuple[str, ...], i: int) -> bool:
 _TOKEN_RE = re.compile(r"-?\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[;,.!?#()&:]")
 
 
-@dataclass(frozen=True)
-class Token:
-    """One lower-cased word or punctuation mark and where it starts in the text."""
-
-    text: str
-    pos: int
-
-
 def tokenize(text: str) -> tuple[Token, ...]:
-    """Lower-case words, numbers and punctuation of ``text``."""
+    """Lower-case words, numbers and punctuation of ``text``, each with its span in ``text`` (:class:`.ir.Token`)."""
     low = text.lower().replace("\u2019", "'").replace("\u2018", "'")
     low = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", low)
-    return tuple(Token(m.group(0), m.start()) for m in _TOKEN_RE.finditer(low))
+    return tuple(Token(m.group(0), m.start(), m.end(), Token.kind_of(m.group(0))) for m in _TOKEN_RE.finditer(low))
 
 
 _COLOUR_FORMS = {"striped": "stripe", "stripes": "stripe", "dots": "dot", "dotted": "dot", "swirls": "swirl",
