@@ -39,7 +39,7 @@ from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from . import lexicon
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
-from .lexicon import HUES, SHAPE_NOUNS, alternation
+from .lexicon import HUES, MACROS
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
@@ -2476,7 +2476,7 @@ _CUES = (
                 r"on the (?:left|right) of)"), _LEFT_RIGHT),
     (re.compile(r"\b(lin(?:e|es|ed|ing) (?:them |it |those |these )?up|(?:a|one|single|straight) (?:line|row)|in (?:a )?row)\b"),
      ("line",)),
-    (re.compile(rf"\b({alternation(SHAPE_NOUNS['circle'])})\b"), ("circle",)),
+    (re.compile(rf"\b({MACROS['CIRCLE']})\b"), ("circle",)),
     (re.compile(r"\b(rectangle|square|rectangular)\b"), ("rectangle",)),
     (re.compile(r"\b(stack(?:ed|ing|s)?|pil(?:e|es|ed|ing)|tower|on top of)\b"), ("tower",)),
 )
