@@ -555,7 +555,7 @@ def _read_phrase_and_choices(self: _Parser, f: Frame) -> list[_Pending] | None:
         u = words.index("using")
         before = [g for g, (lo, hi) in enumerate(gaps[1:]) if hi <= u or lo <= u < hi]
         after = [g for g in range(len(groups)) if g not in before]
-        flat = lambda gs: {x for g in gs for s in sels[g] for x in (s if isinstance(s, list) else [s])
+        flat = lambda gs: {x for g in gs for s in sels[g] for x in (s if isinstance(s, list) else [s])  # noqa: E731
                            if isinstance(x, int)}
         if before and after and flat(after) and flat(after) < flat(before):
             sels = [[] if g in before else sels[g] for g in range(len(sels))]
