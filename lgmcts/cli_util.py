@@ -11,7 +11,6 @@ from pathlib import Path
 from typing import NoReturn
 
 import typer
-from tqdm import tqdm
 
 
 def fail(message: str, code: int = 2) -> NoReturn:
@@ -133,7 +132,7 @@ def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> 
     """
     if path in (None, "-"):
         return
-    p = Path(path)  # type: ignore[arg-type]
+    p = Path(path)
     if p.is_dir():
         fail(f"cannot write {p}: it is a folder")
     if p.exists() and not p.is_file():
@@ -216,6 +215,9 @@ class _StderrHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         try:
+            # Imported on first use: at module level it costs every command's start-up.
+            from tqdm import tqdm
+
             from .limits import printable
 
             tqdm.write(printable(self.format(record)), file=sys.stderr)

@@ -19,7 +19,7 @@ from typing import Any
 from . import limits
 from .errors import InputError
 
-__all__ = ["read_text", "read_lines", "loads"]
+__all__ = ["loads", "read_lines", "read_text"]
 
 
 def _open(path: Path, what: str) -> int:

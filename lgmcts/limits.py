@@ -14,26 +14,26 @@ from __future__ import annotations
 import os
 
 __all__ = [
-    "MAX_COORD",
+    "MAX_ACTIONS",
     "MAX_ANGLE",
-    "MIN_LENGTH",
+    "MAX_CLOUD_POINTS",
+    "MAX_COORD",
+    "MAX_GOALS",
+    "MAX_ID",
+    "MAX_INPUT_BYTES",
+    "MAX_INPUT_BYTES_ENV",
+    "MAX_INSTRUCTION",
     "MAX_LENGTH",
     "MAX_OBJECTS",
     "MAX_POLYGON_POINTS",
-    "MAX_CLOUD_POINTS",
-    "MAX_GOALS",
-    "MAX_ACTIONS",
     "MAX_TEXT",
-    "MAX_ID",
-    "MAX_INSTRUCTION",
-    "START_OVERLAP_AREA",
-    "MAX_INPUT_BYTES",
     "MAX_VIEW_CELLS",
     "MAX_VIEW_DRAWN",
-    "MAX_INPUT_BYTES_ENV",
+    "MIN_LENGTH",
+    "START_OVERLAP_AREA",
     "max_input_bytes",
-    "truncate",
     "printable",
+    "truncate",
 ]
 
 #: Largest absolute value of a table-frame coordinate (poses, workspace

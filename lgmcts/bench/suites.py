@@ -8,16 +8,16 @@ len(CATEGORIES)]`` (so any prefix of a suite is balanced) and seed
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import partial
 from types import ModuleType
-from typing import Callable, Iterator
 
 from ..errors import InputError
 from . import elgr, structformer
 from .tasks import Task, task_seed
 
-__all__ = ["Suite", "SUITES", "suite", "generate", "iter_generate"]
+__all__ = ["SUITES", "Suite", "generate", "iter_generate", "suite"]
 
 
 @dataclass(frozen=True)

@@ -19,15 +19,16 @@ reported test suite; use seeds >= 1 to tune a method ("train").
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Iterator
+from typing import Any
 
 from ..errors import InputError
 from ..formats import GoalSpec, SceneSpec, parse_goals, parse_scene
 from ..limits import truncate
 
-__all__ = ["Task", "task_seed", "read_suite", "write_suite", "SEED_STRIDE"]
+__all__ = ["SEED_STRIDE", "Task", "read_suite", "task_seed", "write_suite"]
 
 #: Task seeds of suite seed S are ``S * SEED_STRIDE + k``.
 SEED_STRIDE = 1_000_000
@@ -90,7 +91,7 @@ class Task:
         }
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any], *, where: str = "task") -> "Task":
+    def from_dict(cls, data: dict[str, Any], *, where: str = "task") -> Task:
         """Build a task from a JSON record; :class:`InputError` names what is missing."""
         if not isinstance(data, dict):
             raise InputError(f"{where}: a task must be a JSON object")

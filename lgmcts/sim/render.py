@@ -26,21 +26,30 @@ import os
 os.environ.setdefault("MUJOCO_GL", "osmesa")
 os.environ.setdefault("PYOPENGL_PLATFORM", os.environ["MUJOCO_GL"])
 
-import math  # noqa: E402
-from dataclasses import dataclass  # noqa: E402
-from pathlib import Path  # noqa: E402
-from typing import Any  # noqa: E402
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
-import mujoco  # noqa: E402
-import numpy as np  # noqa: E402
-import shapely  # noqa: E402
+import mujoco
+import numpy as np
+import shapely
 
-from ..errors import InputError  # noqa: E402
-from ..formats import SceneSpec, load_scene, parse_scene  # noqa: E402
-from ..scene import TABLE, Scene  # noqa: E402
-from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model  # noqa: E402
+from ..errors import InputError
+from ..formats import SceneSpec, load_scene, parse_scene
+from ..scene import TABLE, Scene
+from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model
 
-__all__ = ["CameraOptions", "Frames", "render_frames", "backproject", "drop_strays", "observe", "footprint_iou", "VideoRecorder"]
+__all__ = [
+    "CameraOptions",
+    "Frames",
+    "VideoRecorder",
+    "backproject",
+    "drop_strays",
+    "footprint_iou",
+    "observe",
+    "render_frames",
+]
 
 
 @dataclass(frozen=True)
@@ -268,7 +277,9 @@ def observe(scene: SceneSpec | dict | str | Path, *, options: CameraOptions | No
     return parse_scene({"workspace": spec.workspace.model_dump(), "objects": objects})
 
 
-def footprint_iou(true_scene: SceneSpec | dict | str | Path, observed_scene: SceneSpec | dict | str | Path) -> dict[int, float]:
+def footprint_iou(
+    true_scene: SceneSpec | dict | str | Path, observed_scene: SceneSpec | dict | str | Path
+) -> dict[int, float]:
     """Intersection over union of each object's footprint in two scenes.
 
     Returns
@@ -325,7 +336,7 @@ class VideoRecorder:
         self._tmp: Path | None = None
         self.frames = 0
 
-    def __enter__(self) -> "VideoRecorder":
+    def __enter__(self) -> VideoRecorder:
         import imageio.v2 as imageio
 
         from ..outputs import temporary_beside

@@ -54,7 +54,13 @@ def viewer_js() -> str:
 def script_json(value: Any) -> str:
     """JSON safe to put inside a ``<script>`` element (no ``</script>`` break-out)."""
     text = json.dumps(value, separators=(",", ":"), allow_nan=False)
-    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026").replace("\u2028", "\\u2028").replace("\u2029", "\\u2029")
+    return (
+        text.replace("<", "\\u003c")
+        .replace(">", "\\u003e")
+        .replace("&", "\\u0026")
+        .replace("\u2028", "\\u2028")
+        .replace("\u2029", "\\u2029")
+    )
 
 
 def _inline_safe(js: str) -> str:
@@ -234,7 +240,9 @@ def render_html(
     data = viewer_data(scene, plan, goals=goals, instruction=instruction)
     n = len(data["plan"]["actions"])
     if title is None:
-        title = f"lgmcts plan: {n} action{'s' if n != 1 else ''}, {'solved' if data['plan']['solved'] else 'not solved'}"
+        title = (
+            f"lgmcts plan: {n} action{'s' if n != 1 else ''}, {'solved' if data['plan']['solved'] else 'not solved'}"
+        )
     return _PAGE.format(
         title=_html.escape(title),
         script=_inline_safe(viewer_js()),

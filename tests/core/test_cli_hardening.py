@@ -9,6 +9,8 @@ import sys
 
 import pytest
 
+pytestmark = pytest.mark.slow
+
 SCENE = "examples/tabletop.json"
 GOALS = "examples/goals.json"
 
@@ -90,7 +92,10 @@ def test_far_target_is_never_valid(tmp_path):
     assert run("plan", SCENE, "-g", GOALS, "-o", str(plan)).returncode == 0
     data = json.loads(plan.read_text())
     for x in (1e20, 1e300, 100.0):
-        data2 = {**data, "actions": [*data["actions"], {"object": 9, "to": [x, x, 0], "on": None, "purpose": "relocate"}]}
+        data2 = {
+            **data,
+            "actions": [*data["actions"], {"object": 9, "to": [x, x, 0], "on": None, "purpose": "relocate"}],
+        }
         bad = tmp_path / "bad.json"
         bad.write_text(json.dumps(data2))
         out = run("check", SCENE, GOALS, str(bad))
@@ -128,7 +133,6 @@ def test_execute_refuses_huge_targets(tmp_path):
 
 def test_serve_warns_on_a_public_bind_without_token():
     import socket
-    import time
 
     from lgmcts.service.cli import _loopback
 
@@ -138,9 +142,25 @@ def test_serve_warns_on_a_public_bind_without_token():
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     env = {k: v for k, v in os.environ.items() if k != "LGMCTS_SERVICE_TOKEN"}
-    proc = subprocess.Popen([sys.executable, "-m", "lgmcts.service", "--host", "0.0.0.0", "--port", str(port),
-                             "--workers", "1", "--log-level", "warning"],
-                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, env=env)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "lgmcts.service",
+            "--host",
+            "0.0.0.0",
+            "--port",
+            str(port),
+            "--workers",
+            "1",
+            "--log-level",
+            "warning",
+        ],
+        stderr=subprocess.PIPE,
+        stdout=subprocess.DEVNULL,
+        text=True,
+        env=env,
+    )
     try:
         first = proc.stderr.readline()
     finally:
