@@ -121,6 +121,16 @@ def test_clients_choose_only_allowed_llm_models(operator_llm):
             assert sent and set(sent) == {model or "operator-model"}
 
 
+def test_long_integers_and_repeated_keys_are_one_line_422(client):
+    body = json.dumps(CHECK)
+    for raw, words in ((body.replace('"solved": true', '"solved": true, "solved": false'), "'solved' twice"),
+                       (body.replace('"actions": []', '"actions": [%s]' % ("1" + "0" * 5000)), "too many digits"),
+                       ('{"scene": {}, "scene": {}}', "'scene' twice")):
+        r = client.post("/check", content=raw, headers={"content-type": "application/json"})
+        assert r.status_code == 422 and words in r.json()["detail"], r.text[:300]
+        assert "\n" not in r.json()["detail"]
+
+
 # ---------------------------------------------------------------- tokens
 
 
