@@ -72,7 +72,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--case-timeout", type=float, default=20.0, help="skip a seed whose case takes longer to build (s)")
     args = ap.parse_args(argv)
 
-    cases = []
+    cases: list = []
     if args.tasks is not None:
         import json
 
