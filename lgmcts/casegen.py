@@ -15,27 +15,35 @@ variant of it (:func:`labbe_case`).
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
 from itertools import combinations, pairwise, product
+from pathlib import Path
 
 import numpy as np
 import shapely
 
 from . import geometry as geo
+from .errors import InputError
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
 __all__ = [
     "LABBE_VARIANTS",
+    "TRLB_UNIT",
     "Case",
+    "TrlbArrangement",
     "labbe_case",
     "labbe_protocol_case",
     "lower_bound",
     "pack_clutter",
     "random_case",
+    "read_trlb_arrangement",
     "reference_count",
+    "trlb_case",
+    "trlb_pairs",
 ]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
@@ -569,17 +577,12 @@ def _rsa(n: int, rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, dist:
     raise RuntimeError(f"random sequential addition could not place {n} discs")  # pragma: no cover
 
 
-def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str) -> Case:
+def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str, height: float = 0.02) -> Case:
     n = len(start)
     objs = [
-        {
-            "id": i + 1,
-            "name": "disc",
-            "color": _COLORS[i % len(_COLORS)],
-            "shape": {"type": "cylinder", "radius": r, "height": 0.02},
-            "pose": [float(start[i, 0]), float(start[i, 1]), 0.0],
-            "on": None,
-        }
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)],
+         "shape": {"type": "cylinder", "radius": r, "height": height},
+         "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
         for i in range(n)
     ]
     goals = [
@@ -691,3 +694,92 @@ def labbe_case(n: int, seed: int, *, variant: str = "spaced") -> Case:
 
     start, goal = config(), config()
     return _disc_case(start, goal, r, ws, "labbe")
+
+
+#: Metres per length unit of TRLB's instance files (their workspace is 1000 units square; here 1 m).
+TRLB_UNIT = 1e-3
+#: Height (m) given to TRLB's discs, which are flat shapes in their files.
+TRLB_DISC_HEIGHT = 0.02
+
+
+@dataclass(frozen=True)
+class TrlbArrangement:
+    """One TRLB arrangement file: disc centres in a ``width`` x ``height`` box (TRLB units)."""
+
+    path: str
+    density: float
+    radius: float
+    width: float
+    height: float
+    points: np.ndarray
+
+
+def read_trlb_arrangement(path: str | Path) -> TrlbArrangement:
+    """Read one of TRLB's ``disk_experiments/arrangements/D=<d>/n=<n>/<k>_<n>_<d>.json`` files.
+
+    Raises :class:`~lgmcts.errors.InputError` (one line) for a file that is
+    not such an arrangement.
+    """
+    p = Path(path)
+    try:
+        data = json.loads(p.read_text())
+        pts = np.asarray(data["point_list"], dtype=float).reshape(-1, 2)
+        arr = TrlbArrangement(str(p), float(data["Workspace_Density"]), float(data["Object_Radius"]),
+                              float(data["Workspace_Width"]), float(data["Workspace_Height"]), pts)
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise InputError(f"{p}: not a TRLB arrangement file ({type(e).__name__}: {e})") from None
+    if data.get("Object_Shape", "disc") != "disc":
+        raise InputError(f"{p}: only disc arrangements are supported, not '{data.get('Object_Shape')}'")
+    if int(data.get("number_of_objects", len(pts))) != len(pts) or not len(pts):
+        raise InputError(f"{p}: number_of_objects does not match point_list")
+    if not (arr.radius > 0 and arr.width > 0 and arr.height > 0 and np.isfinite(pts).all()):
+        raise InputError(f"{p}: radius, width and height must be positive and the points finite")
+    return arr
+
+
+def trlb_case(start: str | Path | TrlbArrangement, goal: str | Path | TrlbArrangement) -> Case:
+    """A case from two TRLB arrangement files, paired as TRLB's ``generate_instance`` pairs them.
+
+    Disc ``k`` starts at the ``k``-th point of ``start`` and must end at the
+    ``k``-th point of ``goal`` (a ``pose`` goal, yaw 0). Lengths are scaled
+    by :data:`TRLB_UNIT` (1 m per 1000 units), the discs become cylinders of
+    TRLB's radius and height :data:`TRLB_DISC_HEIGHT`, and the workspace is
+    TRLB's box ``[0, width] x [0, height]``. The 24-gon that stands for a disc
+    reaches exactly its radius along both axes, so a disc is inside the
+    workspace exactly where TRLB has it inside.
+    """
+    a = start if isinstance(start, TrlbArrangement) else read_trlb_arrangement(start)
+    b = goal if isinstance(goal, TrlbArrangement) else read_trlb_arrangement(goal)
+    if len(a.points) != len(b.points) or a.radius != b.radius or (a.width, a.height) != (b.width, b.height):
+        raise InputError(f"{a.path} and {b.path} are not a start/goal pair (different counts, radii or workspaces)")
+    ws = {"x": [0.0, a.width * TRLB_UNIT], "y": [0.0, a.height * TRLB_UNIT]}
+    return _disc_case(a.points * TRLB_UNIT, b.points * TRLB_UNIT, a.radius * TRLB_UNIT, ws, "trlb",
+                      height=TRLB_DISC_HEIGHT)
+
+
+def trlb_pairs(root: str | Path, pairs: int = 5) -> list[tuple[float, int, tuple[Path, Path]]]:
+    """The (density, count, (start file, goal file)) pairs under TRLB's ``arrangements`` folder ``root``.
+
+    In each ``D=<d>/n=<n>`` folder, files ``2k_<n>_<d>.json`` (start) and
+    ``2k+1_<n>_<d>.json`` (goal) for ``k < pairs`` form a pair, where both
+    exist: two distinct files of one cell, as TRLB's ``generate_instance``
+    takes them (it is given the two file numbers). Sorted by density, count
+    and ``k``.
+    """
+    base = Path(root)
+    if not base.is_dir():
+        raise InputError(f"{base}: no such folder (TRLB's disk_experiments/arrangements)")
+    out: list[tuple[float, int, tuple[Path, Path]]] = []
+    for cell in base.glob("D=*/n=*"):
+        try:
+            d, n = float(cell.parent.name[2:]), int(cell.name[2:])
+        except ValueError:
+            continue
+        tag = cell.parent.name[2:]
+        for k in range(pairs):
+            s, g = cell / f"{2 * k}_{n}_{tag}.json", cell / f"{2 * k + 1}_{n}_{tag}.json"
+            if s.is_file() and g.is_file():
+                out.append((d, n, (s, g)))
+    if not out:
+        raise InputError(f"{base}: no TRLB arrangement pairs found (expected D=<d>/n=<n>/<k>_<n>_<d>.json)")
+    return sorted(out, key=lambda t: (t[0], t[1], str(t[2][0])))

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import typer
 
-from .cli_util import check_output_dir, check_output_file, configure_logging, fail, run_app, write_text
+from .cli_util import check_output_dir, check_output_file, configure_logging, fail, one_line, run_app, write_text
 from .errors import InputError
 
 app = typer.Typer(
@@ -46,6 +46,14 @@ def _root(
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 
+#: Default wall-clock budget of ``lgmcts plan`` (s). A plan that the
+#: iteration budget would decide takes seconds on a tabletop; the limit only
+#: stops searches that no budget ends in reasonable time (goals the planner
+#: cannot meet but the pre-check cannot prove impossible). The library's
+#: ``plan()`` has no default limit, so its plans depend on the seed alone.
+PLAN_TIME_LIMIT = 120.0
+
+
 @app.command()
 def plan(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
@@ -54,7 +62,9 @@ def plan(
     method: str = typer.Option("lgmcts", help="lgmcts, greedy or pmcts."),
     seed: int = typer.Option(0, help="Random seed; the same seed gives the same plan."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Iteration budget."),
-    time_limit: float | None = typer.Option(None, "--time-limit", help="Wall-clock budget in seconds."),
+    time_limit: float = typer.Option(
+        PLAN_TIME_LIMIT, "--time-limit", help="Wall-clock budget in seconds; 0 for none (only --max-iter then)."
+    ),
     anytime: bool = typer.Option(False, help="Keep searching within the budget for a shorter plan."),
     parser: str = typer.Option("rules", help="Instruction parser: rules or llm."),
     llm_model: str | None = typer.Option(None, "--llm-model"),
@@ -66,6 +76,8 @@ def plan(
     """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
 
     Exit status: 0 solved, 1 not solved (the partial plan is still written), 2 bad input.
+    Pictures that cannot be written (--viz on a full disk) are one line on
+    stderr; the status stays the plan's, the plan being written.
     """
     from . import formats
     from .planner import plan as run_plan
@@ -84,9 +96,8 @@ def plan(
 
             assert instruction is not None  # one of the two, checked above
             goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
-        result = run_plan(
-            spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime
-        )
+        limit = None if time_limit == 0 else time_limit
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=limit, anytime=anytime)
     except InputError as exc:
         fail(str(exc))
     if instruction is not None:
@@ -95,8 +106,12 @@ def plan(
     if viz is not None:
         from .viz import write_plan_figures
 
-        paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
-        typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        try:
+            paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
+            typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        except InputError as exc:
+            # The plan is written; its exit status stays the plan's, the pictures' failure is one line.
+            typer.echo(f"the plan was written but not its pictures: {one_line(exc)}", err=True)
     st = result.stats
     status = "solved" if result.solved else f"not solved ({st.get('reason', '')})"
     typer.echo(

@@ -176,11 +176,32 @@ def _json_int(v: Any) -> Any:
 ObjectId = Annotated[int, BeforeValidator(_json_int)]
 
 
+def _json_number(v: Any) -> Any:
+    # Lengths, coordinates and angles are JSON numbers: "0.25" and true are not.
+    if isinstance(v, (bool, str, bytes)) or type(v).__name__ == "bool_":
+        raise ValueError(f"expected a number, got {limits.truncate(repr(v), 40)}")
+    return v
+
+
+#: A JSON number (an integer or a float; ``"0.25"`` and ``true`` are refused).
+Number = Annotated[float, BeforeValidator(_json_number)]
+
+
+def _json_bool(v: Any) -> Any:
+    if not isinstance(v, bool) and type(v).__name__ != "bool_":
+        raise ValueError(f"expected true or false, got {limits.truncate(repr(v), 40)}")
+    return v
+
+
+#: A JSON boolean (``"yes"``, ``1`` and ``"true"`` are refused).
+Flag = Annotated[bool, BeforeValidator(_json_bool)]
+
+
 class BoxShape(_Model):
     """A box; ``size`` is its full extent along the object's x, y, z axes (m)."""
 
     type: Literal["box"]
-    size: tuple[float, float, float]
+    size: tuple[Number, Number, Number]
 
     @field_validator("size")
     @classmethod
@@ -196,8 +217,8 @@ class CylinderShape(_Model):
     """An upright cylinder of ``radius`` and ``height`` (m)."""
 
     type: Literal["cylinder"]
-    radius: float
-    height: float
+    radius: Number
+    height: Number
 
     @model_validator(mode="after")
     def _positive(self) -> CylinderShape:
@@ -212,8 +233,8 @@ class PolygonShape(_Model):
     """A convex footprint in the object frame, extruded to ``height`` (m)."""
 
     type: Literal["polygon"]
-    points: list[tuple[float, float]] = Field(max_length=limits.MAX_POLYGON_POINTS)
-    height: float
+    points: list[tuple[Number, Number]] = Field(max_length=limits.MAX_POLYGON_POINTS)
+    height: Number
 
     @model_validator(mode="after")
     def _convex(self) -> PolygonShape:
@@ -237,7 +258,7 @@ class PointsShape(_Model):
     """A point cloud in the table frame; footprint = convex hull of its xy."""
 
     type: Literal["points"]
-    points: list[tuple[float, float, float]] = Field(max_length=limits.MAX_CLOUD_POINTS)
+    points: list[tuple[Number, Number, Number]] = Field(max_length=limits.MAX_CLOUD_POINTS)
 
     @model_validator(mode="after")
     def _enough(self) -> PointsShape:
@@ -263,7 +284,7 @@ class ObjectSpec(_Model):
     name: str = Field(max_length=limits.MAX_TEXT)
     color: str = Field("", max_length=limits.MAX_TEXT)
     shape: Shape
-    pose: tuple[float, float, float] | None = None
+    pose: tuple[Number, Number, Number] | None = None
     on: ObjectId | None = None
 
     @field_validator("pose")
@@ -284,8 +305,8 @@ class ObjectSpec(_Model):
 class Workspace(_Model):
     """The rectangle of the table the robot may place objects in (m)."""
 
-    x: tuple[float, float]
-    y: tuple[float, float]
+    x: tuple[Number, Number]
+    y: tuple[Number, Number]
 
     @model_validator(mode="after")
     def _ordered(self) -> Workspace:
@@ -382,7 +403,7 @@ class Goal(_Model):
     pattern: str = Field(max_length=limits.MAX_TEXT)
     objects: list[ObjectId] = Field(max_length=limits.MAX_OBJECTS)
     anchor: ObjectId | None = None
-    pose: tuple[float, float, float] | None = None
+    pose: tuple[Number, Number, Number] | None = None
     region: str | tuple[float, float, float, float] | None = None
     size: str | float | None = None
     facing: str | float | None = None
@@ -398,8 +419,13 @@ class Goal(_Model):
             if not isinstance(v, (list, tuple)) or len(v) != 4 or not all(
                     isinstance(c, (int, float)) and not isinstance(c, bool) for c in v):
                 raise ValueError("a region is a name such as 'top left' or a box [xmin, xmax, ymin, ymax]")
+            _bounded(v, "region box", limits.MAX_COORD)
         elif v is not None and not isinstance(v, (int, float)):
             raise ValueError(f"'{info.field_name}' must be a name or a number")
+        elif info.field_name == "facing" and v is not None:
+            _bounded((v,), "facing", limits.MAX_ANGLE)
+        elif info.field_name == "size" and v is not None:
+            _bounded((v,), "size", limits.MAX_COORD)
         return v
 
     def _check_params(self, fmt: PatternFormat) -> None:
@@ -536,7 +562,7 @@ class Action(_Model):
     """Pick ``object`` and place it at ``to`` on the table or on object ``on``."""
 
     object: ObjectId
-    to: tuple[float, float, float]
+    to: tuple[Number, Number, Number]
     on: ObjectId | None = None
     purpose: Literal["goal", "relocate", "unstack"] = "goal"
 
@@ -553,7 +579,7 @@ class PlanSpec(_Model):
 
     model_config = ConfigDict(extra="allow", frozen=True)
 
-    solved: bool
+    solved: Flag
     actions: list[Action] = Field(max_length=limits.MAX_ACTIONS)
     goals: GoalSpec | None = None
     stats: dict[str, Any] = Field(default_factory=dict)

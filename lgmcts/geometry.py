@@ -37,6 +37,8 @@ __all__ = [
 #: A cylinder's footprint is the regular polygon of this many sides that
 #: circumscribes its circle, so the polygon is never smaller than the object.
 CIRCLE_SEGMENTS = 24
+#: Rounding allowance (m) of :func:`inside_workspace`.
+EDGE_EPS = 1e-9
 
 
 def box_footprint(sx: float, sy: float) -> np.ndarray:
@@ -113,13 +115,16 @@ def inside_workspace(vertices: np.ndarray, bounds: Sequence[float], margin: floa
 
     ``vertices`` is ``(m, k, 2)``; returns a boolean ``(m,)``. Because the
     workspace is convex, a convex footprint is inside it exactly when all its
-    vertices are.
+    vertices are. A vertex within :data:`EDGE_EPS` of the edge counts as on it
+    (rounding of the footprint's vertices; a disc whose circle touches the
+    edge is inside).
     """
     v = np.asarray(vertices)
     xmin, xmax, ymin, ymax = bounds
     x, y = v[..., 0], v[..., 1]
-    ok = (x >= xmin + margin) & (x <= xmax - margin) & (y >= ymin + margin) & (y <= ymax - margin)
-    return np.asarray(ok.all(axis=-1))
+    m = margin - EDGE_EPS
+    ok = (x >= xmin + m) & (x <= xmax - m) & (y >= ymin + m) & (y <= ymax - m)
+    return ok.all(axis=-1)
 
 
 def radius_of(local: np.ndarray) -> float:

@@ -61,7 +61,9 @@ def bench(
     parser: str | None = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
     n: int | None = typer.Option(None, "--n", help="Run the first N tasks."),
     seed: int = typer.Option(0, "--seed", help="Suite seed when --suite names a suite."),
-    workers: int | None = typer.Option(None, "--workers", help="Local processes (default: every core)."),
+    workers: int | None = typer.Option(
+        None, "--workers", help="Local processes (default and most: the CPUs this run may use)."
+    ),
     ray: str | None = typer.Option(None, "--ray", help="Run as Ray tasks: 'local' or a cluster address."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Planner iteration budget per task."),
     time_limit: float | None = typer.Option(None, "--time-limit", help="Planner wall-clock budget per task (s)."),
@@ -78,7 +80,7 @@ def bench(
     meeting them.
     """
     from .report import summarise, to_csv, to_markdown
-    from .runner import RunOptions, run_suite
+    from .runner import RunOptions, check_workers, run_suite
     from .tasks import write_suite
 
     try:
@@ -98,6 +100,7 @@ def bench(
             llm_base_url=llm_base_url,
         )
         opts.check()
+        check_workers(workers, ray)
         output.mkdir(parents=True, exist_ok=True)
         if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")

@@ -307,7 +307,9 @@ def _lfsp(scene, instruction: str, options: RunOptions) -> PlanSpec:
 
     t0 = time.perf_counter()
     try:
-        timeout = float(os.environ.get("LGMCTS_LLM_TIMEOUT", "120"))
+        from ..language import llm_timeout
+
+        timeout = llm_timeout(120.0)
         opts = LLMOptions(model=options.llm_model, base_url=options.llm_base_url, timeout=timeout)
         return plan_lfsp(scene, instruction, options=opts)
     except InputError as exc:
@@ -393,6 +395,25 @@ def _check_config(out: Path, config: dict[str, Any]) -> None:
     path.write_text(json.dumps(config, indent=2) + "\n")
 
 
+def usable_cpus() -> int:
+    """The CPUs this process may run on (its affinity), at least 1: the cap on ``--workers``."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_workers(workers: int | None, ray_address: str | None = None) -> None:
+    """Refuse a worker count below 1, or above the usable CPUs for a run on this machine."""
+    if workers is not None and workers < 1:
+        raise InputError("--workers must be at least 1")
+    cpus = usable_cpus()
+    if workers is not None and workers > cpus and ray_address in (None, "local"):
+        # Each worker is a process with its own planner and simulator: more
+        # than the cores only multiplies memory.
+        raise InputError(f"--workers {workers} is more than the {cpus} CPUs this machine lets the run use")
+
+
 def run_suite(
     tasks: list[Task],
     out_dir: str | Path,
@@ -423,6 +444,8 @@ def run_suite(
     Every record of the run in task order (those resumed included).
     """
     options.check()
+    check_workers(workers, ray_address)
+    cpus = usable_cpus()
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -431,9 +454,7 @@ def run_suite(
     _check_config(out, _config(options, source))
     done = {r["id"]: r for r in load_results(out, repair=True)}
     todo = [t for t in tasks if t.id not in done]
-    if workers is not None and workers < 1:
-        raise InputError("--workers must be at least 1")
-    n_workers = workers or os.cpu_count() or 1
+    n_workers = workers or cpus
     if show_progress is None:
         show_progress = sys.stderr.isatty()
     from tqdm import tqdm

@@ -334,7 +334,10 @@ def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None)
                 importlib.import_module(spec)
         except InputError:
             raise
-        except Exception as exc:
+        except SystemExit as exc:
+            # A module must not end the program (least of all with status 0, "valid").
+            raise InputError(f"pattern module {spec} failed to load: it called sys.exit({exc.code!r})") from None
+        except Exception as exc:  # noqa: BLE001 - any failure is the module's, reported in one line
             raise InputError(f"pattern module {spec} failed to load: {type(exc).__name__}: {exc}") from None
         loaded.append(name)
     return loaded

@@ -28,6 +28,7 @@ def execute(
     """
     from .executor import execute_plan
 
+    check_output_file(video, make_parents=False)
     try:
         result = execute_plan(scene, plan, goal, video=video, plan_scene=plan_scene)
     except InputError as exc:

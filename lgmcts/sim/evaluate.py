@@ -74,17 +74,16 @@ def main(argv: list[str] | None = None) -> int:
 
     cases: list = []
     if args.tasks is not None:
-        import json
+        from ..bench.tasks import read_suite
+        from ..errors import InputError
 
-        from ..formats import parse_goals, parse_scene
-
-        with open(args.tasks) as fh:
-            for line in fh:
-                if len(cases) == args.n:
-                    break
-                if line.strip():
-                    t = json.loads(line)
-                    cases.append((f"{t['id']} ({t['category']})", parse_scene(t["scene"]), parse_goals(t["goals"])))
+        try:
+            tasks = read_suite(args.tasks, limit=args.n)
+        except InputError as exc:
+            print(exc, file=sys.stderr)
+            return 2
+        for t in tasks:
+            cases.append((f"{t.id} ({t.category})", t.scene_spec(), t.goal_spec()))
         args.no_example, args.seeds = True, ""
     if args.labbe is not None:
         from ..casegen import labbe_protocol_case

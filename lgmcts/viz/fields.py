@@ -18,7 +18,7 @@ import shapely
 from .. import geometry as geo
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, Context
-from ..planner.step import Problem
+from ..planner.problem import Problem
 from ..scene import Scene, replay
 
 __all__ = ["Fields", "pose_fields"]

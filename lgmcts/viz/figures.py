@@ -17,7 +17,7 @@ import math
 import os
 import sys
 import textwrap
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -1023,11 +1023,35 @@ def _context(scene: Any, plan: Any, goals: Any, instruction: str | None, options
     return _Ctx(sc, gs, pl, states, paints, instruction, options, pl.fits if goals is None else None)
 
 
+def _save(path: Path, save: Callable[[Path], None]) -> Path:
+    """Run ``save(tmp)`` on a temporary file beside ``path``, then rename it over ``path``.
+
+    A full disk or a read-only folder is one line (:class:`InputError`) and
+    leaves neither a truncated picture nor a temporary file.
+    """
+    from ..outputs import publish, temporary_beside
+
+    tmp: Path | None = None
+    try:
+        tmp = temporary_beside(path, suffix=path.suffix)
+        save(tmp)
+        publish(tmp, path)
+        tmp = None
+    except OSError as exc:
+        raise InputError(f"cannot write picture {path}: {exc.strerror or exc}") from None
+    finally:
+        if tmp is not None:
+            try:
+                tmp.unlink()
+            except OSError:
+                pass
+    return path
+
+
 def _save_png(img: np.ndarray, path: Path, dpi: int) -> Path:
     from PIL import Image
 
-    Image.fromarray(img).save(path, dpi=(dpi, dpi), compress_level=6)
-    return path
+    return _save(path, lambda tmp: Image.fromarray(img).save(tmp, format="PNG", dpi=(dpi, dpi), compress_level=6))
 
 
 def _gif(frames: list[np.ndarray], path: Path, opts: FigureOptions) -> Path:
@@ -1044,8 +1068,9 @@ def _gif(frames: list[np.ndarray], path: Path, opts: FigureOptions) -> Path:
     durations[-1] = int(opts.last_frame_s * 1000)
     # disposal=1 and optimize=False keep one GIF frame per plan state (Pillow
     # would otherwise merge frames it finds identical).
-    ims[0].save(path, save_all=True, append_images=ims[1:], duration=durations, loop=0, optimize=False, disposal=1)
-    return path
+    return _save(path, lambda tmp: ims[0].save(
+        tmp, format="GIF", save_all=True, append_images=ims[1:], duration=durations, loop=0, optimize=False, disposal=1
+    ))
 
 
 def step_name(step: int, n_actions: int) -> str:

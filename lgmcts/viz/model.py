@@ -9,6 +9,7 @@ viewer draw from these descriptions.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -97,16 +98,21 @@ class GoalShape:
         }
 
 
-def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None) -> list[GoalShape]:
+def goal_shapes(
+    scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None, only: Iterable[int] | None = None
+) -> list[GoalShape]:
     """Describe every goal's geometry in ``state`` and whether it holds.
 
     ``fits`` are the goals' fitted parameters a plan carries for its final
     state (``PlanSpec.fits``): given for that state, a goal is drawn from
-    them instead of being fitted again."""
+    them instead of being fitted again. ``only``: the indices of the goals
+    to describe (in increasing order; default all)."""
     if goals is None:
         return []
     out = []
-    for k, g in enumerate(goals.goals):
+    chosen = range(len(goals.goals)) if only is None else only
+    for k in chosen:
+        g = goals.goals[k]
         if any(i not in scene.index for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]):
             raise InputError(f"goal {k} ({g.pattern}) names an object the scene does not have")
         idx = [scene.index[i] for i in g.objects]

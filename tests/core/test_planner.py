@@ -223,7 +223,9 @@ def test_swap_in_a_tight_workspace_uses_one_buffer():
 def test_relocation_never_parks_on_the_target_it_clears():
     import numpy as np
 
-    from lgmcts.planner.step import Problem, StepOptions, relocate
+    from lgmcts.planner.placement import StepOptions
+    from lgmcts.planner.problem import Problem
+    from lgmcts.planner.relocate import relocate
     from lgmcts.scene import Scene
 
     c = labbe_case(30, 30003, variant="protocol")

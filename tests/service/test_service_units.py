@@ -103,9 +103,7 @@ def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
     import json
     from pathlib import Path
 
-    from fastapi.testclient import TestClient
-
-    from lgmcts.service.app import TEST_HOOKS_ENV, create_app, options_from_env
+    from lgmcts.service.app import TEST_HOOKS_ENV, options_from_env
 
     monkeypatch.delenv(TEST_HOOKS_ENV, raising=False)
     assert options_from_env().test_hooks is False
@@ -117,11 +115,14 @@ def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
         "goals": json.loads((root / "examples" / "goals.json").read_text()),
         "options": {"method": "_crash"},
     }
-    # No lifespan, so no worker starts: the method is refused before any would be needed.
-    client = TestClient(create_app(ServiceOptions(test_hooks=False)))
-    r = client.post("/plan", json=body)
-    assert r.status_code == 422
-    assert r.json() == {"detail": "unknown method '_crash' (known: lgmcts, greedy, pmcts)"}
+    # The intake worker refuses the method before any planning worker would be needed.
+    from lgmcts.service import jobs
+    from lgmcts.service.bodies import Body, Policy
+
+    with pytest.raises(InputError) as exc:
+        jobs.inspect(Body("plan", json.dumps(body).encode(), Policy(test_hooks=False)))
+    assert str(exc.value) == "unknown method '_crash' (known: lgmcts, greedy, pmcts)"
+    assert jobs.inspect(Body("plan", json.dumps(body).encode(), Policy(test_hooks=True)))["instruction"] is False
 
 
 def test_a_missing_extra_is_a_501_naming_it(monkeypatch):
