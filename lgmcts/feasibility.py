@@ -51,7 +51,7 @@ this test the mixed ones.
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 import shapely
@@ -229,7 +229,7 @@ def _cycle(after: dict[int, list[tuple[int, str]]]) -> list[tuple[int, int, str]
             succ, why = nxt
             if state.get(succ) == 1:
                 start = next((i for i, e in enumerate(path) if e[0] == succ), len(path))
-                return path[start:] + [(node, succ, why)]
+                return [*path[start:], (node, succ, why)]
             if succ not in state:
                 state[succ] = 1
                 path.append((node, succ, why))

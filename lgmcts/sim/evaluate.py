@@ -121,9 +121,9 @@ def main(argv: list[str] | None = None) -> int:
         plan = run_plan(scene, goals, method=args.method, seed=0)
         if plan.solved:
             planned += 1
-            t = time.perf_counter()
+            t0 = time.perf_counter()
             res = execute_plan(scene, plan, goals)
-            dt = time.perf_counter() - t
+            dt = time.perf_counter() - t0
             if plan.actions:
                 per_action.setdefault(len(scene.objects), []).append(dt / len(plan.actions))
             if res.success:
