@@ -332,15 +332,15 @@ class Executor:
         self.settle()
         pose = physics.poses(sim, d)[k]
         tilt = math.degrees(float(physics.tilts(sim, d)[k]))
-        sup = physics.supports(sim, d)[k]
+        rests_on = physics.supports(sim, d)[k]
         err = float(math.hypot(pose[0] - to[0], pose[1] - to[1]))
         problems = []
         if not landed:
             problems.append("released without touching a support")
         if tilt > o.max_tilt_deg:
             problems.append(f"toppled ({tilt:.0f} deg)")
-        if sup != want:
-            problems.append(f"ended on {self._name(sup)}, planned on {self._name(want)}")
+        if rests_on != want:
+            problems.append(f"ended on {self._name(rests_on)}, planned on {self._name(want)}")
         if err > o.place_tol:
             problems.append(f"{err * 1000:.1f} mm from the planned pose")
         msg = "placed" if not problems else "; ".join(problems)
@@ -497,15 +497,14 @@ def _run(
         if sup[k] != want and sup[k] != physics.FLOOR:
             reasons.append(f"object {i} rests on {ex._name(sup[k])}, the plan put it on {ex._name(want)}")
     # The acceptance rules see the floor as the table: falling off is reported above.
-    on = tuple(TABLE if s == physics.FLOOR else s for s in sup)
-    on = _acyclic(on)
+    final_on = _acyclic(tuple(TABLE if s == physics.FLOOR else s for s in sup))
     results = []
     for g_i, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, on)
+        why = goal_satisfied(g, sc, poses, final_on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {g_i} ({g.pattern} {g.objects}): {why}")
-    final = sc.to_spec(State.make(sc, poses, on))
+    final = sc.to_spec(State.make(sc, poses, final_on))
     return Execution(
         success=not reasons,
         reasons=tuple(reasons),

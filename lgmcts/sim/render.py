@@ -395,6 +395,8 @@ class VideoRecorder:
             return
         if failure is None:
             failure = _incomplete(self._tmp, self.frames)
+        if failure is None and self._tmp is None:
+            failure = "the encoder wrote nothing"
         if failure is None and self._tmp is not None:
             from ..outputs import publish
 
