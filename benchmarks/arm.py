@@ -92,8 +92,13 @@ def run(args: argparse.Namespace) -> None:
             p_wall = time.perf_counter() - t0
             verdict = lgmcts.check(scene, gt, plan, robot=robot)
             valid = bool(plan.solved and verdict.valid)
-            r = {"solved": bool(plan.solved), "valid": valid, "plan_s": round(p_wall, 3), "actions": len(plan.actions),
-                 "reasons": list(verdict.reasons)[:3]}
+            r = {
+                "solved": bool(plan.solved),
+                "valid": valid,
+                "plan_s": round(p_wall, 3),
+                "actions": len(plan.actions),
+                "reasons": list(verdict.reasons)[:3],
+            }
             if valid:
                 r["exec"] = _execute(scene, plan, gt, robot)
                 if key == "cup" and args.plain_arm:
@@ -102,8 +107,12 @@ def run(args: argparse.Namespace) -> None:
         with out.open("a") as fh:
             fh.write(json.dumps(rec) + "\n")
         arm = rec["arm"].get("exec", {})
-        print(f"{t.id}: cup {rec['cup']['valid']}/{rec['cup'].get('exec', {}).get('success')}, "
-              f"arm {rec['arm']['valid']}/{arm.get('success')} {arm.get('classes', '')}", file=sys.stderr, flush=True)
+        print(
+            f"{t.id}: cup {rec['cup']['valid']}/{rec['cup'].get('exec', {}).get('success')}, "
+            f"arm {rec['arm']['valid']}/{arm.get('success')} {arm.get('classes', '')}",
+            file=sys.stderr,
+            flush=True,
+        )
 
 
 def _pct(a: int, b: int) -> str:
@@ -119,9 +128,14 @@ def summary(args: argparse.Namespace) -> None:
     recs = list(by_id.values())
     n = len(recs)
     suite = recs[0]["id"].split("-")[0] if recs else "?"
-    print(f"date: {datetime.now(UTC):%Y-%m-%d %H:%M} UTC; machine: {platform.node()}, Python {platform.python_version()}")
+    print(
+        f"date: {datetime.now(UTC):%Y-%m-%d %H:%M} UTC; machine: {platform.node()}, Python {platform.python_version()}"
+    )
     print(f"tasks: {n} ({suite} suite, seed 0, ground-truth goals, lgmcts, seed = task seed)\n")
-    print("| executor | plans | SR_p | SR_ep | SR_ep / SR_p | sim s / action (median) | wall s / pick-and-place (median, p95) |")
+    print(
+        "| executor | plans | SR_p | SR_ep | SR_ep / SR_p | sim s / action (median) "
+        "| wall s / pick-and-place (median, p95) |"
+    )
     print("|---|---|---|---|---|---|---|")
     rows = [("floating cup", "cup", "exec"), ("UR5e arm (plans with --robot ur5e)", "arm", "exec")]
     if any("exec_arm" in r["cup"] for r in recs):
@@ -135,8 +149,11 @@ def summary(args: argparse.Namespace) -> None:
         wall = sorted(e["wall_per_action_s"] for e in exs if e["actions"])
         p95 = wall[min(len(wall) - 1, int(0.95 * len(wall)))] if wall else float("nan")
         ratio = f"{100 * ok / valid:.1f} %" if valid else "-"
-        print(f"| {label} | {len(exs)} | {_pct(valid, n)} | {_pct(ok, n)} | {ratio} | "
-              f"{statistics.median(sim) if sim else float('nan'):.2f} | {statistics.median(wall) if wall else float('nan'):.3f}, {p95:.3f} |")
+        print(
+            f"| {label} | {len(exs)} | {_pct(valid, n)} | {_pct(ok, n)} | {ratio} | "
+            f"{statistics.median(sim) if sim else float('nan'):.2f} | "
+            f"{statistics.median(wall) if wall else float('nan'):.3f}, {p95:.3f} |"
+        )
         c: Counter = Counter()
         for e in exs:
             c.update(e["classes"])
@@ -165,7 +182,9 @@ def main() -> None:
     r.add_argument("--out", default="out/arm.jsonl")
     r.add_argument("--suite", default="elgr", help="elgr (default) or structformer")
     r.add_argument("--plain-arm", action="store_true", help="also execute the plain plans with the arm")
-    r.add_argument("--budget", type=float, default=0.0, help="stop starting tasks after this many seconds (0: no limit)")
+    r.add_argument(
+        "--budget", type=float, default=0.0, help="stop starting tasks after this many seconds (0: no limit)"
+    )
     s = sub.add_parser("summary")
     s.add_argument("--out", default="out/arm.jsonl")
     s.add_argument("--ik", type=int, default=0)

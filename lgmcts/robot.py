@@ -143,10 +143,16 @@ def plan_reach_problems(scene: Any, actions: Sequence[Any], robot: str | Robot) 
         k = sc.index[a.object]
         top = world.base_z(k) + float(sc.heights[k])
         if not rb.reachable(sc.bounds, world.poses[k, :2][None], np.array([top]))[0]:
-            out.append(f"action {n}: object {a.object} at ({world.poses[k, 0]:.3f}, {world.poses[k, 1]:.3f}) is out of the {rb.name}'s reach")
+            out.append(
+                f"action {n}: object {a.object} at ({world.poses[k, 0]:.3f}, {world.poses[k, 1]:.3f}) "
+                f"is out of the {rb.name}'s reach"
+            )
         on = TABLE if a.on is None else sc.index[a.on]
         world = world.moved(k, np.asarray(a.to, dtype=float), on)
         top = world.base_z(k) + float(sc.heights[k])
         if not rb.reachable(sc.bounds, np.asarray(a.to[:2], dtype=float)[None], np.array([top]))[0]:
-            out.append(f"action {n}: the place ({a.to[0]:.3f}, {a.to[1]:.3f}) of object {a.object} is out of the {rb.name}'s reach")
+            out.append(
+                f"action {n}: the place ({a.to[0]:.3f}, {a.to[1]:.3f}) of object {a.object} "
+                f"is out of the {rb.name}'s reach"
+            )
     return out

@@ -29,7 +29,19 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-__all__ = ["UR5E", "ArmIK", "ArmParts", "ArmSpec", "IKResult", "add_arm", "add_cup_welds", "arm_only_model", "arm_parts", "base_pose", "robot_spec"]
+__all__ = [
+    "UR5E",
+    "ArmIK",
+    "ArmParts",
+    "ArmSpec",
+    "IKResult",
+    "add_arm",
+    "add_cup_welds",
+    "arm_only_model",
+    "arm_parts",
+    "base_pose",
+    "robot_spec",
+]
 
 ASSETS = Path(__file__).parent / "assets" / "ur5e"
 
@@ -88,12 +100,66 @@ CUP_GEOM = PREFIX + "cup_geom"
 # centre, diagonal inertia, mesh): the UR5e chain as robosuite models it.
 _SQ = math.sqrt(0.5)
 _LINKS = (
-    ("shoulder_link", (0.0, 0.0, 0.163), (1.0, 0.0, 0.0, 0.0), (0, 0, 1), 3.7, (0, 0, 0), (0.0102675, 0.0102675, 0.00666), "shoulder"),
-    ("upper_arm_link", (0.0, 0.138, 0.0), (_SQ, 0.0, _SQ, 0.0), (0, 1, 0), 8.393, (0, 0, 0.2125), (0.133886, 0.133886, 0.0151074), "upperarm"),
-    ("forearm_link", (0.0, -0.131, 0.425), (1.0, 0.0, 0.0, 0.0), (0, 1, 0), 2.275, (0, 0, 0.196), (0.0311796, 0.0311796, 0.004095), "forearm"),
-    ("wrist_1_link", (0.0, 0.0, 0.392), (_SQ, 0.0, _SQ, 0.0), (0, 1, 0), 1.219, (0, 0.127, 0), (0.0025599, 0.0025599, 0.0021942), "wrist1"),
-    ("wrist_2_link", (0.0, 0.127, 0.0), (1.0, 0.0, 0.0, 0.0), (0, 0, 1), 1.219, (0, 0, 0.1), (0.0025599, 0.0025599, 0.0021942), "wrist2"),
-    ("wrist_3_link", (0.0, 0.0, 0.1), (1.0, 0.0, 0.0, 0.0), (0, 1, 0), 0.1889, (0, 0.0771683, 0), (0.000132134, 9.90863e-05, 9.90863e-05), "wrist3"),
+    (
+        "shoulder_link",
+        (0.0, 0.0, 0.163),
+        (1.0, 0.0, 0.0, 0.0),
+        (0, 0, 1),
+        3.7,
+        (0, 0, 0),
+        (0.0102675, 0.0102675, 0.00666),
+        "shoulder",
+    ),
+    (
+        "upper_arm_link",
+        (0.0, 0.138, 0.0),
+        (_SQ, 0.0, _SQ, 0.0),
+        (0, 1, 0),
+        8.393,
+        (0, 0, 0.2125),
+        (0.133886, 0.133886, 0.0151074),
+        "upperarm",
+    ),
+    (
+        "forearm_link",
+        (0.0, -0.131, 0.425),
+        (1.0, 0.0, 0.0, 0.0),
+        (0, 1, 0),
+        2.275,
+        (0, 0, 0.196),
+        (0.0311796, 0.0311796, 0.004095),
+        "forearm",
+    ),
+    (
+        "wrist_1_link",
+        (0.0, 0.0, 0.392),
+        (_SQ, 0.0, _SQ, 0.0),
+        (0, 1, 0),
+        1.219,
+        (0, 0.127, 0),
+        (0.0025599, 0.0025599, 0.0021942),
+        "wrist1",
+    ),
+    (
+        "wrist_2_link",
+        (0.0, 0.127, 0.0),
+        (1.0, 0.0, 0.0, 0.0),
+        (0, 0, 1),
+        1.219,
+        (0, 0, 0.1),
+        (0.0025599, 0.0025599, 0.0021942),
+        "wrist2",
+    ),
+    (
+        "wrist_3_link",
+        (0.0, 0.0, 0.1),
+        (1.0, 0.0, 0.0, 0.0),
+        (0, 1, 0),
+        0.1889,
+        (0, 0.0771683, 0),
+        (0.000132134, 9.90863e-05, 9.90863e-05),
+        "wrist3",
+    ),
 )
 #: Arm geoms collide with objects and the table (contype 2 meets their
 #: conaffinity 1 only one way) but not with each other.
@@ -268,7 +334,7 @@ def arm_parts(model: mujoco.MjModel, ids: tuple[int, ...] | list[int], arm: ArmS
     names = []
     for g in range(model.ngeom):
         body = model.body(int(model.geom_bodyid[g])).name
-        names.append(_LINK_WORDS.get(body[len(PREFIX):], body) if body.startswith(PREFIX) else "")
+        names.append(_LINK_WORDS.get(body[len(PREFIX) :], body) if body.startswith(PREFIX) else "")
     return ArmParts(
         spec=arm,
         base=np.asarray(base, dtype=float),
@@ -357,7 +423,9 @@ class ArmIK:
         self.data = mujoco.MjData(self.model)
         self.site = self.model.site(CUP_SITE).id
         self._elbow = self.model.body(PREFIX + "forearm_link").id
-        self._links = np.array([self.model.body(PREFIX + b).id for b in ("wrist_1_link", "wrist_2_link", "wrist_3_link")])
+        self._links = np.array(
+            [self.model.body(PREFIX + b).id for b in ("wrist_1_link", "wrist_2_link", "wrist_3_link")]
+        )
         self.lower = np.array(arm.lower)
         self.upper = np.array(arm.upper)
         self.pos_tol = pos_tol
@@ -370,8 +438,10 @@ class ArmIK:
         # folded back towards the base: about 0.15 to 0.7 m). Every other seed
         # is turned from these.
         self._canon: dict[int, list[tuple[float, np.ndarray]]] = {}
-        for b, q0, radii in ((0, np.array([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]), (0.3, 0.5, 0.7, 0.85)),
-                             (1, np.array([-0.5, -1.09, 2.27, 0.39, 1.57, 0.0]), (0.3, 0.2, 0.45, 0.6))):
+        for b, q0, radii in (
+            (0, np.array([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]), (0.3, 0.5, 0.7, 0.85)),
+            (1, np.array([-0.5, -1.09, 2.27, 0.39, 1.57, 0.0]), (0.3, 0.2, 0.45, 0.6)),
+        ):
             self._canon[b] = []
             for r in radii:
                 res = self._solve(np.array([0.0, r, 0.1]), 0.0, q0, limits=True)
@@ -386,7 +456,9 @@ class ArmIK:
         mujoco.mj_kinematics(self.model, d)
         return d.site_xpos[self.site].copy(), d.site_xmat[self.site].reshape(3, 3).copy()
 
-    def _solve(self, pos: np.ndarray, yaw: float | None, seed: np.ndarray, *, limits: bool, iters: int = 100) -> IKResult:
+    def _solve(
+        self, pos: np.ndarray, yaw: float | None, seed: np.ndarray, *, limits: bool, iters: int = 100
+    ) -> IKResult:
         m, d, s = self.model, self.data, self.site
         q = np.array(seed, dtype=float)
         lam = 1e-2
@@ -418,8 +490,13 @@ class ArmIK:
         pe = float(np.linalg.norm(pos - d.site_xpos[s]))
         re = float(np.linalg.norm(_rot_error(r, down_rotation(tool_yaw(r) if yaw is None else yaw))))
         # The elbow stays above the table top (the base plane) by 5 cm, the wrist by 3 cm.
-        ok = (pe <= self.pos_tol and re <= self.rot_tol and _elbow_up(q) and float(d.xpos[self._elbow, 2]) > 0.05
-              and float(d.xpos[self._links, 2].min()) > 0.03)
+        ok = (
+            pe <= self.pos_tol
+            and re <= self.rot_tol
+            and _elbow_up(q)
+            and float(d.xpos[self._elbow, 2]) > 0.05
+            and float(d.xpos[self._links, 2].min()) > 0.03
+        )
         return IKResult(ok, q, pe, re, "" if ok else "out of reach")
 
     def seeds(self, pos: np.ndarray, branch: int | None = None) -> list[np.ndarray]:
@@ -438,8 +515,15 @@ class ArmIK:
                 out.append(qs)
         return out
 
-    def solve(self, pos: np.ndarray, yaw: float | None = None, seed: np.ndarray | None = None, *, why: bool = True,
-              branch: int | None = None) -> IKResult:
+    def solve(
+        self,
+        pos: np.ndarray,
+        yaw: float | None = None,
+        seed: np.ndarray | None = None,
+        *,
+        why: bool = True,
+        branch: int | None = None,
+    ) -> IKResult:
         """A configuration putting the cup face at ``pos`` (base frame, m)
         pointing straight down, turned to ``yaw`` (rad; ``None``: any yaw,
         the one nearest the seed).
@@ -491,7 +575,15 @@ def _elbow_up(q: np.ndarray) -> bool:
 # --------------------------------------------------------------- reachability
 
 
-def reach_map(ik: ArmIK, *, table_margin: float = 0.05, r_step: float = 0.01, z_step: float = 0.02, r_max: float = 1.0, z_max: float = 0.6) -> dict:
+def reach_map(
+    ik: ArmIK,
+    *,
+    table_margin: float = 0.05,
+    r_step: float = 0.01,
+    z_step: float = 0.02,
+    r_max: float = 1.0,
+    z_max: float = 0.6,
+) -> dict:
     """Over a grid of horizontal distance ``r`` from the base axis and height
     ``z`` of the cup face above the base, whether a top-down pose is reachable
     (checked at two bearings; the shoulder turns fully, so the others are the
@@ -525,7 +617,8 @@ def reach_map(ik: ArmIK, *, table_margin: float = 0.05, r_step: float = 0.01, z_
         rows.append([round(float(rs[run[0]]), 4), round(float(rs[run[-1]]), 4)])
     return {
         "robot": ik.arm.name,
-        "what": "top-down reach of the cup face: per height z above the base plane, the interval of horizontal distance r from the base axis",
+        "what": "top-down reach of the cup face: per height z above the base plane, "
+        "the interval of horizontal distance r from the base axis",
         "z": [round(float(z), 4) for z in zs],
         "r": rows,
         "r_step": r_step,

@@ -127,8 +127,14 @@ class ArmExecutor(Executor):
     on_step : called with ``data`` after every physics step (video capture).
     """
 
-    def __init__(self, sim: SimModel, *, options: ExecOptions | None = None, arm: ArmOptions | None = None,
-                 on_step: Callable[[mujoco.MjData], None] | None = None):
+    def __init__(
+        self,
+        sim: SimModel,
+        *,
+        options: ExecOptions | None = None,
+        arm: ArmOptions | None = None,
+        on_step: Callable[[mujoco.MjData], None] | None = None,
+    ):
         if sim.arm is None:
             raise ValueError("the model holds no arm: build it with robot='ur5e'")
         super().__init__(sim, options=options, on_step=on_step)
@@ -195,7 +201,9 @@ class ArmExecutor(Executor):
             ev.limit = f"{self.parts.spec.joints[j]} at {q[j]:.2f} rad"
         if self._carried >= 0:
             w = int(self.parts.welds[self._carried])
-            rows = np.flatnonzero((d.efc_type[: d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id[: d.nefc] == w))
+            rows = np.flatnonzero(
+                (d.efc_type[: d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id[: d.nefc] == w)
+            )
             if len(rows) >= 3:
                 f = float(np.linalg.norm(d.efc_force[rows[:3]]))
                 if f > self.aopts.hold_force:
@@ -235,7 +243,9 @@ class ArmExecutor(Executor):
                 return True
         return stop is not None and stop()
 
-    def _profile(self, qs: list[np.ndarray], cart_len: float = 0.0, speed: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    def _profile(
+        self, qs: list[np.ndarray], cart_len: float = 0.0, speed: float | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities, one per step, along the joint-space
         polyline ``qs`` under the joints' speed and acceleration limits (a
         trapezoidal profile of the path parameter); ``cart_len``/``speed`` also
@@ -262,7 +272,11 @@ class ArmExecutor(Executor):
         s = np.where(
             t < t_acc,
             0.5 * a_s * t**2,
-            np.where(t < t_acc + t_cruise, 0.5 * a_s * t_acc**2 + vs * (t - t_acc), total - 0.5 * a_s * np.maximum(t_end - t, 0.0) ** 2),
+            np.where(
+                t < t_acc + t_cruise,
+                0.5 * a_s * t_acc**2 + vs * (t - t_acc),
+                total - 0.5 * a_s * np.maximum(t_end - t, 0.0) ** 2,
+            ),
         )
         sdot = np.where(t < t_acc, a_s * t, np.where(t < t_acc + t_cruise, vs, a_s * np.maximum(t_end - t, 0.0)))
         knots = np.concatenate([[0.0], np.cumsum(seg_t)])
@@ -272,7 +286,9 @@ class ArmExecutor(Executor):
         dqds = seg[idx] / np.maximum(seg_t[idx], 1e-12)[:, None]
         return pos, dqds * sdot[:, None]
 
-    def _line(self, p0: np.ndarray, p1: np.ndarray, yaw: float, seed: np.ndarray, branch: int | None = None) -> list[np.ndarray] | None:
+    def _line(
+        self, p0: np.ndarray, p1: np.ndarray, yaw: float, seed: np.ndarray, branch: int | None = None
+    ) -> list[np.ndarray] | None:
         """Joint waypoints along the straight segment ``p0``-``p1`` of the cup
         face (world, m) at tool yaw ``yaw``, or ``None`` if one is unreachable."""
         n = max(1, math.ceil(float(np.linalg.norm(p1 - p0)) / self.aopts.waypoint))
@@ -286,7 +302,9 @@ class ArmExecutor(Executor):
             out.append(q)
         return out
 
-    def _straight(self, qs: list[np.ndarray], length: float, speed: float, stop: Callable[[], bool] | None = None) -> bool:
+    def _straight(
+        self, qs: list[np.ndarray], length: float, speed: float, stop: Callable[[], bool] | None = None
+    ) -> bool:
         pos, vel = self._profile([self.q, *qs], length, speed)
         return self._drive(pos, vel, stop)
 
@@ -322,7 +340,9 @@ class ArmExecutor(Executor):
         sup = physics.supports(sim, d)
         blockers = [sim.scene.ids[j] for j, s in enumerate(sup) if s == k]
         if blockers:
-            return StepOutcome(index, oid, False, None, math.nan, f"pick failed: object {oid} is covered by object {blockers[0]}")
+            return StepOutcome(
+                index, oid, False, None, math.nan, f"pick failed: object {oid} is covered by object {blockers[0]}"
+            )
         self._events = _Events()
         self._target = k
         start_poses = physics.poses(sim, d)
@@ -333,7 +353,7 @@ class ArmExecutor(Executor):
         tilt = float(physics.tilts(sim, d)[k])
         top_c = float(here[2]) + h / 2 * math.cos(tilt)
         top = top_c + float(sim.scene.radii[k]) * math.sin(tilt)
-        z_place = (h if on is None else float(d.xpos[sim.body[on], 2]) + float(sim.heights[on]) / 2 + h)
+        z_place = h if on is None else float(d.xpos[sim.body[on], 2]) + float(sim.heights[on]) / 2 + h
         others = np.delete(physics.tops(sim, d), k)
         z_tr_want = max(float(others.max(initial=0.0)) + a.clearance + h, top + a.approach, z_place + a.approach)
         # 1. Reach, before any motion: the wrist branch of the current
@@ -354,13 +374,20 @@ class ArmExecutor(Executor):
         if mo is None:
             assert fail is not None
             return self._refuse(index, oid, fail[0], fail[1])
-        down_pick, down_place, z_tr, yaw_pick, yaw_place = mo.down_pick, mo.down_place, mo.z_tr, mo.yaw_pick, mo.yaw_place
+        down_pick, down_place, z_tr, yaw_pick, yaw_place = (
+            mo.down_pick,
+            mo.down_place,
+            mo.z_tr,
+            mo.yaw_pick,
+            mo.yaw_place,
+        )
         # 2. Approach and touch.
         self._joint_move(down_pick[0])
         fast = max(0, len(down_pick) - 1 - math.ceil((a.touch_band + 0.01 + top - top_c) / a.waypoint))
         self._straight(down_pick[1 : fast + 1], z_tr - top, a.cart_speed, stop=lambda: self._cup_touch(k))
-        touched = self._cup_touch(k) or self._straight(down_pick[fast + 1 :], a.touch_band + 0.01, a.touch_speed,
-                                                       stop=lambda: self._cup_touch(k))
+        touched = self._cup_touch(k) or self._straight(
+            down_pick[fast + 1 :], a.touch_band + 0.01, a.touch_speed, stop=lambda: self._cup_touch(k)
+        )
         if not touched:
             self._retreat(here[0], here[1], z_tr, yaw_pick)
             return self._outcome(index, oid, k, to, on, start_poses, None, "the cup never touched the object's top")
@@ -375,8 +402,12 @@ class ArmExecutor(Executor):
         self._straight(down_place[1 : fast + 1], z_tr - z_place, a.cart_speed)
         landed = False
         if self._carried == k:
-            landed = self._straight(down_place[fast + 1 :], o.approach_height + o.overshoot, a.touch_speed,
-                                    stop=lambda: physics.bottom_contact(sim, d, k) or self._carried != k)
+            landed = self._straight(
+                down_place[fast + 1 :],
+                o.approach_height + o.overshoot,
+                a.touch_speed,
+                stop=lambda: physics.bottom_contact(sim, d, k) or self._carried != k,
+            )
             landed = landed and self._carried == k
         # 5. Release and retreat.
         dropped = self._carried != k
@@ -388,8 +419,19 @@ class ArmExecutor(Executor):
         self.settle()
         return self._outcome(index, oid, k, to, on, start_poses, landed, "dropped" if dropped else "")
 
-    def _motion(self, oid: int, here: np.ndarray, top: float, top_c: float, to: np.ndarray, z_place: float, z_tr_want: float,
-                turn: float, bp: int, bl: int) -> _Motion | tuple[IKResult, str]:
+    def _motion(
+        self,
+        oid: int,
+        here: np.ndarray,
+        top: float,
+        top_c: float,
+        to: np.ndarray,
+        z_place: float,
+        z_tr_want: float,
+        turn: float,
+        bp: int,
+        bl: int,
+    ) -> _Motion | tuple[IKResult, str]:
         """Every configuration of one pick and place with the pick in wrist
         branch ``bp`` and the place in ``bl``, or the first pose that has
         none and what it is."""
@@ -423,10 +465,20 @@ class ArmExecutor(Executor):
         if above_pick is None or above_place is None or not (above_pick.ok and above_place.ok):
             res = above_pick if above_pick is not None and not above_pick.ok else above_place
             return (res or pick), f"the way above object {oid}"
-        down_pick = self._line(np.array([here[0], here[1], z_tr]), np.array([here[0], here[1], top_c - 0.01]), yaw_pick,
-                               self._wrist_turn(pick_q, above_pick.q), bp)
-        down_place = self._line(np.array([to[0], to[1], z_tr]), np.array([to[0], to[1], z_place - o.overshoot]), yaw_place,
-                                self._wrist_turn(place_q, above_place.q), bl)
+        down_pick = self._line(
+            np.array([here[0], here[1], z_tr]),
+            np.array([here[0], here[1], top_c - 0.01]),
+            yaw_pick,
+            self._wrist_turn(pick_q, above_pick.q),
+            bp,
+        )
+        down_place = self._line(
+            np.array([to[0], to[1], z_tr]),
+            np.array([to[0], to[1], z_place - o.overshoot]),
+            yaw_place,
+            self._wrist_turn(place_q, above_place.q),
+            bl,
+        )
         if down_pick is None or down_place is None:
             return IKResult(False, pick.q, math.inf, math.inf, "out of reach"), f"the approach to object {oid}"
         down_pick = [self._wrist_turn(pick_q, q) for q in down_pick]
@@ -477,8 +529,17 @@ class ArmExecutor(Executor):
             msg = f"out of reach: {what} is beyond the arm's reach (nothing moved)"
         return StepOutcome(index, oid, False, None, math.nan, msg)
 
-    def _outcome(self, index: int, oid: int, k: int, to: np.ndarray, on: int | None, start: np.ndarray,
-                 landed: bool | None, note: str) -> StepOutcome:
+    def _outcome(
+        self,
+        index: int,
+        oid: int,
+        k: int,
+        to: np.ndarray,
+        on: int | None,
+        start: np.ndarray,
+        landed: bool | None,
+        note: str,
+    ) -> StepOutcome:
         sim, d, o, ev = self.sim, self.data, self.opts, self._events
         pose = physics.poses(sim, d)[k]
         tilt = math.degrees(float(physics.tilts(sim, d)[k]))
@@ -510,5 +571,11 @@ class ArmExecutor(Executor):
                 problems.append(f"{err * 1000:.1f} mm from the planned pose")
         msg = "placed" if not problems else "; ".join(problems)
         reached = (float(pose[0]), float(pose[1]), float(pose[2]))
-        return StepOutcome(index, oid, not problems, reached if landed is not None else None, err if landed is not None else math.nan,
-                           f"{msg} ({err * 1000:.1f} mm off)" if landed is not None else msg)
+        return StepOutcome(
+            index,
+            oid,
+            not problems,
+            reached if landed is not None else None,
+            err if landed is not None else math.nan,
+            f"{msg} ({err * 1000:.1f} mm off)" if landed is not None else msg,
+        )

@@ -29,9 +29,10 @@ from __future__ import annotations
 
 import copy
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -43,7 +44,7 @@ from ..validate import goal_satisfied
 from . import physics
 from .model import ModelOptions, SimModel, build_model, yaw_quat
 
-__all__ = ["ExecOptions", "StepOutcome", "Execution", "execute_plan", "Executor"]
+__all__ = ["ExecOptions", "Execution", "Executor", "StepOutcome", "execute_plan"]
 
 FrameHook = Callable[[mujoco.MjData], None]
 
@@ -282,7 +283,8 @@ class Executor:
         sup = physics.supports(sim, d)
         blockers = [sim.scene.ids[j] for j, s in enumerate(sup) if s == k]
         if blockers:
-            return StepOutcome(index, oid, False, None, math.nan, f"pick failed: object {oid} is covered by object {blockers[0]}")
+            why = f"pick failed: object {oid} is covered by object {blockers[0]}"
+            return StepOutcome(index, oid, False, None, math.nan, why)
         body = sim.body[k]
         mi = sim.mocap
         d.mocap_pos[mi] = d.xpos[body]
@@ -333,15 +335,15 @@ class Executor:
         self.settle()
         pose = physics.poses(sim, d)[k]
         tilt = math.degrees(float(physics.tilts(sim, d)[k]))
-        sup = physics.supports(sim, d)[k]
+        rests_on = physics.supports(sim, d)[k]
         err = float(math.hypot(pose[0] - to[0], pose[1] - to[1]))
         problems = []
         if not landed:
             problems.append("released without touching a support")
         if tilt > o.max_tilt_deg:
             problems.append(f"toppled ({tilt:.0f} deg)")
-        if sup != want:
-            problems.append(f"ended on {self._name(sup)}, planned on {self._name(want)}")
+        if rests_on != want:
+            problems.append(f"ended on {self._name(rests_on)}, planned on {self._name(want)}")
         if err > o.place_tol:
             problems.append(f"{err * 1000:.1f} mm from the planned pose")
         msg = "placed" if not problems else "; ".join(problems)
@@ -449,6 +451,23 @@ def execute_plan(
     return _run(sim, sc, pl, gs, opts, offsets, None)
 
 
+def _executor(sim: SimModel, opts: ExecOptions, hook: FrameHook | None) -> Executor:
+    """The floating cup's executor, or the arm's when the model holds one."""
+    if sim.arm is not None:
+        from .arm_exec import ArmExecutor
+
+        return ArmExecutor(sim, options=opts, on_step=hook)
+    return Executor(sim, options=opts, on_step=hook)
+
+
+def _arm_failure(sim: SimModel, n: int, out: StepOutcome) -> list[str]:
+    """The step as a reason when it names a failure only the arm causes (a
+    real arm stops on these: the plan fails even if the scene ends right)."""
+    if sim.arm is not None and out.reached is not None and any(c in out.message for c in ARM_FAILURES):
+        return [f"action {n}: {out.message}"]
+    return []
+
+
 def _run(
     sim: SimModel,
     sc: Scene,
@@ -458,13 +477,7 @@ def _run(
     offsets: dict[int, np.ndarray] | None,
     hook: FrameHook | None,
 ) -> Execution:
-    ex: Executor
-    if sim.arm is not None:
-        from .arm_exec import ArmExecutor
-
-        ex = ArmExecutor(sim, options=opts, on_step=hook)
-    else:
-        ex = Executor(sim, options=opts, on_step=hook)
+    ex = _executor(sim, opts, hook)
     ex.settle()
     steps: list[StepOutcome] = []
     targets: dict[int, tuple[np.ndarray, int]] = {}
@@ -477,9 +490,7 @@ def _run(
         on = None if a.on is None else sc.index[a.on]
         out = ex.pick_and_place(k, to, on, index=n)
         steps.append(out)
-        if sim.arm is not None and out.reached is not None and any(c in out.message for c in ARM_FAILURES):
-            # A real arm stops on these: the plan fails even if the scene ends right.
-            reasons.append(f"action {n}: {out.message}")
+        reasons.extend(_arm_failure(sim, n, out))
         if out.reached is None:
             reasons.append(f"action {n}: {out.message}")
             if opts.stop_on_failure:
@@ -511,15 +522,14 @@ def _run(
         if sup[k] != want and sup[k] != physics.FLOOR:
             reasons.append(f"object {i} rests on {ex._name(sup[k])}, the plan put it on {ex._name(want)}")
     # The acceptance rules see the floor as the table: falling off is reported above.
-    on = tuple(TABLE if s == physics.FLOOR else s for s in sup)
-    on = _acyclic(on)
+    final_on = _acyclic(tuple(TABLE if s == physics.FLOOR else s for s in sup))
     results = []
     for g_i, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, on)
+        why = goal_satisfied(g, sc, poses, final_on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {g_i} ({g.pattern} {g.objects}): {why}")
-    final = sc.to_spec(State.make(sc, poses, on))
+    final = sc.to_spec(State.make(sc, poses, final_on))
     return Execution(
         success=not reasons,
         reasons=tuple(reasons),

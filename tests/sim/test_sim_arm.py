@@ -101,7 +101,7 @@ def test_reach_map_agrees_with_ik(ik):
         if robot.reach_rz(np.array([r]), np.array([z]))[0] and inside < 30:
             inside += 1
             # The whole approach column is reachable.
-            assert ik.solve(p, None).ok and ik.solve(p + [0, 0, robot.approach], None).ok
+            assert ik.solve(p, None).ok and ik.solve(p + np.array([0.0, 0.0, robot.approach]), None).ok
         elif outside < 8 and _beyond_map(robot, r, z, 0.02):
             outside += 1
             assert not ik.solve(p, None, why=False).ok
@@ -114,15 +114,30 @@ WIDE = {"x": [-0.7, 0.7], "y": [-0.3, 0.6]}
 
 def _plan(actions: list[dict], goal_obj: int) -> dict:
     a = actions[-1]
-    return {"solved": True, "actions": actions, "goals": {"goals": [{"pattern": "pose", "objects": [goal_obj], "pose": a["to"]}]}}
+    return {
+        "solved": True,
+        "actions": actions,
+        "goals": {"goals": [{"pattern": "pose", "objects": [goal_obj], "pose": a["to"]}]},
+    }
 
 
 @pytest.mark.slow
 def test_target_out_of_reach_fails_before_moving():
     # A wide table: its far corner is beyond the arm's reach, not the floating cup's.
-    scene = parse_scene({"workspace": WIDE, "objects": [
-        {"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.1, 0.1, 0.0]},
-    ]})
+    scene = parse_scene(
+        {
+            "workspace": WIDE,
+            "objects": [
+                {
+                    "id": 1,
+                    "name": "block",
+                    "color": "red",
+                    "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+                    "pose": [0.1, 0.1, 0.0],
+                },
+            ],
+        }
+    )
     plan = parse_plan(_plan([{"object": 1, "to": [0.62, 0.52, 0.0], "on": None}], 1))
     assert execute_plan(scene, plan).success
     # The planner neither goes there nor says the block is out of reach.
@@ -140,11 +155,25 @@ def test_target_out_of_reach_fails_before_moving():
     assert lgmcts.check(scene, plan.goals, plan).valid
 
 
-BOTTLE = {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-    {"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.0, 0.1, 0.0]},
-    {"id": 2, "name": "bottle", "color": "white", "shape": {"type": "cylinder", "radius": 0.03, "height": 0.35},
-     "pose": [0.085, -0.1, 0.0]},
-]}
+BOTTLE = {
+    "workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+    "objects": [
+        {
+            "id": 1,
+            "name": "block",
+            "color": "red",
+            "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+            "pose": [0.0, 0.1, 0.0],
+        },
+        {
+            "id": 2,
+            "name": "bottle",
+            "color": "white",
+            "shape": {"type": "cylinder", "radius": 0.03, "height": 0.35},
+            "pose": [0.085, -0.1, 0.0],
+        },
+    ],
+}
 
 
 @pytest.mark.slow
@@ -163,8 +192,9 @@ def test_tall_bottle_in_the_forearms_path():
 def test_full_pick_and_place_with_the_arm():
     scene = parse_scene(BOTTLE)
     # The bottle moved out of the way first, then the block turned by 1 rad.
-    plan = parse_plan(_plan([{"object": 2, "to": [-0.3, 0.2, 0.0], "on": None},
-                             {"object": 1, "to": [0.2, 0.0, 1.0], "on": None}], 1))
+    plan = parse_plan(
+        _plan([{"object": 2, "to": [-0.3, 0.2, 0.0], "on": None}, {"object": 1, "to": [0.2, 0.0, 1.0], "on": None}], 1)
+    )
     res = execute_plan(scene, plan, robot="ur5e")
     assert res.success, res.reasons
     assert [s.ok for s in res.steps] == [True, True]
@@ -194,8 +224,20 @@ def test_arm_is_driven_through_physics_and_drop_is_named():
 @pytest.mark.slow
 def test_cli_plan_check_execute_with_robot(tmp_path, example_scene):
     plan_path = tmp_path / "plan.json"
-    res = runner.invoke(app, ["plan", str(example_scene), "put the white bottle behind the red block", "--robot", "ur5e",
-                              "--seed", "0", "-o", str(plan_path)])
+    res = runner.invoke(
+        app,
+        [
+            "plan",
+            str(example_scene),
+            "put the white bottle behind the red block",
+            "--robot",
+            "ur5e",
+            "--seed",
+            "0",
+            "-o",
+            str(plan_path),
+        ],
+    )
     assert res.exit_code == 0, res.output
     plan = json.loads(plan_path.read_text())
     assert plan["stats"]["robot"] == "ur5e"
@@ -206,7 +248,10 @@ def test_cli_plan_check_execute_with_robot(tmp_path, example_scene):
     res = runner.invoke(app, ["execute", str(example_scene), str(plan_path), "--robot", "ur5e"])
     assert res.exit_code == 0, res.output
     assert "success" in res.stdout
-    for cmd in (["execute", str(example_scene), str(plan_path)], ["check", str(example_scene), str(goals), str(plan_path)]):
+    for cmd in (
+        ["execute", str(example_scene), str(plan_path)],
+        ["check", str(example_scene), str(goals), str(plan_path)],
+    ):
         res = runner.invoke(app, [*cmd, "--robot", "ur9"])
         assert res.exit_code == 2 and "unknown robot" in res.output
 
@@ -215,11 +260,22 @@ def test_plan_with_robot_keeps_every_pose_reachable():
     # Two blocks to go left of a bowl near the far right corner of a wide table:
     # much of that region is beyond the arm.
     box = {"type": "box", "size": [0.05, 0.05, 0.05]}
-    scene = parse_scene({"workspace": WIDE, "objects": [
-        {"id": 1, "name": "block", "color": "red", "shape": box, "pose": [0.0, 0.0, 0.0]},
-        {"id": 2, "name": "block", "color": "blue", "shape": box, "pose": [0.1, 0.0, 0.0]},
-        {"id": 3, "name": "bowl", "color": "green", "shape": {"type": "cylinder", "radius": 0.05, "height": 0.04}, "pose": [0.45, 0.4, 0.0]},
-    ]})
+    scene = parse_scene(
+        {
+            "workspace": WIDE,
+            "objects": [
+                {"id": 1, "name": "block", "color": "red", "shape": box, "pose": [0.0, 0.0, 0.0]},
+                {"id": 2, "name": "block", "color": "blue", "shape": box, "pose": [0.1, 0.0, 0.0]},
+                {
+                    "id": 3,
+                    "name": "bowl",
+                    "color": "green",
+                    "shape": {"type": "cylinder", "radius": 0.05, "height": 0.04},
+                    "pose": [0.45, 0.4, 0.0],
+                },
+            ],
+        }
+    )
     goals = {"goals": [{"pattern": "left", "objects": [1, 2], "anchor": 3}]}
     from lgmcts.robot import plan_reach_problems
     from lgmcts.scene import Scene
@@ -248,12 +304,12 @@ def test_unknown_robot_is_bad_input(example_scene, example_goals):
         lgmcts.plan(load_scene(example_scene), load_goals(example_goals), robot="ur9")
 
 
-
 @pytest.mark.slow
 def test_arm_execution_is_deterministic():
     scene = parse_scene(BOTTLE)
-    plan = parse_plan(_plan([{"object": 2, "to": [-0.3, 0.2, 0.0], "on": None},
-                             {"object": 1, "to": [0.2, 0.0, 1.0], "on": None}], 1))
+    plan = parse_plan(
+        _plan([{"object": 2, "to": [-0.3, 0.2, 0.0], "on": None}, {"object": 1, "to": [0.2, 0.0, 1.0], "on": None}], 1)
+    )
     a = execute_plan(scene, plan, robot="ur5e")
     b = execute_plan(scene, plan, robot="ur5e")
     assert [o.pose for o in a.final.objects] == [o.pose for o in b.final.objects]
@@ -261,10 +317,27 @@ def test_arm_execution_is_deterministic():
 
 
 def test_plan_names_objects_out_of_reach():
-    scene = parse_scene({"workspace": WIDE, "objects": [
-        {"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.62, 0.52, 0.0]},
-        {"id": 2, "name": "block", "color": "blue", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [0.0, 0.1, 0.0]},
-    ]})
+    scene = parse_scene(
+        {
+            "workspace": WIDE,
+            "objects": [
+                {
+                    "id": 1,
+                    "name": "block",
+                    "color": "red",
+                    "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+                    "pose": [0.62, 0.52, 0.0],
+                },
+                {
+                    "id": 2,
+                    "name": "block",
+                    "color": "blue",
+                    "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+                    "pose": [0.0, 0.1, 0.0],
+                },
+            ],
+        }
+    )
     goals = {"goals": [{"pattern": "left", "objects": [1], "anchor": 2}]}
     plan = lgmcts.plan(scene, goals, seed=0, max_iter=50, robot="ur5e")
     assert not plan.solved and plan.stats["out_of_reach"] == [1]
