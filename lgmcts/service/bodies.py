@@ -140,6 +140,15 @@ def _timeout(value: float | None) -> None:
         raise InputError("timeout must be positive")
 
 
+def _robot(name: str | None) -> None:
+    # Checked here, before any work, with the CLI's --robot meaning: one of
+    # the robots whose reach the planner knows (lgmcts.robot.ROBOTS).
+    from ..robot import ROBOTS
+
+    if name is not None and name not in ROBOTS:
+        raise InputError(f"unknown robot '{truncate(printable(name), 40)}' (known: {', '.join(ROBOTS)})")
+
+
 def read_body(body: Body) -> Any:
     """The validated request of ``body``, every rule checked; :class:`InputError` (422) otherwise."""
     from ..planner import METHODS
@@ -166,9 +175,12 @@ def read_body(body: Body) -> Any:
             raise InputError("time_limit must be positive")
         if o.method not in METHODS and not (pol.test_hooks and o.method in HOOK_METHODS):
             raise InputError(f"unknown method '{truncate(o.method, 40)}' (known: {', '.join(METHODS)})")
+        _robot(o.robot)
         _timeout(o.timeout)
         if req.instruction is not None:
             llm_endpoint(pol, req.llm_base_url, req.parser, req.llm_model)
     else:
+        if isinstance(req, CheckRequest):
+            _robot(req.robot)
         _timeout(req.timeout)
     return req

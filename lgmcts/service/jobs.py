@@ -113,15 +113,18 @@ class PlanJob:
     deadline: float
     instruction: str | None = None
     hooks: bool = False
+    #: The arm whose reach every pick and place must keep (``lgmcts plan --robot``), or ``None``.
+    robot: str | None = None
 
 
 @dataclass(frozen=True)
 class CheckJob:
-    """Judge ``plan`` on ``scene`` against ``goals``."""
+    """Judge ``plan`` on ``scene`` against ``goals`` (and ``robot``'s reach, when one is named)."""
 
     scene: SceneSpec
     goals: GoalSpec
     plan: PlanSpec
+    robot: str | None = None
 
 
 _slot: tuple[Any, int] | None = None
@@ -243,6 +246,7 @@ def run_plan(job: PlanJob) -> dict:
         max_iter=job.max_iter,
         time_limit=limit,
         anytime=job.anytime,
+        robot=job.robot,
     )
     data = to_dict(result)
     stats = data.get("stats", {})
@@ -261,7 +265,7 @@ def run_check(job: CheckJob) -> dict:
     """Verdict JSON (a dict): ``valid``, ``reasons`` and per-goal ``goals``."""
     from ..validate import check
 
-    verdict = check(job.scene, job.goals, job.plan)
+    verdict = check(job.scene, job.goals, job.plan, robot=job.robot)
     return {"valid": verdict.valid, "reasons": list(verdict.reasons), "goals": list(verdict.goals)}
 
 
@@ -344,7 +348,7 @@ def run_body(job: BodyJob) -> bytes:
     body = job.body
     req = read_body(body)
     if body.kind == "check":
-        return _json(run_check(CheckJob(req.scene, req.goals, req.plan)))
+        return _json(run_check(CheckJob(req.scene, req.goals, req.plan, req.robot)))
     if body.kind == "view":
         return run_view(ViewJob(req.scene, req.plan, req.goals, req.instruction))
     if body.kind == "parse" or job.parse_only:
@@ -365,5 +369,6 @@ def run_body(job: BodyJob) -> bytes:
         anytime=o.anytime,
         deadline=job.deadline,
         hooks=body.policy.test_hooks,
+        robot=o.robot,
     )
     return _json(run_plan(plan_job))

@@ -27,6 +27,12 @@ class PlanOptions(_Body):
     max_iter: int = Field(10_000, description="Iteration budget; the server caps it (see /healthz).")
     time_limit: float | None = Field(None, description="Planning budget in seconds (wall clock).")
     anytime: bool = Field(False, description="Keep searching within the budget for a shorter plan.")
+    robot: str | None = Field(
+        None,
+        max_length=MAX_TEXT,
+        description="Plan for this arm (ur5e): every pick and place within its top-down reach; "
+        "null: no robot, the plan is the same as without the field.",
+    )
     timeout: float | None = Field(
         None, description="Wall-clock limit of this request in seconds; at most the server's timeout."
     )
@@ -70,6 +76,11 @@ class CheckRequest(_Body):
     scene: SceneSpec
     goals: GoalSpec
     plan: PlanSpec
+    robot: str | None = Field(
+        None,
+        max_length=MAX_TEXT,
+        description="Also require every pick and place within this arm's top-down reach (ur5e).",
+    )
     timeout: float | None = Field(None, description="Wall-clock limit in seconds; at most the server's timeout.")
 
 
