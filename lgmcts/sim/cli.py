@@ -24,16 +24,27 @@ def execute(
     robot: str | None = typer.Option(
         None, "--robot", help="Execute with this arm (ur5e) instead of the floating suction cup."
     ),
+    video_fps: int = typer.Option(25, "--video-fps", help="Frames of the video per simulated second."),
+    video_size: str = typer.Option(
+        "640x480", "--video-size", help="Video frame size WIDTHxHEIGHT in pixels (multiples of 16)."
+    ),
 ) -> None:
     """Execute PLAN on SCENE in MuJoCo and judge the final state.
 
     Exit status: 0 success, 1 failure (a step failed or a rule is broken), 2 bad input.
     """
-    from .executor import execute_plan
+    from .executor import check_video, execute_plan
 
+    size = _size(video_size)
+    try:
+        check_video(video_fps, size)
+    except InputError as exc:
+        fail(str(exc))
     check_output_file(video, make_parents=False)
     try:
-        result = execute_plan(scene, plan, goal, video=video, plan_scene=plan_scene, robot=robot)
+        result = execute_plan(
+            scene, plan, goal, video=video, plan_scene=plan_scene, robot=robot, video_fps=video_fps, video_size=size
+        )
     except InputError as exc:
         fail(str(exc))
     except RuntimeError as exc:  # no OpenGL for the video
@@ -50,6 +61,14 @@ def execute(
     if video is not None:
         typer.echo(f"wrote {video}", err=True)
     raise typer.Exit(0 if result.success else 1)
+
+
+def _size(text: str) -> tuple[int, int]:
+    """``WIDTHxHEIGHT`` as two integers; exit status 2 with one line otherwise."""
+    parts = text.lower().split("x")
+    if len(parts) != 2 or not all(p.strip().isdigit() and len(p.strip()) <= 5 for p in parts):
+        fail(f"--video-size must read WIDTHxHEIGHT in pixels, e.g. 320x240 (got {text[:40]!r})")
+    return int(parts[0]), int(parts[1])
 
 
 def observe(

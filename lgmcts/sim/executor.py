@@ -401,6 +401,8 @@ def execute_plan(
     video: str | Path | None = None,
     plan_scene: SceneSpec | dict | str | Path | None = None,
     robot: str | None = None,
+    video_fps: int = 25,
+    video_size: tuple[int, int] = (640, 480),
 ) -> Execution:
     """Execute ``plan`` on ``scene`` in MuJoCo and judge the final state.
 
@@ -412,6 +414,9 @@ def execute_plan(
         carries.
     options : primitive and verdict options (:class:`ExecOptions`).
     video : write an mp4 of the execution here (angled camera).
+    video_fps, video_size : the video's frames per simulated second and its
+        ``(width, height)`` in pixels (multiples of 16, at most 1920); a
+        smaller, sparser video takes less time to render and encode.
     plan_scene : the scene the plan was made on when it differs from
         ``scene`` (e.g. one built by :func:`lgmcts.sim.observe`). Each
         action's ``to`` then moves the object rigidly by the same motion it
@@ -433,6 +438,8 @@ def execute_plan(
         fails in physics is a value, not an exception.
     """
     opts = options or ExecOptions()
+    if video is not None:
+        check_video(video_fps, video_size)
     spec, pl, gs = _resolve(scene, plan, goals)
     sc = Scene.from_spec(spec)
     offsets = None
@@ -446,9 +453,29 @@ def execute_plan(
         from .model import ARM_VIEW_CAMERA, VIEW_CAMERA
         from .render import VideoRecorder
 
-        with VideoRecorder(sim, video, camera=ARM_VIEW_CAMERA if sim.arm is not None else VIEW_CAMERA) as rec:
+        camera = ARM_VIEW_CAMERA if sim.arm is not None else VIEW_CAMERA
+        width, height = video_size
+        with VideoRecorder(sim, video, fps=video_fps, width=width, height=height, camera=camera) as rec:
             return _run(sim, sc, pl, gs, opts, offsets, rec.capture)
     return _run(sim, sc, pl, gs, opts, offsets, None)
+
+
+#: Largest video frame side (pixels) and frame rate (per simulated second).
+MAX_VIDEO_SIDE = 1920
+MAX_VIDEO_FPS = 60
+
+
+def check_video(fps: int, size: tuple[int, int]) -> None:
+    """:class:`InputError` with one line unless ``fps`` and ``size`` make a
+    video the encoder writes as asked (sides multiples of 16)."""
+    if not 1 <= fps <= MAX_VIDEO_FPS:
+        raise InputError(f"video frame rate must be between 1 and {MAX_VIDEO_FPS} frames per second")
+    width, height = size
+    for side in (width, height):
+        if not (16 <= side <= MAX_VIDEO_SIDE and side % 16 == 0):
+            raise InputError(
+                f"video size {width}x{height}: width and height must be multiples of 16 from 16 to {MAX_VIDEO_SIDE}"
+            )
 
 
 def _executor(sim: SimModel, opts: ExecOptions, hook: FrameHook | None) -> Executor:

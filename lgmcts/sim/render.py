@@ -311,7 +311,10 @@ class VideoRecorder:
     ----------
     sim : the compiled scene model.
     path : the mp4 file to write.
-    fps : frames per second of simulated time.
+    fps : frames per second of simulated time. A frame is taken every whole
+        number of physics steps, so the video's own rate is the nearest one
+        that the timestep allows (``1 / (k * timestep)``); it plays in real
+        time either way.
     width, height : frame size (pixels; multiples of 16 encode best).
     camera : name of the model camera to film from.
     """
@@ -330,6 +333,8 @@ class VideoRecorder:
         self.width, self.height = width, height
         self.camera = sim.model.camera(camera).id
         self.every = max(1, round(1.0 / (fps * sim.model.opt.timestep)))
+        #: The rate the video is written at: one frame per ``every`` steps.
+        self.rate = 1.0 / (self.every * sim.model.opt.timestep)
         self._count = 0
         self._renderer: mujoco.Renderer | None = None
         self._writer: Any = None
@@ -346,7 +351,7 @@ class VideoRecorder:
         try:
             self._tmp = temporary_beside(self.path, suffix=".mp4")
             self._writer = imageio.get_writer(
-                self._tmp, fps=self.fps, codec="libx264", macro_block_size=16, ffmpeg_log_level="quiet"
+                self._tmp, fps=self.rate, codec="libx264", macro_block_size=16, ffmpeg_log_level="quiet"
             )
         except Exception as exc:
             self._discard()

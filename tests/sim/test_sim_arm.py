@@ -256,6 +256,28 @@ def test_cli_plan_check_execute_with_robot(tmp_path, example_scene):
         assert res.exit_code == 2 and "unknown robot" in res.output
 
 
+@pytest.mark.slow
+def test_cli_small_arm_video(render_ok, tmp_path, example_scene):
+    import imageio.v2 as imageio
+
+    # The size and rate `make demo` films the arm at.
+    plan = {"solved": True, "actions": [{"object": 1, "to": [0.0, 0.2, 0.0], "on": None}],
+            "goals": {"goals": [{"pattern": "pose", "objects": [1], "pose": [0.0, 0.2, 0.0]}]}}
+    plan_path, out = tmp_path / "plan.json", tmp_path / "arm.mp4"
+    plan_path.write_text(json.dumps(plan))
+    args = ["execute", str(example_scene), str(plan_path), "--robot", "ur5e", "--video", str(out),
+            "--video-size", "320x240", "--video-fps", "15", "--json"]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    sim_time = json.loads(res.stdout)["sim_time"]
+    frames = imageio.mimread(out, memtest=False)
+    assert frames[0].shape == (240, 320, 3)
+    # A frame every 17 steps of 4 ms (the whole number of steps nearest 1/15 s),
+    # and the file plays at that rate: real time.
+    assert abs(len(frames) - sim_time / (17 * 0.004)) <= 2
+    assert imageio.get_reader(out).get_meta_data()["fps"] == pytest.approx(250 / 17, abs=0.01)
+
+
 def test_plan_with_robot_keeps_every_pose_reachable():
     # Two blocks to go left of a bowl near the far right corner of a wide table:
     # much of that region is beyond the arm.

@@ -71,6 +71,25 @@ def test_execute_bad_input_exits_2_with_one_line(files, example_scene, example_g
     assert "Traceback" not in res.output
 
 
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--video-size", "320"], "--video-size must read WIDTHxHEIGHT in pixels"),
+        (["--video-size", "320x-240"], "--video-size must read WIDTHxHEIGHT in pixels"),
+        (["--video-size", "100x100"], "video size 100x100: width and height must be multiples of 16"),
+        (["--video-size", "4096x2048"], "video size 4096x2048: width and height must be multiples of 16 from 16 to"),
+        (["--video-fps", "0"], "video frame rate must be between 1 and 60"),
+        (["--video-fps", "120"], "video frame rate must be between 1 and 60"),
+    ],
+)
+def test_execute_bad_video_options_exit_2(files, example_scene, tmp_path, extra, message):
+    out = tmp_path / "run.mp4"
+    res = runner.invoke(app, ["execute", str(example_scene), str(files / "plan.json"), "--video", str(out), *extra])
+    assert res.exit_code == 2, res.output
+    assert message in res.stderr and len(res.stderr.strip().splitlines()) == 1
+    assert "Traceback" not in res.output and not out.exists()
+
+
 def test_observe_writes_points_scene(render_ok, example_scene, tmp_path):
     out = tmp_path / "observed.json"
     res = runner.invoke(app, ["observe", str(example_scene), "-o", str(out), "--width", "320", "--height", "240"])
