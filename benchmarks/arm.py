@@ -33,16 +33,12 @@ from collections import Counter
 from datetime import UTC, datetime
 from pathlib import Path
 
-CLASSES = ("out of reach", "joint limit", "arm collision", "dropped in transfer")
-
 
 def _classes(ex: dict) -> list[str]:
-    """The failure classes named in an execution's steps and reasons."""
-    text = " | ".join([s["message"] for s in ex["steps"] if not s["ok"]] + list(ex["reasons"]))
-    out = [c for c in CLASSES if c in text]
-    if not out and not ex["success"]:
-        out.append("placement or goal (no arm failure)")
-    return out
+    """The failure classes named in an execution's steps and reasons (as ``lgmcts bench`` records them)."""
+    from lgmcts.sim.executor import failure_classes
+
+    return failure_classes([s["message"] for s in ex["steps"] if not s["ok"]] + list(ex["reasons"]), ex["success"])
 
 
 def _execute(scene, plan, goals, robot: str | None) -> dict:

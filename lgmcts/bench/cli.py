@@ -72,11 +72,18 @@ def bench(
     llm_base_url: str | None = typer.Option(None, "--llm-base-url"),
     output: Path = typer.Option(..., "-o", "--output", help="Output folder (an interrupted run there resumes)."),
     instructions: str = typer.Option("ours", "--instructions", help=_INSTRUCTIONS_HELP + " Only with a suite name."),
+    robot: str | None = typer.Option(
+        None,
+        "--robot",
+        help="Plan within this arm's reach (ur5e), judge plans by it and execute them with it "
+        "instead of the floating suction cup.",
+    ),
 ) -> None:
     """Run a planning method on a suite; write results.jsonl, summary.md and summary.csv to OUTPUT.
 
     SR_p: a plan was found within the budget and is valid against the
-    ground-truth goals. SR_ep: that plan, executed in MuJoCo, ends in a state
+    ground-truth goals (and within the robot's reach, with --robot). SR_ep:
+    that plan, executed in MuJoCo (by the arm, with --robot), ends in a state
     meeting them.
     """
     from .report import summarise, to_csv, to_markdown
@@ -98,6 +105,7 @@ def bench(
             execute=not no_exec,
             llm_model=llm_model,
             llm_base_url=llm_base_url,
+            robot=robot,
         )
         opts.check()
         check_workers(workers, ray)
@@ -114,6 +122,10 @@ def bench(
         title = f"{suite_name}: lfsp (the language model places the objects), model {opts.llm_model}"
     else:
         title = f"{suite_name}: {opts.method}, parser {opts.parser}, max_iter {opts.max_iter}"
+    if opts.execute:
+        title += f", executed by the {opts.robot} arm" if opts.robot else ", executed by the floating cup"
+    elif opts.robot:
+        title += f", plans for the {opts.robot} arm"
     md = to_markdown(rows, title=title)
     (output / "summary.md").write_text(md + "\n" + _provenance() + "\n")
     (output / "summary.csv").write_text(to_csv(rows))

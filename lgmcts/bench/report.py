@@ -1,6 +1,7 @@
 """Summaries of benchmark records: SR_p, SR_ep, parse accuracy, actions,
 planning time and failures by cause, per category and overall, as Markdown
-and CSV."""
+and CSV; for executed plans, simulated and wall seconds per action and the
+classes of execution failure (those of the arm, with ``--robot``)."""
 
 from __future__ import annotations
 
@@ -24,7 +25,12 @@ class Row:
 
     Rates are fractions in [0, 1]; ``None`` where they do not apply (SR_ep
     of a run without execution, parse accuracy with ground-truth goals).
-    Times are planning times in seconds.
+    Times are planning times in seconds. ``executions``: the plans executed
+    in physics; ``sim_per_action_s`` and ``exec_wall_per_action_s``: medians
+    over them of simulated and wall seconds per executed action (``None``
+    when no record holds them); ``exec_classes``: executions per failure
+    class (:func:`lgmcts.sim.executor.failure_classes`; one execution may
+    name several).
     """
 
     group: str
@@ -36,6 +42,10 @@ class Row:
     plan_median_s: float | None
     plan_p95_s: float | None
     causes: dict[str, int] = field(default_factory=dict)
+    executions: int = 0
+    sim_per_action_s: float | None = None
+    exec_wall_per_action_s: float | None = None
+    exec_classes: dict[str, int] = field(default_factory=dict)
 
 
 def _row(group: str, recs: list[dict[str, Any]]) -> Row:
@@ -50,6 +60,11 @@ def _row(group: str, recs: list[dict[str, Any]]) -> Row:
     times_or_none = [(r.get("planning") or {}).get("time_s") for r in recs]
     times = np.array([t for t in times_or_none if t is not None], dtype=float)
     causes = Counter(r["cause"] for r in recs if r.get("cause"))
+    exs = [r["execution"] for r in recs if isinstance(r.get("execution"), dict)]
+    timed = [e for e in exs if e.get("sim_s") is not None and e.get("steps")]
+    classes: Counter = Counter()
+    for e in exs:
+        classes.update(e.get("classes") or ())
     return Row(
         group=group,
         tasks=n,
@@ -60,6 +75,10 @@ def _row(group: str, recs: list[dict[str, Any]]) -> Row:
         plan_median_s=float(np.median(times)) if len(times) else None,
         plan_p95_s=float(np.percentile(times, 95)) if len(times) else None,
         causes=dict(sorted(causes.items(), key=lambda kv: (CAUSES.index(kv[0]) if kv[0] in CAUSES else 99, kv[0]))),
+        executions=len(exs),
+        sim_per_action_s=float(np.median([e["sim_s"] / e["steps"] for e in timed])) if timed else None,
+        exec_wall_per_action_s=float(np.median([e["time_s"] / e["steps"] for e in timed])) if timed else None,
+        exec_classes=dict(classes.most_common()),
     )
 
 
@@ -101,6 +120,17 @@ def to_markdown(rows: list[Row], *, title: str = "") -> str:
             f"{_num(r.mean_actions, '.2f')} | {_num(r.plan_median_s, '.3f')} | {_num(r.plan_p95_s, '.3f')} | "
             f"{_causes(r.causes)} |"
         )
+    if any(r.sim_per_action_s is not None for r in rows):
+        lines += [
+            "",
+            "| group | executions | sim s / action (median) | wall s / action (median) | execution failure classes |",
+            "|---|---:|---:|---:|---|",
+        ]
+        for r in rows:
+            lines.append(
+                f"| {r.group} | {r.executions} | {_num(r.sim_per_action_s, '.2f')} | "
+                f"{_num(r.exec_wall_per_action_s, '.3f')} | {_causes(r.exec_classes)} |"
+            )
     return "\n".join(lines) + "\n"
 
 
@@ -120,6 +150,10 @@ def to_csv(rows: list[Row]) -> str:
             "plan_p95_s",
             *CAUSES,
             "other_failures",
+            "executions",
+            "sim_per_action_median_s",
+            "exec_wall_per_action_median_s",
+            "execution_classes",
         ]
     )
     for r in rows:
@@ -136,6 +170,10 @@ def to_csv(rows: list[Row]) -> str:
                 "" if r.plan_p95_s is None else f"{r.plan_p95_s:.4f}",
                 *[r.causes.get(c, 0) for c in CAUSES],
                 other,
+                r.executions,
+                "" if r.sim_per_action_s is None else f"{r.sim_per_action_s:.4f}",
+                "" if r.exec_wall_per_action_s is None else f"{r.exec_wall_per_action_s:.4f}",
+                "; ".join(f"{k}: {v}" for k, v in r.exec_classes.items()),
             ]
         )
     return buf.getvalue()

@@ -7,6 +7,14 @@ goals with ``parser="gt"``), plan, judge the plan with
 MuJoCo (:func:`lgmcts.sim.execute_plan`) and judge the final state against the
 ground-truth goals again. The record says where a failed task failed first.
 
+With a robot (``RunOptions(robot="ur5e")``, ``lgmcts bench --robot ur5e``)
+the built-in methods plan within the arm's reach, every plan is judged with
+the reach too (``lgmcts check --robot``), and the plan is executed by the arm
+instead of the floating suction cup; each execution records its simulated
+time and the classes of arm failure its steps name
+(:func:`lgmcts.sim.executor.failure_classes`). A plug-in planner is called as
+without a robot (it may ignore the reach; the checker then says so).
+
 Plug-in planners: ``method="package.module:function"`` calls
 ``function(scene, goals, seed, max_iter)`` with a
 :class:`~lgmcts.formats.SceneSpec`, a :class:`~lgmcts.formats.GoalSpec` and
@@ -78,6 +86,8 @@ class RunOptions:
     time_limit : optional planner wall-clock budget per task (s).
     execute : run solved plans in physics (SR_ep); off gives SR_p only.
     llm_model, llm_base_url : passed to the LLM parser and to ``lfsp``.
+    robot : ``"ur5e"``: plan for, judge by and execute with that arm
+        (:mod:`lgmcts.robot`); ``None``: no robot, the floating cup executes.
     """
 
     method: str = "lgmcts"
@@ -87,6 +97,7 @@ class RunOptions:
     execute: bool = True
     llm_model: str | None = None
     llm_base_url: str | None = None
+    robot: str | None = None
 
     def check(self) -> None:
         """Raise :class:`InputError` for options no task could run with."""
@@ -96,6 +107,10 @@ class RunOptions:
             raise InputError("--max-iter must be at least 1")
         if self.time_limit is not None and not (math.isfinite(self.time_limit) and self.time_limit > 0):
             raise InputError("--time-limit must be a positive finite number of seconds")
+        if self.robot is not None:
+            from ..robot import load_robot
+
+            load_robot(self.robot)  # an unknown robot is bad input
         resolve_method(self.method)
         if self.method in LLM_METHODS and not (self.llm_model or os.environ.get("LGMCTS_LLM_MODEL")):
             raise InputError(f"--method {self.method} needs --llm-model NAME (or LGMCTS_LLM_MODEL)")
@@ -170,6 +185,8 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
         "method": options.method,
         "parser": options.parser,
     }
+    if options.robot is not None:
+        rec["robot"] = options.robot
     scene = parse_scene(t.scene)
     gt = parse_goals(t.goals)
     cause: str | None = None
@@ -230,7 +247,7 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
         if plan is not None:
             from ..validate import check
 
-            verdict = check(scene, gt, plan)
+            verdict = check(scene, gt, plan, robot=options.robot)
             st = plan.stats or {}
             rec["plan"] = to_dict(plan)
             rec["planning"] = {
@@ -256,28 +273,10 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     if options.execute:
         sr_ep = False
         if sr_p and plan is not None:
-            t0 = time.perf_counter()
-            try:
-                from ..sim import execute_plan
-
-                ex = execute_plan(scene, plan, gt)
-                rec["execution"] = {
-                    "success": bool(ex.success),
-                    "reasons": list(ex.reasons)[:5],
-                    "steps": len(ex.steps),
-                    "time_s": round(time.perf_counter() - t0, 6),
-                }
-                sr_ep = bool(ex.success)
-                if not ex.success:
-                    cause, detail = "execution failed", _first(ex.reasons)
-            except Exception as exc:
-                cause, detail = "executor error", f"{type(exc).__name__}: {exc}"
-                rec["execution"] = {
-                    "success": False,
-                    "reasons": [detail],
-                    "steps": 0,
-                    "time_s": round(time.perf_counter() - t0, 6),
-                }
+            rec["execution"], failure = _execute(scene, plan, gt, options)
+            sr_ep = bool(rec["execution"]["success"])
+            if failure is not None:
+                cause, detail = failure
     rec["sr_p"] = sr_p
     rec["sr_ep"] = sr_ep
     rec["cause"] = cause
@@ -286,12 +285,44 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     return rec
 
 
+def _execute(scene, plan: PlanSpec, gt: GoalSpec, options: RunOptions) -> tuple[dict[str, Any], tuple[str, str] | None]:
+    """The execution record of ``plan`` in physics, and the failure's cause
+    and detail when it failed (``None`` when it succeeded)."""
+    t0 = time.perf_counter()
+    try:
+        from ..sim.executor import execute_plan, failure_classes
+
+        ex = execute_plan(scene, plan, gt, robot=options.robot)
+    except Exception as exc:
+        detail = f"{type(exc).__name__}: {exc}"
+        record = {"success": False, "reasons": [detail], "steps": 0, "time_s": round(time.perf_counter() - t0, 6)}
+        return record, ("executor error", detail)
+    failed = [s.message for s in ex.steps if not s.ok]
+    record = {
+        "success": bool(ex.success),
+        "reasons": list(ex.reasons)[:5],
+        "steps": len(ex.steps),
+        "time_s": round(time.perf_counter() - t0, 6),
+        "sim_s": round(float(ex.sim_time), 4),
+        "classes": failure_classes(failed + list(ex.reasons), bool(ex.success)),
+    }
+    return record, None if ex.success else ("execution failed", _first(ex.reasons))
+
+
 def _plan(scene, goals: GoalSpec, seed: int, options: RunOptions) -> PlanSpec:
     m = resolve_method(options.method)
     if isinstance(m, str):
         from ..planner import plan
 
-        return plan(scene, goals, method=m, seed=seed, max_iter=options.max_iter, time_limit=options.time_limit)
+        return plan(
+            scene,
+            goals,
+            method=m,
+            seed=seed,
+            max_iter=options.max_iter,
+            time_limit=options.time_limit,
+            robot=options.robot,
+        )
     out = m(scene, goals, seed, options.max_iter)
     if isinstance(out, PlanSpec):
         return out
@@ -332,6 +363,7 @@ def _safe(task: dict, options: RunOptions) -> dict[str, Any]:
             "seed": task.get("seed"),
             "method": options.method,
             "parser": options.parser,
+            **({"robot": options.robot} if options.robot is not None else {}),
             "sr_p": False,
             "sr_ep": False if options.execute else None,
             "cause": "task error",
@@ -383,7 +415,7 @@ def _check_config(out: Path, config: dict[str, Any]) -> None:
             old = json.loads(path.read_text())
         except (OSError, ValueError):
             old = None
-        keys = ("source", "method", "parser", "max_iter", "time_limit", "execute")
+        keys = ("source", "method", "parser", "max_iter", "time_limit", "execute", "robot")
         if isinstance(old, dict):
             diff = [k for k in keys if old.get(k) != config.get(k)]
             if diff:

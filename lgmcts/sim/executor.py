@@ -51,6 +51,20 @@ FrameHook = Callable[[mujoco.MjData], None]
 #: Step failures that only the arm causes; each fails an execution with the arm.
 ARM_FAILURES = ("out of reach", "joint limit", "arm collision", "dropped in transfer")
 
+#: The class of a failed execution that names none of :data:`ARM_FAILURES`.
+OTHER_FAILURE = "placement or goal (no arm failure)"
+
+
+def failure_classes(messages: list[str], success: bool) -> list[str]:
+    """The classes of :data:`ARM_FAILURES` that ``messages`` (the failed steps'
+    messages and the verdict's reasons) name, in that order; a failed
+    execution naming none is :data:`OTHER_FAILURE`, a success none."""
+    text = " | ".join(messages)
+    out = [c for c in ARM_FAILURES if c in text]
+    if not out and not success:
+        out.append(OTHER_FAILURE)
+    return out
+
 
 @dataclass(frozen=True)
 class ExecOptions:

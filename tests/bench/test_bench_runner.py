@@ -233,3 +233,112 @@ def test_ray_failures_are_one_line_with_an_auth_hint():
     line = _ray_failure("ray://head:10001", RuntimeError("UNAUTHENTICATED: invalid\nauthentication token"))
     assert "\n" not in line and "RAY_AUTH_TOKEN" in line and "UNAUTHENTICATED" in line
     assert "RAY_AUTH_TOKEN" not in _ray_failure("ray://head:10001", ConnectionError("refused"))
+
+
+# ---------------------------------------------------------------- the arm (--robot)
+
+#: A wide table whose far corner is beyond the UR5e's reach (not the floating cup's).
+WIDE_TASK = {
+    "id": "wide-0",
+    "seed": 0,
+    "suite": "elgr",
+    "category": "pose",
+    "scene": {
+        "workspace": {"x": [-0.7, 0.7], "y": [-0.3, 0.6]},
+        "objects": [{"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+                     "pose": [0.1, 0.1, 0.0]}],
+    },
+    "instruction": "put the red block in the far right corner",
+    "goals": {"goals": [{"pattern": "pose", "objects": [1], "pose": [0.62, 0.52, 0.0]}]},
+}
+
+
+def test_unknown_robot_is_bad_input(tmp_path, tasks):
+    with pytest.raises(InputError, match=r"unknown robot 'ur9' \(known: ur5e\)"):
+        RunOptions(robot="ur9").check()
+    with pytest.raises(InputError, match="unknown robot"):
+        run_suite(tasks[:1], tmp_path / "r", options=RunOptions(robot="ur9", parser="gt", execute=False), workers=1)
+
+
+def test_a_run_resumes_only_with_the_same_robot(tmp_path, tasks):
+    out = tmp_path / "run"
+    arm = RunOptions(method="lgmcts", parser="gt", execute=False, max_iter=2000, robot="ur5e")
+    (rec,) = run_suite(tasks[:1], out, options=arm, workers=1, source="t")
+    assert rec["robot"] == "ur5e" and rec["plan"]["stats"]["robot"] == "ur5e"
+    with pytest.raises(InputError, match="robot='ur5e', not None"):
+        run_suite(tasks[:1], out, options=PLAN_ONLY, workers=1, source="t")
+
+
+def test_plugin_plans_are_judged_by_the_robots_reach(tmp_path):
+    mod = _write_planner(
+        tmp_path,
+        (
+            "def corner(scene, goals, seed, max_iter):\n"
+            "    return {'solved': True, 'actions': [{'object': 1, 'to': [0.62, 0.52, 0.0], 'on': None}]}\n"
+        ),
+    )
+    try:
+        opts = RunOptions(method=f"{mod}:corner", parser="gt", execute=False)
+        assert run_task(WIDE_TASK, opts)["sr_p"] is True  # the floating cup reaches the corner
+        rec = run_task(WIDE_TASK, RunOptions(method=f"{mod}:corner", parser="gt", execute=False, robot="ur5e"))
+        assert rec["sr_p"] is False and rec["cause"] == "plan invalid"
+        assert rec["detail"] == "action 1: the place (0.620, 0.520) of object 1 is out of the ur5e's reach"
+        # The built-in planner, told the robot, does not go there at all.
+        rec = run_task(WIDE_TASK, RunOptions(parser="gt", execute=False, max_iter=50, robot="ur5e"))
+        assert rec["cause"] == "plan not found" and rec["plan"]["stats"]["robot"] == "ur5e"
+    finally:
+        sys.path.remove(str(tmp_path))
+
+
+@pytest.mark.slow
+def test_run_task_executes_with_the_arm(tasks):
+    rec = run_task(tasks[0], RunOptions(parser="gt", max_iter=2000, robot="ur5e"))
+    assert rec["sr_p"] is True and rec["sr_ep"] is True, rec["detail"]
+    ex = rec["execution"]
+    assert ex["steps"] == rec["planning"]["actions"] and ex["classes"] == []
+    # The arm's motion takes seconds of simulated time per action (the floating cup's far less).
+    cup = run_task(tasks[0], RunOptions(parser="gt", max_iter=2000))["execution"]
+    assert ex["sim_s"] / ex["steps"] > 2 * cup["sim_s"] / cup["steps"] > 0
+
+
+def test_summary_of_executions_with_the_arm():
+    def rec(i: str, ok: bool, sim: float, wall: float, steps: int, classes: list[str]) -> dict:
+        return {
+            "id": i, "category": "x", "sr_p": True, "sr_ep": ok, "cause": None if ok else "execution failed",
+            "parse": {"correct": True}, "planning": {"actions": steps, "time_s": 0.1},
+            "execution": {"success": ok, "reasons": [], "steps": steps, "time_s": wall, "sim_s": sim,
+                          "classes": classes},
+        }
+
+    recs = [
+        rec("a", True, 8.0, 0.4, 2, []),
+        rec("b", False, 9.0, 0.9, 3, ["arm collision"]),
+        rec("c", False, 2.0, 0.1, 1, ["out of reach", "arm collision"]),
+        {"id": "d", "category": "x", "sr_p": False, "sr_ep": False, "cause": "plan not found", "planning": {}},
+    ]
+    (row,) = summarise(recs)
+    assert row.executions == 3
+    assert row.sim_per_action_s == pytest.approx(3.0)  # median of 4, 3, 2
+    assert row.exec_wall_per_action_s == pytest.approx(0.2)  # median of 0.2, 0.3, 0.1
+    assert row.exec_classes == {"arm collision": 2, "out of reach": 1}
+    md = to_markdown([row])
+    assert "| all | 3 | 3.00 | 0.200 | arm collision: 2, out of reach: 1 |" in md
+    assert to_csv([row]).splitlines()[-1].endswith(",3,3.0000,0.2000,arm collision: 2; out of reach: 1")
+    # Records without execution timings (older runs, --no-exec) keep the one table.
+    plain = to_markdown(summarise([{**r, "execution": None} for r in recs]))
+    assert "sim s / action" not in plain
+
+
+@pytest.mark.slow
+def test_bench_cli_with_the_arm(tmp_path):
+    out = tmp_path / "arm"
+    cmd = [sys.executable, "-m", "lgmcts", "bench", "--suite", "elgr", "--n", "2", "--parser", "gt",
+           "--workers", "1", "--max-iter", "2000", "-o", str(out), "--robot", "ur5e"]
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO, timeout=170)
+    assert r.returncode == 0, r.stderr
+    assert "executed by the ur5e arm" in r.stdout and "| all | 2 | 100.0% | 100.0% |" in r.stdout
+    assert "| group | executions | sim s / action (median) |" in r.stdout
+    assert json.loads((out / "run.json").read_text())["robot"] == "ur5e"
+    assert all(rec["execution"]["sim_s"] > 0 for rec in load_results(out))
+    r = subprocess.run([*cmd[:-1], "ur9"], capture_output=True, text=True, cwd=REPO, timeout=120)
+    assert r.returncode == 2 and r.stderr.strip() == "unknown robot 'ur9' (known: ur5e)"
