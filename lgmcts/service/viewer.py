@@ -121,6 +121,7 @@ _PAGE = """<!DOCTYPE html>
     <label>method <select id="method"><option>lgmcts</option><option>greedy</option><option>pmcts</option></select></label>
     <label>seed <input id="seed" type="number" value="0" style="width:5em"></label>
     <label>max iter <input id="max-iter" type="number" value="10000" style="width:6em"></label>
+    <label>robot <select id="robot"><option value="">none</option><option value="ur5e">UR5e arm</option></select></label>
   </div>
   <div class="row"><button type="button" id="plan">Plan</button><button type="button" id="check">Check plan</button></div>
   <div id="status" role="status"></div>
@@ -177,11 +178,13 @@ _PAGE = """<!DOCTYPE html>
       var instruction = $("instruction").value.trim();
       var body = { scene: scene, options: { method: $("method").value, seed: parseInt($("seed").value || "0", 10),
                                              max_iter: parseInt($("max-iter").value || "10000", 10) } };
+      var robot = $("robot").value;
+      if (robot) body.options.robot = robot;  // picks and places within the arm's reach
       if (instruction) body.instruction = instruction; else body.goals = readJSON("goals", "the goals");
       status("planning...");
       var t0 = performance.now();
       var plan = await post("/plan", body);
-      last = { scene: scene, plan: plan };
+      last = { scene: scene, plan: plan, robot: robot || null };
       await show(scene, plan, instruction || null);
       status((plan.solved ? "solved: " : "not solved: ") + plan.actions.length + " actions in " +
              Math.round(performance.now() - t0) + " ms", plan.solved ? "ok" : "error");
@@ -191,7 +194,8 @@ _PAGE = """<!DOCTYPE html>
   async function doCheck() {
     try {
       if (!last) throw new Error("plan first");
-      var v = await post("/check", { scene: last.scene, goals: last.plan.goals, plan: last.plan });
+      // A plan made for an arm is checked against its reach too.
+      var v = await post("/check", { scene: last.scene, goals: last.plan.goals, plan: last.plan, robot: last.robot });
       status(v.valid ? "the plan is valid" : "invalid: " + v.reasons.join("; "), v.valid ? "ok" : "error");
     } catch (e) { status(e.message, "error"); }
   }

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 from collections.abc import Iterator
 
 import httpx
@@ -104,3 +105,31 @@ def test_planner_keeps_out_of_the_unreachable_corner(arm_client):
     assert arm.status_code == 200
     assert arm.json()["solved"] is False and arm.json()["stats"]["robot"] == "ur5e"
     assert arm.json()["actions"] == []
+
+
+@pytest.mark.skipif(
+    shutil.which("chromium") is None, reason="Debian's chromium is not installed (scripts/system-deps.sh)"
+)
+def test_page_plans_for_the_arm(arm_client):
+    sync_api = pytest.importorskip("playwright.sync_api")
+    errors: list[str] = []
+    with sync_api.sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=shutil.which("chromium"), args=["--no-sandbox", "--disable-gpu"])
+        try:
+            page = browser.new_page()
+            page.on("pageerror", lambda e: errors.append(str(e)))
+            page.goto(str(arm_client.base_url) + "/")
+            page.fill("#instruction", "")  # the example's goals: no language model needed
+            page.select_option("#robot", "ur5e")
+            page.click("#plan")
+            page.wait_for_function("document.getElementById('status').textContent.startsWith('solved')", timeout=30_000)
+            plan = json.loads(page.inner_text("#json"))
+            page.click("#check")
+            page.wait_for_function(
+                "document.getElementById('status').textContent === 'the plan is valid'", timeout=30_000
+            )
+        finally:
+            browser.close()
+    assert errors == []
+    assert plan["stats"]["robot"] == "ur5e"
+    assert lgmcts.check(SCENE, plan["goals"], plan, robot="ur5e").valid
