@@ -31,6 +31,7 @@ from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
 from .search import SearchOptions, SearchResult, greedy, mcts
+from .sequence import eligible, sequence_plan
 
 __all__ = ["plan", "METHODS", "goal_poses"]
 
@@ -79,8 +80,24 @@ def _accept(opts: SearchOptions) -> Accept:
 Outcome = tuple[SearchResult[Action], dict[str, Any]]
 
 
+def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
+    """The fast first attempt of :mod:`.sequence` (pose goals on discs), accepted like a found plan; ``None`` when
+    it does not apply, gets stuck or is refused."""
+    if not opts.sequence or not eligible(problem):
+        return None
+    t0 = time.perf_counter()
+    actions = sequence_plan(problem)
+    if actions is None:
+        return None
+    kept = _accept(opts)(problem, actions, None)
+    if kept is None:
+        return None
+    return SearchResult(True, tuple(kept), 0, 0, time.perf_counter() - t0, solutions=1, found=len(actions)), \
+        {"sequenced": True}
+
+
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
-    return mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
+    return _sequenced(problem, opts) or (mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {})
 
 
 def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:

@@ -66,6 +66,11 @@ class SearchOptions:
         means the search could not have succeeded, so solved plans are the
         same with or without it.
     proof_after_s : see ``proof_after``.
+    sequence : for ``lgmcts``, where every goal is a ``pose`` goal of one
+        cylinder and all stand on the table, first try the plan of
+        :mod:`lgmcts.planner.sequence` (goal order by what blocks what,
+        parking spots where blocked in a cycle); the tree search runs only
+        when that plan gets stuck or is refused by the validator.
     """
 
     max_iter: int = 10_000
@@ -81,6 +86,7 @@ class SearchOptions:
     step: StepOptions = field(default_factory=StepOptions)
     proof_after: int = 20
     proof_after_s: float = 0.25
+    sequence: bool = True
 
 
 @dataclass(frozen=True)
