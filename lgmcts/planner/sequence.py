@@ -33,7 +33,9 @@ import math
 import numpy as np
 
 from ..formats import Action
+from ..geometry import wrap_angle
 from ..patterns import CLEARANCE
+from ..patterns.pose import XY_TOL, YAW_TOL
 from ..scene import TABLE
 from .problem import Problem
 
@@ -191,6 +193,15 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     return None if best is None else (best[1], best[2])
 
 
+def _score(t: _Table, b: np.ndarray) -> np.ndarray:
+    """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
+    move frees them) first, then the one that covers the most."""
+    n = len(t.r)
+    score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
+    score[t.movers[t.done]] = 0  # a disc on its goal stays
+    return score
+
+
 def _action(oid: int, pose, purpose: str) -> Action:
     """A table placement; built without the model's checks (the numbers are finite poses on the table, and the
     validator replays the plan)."""
@@ -208,9 +219,11 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     t = _Table(problem)
     limit = 3 * sc.n if max_actions is None else max_actions
     spots: _Spots | None = None
-    # An object already on its goal stays there.
-    at = np.hypot(*(t.pos[t.movers] - t.goal).T) <= 1e-9
-    t.done[at & (np.abs(sc.initial.poses[t.movers, 2] - t.yaw) <= 1e-9)] = True
+    # An object that already meets its goal stays where it is, unless it covers another goal.
+    at = np.hypot(*(t.pos[t.movers] - t.goal).T) <= XY_TOL
+    at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
+    at &= ~t.blocked[:, t.movers].any(axis=0)
+    t.done[at] = True
     actions: list[Action] = []
     while not t.done.all():
         if len(actions) >= limit:
@@ -231,9 +244,7 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                     spots.closed(t, k)
             continue
         b = t.blocked[~t.done]
-        # The disc that alone covers the most goals (its move frees them), then the one that covers the most.
-        score = b[b.sum(axis=1) == 1].sum(axis=0) * (sc.n + 1) + b.sum(axis=0)
-        score[t.movers[t.done]] = 0  # a disc on its goal stays
+        score = _score(t, b)
         if spots is None:
             spots = _Spots(t, sc.bounds)
         park = _choose(t, spots, score, b.sum(axis=0))
