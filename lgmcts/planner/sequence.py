@@ -120,7 +120,7 @@ class _Spots:
         rad = np.atleast_1d(rad)
         if not len(self.gx) or not len(self.gy) or not len(xy):
             return np.zeros(0, dtype=np.intp)
-        k = int(math.ceil(2 * float(rad.max()) / self.step)) + 2
+        k = math.ceil(2 * float(rad.max()) / self.step) + 2
         ix = np.floor((xy[:, 0] - rad - self.gx[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
         iy = np.floor((xy[:, 1] - rad - self.gy[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
         ix3 = np.broadcast_to(ix[:, None, :], (len(xy), k, k))
@@ -202,7 +202,7 @@ def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     return score
 
 
-def _action(oid: int, pose, purpose: str) -> Action:
+def _action(oid: int, pose: tuple[float, float, float] | np.ndarray, purpose: str) -> Action:
     """A table placement; built without the model's checks (the numbers are finite poses on the table, and the
     validator replays the plan)."""
     return Action.model_construct(object=oid, to=(float(pose[0]), float(pose[1]), float(pose[2])), on=None,
