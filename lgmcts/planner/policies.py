@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..feasibility import precheck
 from ..formats import Action, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..patterns import Pattern, registry
-from ..patterns.base import fit_json, goal_xy
+from ..patterns.base import BasePattern, fit_json, goal_xy
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
 from .domain import Accept, Rearrangement, validated
@@ -89,7 +89,9 @@ def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
     actions = sequence_plan(problem)
     if actions is None:
         return None
-    kept = _accept(opts)(problem, actions, None)
+    # A plan without a parked disc moves each disc once, straight to its goal: polishing has nothing to drop.
+    parked = any(a.purpose == "relocate" for a in actions)
+    kept = (_accept(opts) if parked else validated)(problem, actions, None)
     if kept is None:
         return None
     return SearchResult(True, tuple(kept), 0, 0, time.perf_counter() - t0, solutions=1, found=len(actions)), \
@@ -217,5 +219,7 @@ def final_fits(scene: Scene, goals: GoalSpec, actions: Sequence[Action]) -> list
     (JSON-ready; ``None`` for patterns without a fit): what a plan carries so
     that viewers draw the arrangement without fitting it again."""
     reg = registry()
+    if all(type(reg[g.pattern]).fit is BasePattern.fit for g in goals.goals):
+        return [None] * len(goals.goals)  # patterns without a fit (pose goals): no replay needed
     final = replay(scene, actions)[-1]
     return [fit_json(reg[g.pattern].fit(goal_xy(g, scene, final.poses))) for g in goals.goals]
