@@ -121,15 +121,14 @@ class _Spots:
         if not len(self.gx) or not len(self.gy) or not len(xy):
             return np.zeros(0, dtype=np.intp)
         k = math.ceil(2 * float(rad.max()) / self.step) + 2
+        w, h = len(self.gx), len(self.gy)
         ix = np.floor((xy[:, 0] - rad - self.gx[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
         iy = np.floor((xy[:, 1] - rad - self.gy[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
-        ix3 = np.broadcast_to(ix[:, None, :], (len(xy), k, k))
-        iy3 = np.broadcast_to(iy[:, :, None], (len(xy), k, k))
-        ok = (ix3 >= 0) & (ix3 < len(self.gx)) & (iy3 >= 0) & (iy3 < len(self.gy))
-        px = self.gx[np.where(ok, ix3, 0)]
-        py = self.gy[np.where(ok, iy3, 0)]
-        ok &= np.hypot(px - xy[:, 0, None, None], py - xy[:, 1, None, None]) < rad[:, None, None]
-        return (iy3 * len(self.gx) + ix3)[ok]
+        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
+        dx = np.where(ix == ixc, self.gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
+        dy = np.where(iy == iyc, self.gy[iyc] - xy[:, 1:], np.inf)
+        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
+        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
 
     def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
         """Disc ``j`` moved from ``old`` to where it stands now (applied at the next query, all moves at once)."""
