@@ -170,6 +170,7 @@ class _Spots:
 
 #: How many discs, best score first, are offered a parking spot when the goals left are blocked.
 CANDIDATES = 4
+CYCLES = True
 
 
 def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
@@ -194,10 +195,23 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
 
 def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
-    move frees them) first, then the one that covers the most."""
+    move frees them) first, then the one that covers the most. Only discs on a cycle of "my goal is covered by
+    you" are candidates when there are such: any other disc reaches its goal once the cycles are broken, so
+    parking it would cost a move for nothing."""
     n = len(t.r)
     score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
     score[t.movers[t.done]] = 0  # a disc on its goal stays
+    if CYCLES:
+        from scipy.sparse import csr_matrix  # only once a cycle must be broken
+        from scipy.sparse.csgraph import connected_components
+
+        rows = np.flatnonzero(~t.done)
+        movers = t.movers[rows]
+        graph = csr_matrix(b[:, movers])  # open goal -> the open movers covering it
+        _, label = connected_components(graph, directed=True, connection="strong")
+        on_cycle = np.bincount(label)[label] > 1
+        if on_cycle.any() and (score[movers[on_cycle]] > 0).any():
+            score[movers[~on_cycle]] = 0
     return score
 
 
