@@ -170,6 +170,7 @@ class _Spots:
 
 #: How many discs, best score first, are offered a parking spot when the goals left are blocked.
 CANDIDATES = 4
+#: Park only discs on a cycle when there are such (see :func:`_score`); off gives the plain score, for comparison.
 CYCLES = True
 
 

@@ -113,3 +113,18 @@ def test_plans_pass_the_validator_and_do_not_depend_on_the_seed(seed, n, density
     if p.stats.get("sequenced"):
         assert p.solved and check(c.scene, c.goals, p).valid
         assert q.actions == p.actions
+
+
+def test_only_a_disc_on_a_cycle_is_parked():
+    # A and B each cover the other's goal (a cycle). C's goal is under A, and C covers the goals of D, E and F:
+    # C frees the most goals, but it is on no cycle, so it waits for A to leave; one disc is parked, not two.
+    r = 50.0
+    start = [(200.0, 500.0), (301.0, 500.0), (600.0, 500.0), (150.0, 150.0), (300.0, 150.0), (450.0, 150.0)]
+    goal = [(330.0, 560.0), (170.0, 440.0), (200.0, 590.0), (600.0, 580.0), (530.0, 450.0), (670.0, 450.0)]
+    c = _case(start, goal, r)
+    actions = sequence_plan(_problem(c))
+    assert actions is not None
+    parked = [a.object for a in actions if a.purpose == "relocate"]
+    assert len(actions) == 7 and len(parked) == 1 and parked[0] in (1, 2)
+    p = plan(c.scene, c.goals, seed=0)
+    assert p.solved and p.stats.get("sequenced") and check(c.scene, c.goals, p).valid
