@@ -194,18 +194,6 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     return None if best is None else (best[1], best[2])
 
 
-def _on_cycle(a: np.ndarray) -> np.ndarray:
-    """Which nodes of the directed graph with boolean adjacency ``a`` (``(m, m)``, no self-loops) lie on a cycle:
-    the diagonal of the transitive closure, by squaring (paths of length up to 1, 2, 4, ... until nothing new)."""
-    reach = a.astype(np.float32)
-    for _ in range(max(1, int(a.shape[0]).bit_length())):
-        grown = (reach @ reach > 0) | (reach > 0)
-        if np.array_equal(grown, reach > 0):
-            break
-        reach = grown.astype(np.float32)
-    return np.diagonal(reach) > 0
-
-
 def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
     move frees them) first, then the one that covers the most. Only discs on a cycle of "my goal is covered by
@@ -215,8 +203,14 @@ def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
     score[t.movers[t.done]] = 0  # a disc on its goal stays
     if CYCLES:
-        movers = t.movers[~t.done]
-        on_cycle = _on_cycle(b[:, movers])
+        from scipy.sparse import csr_matrix  # only once a cycle must be broken
+        from scipy.sparse.csgraph import connected_components
+
+        rows = np.flatnonzero(~t.done)
+        movers = t.movers[rows]
+        graph = csr_matrix(b[:, movers])  # open goal -> the open movers covering it
+        _, label = connected_components(graph, directed=True, connection="strong")
+        on_cycle = np.bincount(label)[label] > 1
         if on_cycle.any() and (score[movers[on_cycle]] > 0).any():
             score[movers[~on_cycle]] = 0
     return score

@@ -128,17 +128,3 @@ def test_only_a_disc_on_a_cycle_is_parked():
     assert len(actions) == 7 and len(parked) == 1 and parked[0] in (1, 2)
     p = plan(c.scene, c.goals, seed=0)
     assert p.solved and p.stats.get("sequenced") and check(c.scene, c.goals, p).valid
-
-
-@settings(max_examples=60, deadline=None)
-@given(m=st.integers(1, 40), p=st.floats(0.0, 0.3), seed=st.integers(0, 1000))
-def test_on_cycle_matches_strongly_connected_components(m, p, seed):
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    from lgmcts.planner.sequence import _on_cycle
-
-    a = np.random.default_rng(seed).random((m, m)) < p
-    np.fill_diagonal(a, False)
-    _, label = connected_components(csr_matrix(a), directed=True, connection="strong")
-    assert np.array_equal(_on_cycle(a), np.bincount(label)[label] > 1)
