@@ -13,7 +13,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo test golden bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo test golden golden-parse bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -46,6 +46,11 @@ test: install system-deps
 # Rewrite tests/data/golden_plans.json: only when a change is meant to alter plans.
 golden: install
 	$(PY) tests/core/golden.py --write
+
+# Rewrite tests/data/golden_parses.json: only when a change is meant to alter what
+# the offline parser reads (or the reason of a refusal); say why in the commit.
+golden-parse: install
+	$(PY) tests/language/golden_parse.py --write
 
 bench: install
 	$(PY) benchmarks/planner.py random --n 300

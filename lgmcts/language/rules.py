@@ -36,7 +36,9 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
+from . import lexicon
 from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .lexicon import HUES, SHAPE_NOUNS, alternation
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
@@ -628,7 +630,7 @@ _LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do no
                     r"they are)| untouched| as is)?(?: please)?$")
 
 #: Plain colour words, said one after another for one object each ("red orange yellow").
-_HUES = frozenset("red green blue yellow purple white black orange pink brown gray grey".split())
+_HUES = HUES
 
 
 class _Parser:
@@ -2730,13 +2732,10 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
     return [merged.get(k, g) for k, g in enumerate(goals) if k not in drop]
 
 
-_DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
-              "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
+_DIR_WORDS = lexicon.DIRECTIONS
 
 #: Words of stack roles and orders, which a remark never has.
-_ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle", "summit", "peak", "foundation",
-                         "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between",
-                         "finish", "crowning", "layer", "carrying", "supporting", "holding", "capping", "topping"})
+_ROLE_WORDS = lexicon.ROLE_WORDS
 
 #: Superlatives of place -> (axis of the pose, sign): the object with the least signed value is meant.
 _SUPERLATIVE = {"leftmost": (0, 1), "rightmost": (0, -1), "frontmost": (1, 1), "nearest": (1, 1), "closest": (1, 1),
@@ -2787,7 +2786,7 @@ _CUES = (
                 r"on the (?:left|right) of)"), _LEFT_RIGHT),
     (re.compile(r"\b(lin(?:e|es|ed|ing) (?:them |it |those |these )?up|(?:a|one|single|straight) (?:line|row)|in (?:a )?row)\b"),
      ("line",)),
-    (re.compile(r"\b(circle|ring|loop)\b"), ("circle",)),
+    (re.compile(rf"\b({alternation(SHAPE_NOUNS['circle'])})\b"), ("circle",)),
     (re.compile(r"\b(rectangle|square|rectangular)\b"), ("rectangle",)),
     (re.compile(r"\b(stack(?:ed|ing|s)?|pil(?:e|es|ed|ing)|tower|on top of)\b"), ("tower",)),
 )

@@ -20,6 +20,7 @@ Every function works on lower-cased token tuples (:func:`.grounding.tokenize`).
 from __future__ import annotations
 
 from ..errors import InputError
+from . import lexicon
 
 __all__ = ["normalise", "take_params", "stack_roles", "SIZES", "ROWS", "COLS", "FACINGS", "REGION_NOUNS"]
 
@@ -117,33 +118,19 @@ def normalise(words: tuple[str, ...]) -> tuple[str, ...]:
 
 # ---------------------------------------------------------------- parameters
 #: Size words -> the goal's ``size``.
-SIZES = {
-    "small": "small", "little": "small", "tiny": "small", "short": "small", "compact": "small", "tight": "small",
-    "smaller": "small", "shorter": "small", "mini": "small",
-    "medium": "medium", "moderate": "medium", "average": "medium", "mid": "medium", "midsize": "medium",
-    "large": "large", "big": "large", "huge": "large", "long": "large", "wide": "large", "giant": "large",
-    "bigger": "large", "larger": "large", "longer": "large", "broad": "large", "spacious": "large",
-}
+SIZES = lexicon.SIZES
 #: Row words (the table's y direction: bottom is the side nearest the robot's
 #: viewer, "front") and column words.
-ROWS = {"top": "top", "back": "top", "upper": "top", "far": "top", "rear": "top", "bottom": "bottom",
-        "front": "bottom", "lower": "bottom", "near": "bottom", "middle": "middle", "center": "middle",
-        "centre": "middle", "central": "middle"}
-COLS = {"left": "left", "right": "right", "center": "center", "centre": "center", "middle": "center",
-        "central": "center", "leftmost": "left", "rightmost": "right"}
-FACINGS = {"north": "north", "east": "east", "south": "south", "west": "west", "up": "north", "down": "south",
-           "northward": "north", "eastward": "east", "southward": "south", "westward": "west",
-           "northwards": "north", "eastwards": "east", "southwards": "south", "westwards": "west"}
-REGION_NOUNS = frozenset({"corner", "edge", "side", "part", "area", "half", "end", "region", "portion", "section",
-                          "quadrant", "zone", "spot", "border"})
-_TABLE = frozenset({"table", "workspace", "tabletop", "desk", "surface", "board"})
+ROWS = lexicon.ROWS
+COLS = lexicon.COLS
+FACINGS = lexicon.FACINGS
+REGION_NOUNS = lexicon.REGION_NOUNS
+_TABLE = lexicon.TABLE_WORDS
 _REGION_PREP = frozenset({"in", "at", "on", "near", "along", "toward", "towards", "by", "to", "into", "onto",
                           "around", "over", "across", "within", "against", "close"})
-_VIEWER = frozenset({"me", "us", "viewer", "camera", "you", "robot"})
-_SIDE_FACINGS = {"left": "west", "right": "east", "leftward": "west", "rightward": "east", "leftwards": "west",
-                 "rightwards": "east"}
-_FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
-                         "heading"})
+_VIEWER = lexicon.VIEWER_WORDS
+_SIDE_FACINGS = lexicon.SIDE_FACINGS
+_FACE_VERBS = lexicon.FACE_VERBS
 
 
 def merged_region(old: str, new: str) -> str | None:
