@@ -30,9 +30,8 @@ __all__ = ["Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
 FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
                         "heading", "point", "points", "turn", "aim", "aiming", "directed"})
 #: Parts of an object that say which way it points ("tines toward the right edge").
-POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "points", "spout",
-                            "spouts", "fronts", "front", "labels", "label", "openings", "opening", "heads", "head",
-                            "tops", "noses", "nose", "prongs", "ends", "faces", "bowls"})
+POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
+                            "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs"})
 _TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight",
            "directly", "round", "around", "so", "they", "it", "that", "all", "are", "is", "as")
 _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
@@ -148,12 +147,13 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
         k = j + 1
         while k < n and words[k] in ("along", "across", "at", "by", "on", "in", "through", "down", "the", "of"):
             k += 1
-        if k < n and words[k] in ("front", "back", "near", "far", "rear", "top", "bottom"):
+        if k < n and words[k] in ("front", "back", "near", "far", "rear", "top", "bottom", "left", "right"):
             end = k + 1 + (k + 1 < n and words[k + 1] in _SIDE_NOUNS)
+            if words[end : end + 1] == ("of",) and _of_table(words, end) == end:
+                return None  # "a strip on the left of the plate": a relation, not a place on the table
+            if words[k] in ("left", "right"):
+                return Place(None, words[k], True), _of_table(words, end)
             return Place(_ROWS[words[k]], None, True), _of_table(words, end)
-        if k < n and words[k] in ("left", "right"):
-            end = k + 1 + (k + 1 < n and words[k + 1] in _SIDE_NOUNS)
-            return Place(None, words[k], True), _of_table(words, end)
         if k < n and words[k] in _CENTRE:
             # "a band across the middle" runs left to right: the middle row; "down the middle" the column
             across = "across" in words[j + 1 : k] or "along" in words[j + 1 : k]

@@ -20,6 +20,7 @@ Every function works on lower-cased token tuples (:func:`.grounding.tokenize`).
 from __future__ import annotations
 
 from ..errors import InputError
+from .places import POINTING_PARTS, read_facing, read_place
 
 __all__ = ["normalise", "take_params", "stack_roles", "SIZES", "ROWS", "COLS", "FACINGS", "REGION_NOUNS"]
 
@@ -234,13 +235,14 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 protected[k] = max(protected.get(k, k), k + len(seq))
     seen_pattern = False
     blocked = False
-    params: dict[str, str] = {}
+    band = False
+    params: dict[str, str | int] = {}
     keep: list[str] = []
     row = col = None
     n = len(words)
     i = 0
 
-    def put(key: str, val: str, text: str) -> None:
+    def put(key: str, val: str | int, text: str) -> None:
         if key in params and params[key] != val:
             raise InputError(f"'{text}': two different {key}s ({params[key]}, {val}) for one arrangement")
         params[key] = val
@@ -261,6 +263,16 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             continue
         if pattern_nouns(w):
             seen_pattern, blocked = True, False
+        if w.startswith("sizemark") and len(w) == 9:
+            put("measure", ord(w[-1]) - 97, " ".join(words))  # a measure in numbers (.stages.mark_measures)
+            i += 1
+            continue
+        if w in _FACE_VERBS or w in POINTING_PARTS:
+            face = read_facing(words, i)  # by an edge or the viewer: "facing the back wall", "tines toward me"
+            if face is not None:
+                put("facing", face[0], " ".join(words))
+                i = face[1]
+                continue
         if w in _FACE_VERBS:
             j = i + 1
             while j < n and (words[j] in ("to", "the", "toward", "towards", "in", "direction", "of", ",", "like")
@@ -300,7 +312,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                     put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
                 i += 1
                 continue
-        got = _region_run(words, i, stack)
+        free = read_place(words, i)  # said freely: "dead centre", "partway back on the right", "a strip along the front"
+        got = (free[0].row, free[0].col, free[1]) if free is not None else _region_run(words, i, stack)
         if blocked and got is not None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
@@ -309,6 +322,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             got = None
         if got is not None:
             r, c, j = got
+            band = band or (free is not None and free[0].band)
             if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
                 # "at the back of the table, in the middle": the middle of that band.
                 r, c = None, "center"
@@ -334,6 +348,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         params["region"] = f"{row} {col}"
     elif row is not None or col is not None:
         params["region"] = row or col  # one band of the table: "bottom", "left"
+        if band and params["region"] in ("middle", "center"):
+            params["region"] = "middle row" if row else "center column"  # never the centre cell
     return params, tuple(keep)
 
 

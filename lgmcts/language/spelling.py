@@ -77,9 +77,24 @@ def _english() -> dict[str, int]:
     return {w: k for k, w in enumerate(lines) if w.isalpha() and w.islower()}
 
 
+_SUFFIXES = (("ies", "y"), ("ied", "y"), ("ing", ""), ("ing", "e"), ("ed", ""), ("ed", "e"), ("es", ""), ("s", ""),
+             ("er", ""), ("er", "e"), ("est", ""), ("est", "e"), ("ly", ""), ("'s", ""))
+
+
 def english_rank(word: str) -> int | None:
-    """The word's rank in the English vocabulary (smaller: more common), or None if it is none."""
-    return _english().get(word)
+    """The word's rank in the English vocabulary (smaller: more common), or None if it is none.
+
+    An inflected form ("crowding", "stacked", "tidier") has the rank of its base word."""
+    eng = _english()
+    if word in eng:
+        return eng[word]
+    for suffix, repl in _SUFFIXES:
+        if len(word) > len(suffix) + 2 and word.endswith(suffix):
+            base = word[: -len(suffix)]
+            for b in (base + repl, base[:-1] if len(base) > 3 and base[-1] == base[-2] else None):
+                if b and b in eng:
+                    return eng[b]
+    return None
 
 
 def _dropped_letter(short: str, long: str) -> bool:
