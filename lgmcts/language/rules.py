@@ -1233,7 +1233,7 @@ class _Parser:
             shape_phrase = " ".join(words[k] for k in rest if not start <= k < hi)
             m_rel = self._match(rel_phrase, text, anchored)
             m_shape = self._match(shape_phrase, text, usable - anchored)
-            out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
+            out = _with_facing(self._relation(m_rel.pattern, groups, sels, g_rel, text), params)
             targets = out[0].objects
             out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
             out[-1].params = params
@@ -1276,7 +1276,7 @@ class _Parser:
             if not any(counts):
                 counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
             p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
-            return self._relation(m.pattern, groups, sels, p, text)
+            return _with_facing(self._relation(m.pattern, groups, sels, p, text), params)
         if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
             # Objects of one arrangement are joined by "and", "with", "of", "using" or the
             # pattern phrase itself; any other word between them ("in a line next to the
@@ -1953,6 +1953,7 @@ class _Parser:
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = self._spelled_right(text)
         text, self._measures = stages.mark_measures(text)
+        text = stages.said_facings(text)
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
@@ -1969,11 +1970,11 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
+        text = stages.by_position(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
+                                  self._table_xy, self._centre, self._cat_words)
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
-        text = stages.by_position(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
-                                  self._table_xy, self._centre)
         text = self._by_position(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
@@ -2640,6 +2641,14 @@ class _Parser:
                 if o in pos and tuple(pos[o]) != tuple(g["pose"]):
                     raise InputError(f"contradiction: object {o} is given two different poses")
                 pos[o] = g["pose"]
+
+
+def _with_facing(goals: list[_Pending], params: dict) -> list[_Pending]:
+    """Relation goals with the facing (and any measure, refused when the goal is written) said in their clause."""
+    own = {k: v for k, v in params.items() if k in ("facing", "measure")}
+    for g in goals:
+        g.params = {**g.params, **own}
+    return goals
 
 
 def _add_params(shape: _Pending, params: dict, text: str) -> None:

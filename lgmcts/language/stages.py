@@ -5,9 +5,11 @@ Each stage is a pure module with its own tests (:mod:`.spelling`,
 module builds what each needs from the scene and the parser's word lists and
 is called from a few points of :mod:`.rules`:
 
-* before anything else reads the text: :func:`spell` (misspellings) and
+* before anything else reads the text: :func:`spell` (misspellings),
   :func:`mark_measures` (each quantity with a unit becomes one marker word,
-  so that the clause it belongs to carries it to the parameter reader);
+  so that the clause it belongs to carries it to the parameter reader) and
+  :func:`said_facings` (a facing said by an edge or the viewer becomes its
+  compass direction);
 * on the text, before grounding: :func:`by_position` (objects picked by where
   they stand become "object N");
 * on the tokens, before clauses are cut: :func:`without_context`;
@@ -25,13 +27,14 @@ from ..errors import InputError
 from .context import drop_context
 from .grounding import Token, tokenize
 from .measures import Measure, find_measures, size_for
+from .places import POINTING_PARTS, read_facing
 from .positions import find_position_refs, pick
 from .spelling import Corrector
 
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "is_mark", "spell", "mark_measures", "by_position", "without_context", "measured_size"]
+__all__ = ["MARK", "is_mark", "spell", "mark_measures", "said_facings", "by_position", "without_context", "measured_size"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -76,6 +79,31 @@ def mark_measures(text: str) -> tuple[str, list[Measure]]:
     return "".join(out), found[:26]
 
 
+_EDGE_WORDS = frozenset({"edge", "side", "wall", "end", "border", "rim", "back", "front"})
+
+
+def said_facings(text: str) -> str:
+    """``text`` with each facing said by an edge or the viewer ("tines toward the right edge",
+    "turned to face the viewer") said by its compass direction ("facing east"), so that no
+    edge is grounded as an object and every goal kind reads it the same way."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    i = 0
+    while i < len(words):
+        got = read_facing(words, i)
+        if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])):
+            i += 1  # facing the viewer or away: read where it stands by the parameter reader
+            continue
+        lo, hi = toks[i].pos, _end(text, toks[got[1] - 1])
+        out.append(text[at:lo] + "facing " + got[0])
+        at = hi
+        i = got[1]
+    out.append(text[at:])
+    return "".join(out)
+
+
 def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects: int, anchored: bool) -> dict:
     """``params`` with a measure's marker (``params["measure"]``) turned into the goal's size."""
     if "measure" not in params:
@@ -92,12 +120,14 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
 
 
 def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[object], list[int]],
-                pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float]) -> str:
+                pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
+                nouns: frozenset[str] = frozenset()) -> str:
     """``text`` with each phrase that picks objects by where they stand replaced by their ids.
 
     ``find(words)`` grounds a noun phrase (the parser's mention finder); ``ids_of(mention)``
     gives every object it may name; ``pose_of(id)`` the object's table position (None for
-    an object standing on another). A phrase whose head or reference object names nothing
+    an object standing on another); ``nouns``: the scene's category words, for "the one" after a
+    noun ("every can except the one nearest the phone"). A phrase whose head or reference object names nothing
     is left as it is for the parser to refuse; an unclear answer is refused here."""
     toks: tuple[Token, ...] = tokenize(text)
     words = tuple(t.text for t in toks)
@@ -110,9 +140,12 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
     for ref in refs:
         head = ref.head
         if head in (("one",), ("ones",)):
-            head = said_heads[-1] if said_heads else ()
+            before = [w for w in words[: ref.start] if w in nouns or (w.endswith("s") and w[:-1] in nouns)]
+            head = said_heads[-1] if said_heads else (before[-1],) if before else ()
         elif head:
             said_heads.append(head)
+        while head[:1] in (("piece",), ("pieces",), ("item",), ("items",), ("bit",), ("bits",)) and head[1:2] == ("of",):
+            head = head[2:]  # "the leftmost piece of silverware"
         ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
         if ids is None:
             continue
