@@ -115,7 +115,8 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
     to the parameter reader)."""
     n = len(words)
     j = i
-    while j < n and words[j] in ("in", "at", "on", "into", "to", "over", "toward", "towards", "a", "the", "out"):
+    while j < n and words[j] in ("in", "at", "on", "into", "to", "over", "toward", "towards", "a", "the", "out", "across",
+                                 "along", "through", "down"):
         j += 1
     if j >= n:
         return None

@@ -41,6 +41,8 @@ from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
 from . import stages
+from .measures import UNITS
+from .places import POINTING_PARTS
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -1797,7 +1799,7 @@ class _Parser:
         """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
         lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
                    | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | set(_SUPERLATIVE)
-                   | _MEASURE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
+                   | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT
@@ -1816,7 +1818,7 @@ class _Parser:
     def _object_word(self, w: str) -> bool:
         """Whether ``w`` names objects of the scene (a name, a colour, a group, an id)."""
         return (w in self.vocab.color_words or w in self._cat_words or _stem(w) in self._cat_words or w in GROUPS
-                or _is_number(w) or w.startswith("#") or w in ("object", "objects", "everything", "anything"))
+                or w.startswith("#") or w in ("object", "objects", "everything", "anything"))
 
     def _request_word(self, w: str) -> bool:
         """Whether ``w`` may ask for a goal: a pattern, direction, place, facing or stack word, a command verb."""
@@ -2801,6 +2803,11 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
 
 #: Words that start a facing ("facing", "pointing", "tines" ...): a clause with one reads its parameters.
 _FACING_CUES = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "points"})
+#: Words of the free place and position readings (.places, .positions), known to the spelling corrector.
+_PLACE_WORDS = frozenset({"strip", "band", "partway", "halfway", "midway", "dead", "centred", "centered", "corner",
+                          "edge", "wall", "viewer", "nearest", "closest", "furthest", "farthest", "leftmost",
+                          "rightmost", "frontmost", "backmost", "rearmost", "middle", "column", "across", "apart",
+                          "wide", "long", "side", "each", "toward", "towards", "facing", "pointing", "turned"})
 _DINNER_CUES = frozenset({"dinner", "setting", "laid", "lay", "meal", "lunch", "breakfast", "supper"})
 _SHAPES_PROTECT = frozenset({"lol", "haha", "ok", "okay", "thanks", "thank", "hey", "hi", "hello", "yeah", "yes", "no",
                              "nope", "sure", "cheers", "please", "pls", "plz", "thx", "wanna", "gonna", "gimme",

@@ -314,6 +314,13 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 continue
         free = read_place(words, i)  # said freely: "dead centre", "partway back on the right", "a strip along the front"
         got = (free[0].row, free[0].col, free[1]) if free is not None else _region_run(words, i, stack)
+        if free is not None and not seen_pattern:
+            # "in a strip along the front": "strip" names the line as well as the band it lies in
+            noun = next((k for k in range(i, free[1]) if words[k] in ("strip", "band") and pattern_nouns(words[k])
+                         and words[k - 2 : k] in (("in", "a"), ("into", "a"), ("as", "a"), ("form", "a"))), None)
+            if noun is not None:
+                keep.extend(words[i : noun + 1])
+                seen_pattern = True
         if blocked and got is not None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):

@@ -113,8 +113,9 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
     if anchored:
         raise InputError(f"'{m.text}': a relation takes no size or distance in numbers")
     size = size_for(pattern, m, n_objects)
-    if out.get("size") not in (None, size):
+    if isinstance(out.get("size"), (int, float)) and out["size"] != size:
         raise InputError(f"'{m.text}': two different sizes for one arrangement ({out['size']}, {size})")
+    # A size word said with a number ("a little rectangle, 18 cm each side") describes it loosely: the number holds.
     out["size"] = size
     return out
 
