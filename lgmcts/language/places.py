@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
+__all__ = ["BAND_MARKS", "Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
 
 FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
                         "heading", "point", "points", "turn", "aim", "aiming", "directed"})
@@ -101,6 +101,8 @@ class Place:
         raise ValueError("a place with neither row nor column")
 
 
+#: Marker words for the middle row and the center column (written by .stages.said_places).
+BAND_MARKS = {"middleband": Place("middle", None, True), "centreband": Place(None, "center", True)}
 _ROWS = {"back": "top", "far": "top", "rear": "top", "top": "top", "upper": "top", "front": "bottom",
          "near": "bottom", "bottom": "bottom", "lower": "bottom", "middle": "middle", "centre": "middle",
          "center": "middle"}
@@ -121,6 +123,8 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
     if j >= n:
         return None
     w = words[j]
+    if w in BAND_MARKS:  # a band said freely and marked before rewriting (.stages.said_places)
+        return BAND_MARKS[w], j + 1
     # "dead centre", "smack in the middle", "slap bang in the centre"
     if w in ("dead", "bang", "smack", "slap", "plumb", "bang-on", "exact", "exactly", "precise"):
         k = j + 1

@@ -36,13 +36,13 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import _ATTRS, COLOUR_WORDS, GROUPS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
 from . import stages
 from .measures import UNITS
-from .places import POINTING_PARTS
+from .places import BAND_MARKS, POINTING_PARTS
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -1802,7 +1802,7 @@ class _Parser:
                    | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
-        protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT
+        protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
         return stages.spell(text, self.vocab, lexicon, nouns, protect)
 
     def _table_xy(self, oid: int) -> tuple[float, float] | None:
@@ -1825,14 +1825,14 @@ class _Parser:
         st = _stem(w)
         return ((st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT
                 or w in _COMMAND_VERBS or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
-                or w in _ROLE_WORDS or w in _FACING_CUES or w in _DINNER_CUES
+                or w in _ROLE_WORDS or w in _FACING_CUES or w in _DINNER_CUES or w in BAND_MARKS
                 or w in ("on", "onto", "under", "below", "above", "atop", "upon", "stacked", "piled", "lined", "order"))
 
     def _content_word(self, w: str) -> bool:
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
         st = _stem(w)
-        if _is_number(w) or w.startswith("#") or stages.is_mark(w):
+        if _is_number(w) or w.startswith("#") or stages.is_mark(w) or w in BAND_MARKS:
             return True
         if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
             return True
@@ -1955,7 +1955,7 @@ class _Parser:
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = self._spelled_right(text)
         text, self._measures = stages.mark_measures(text)
-        text = stages.said_facings(text)
+        text = stages.said_places(stages.said_facings(text))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.

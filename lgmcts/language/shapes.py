@@ -152,6 +152,14 @@ def merged_region(old: str, new: str) -> str | None:
     column band are the region where they cross ("along the front edge, on the left" -> "bottom left")."""
     if old == new:
         return old
+    bands = {"middle row": "middle", "center column": "center"}  # a whole band crossed by another band
+    if (old in bands) != (new in bands) and {bands.get(old, old), bands.get(new, new)} not in ({"middle"}, {"center"}):
+        old, new = bands.get(old, old), bands.get(new, new)
+        if {old, new} == {"middle", "center"}:
+            return None
+        if old == "center" or new == "center":
+            other = new if old == "center" else old
+            return f"{other} center" if other in ("top", "middle", "bottom") else None
     a, b = old.split(), new.split()
     if len(a) == 1 and len(b) == 1:
         rows = [x for x in (a[0], b[0]) if x in ("top", "middle", "bottom")]

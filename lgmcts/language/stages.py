@@ -9,7 +9,8 @@ is called from a few points of :mod:`.rules`:
   :func:`mark_measures` (each quantity with a unit becomes one marker word,
   so that the clause it belongs to carries it to the parameter reader) and
   :func:`said_facings` (a facing said by an edge or the viewer becomes its
-  compass direction);
+  compass direction), :func:`said_places` (places later steps would cut,
+  said plainly);
 * on the text, before grounding: :func:`by_position` (objects picked by where
   they stand become "object N");
 * on the tokens, before clauses are cut: :func:`without_context`;
@@ -34,7 +35,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "is_mark", "spell", "mark_measures", "said_facings", "by_position", "without_context", "measured_size"]
+__all__ = ["MARK", "is_mark", "spell", "mark_measures", "said_facings", "said_places", "by_position", "without_context", "measured_size"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -100,6 +101,45 @@ def said_facings(text: str) -> str:
         out.append(text[at:lo] + "facing " + got[0])
         at = hi
         i = got[1]
+    out.append(text[at:])
+    return "".join(out)
+
+
+_PARTWAY = frozenset({"partway", "halfway", "midway"})
+
+
+def said_places(text: str) -> str:
+    """``text`` with the free places that later steps would cut or widen marked for the place
+    reader (:func:`.places.read_place`): "centred left to right" is the center column, "centred
+    front to back" the middle row, and "halfway back" (also "partway", "midway"; "up", "along",
+    "down") the middle row, which a side said with it narrows to its cell ("halfway back on
+    the right": middle right)."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    i = 0
+    while i < len(words):
+        w = words[i]
+        end, say = i, ""
+        if w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
+                ("left", "to", "right"), ("right", "to", "left")):
+            end, say = i + 4, "in the centreband"
+        elif w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
+                ("front", "to", "back"), ("back", "to", "front")):
+            end, say = i + 4, "in the middleband"
+        elif (w in _PARTWAY or (w in ("part", "half") and words[i + 1 : i + 2] == ("way",))):
+            k = i + 1 + (w in ("part", "half"))
+            if words[k : k + 1] in (("back",), ("up",), ("along",), ("down",), ("across",)):
+                end, say = k + 1, "in the middleband"
+                if words[end : end + 2] == ("the", "table"):
+                    end += 2
+        if end == i:
+            i += 1
+            continue
+        out.append(text[at : toks[i].pos] + say)
+        at = _end(text, toks[end - 1])
+        i = end
     out.append(text[at:])
     return "".join(out)
 
