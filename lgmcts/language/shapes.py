@@ -329,7 +329,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             if noun is not None:
                 keep.extend(words[i : noun + 1])
                 seen_pattern = True
-        if blocked and got is not None and not (
+        if blocked and got is not None and free is None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
             got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)

@@ -124,14 +124,14 @@ def said_places(text: str) -> str:
         end, say = i, ""
         if w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
                 ("left", "to", "right"), ("right", "to", "left")):
-            end, say = i + 4, "in the centreband"
+            end, say = i + 4, "in centreband"
         elif w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
                 ("front", "to", "back"), ("back", "to", "front")):
-            end, say = i + 4, "in the middleband"
+            end, say = i + 4, "in middleband"
         elif (w in _PARTWAY or (w in ("part", "half") and words[i + 1 : i + 2] == ("way",))):
             k = i + 1 + (w in ("part", "half"))
             if words[k : k + 1] in (("back",), ("up",), ("along",), ("down",), ("across",)):
-                end, say = k + 1, "in the middleband"
+                end, say = k + 1, "in middleband"
                 if words[end : end + 2] == ("the", "table"):
                     end += 2
         if end == i:
