@@ -315,7 +315,9 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                                           "size", "scale", "scaled")
                              or words[j] in SIZES):
                 j += 1
-            if j < n and pattern_nouns(words[j]):
+            if j < n and (pattern_nouns(words[j]) or (
+                    words[j] in ("shape", "formation", "pattern", "arrangement") and pattern_nouns(words[j - 1]))):
+                # "a big circle"; "a big round shape" (the shape named by the word before the generic noun)
                 if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
                     put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
                 i += 1

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from .context import drop_context
-from .grounding import Token, tokenize
+from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import Measure, find_measures, size_for
 from .places import POINTING_PARTS, read_facing
 from .positions import find_position_refs, pick
@@ -64,7 +64,8 @@ def spell(text: str, vocab: Vocabulary, lexicon: Iterable[str], nouns: Iterable[
         scene.update(key)
         scene.add(_plural(key[-1]))
     scene.update(vocab.color_words)
-    return Corrector(scene, set(lexicon), set(nouns), protect=set(protect)).text(text)
+    return Corrector(scene, set(lexicon), set(nouns), protect=set(protect),
+                     colours=set(vocab.color_words) | COLOUR_WORDS).text(text)
 
 
 def mark_measures(text: str) -> tuple[str, list[Measure]]:
@@ -188,8 +189,8 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         while head[:1] in (("piece",), ("pieces",), ("item",), ("items",), ("bit",), ("bits",)) and head[1:2] == ("of",):
             head = head[2:]  # "the leftmost piece of silverware"
         ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
-        if ids is None:
-            continue
+        if ids is None or (len(ids) == 1 and ref.count == 1 and ref.of is None):
+            continue  # names nothing, or one object already: "the side of the white bowl nearest me"
         anchor_xy = None
         if ref.key.anchor is not None:
             aid = _ids(ref.key.anchor, find, ids_of)
