@@ -6,11 +6,13 @@ asks for no goal and names nothing a goal could use:
 
 * a **background sentence** with no object word and no word of a request
   (no pattern, direction, place or command verb): "the dog knocked things
-  over.", "we have guests coming at seven.", "dinner's in 20 minutes!!";
+  over.", "we have guests coming at seven.", "dinner's in 20 minutes!!" (a
+  meal said with a time asks for no place setting);
 * a **time clause** at the start or the end of a sentence ("after lunch,",
   "once the kids are asleep,", "before then,", "whenever you get a chance,",
-  "..., before the guests arrive"), under the same condition, so that "after
-  the bowl is on the plate, ..." (it names an object) is kept and read;
+  "..., before the guests arrive"), under the same condition after its
+  opening word, so that "after the bowl is on the plate, ..." (it names an
+  object) is kept and read;
 * nothing of a sentence that names an object: what a remark names may be
   what a later "it" means, and such sentences are left to the parser.
 
@@ -57,8 +59,16 @@ def _sentences(words: tuple[str, ...]) -> list[tuple[str, ...]]:
     return out
 
 
+_MEALS = frozenset({"dinner", "lunch", "breakfast", "tea", "supper", "brunch", "meal", "dinnertime", "lunchtime"})
+_CLOCK = frozenset({"min", "mins", "minute", "minutes", "hour", "hours", "hr", "hrs", "o'clock", "soon", "tonight",
+                    "tomorrow", "later", "noon", "pm", "am"})
+
+
 def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_word: Callable[[str], bool]) -> bool:
-    return not any(object_word(w) or request_word(w) for w in part)
+    """Whether ``part`` names no object and no word of a request; a meal said with a time ("dinner's
+    in 20 minutes") is no request for a place setting."""
+    timed = any(w in _CLOCK for w in part)
+    return not any(object_word(w) or (request_word(w) and not (timed and w in _MEALS)) for w in part)
 
 
 def _time_clause(part: tuple[str, ...]) -> bool:
@@ -95,7 +105,7 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if cut is None or cut == 0:
             break
         head = sent[:cut]
-        if not (_time_clause(head) and _idle(head, object_word, request_word)):
+        if not (_time_clause(head) and _idle(head[1:], object_word, request_word)):
             break
         sent = sent[cut + 1 :]
     end = len(sent)
@@ -105,7 +115,7 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if sent[k] in TIME_OPENERS and sent[k] not in ("in", "at", "as", "this", "first", "while"):
             tail = sent[k:end]
             before = sent[:k]
-            if _time_clause(tail) and _idle(tail, object_word, request_word) and any(
+            if _time_clause(tail) and _idle(tail[1:], object_word, request_word) and any(
                     request_word(w) for w in before):
                 while before and before[-1] == ",":
                     before = before[:-1]

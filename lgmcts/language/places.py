@@ -25,14 +25,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
+__all__ = ["BAND_MARKS", "Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
 
 FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
                         "heading", "point", "points", "turn", "aim", "aiming", "directed"})
 #: Parts of an object that say which way it points ("tines toward the right edge").
-POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "points", "spout",
-                            "spouts", "fronts", "front", "labels", "label", "openings", "opening", "heads", "head",
-                            "tops", "noses", "nose", "prongs", "ends", "faces", "bowls"})
+POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
+                            "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs"})
 _TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight",
            "directly", "round", "around", "so", "they", "it", "that", "all", "are", "is", "as")
 _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
@@ -102,6 +101,8 @@ class Place:
         raise ValueError("a place with neither row nor column")
 
 
+#: Marker words for the middle row and the center column (written by .stages.said_places).
+BAND_MARKS = {"middleband": Place("middle", None, True), "centreband": Place(None, "center", True)}
 _ROWS = {"back": "top", "far": "top", "rear": "top", "top": "top", "upper": "top", "front": "bottom",
          "near": "bottom", "bottom": "bottom", "lower": "bottom", "middle": "middle", "centre": "middle",
          "center": "middle"}
@@ -116,11 +117,14 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
     to the parameter reader)."""
     n = len(words)
     j = i
-    while j < n and words[j] in ("in", "at", "on", "into", "to", "over", "toward", "towards", "a", "the", "out"):
+    while j < n and words[j] in ("in", "at", "on", "into", "to", "over", "toward", "towards", "a", "the", "out", "across",
+                                 "along", "through", "down"):
         j += 1
     if j >= n:
         return None
     w = words[j]
+    if w in BAND_MARKS:  # a band said freely and marked before rewriting (.stages.said_places)
+        return BAND_MARKS[w], j + 1
     # "dead centre", "smack in the middle", "slap bang in the centre"
     if w in ("dead", "bang", "smack", "slap", "plumb", "bang-on", "exact", "exactly", "precise"):
         k = j + 1
@@ -148,12 +152,13 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
         k = j + 1
         while k < n and words[k] in ("along", "across", "at", "by", "on", "in", "through", "down", "the", "of"):
             k += 1
-        if k < n and words[k] in ("front", "back", "near", "far", "rear", "top", "bottom"):
+        if k < n and words[k] in ("front", "back", "near", "far", "rear", "top", "bottom", "left", "right"):
             end = k + 1 + (k + 1 < n and words[k + 1] in _SIDE_NOUNS)
+            if words[end : end + 1] == ("of",) and _of_table(words, end) == end:
+                return None  # "a strip on the left of the plate": a relation, not a place on the table
+            if words[k] in ("left", "right"):
+                return Place(None, words[k], True), _of_table(words, end)
             return Place(_ROWS[words[k]], None, True), _of_table(words, end)
-        if k < n and words[k] in ("left", "right"):
-            end = k + 1 + (k + 1 < n and words[k + 1] in _SIDE_NOUNS)
-            return Place(None, words[k], True), _of_table(words, end)
         if k < n and words[k] in _CENTRE:
             # "a band across the middle" runs left to right: the middle row; "down the middle" the column
             across = "across" in words[j + 1 : k] or "along" in words[j + 1 : k]

@@ -19,7 +19,8 @@ purpose, since a wrong correction is a wrong goal:
 * a rare English word (:data:`RARE_RANK`) one dropped letter away from
   exactly one of the scene's names or colours or a pattern noun is that word
   ("blu" blue, "hart" heart when the scene has a heart, "lin" line);
-  a common word is never corrected.
+  a common word is never corrected; a three-letter word only ever becomes a
+  colour or a pattern noun.
 
 Words of one or two letters and numbers are left alone.
 """
@@ -77,9 +78,24 @@ def _english() -> dict[str, int]:
     return {w: k for k, w in enumerate(lines) if w.isalpha() and w.islower()}
 
 
+_SUFFIXES = (("ies", "y"), ("ied", "y"), ("ing", ""), ("ing", "e"), ("ed", ""), ("ed", "e"), ("es", ""), ("s", ""),
+             ("er", ""), ("er", "e"), ("est", ""), ("est", "e"), ("ly", ""), ("'s", ""))
+
+
 def english_rank(word: str) -> int | None:
-    """The word's rank in the English vocabulary (smaller: more common), or None if it is none."""
-    return _english().get(word)
+    """The word's rank in the English vocabulary (smaller: more common), or None if it is none.
+
+    An inflected form ("crowding", "stacked", "tidier") has the rank of its base word."""
+    eng = _english()
+    if word in eng:
+        return eng[word]
+    for suffix, repl in _SUFFIXES:
+        if len(word) > len(suffix) + 2 and word.endswith(suffix):
+            base = word[: -len(suffix)]
+            for b in (base + repl, base[:-1] if len(base) > 3 and base[-1] == base[-2] else None):
+                if b and b in eng:
+                    return eng[b]
+    return None
 
 
 def _dropped_letter(short: str, long: str) -> bool:
@@ -92,17 +108,21 @@ class Corrector:
     ``scene``: the scene's own words (names with their plurals, colours);
     ``lexicon``: the other words a misspelling may stand for (pattern words, directions,
     command verbs, measure words); ``protect``: words that are never changed and never
-    a correction (fillers, chatter); ``nouns``: the scene's words and the
-    pattern nouns, the only targets of a rare real word; ``rank``: the English
+    a correction (fillers, chatter); ``nouns``: the pattern nouns, which with the
+    scene's words are the only targets of a rare real word; ``colours``: colour
+    words, which with the pattern nouns are the only targets of a three-letter
+    non-word ("blu", "lin"; never an object's name: "ish" is not "dish"); ``rank``: the English
     rank of a word or None (:func:`english_rank` by default).
     """
 
     def __init__(self, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
-                 rank: Callable[[str], int | None] = english_rank, protect: Collection[str] = ()) -> None:
+                 rank: Callable[[str], int | None] = english_rank, protect: Collection[str] = (),
+                 colours: Collection[str] = ()) -> None:
         self.scene = frozenset(w for w in scene if w.isalpha())
         self.targets = frozenset(w for w in lexicon if w.isalpha()) - self.scene
         self.known = self.scene | self.targets | frozenset(protect)
         self.nouns = frozenset(nouns) | self.scene
+        self.colours = frozenset(colours)
         self.rank = rank
 
     def word(self, w: str) -> str:
@@ -122,7 +142,7 @@ class Corrector:
         if not w.isalpha():
             return w
         if len(w) == 3:
-            hits = [t for t in self.nouns if _dropped_letter(w, t)]
+            hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
             return hits[0] if len(hits) == 1 else w
         cap = 2 if len(w) >= 8 else 1
         best: list[str] = []
@@ -156,6 +176,6 @@ class Corrector:
 
 
 def correct_text(text: str, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
-                 protect: Collection[str] = ()) -> str:
+                 protect: Collection[str] = (), colours: Collection[str] = ()) -> str:
     """:meth:`Corrector.text` with a corrector built for this call."""
-    return Corrector(scene, lexicon, nouns, protect=protect).text(text)
+    return Corrector(scene, lexicon, nouns, protect=protect, colours=colours).text(text)

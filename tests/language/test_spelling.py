@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from lgmcts.language.spelling import Corrector, edit_distance
 
-_SCENE = {"mug", "mugs", "bowl", "bowls", "box", "boxes", "heart", "hearts", "fork", "forks", "plate", "plates",
+_SCENE = {"dish", "mug", "mugs", "bowl", "bowls", "box", "boxes", "heart", "hearts", "fork", "forks", "plate", "plates",
           "red", "blue", "green", "purple", "orange", "yellow", "white", "star", "stars", "can", "cans", "letter",
           "letters"}
 _LEX = {"behind", "front", "left", "right", "stack", "circle", "rectangle", "line", "row", "radius", "put", "place",
@@ -17,7 +17,8 @@ _NOUNS = {"circle", "line", "row", "ring", "rectangle", "square"}
 
 
 def _fix(text: str) -> str:
-    return Corrector(_SCENE, _LEX, _NOUNS, protect={"great", "please"}).text(text)
+    return Corrector(_SCENE, _LEX, _NOUNS, protect={"great", "please"},
+                     colours={"red", "blue", "green", "purple", "orange", "yellow", "white"}).text(text)
 
 
 @pytest.mark.parametrize("text, fixed", [
@@ -47,6 +48,7 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "put 3 forks in a row",
     "after lunch, the mug behind the plate",
     "a 10 cm radios",                     # an English word, however unlikely here
+    "put the mugs in the middle-ish",     # a three-letter word never becomes an object's name ('dish')
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
