@@ -21,17 +21,16 @@ from dataclasses import dataclass
 from typing import Literal
 
 from ..errors import InputError
+from . import lexicon
 
 __all__ = ["Measure", "Role", "find_measures", "size_for", "UNITS"]
 
 Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain"]
 
-#: Unit words -> metres.
+#: Unit words -> metres: the lexicon's length units, with the plural and short spellings people type.
 UNITS: dict[str, float] = {
-    "m": 1.0, "metre": 1.0, "metres": 1.0, "meter": 1.0, "meters": 1.0, "mtr": 1.0, "mtrs": 1.0,
-    "cm": 0.01, "cms": 0.01, "centimetre": 0.01, "centimetres": 0.01, "centimeter": 0.01, "centimeters": 0.01,
-    "mm": 0.001, "mms": 0.001, "millimetre": 0.001, "millimetres": 0.001, "millimeter": 0.001, "millimeters": 0.001,
-    "inch": 0.0254, "inches": 0.0254, "in": 0.0254, '"': 0.0254, "ft": 0.3048, "foot": 0.3048, "feet": 0.3048,
+    **lexicon.UNITS, "cms": 0.01, "mms": 0.001, "mtr": 1.0, "mtrs": 1.0, '"': 0.0254, "ft": 0.3048, "foot": 0.3048,
+    "feet": 0.3048,
 }
 _NUMBER_WORDS = {
     "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,

@@ -25,10 +25,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from . import lexicon
+
 __all__ = ["BAND_MARKS", "Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
 
-FACE_VERBS = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "looking",
-                        "heading", "point", "points", "turn", "aim", "aiming", "directed"})
+#: The lexicon's facing verbs and their other forms.
+FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "directed"}
 #: Parts of an object that say which way it points ("tines toward the right edge").
 POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
                             "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs"})
@@ -39,7 +41,7 @@ _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
 _EDGES = {"back": "north", "far": "north", "rear": "north", "top": "north", "north": "north",
           "front": "south", "near": "south", "bottom": "south", "south": "south",
           "left": "west", "west": "west", "right": "east", "east": "east"}
-_VIEWER = frozenset({"me", "us", "viewer", "camera", "you", "robot", "person", "operator"})
+_VIEWER = lexicon.VIEWER_WORDS | {"person", "operator"}
 
 
 def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
