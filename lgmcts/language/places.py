@@ -103,8 +103,10 @@ class Place:
         raise ValueError("a place with neither row nor column")
 
 
-#: Marker words for the middle row and the center column (written by .stages.said_places).
-BAND_MARKS = {"middleband": Place("middle", None, True), "centreband": Place(None, "center", True)}
+#: Marker words for the middle row, the center column and each cell (written by .stages.said_places, so that
+#: no later rewrite widens them): "middleband", "centreband", "middleleftcell" ...
+BAND_MARKS = {"middleband": Place("middle", None, True), "centreband": Place(None, "center", True),
+              **{f"{r}{c}cell": Place(r, c) for r in ("top", "middle", "bottom") for c in ("left", "center", "right")}}
 _ROWS = {"back": "top", "far": "top", "rear": "top", "top": "top", "upper": "top", "front": "bottom",
          "near": "bottom", "bottom": "bottom", "lower": "bottom", "middle": "middle", "centre": "middle",
          "center": "middle"}

@@ -107,6 +107,8 @@ def said_facings(text: str) -> str:
 
 
 _PARTWAY = frozenset({"partway", "halfway", "midway"})
+_SIDE_CELLS = {"left": "middleleft", "right": "middleright", "front": "bottomcenter", "near": "bottomcenter",
+               "back": "topcenter", "far": "topcenter", "rear": "topcenter"}
 
 
 def said_places(text: str) -> str:
@@ -135,6 +137,19 @@ def said_places(text: str) -> str:
                 end, say = k + 1, "in middleband"
                 if words[end : end + 2] == ("the", "table"):
                     end += 2
+        elif w in ("centre", "center", "middle") and i and words[i - 1] == "the" and words[i + 1 : i + 2] == ("of",):
+            # "the centre of the left side", "the middle of the front edge": the cell halfway along that side
+            k = i + 2 + (words[i + 2 : i + 3] == ("the",))
+            k += words[k : k + 1] == ("table's",)
+            side = words[k] if k < len(words) else ""
+            hand = words[k + 1 : k + 2] == ("hand",)
+            if side in _SIDE_CELLS and words[k + 1 + hand : k + 2 + hand] in (("side",), ("edge",), ("end",), ("half",),
+                                                                             ("wall",)):
+                end = k + 2 + hand
+                if words[end : end + 3] == ("of", "the", "table"):
+                    end += 3
+                i -= 1  # the article goes too
+                say = f"in the {_SIDE_CELLS[side]}cell"
         if end == i:
             i += 1
             continue
