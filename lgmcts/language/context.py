@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-__all__ = ["drop_context", "TIME_OPENERS"]
+__all__ = ["TIME_OPENERS", "drop_context"]
 
 #: Words that open a time clause.
 TIME_OPENERS = frozenset({"after", "before", "once", "when", "whenever", "while", "until", "till", "by", "tonight",

@@ -23,7 +23,7 @@ from typing import Literal
 from ..errors import InputError
 from . import lexicon
 
-__all__ = ["Measure", "Role", "find_measures", "size_for", "UNITS"]
+__all__ = ["UNITS", "Measure", "Role", "find_measures", "size_for"]
 
 Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain"]
 

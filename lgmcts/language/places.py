@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 from . import lexicon
 
-__all__ = ["BAND_MARKS", "Place", "read_facing", "read_place", "FACE_VERBS", "POINTING_PARTS"]
+__all__ = ["BAND_MARKS", "FACE_VERBS", "POINTING_PARTS", "Place", "read_facing", "read_place"]
 
 #: The lexicon's facing verbs and their other forms.
 FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "directed"}

@@ -33,7 +33,7 @@ from typing import Literal
 
 from ..errors import InputError
 
-__all__ = ["Key", "PositionRef", "find_position_refs", "pick", "TOO_CLOSE"]
+__all__ = ["TOO_CLOSE", "Key", "PositionRef", "find_position_refs", "pick"]
 
 #: Two candidates closer than this on the compared quantity cannot be told apart (m).
 TOO_CLOSE = 0.02
@@ -197,6 +197,7 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
 
 def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     w = ws[i]
+    head: tuple[str, ...]
     if w in _WHATEVER:
         # "whatever is closest to the mug", "whichever mug sits furthest right"
         j = i + 1
@@ -230,7 +231,6 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     # "the middle/centre one (of the three bowls)", "the middle bowl of the three"
     if ws[j] in ("middle", "centre", "center", "central") and j + 1 < len(ws):
         k = j + 1
-        head: tuple[str, ...]
         if ws[k] == "one":
             head, k = ("one",), k + 1
         else:

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from .context import drop_context
@@ -35,7 +35,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "is_mark", "spell", "mark_measures", "said_facings", "said_places", "by_position", "without_context", "measured_size"]
+__all__ = ["MARK", "by_position", "is_mark", "mark_measures", "measured_size", "said_facings", "said_places", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -176,7 +176,7 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
     return out
 
 
-def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[object], list[int]],
+def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
                 pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
                 nouns: frozenset[str] = frozenset()) -> str:
     """``text`` with each phrase that picks objects by where they stand replaced by their ids.
@@ -232,7 +232,7 @@ def _end(text: str, tok: Token) -> int:
     return (k if k >= 0 else tok.pos) + len(tok.text)
 
 
-def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of: Callable[[object], list[int]]
+def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]
          ) -> list[int] | None:
     try:
         found = [m for m in find(words) if getattr(m, "det", None) != "pronoun"]
