@@ -1957,7 +1957,7 @@ class _Parser:
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = self._spelled_right(text)
         text, self._measures = stages.mark_measures(text)
-        text = stages.said_places(stages.said_facings(text))
+        text = stages.other_side(stages.said_places(stages.said_facings(text)))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
@@ -2315,10 +2315,12 @@ class _Parser:
         read from it uses that object: a part of the command was not read."""
         used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
         used |= {o for g in goals for o in g.get("anchor_any", ())}
+        stacked = any(g["pattern"] == "tower" for g in goals)
         for clause, ms in self._named_in:
             for m in ms:
                 group = m.plural and m.det in ("the", "all") and m.names is not None and not m.head
-                if not group and (m.det != "the" or m.plural or m.names is None or m.head):
+                bare = m.names is None and bool(m.colors) and stacked  # "then blue" said in a stack and lost
+                if not group and (m.det != "the" or m.plural or (m.names is None and not bare) or m.head):
                     continue
                 before = clause[max(0, m.start - 3) : m.start]
                 if any(w in _NOT_USED_BEFORE for w in before):

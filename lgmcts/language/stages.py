@@ -35,7 +35,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_position", "is_mark", "mark_measures", "measured_size", "said_facings", "said_places", "spell", "without_context"]
+__all__ = ["MARK", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -156,6 +156,55 @@ def said_places(text: str) -> str:
         out.append(text[at : toks[i].pos] + say)
         at = _end(text, toks[end - 1])
         i = end
+    out.append(text[at:])
+    return "".join(out)
+
+
+_OPPOSITE = {"left": "to the right of", "right": "to the left of", "front": "behind", "behind": "in front of",
+             "back": "in front of"}
+
+
+def other_side(text: str) -> str:
+    """"the fork left of the plate, the knife on its other side": the side opposite the one said
+    last before it, of the same reference object ("the knife to the right of it"; "on the plate's
+    other side", "on the other side of the plate"). Left as said where no side came before."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for k in range(1, len(words) - 1):
+        if words[k] not in ("other", "opposite") or words[k + 1] != "side":
+            continue
+        lo = k - 1
+        owner = "it"
+        if words[lo] in ("its", "their"):
+            owner = "it" if words[lo] == "its" else "them"
+        elif words[lo].endswith("'s"):
+            j = lo
+            while j > 0 and words[j - 1] not in ("on", "to", "at", ",", "goes", "go", "is", "be", "sits"):
+                j -= 1
+            owner = text[toks[j].pos : toks[lo].pos] + words[lo][:-2]
+            lo = j
+        elif words[lo] == "the":
+            owner = ""
+        else:
+            continue
+        if lo > 0 and words[lo - 1] in ("on", "to", "at"):
+            lo -= 1
+        hi = k + 2
+        if not owner:
+            if words[hi : hi + 1] != ("of",):
+                continue
+            j = hi + 1
+            while j < len(words) and words[j] not in (",", ".", ";", "!", "?", "and"):
+                j += 1
+            owner = text[toks[hi + 1].pos : _end(text, toks[j - 1])]
+            hi = j
+        said = [w for w in words[:lo] if w in _OPPOSITE]
+        if not said or lo < at:
+            continue
+        out.append(text[at : toks[lo].pos] + f"{_OPPOSITE[said[-1]]} {owner}")
+        at = _end(text, toks[hi - 1])
     out.append(text[at:])
     return "".join(out)
 

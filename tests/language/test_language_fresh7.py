@@ -74,6 +74,11 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("home", "pls make a circel with the cans", [{"pattern": "circle", "objects": [12, 13, 14]}]),
     ("blocks", "put the white bowl on the purple blok", [{"pattern": "tower", "objects": [6, 7]}]),
     ("pantry", "put the white bowl on the brwn box", [{"pattern": "tower", "objects": [10, 5]}]),
+    # "its other side": the side opposite the one said before, of the same reference object
+    ("home", "put the spoon left of the plate, the fork on its other side",
+     [{"pattern": "left", "objects": [11], "anchor": 8}, {"pattern": "right", "objects": [9], "anchor": 8}]),
+    ("home", "the red mug goes behind the plate; the blue mug goes on the plate's other side",
+     [{"pattern": "behind", "objects": [1], "anchor": 8}, {"pattern": "front", "objects": [2], "anchor": 8}]),
     # context that asks nothing
     ("home", "my friends come over at six. line up the cans", [{"pattern": "line", "objects": [12, 13, 14]}]),
     ("home", "after lunch, put the fork behind the plate", [{"pattern": "behind", "objects": [9], "anchor": 8}]),
@@ -94,6 +99,8 @@ def test_a_reading(scene, text, expect, matcher):
     ("blocks", "put the leftmost block on the white bowl", "within 2 cm"),  # orange and purple stand 1 cm apart
     ("home", "the middle one of the four bowls goes behind the phone", "speaks of 4"),
     ("blocks", "put the white bowl on the bowx", "names nothing"),          # one edit from two words: left as said
+    # a stack that loses a colour said in it is refused, not answered without it
+    ("blocks", "tower: red bottom, then blue, then green, yellow on top", "'blue' is named"),
 ])
 def test_what_cannot_be_read_is_refused_and_quoted(scene, text, says, matcher):
     with pytest.raises(InputError) as exc:
