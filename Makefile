@@ -3,17 +3,18 @@ PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed-$(shell cat pyproject.toml | cksum | cut -d' ' -f1)
-# Optional parts installed by `make install`: every extra (README, "Installing
-# parts"). llm-local builds llama-cpp-python from source the first time (about
-# 8 minutes on 2 cores; pip caches the wheel); `make install
-# EXTRAS=test,language,llm,sim,viz,service,ray` leaves it out (its tests then skip).
+# Optional parts installed by `make install` (README, "Installing parts"):
+# every extra but llm-local, which builds llama-cpp-python from source (about
+# 8 minutes on 2 cores the first time; pip caches the wheel). Opt in with
+# `make llm-local` (adds it to the venv) or `make install EXTRAS=all,test,llm-local`;
+# without it the tests of the local LLM server skip, naming what is missing.
 EXTRAS ?= all,test
 export HF_HUB_OFFLINE := 1
 export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo test golden golden-parse bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo-deps llm-local demo check test golden golden-parse bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -31,7 +32,16 @@ install: $(STAMP)
 system-deps:
 	@bash scripts/system-deps.sh
 
-demo: install system-deps
+# What the demo needs of the system: OpenGL for MuJoCo (no browser, no ffmpeg).
+demo-deps:
+	@bash scripts/system-deps.sh demo
+
+# The local OpenAI-compatible server for --parser llm and LFSP (opt-in, slow to
+# build: see EXTRAS above). Installs the llm-local extra into the venv.
+llm-local: install
+	$(PY) -m pip install -q -e ".[llm-local]"
+
+demo: install demo-deps
 	@mkdir -p out/demo
 	$(PY) -m lgmcts plan examples/tabletop.json \
 	    "Move all blocks into a circle; while put the white bottle behind one block" \
@@ -39,6 +49,13 @@ demo: install system-deps
 	@cat out/demo/plan.json
 	$(PY) -m lgmcts execute examples/tabletop.json out/demo/plan.json
 	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/before_after.png, out/demo/plan.gif, out/demo/heatmaps_step_01.png"
+
+# Lint (ruff), types (mypy) and the quick tests (-m "not slow", about 80 s on
+# 2 cores); what each leaves out and why: docs/design.md, "Lint and types".
+check: install
+	$(PY) -m ruff check .
+	$(PY) -m mypy
+	$(PY) -m pytest tests -m "not slow"
 
 test: install system-deps
 	$(PY) -m pytest tests
@@ -68,7 +85,7 @@ bench-language: install
 # 127.0.0.1): every language evaluation set through --parser llm, and LFSP on
 # both suites. LLM_EVAL_ARGS="--every 10 --lfsp-n 10" for a quicker sample.
 LLM_EVAL_ARGS ?=
-llm-eval: install
+llm-eval: llm-local
 	$(PY) benchmarks/llm_eval.py $(LLM_EVAL_ARGS)
 
 clean:

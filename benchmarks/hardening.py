@@ -93,11 +93,21 @@ def bench_viz() -> None:
         scene, plan = Path(tmp) / "scene.json", Path(tmp) / "plan.json"
         scene.write_text(json.dumps({"workspace": {"x": [-1, 1], "y": [-1, 1]}, "objects": objs}))
         plan.write_text(json.dumps({"solved": False, "actions": acts}))
-        for what, extra in (("pictures", ["-o", str(Path(tmp) / "figs")]), ("HTML", ["--html", str(Path(tmp) / "v.html")])):
+        for what, extra in (
+            ("pictures", ["-o", str(Path(tmp) / "figs")]),
+            ("HTML", ["--html", str(Path(tmp) / "v.html")]),
+        ):
             t0 = time.perf_counter()
-            out = subprocess.run([sys.executable, "-m", "lgmcts", "viz", str(plan), "--scene", str(scene), *extra],
-                                 capture_output=True, text=True, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)})
-            print(f"viz {what} of 2,000 actions on 500 objects: exit {out.returncode}, {time.perf_counter() - t0:.1f} s")
+            out = subprocess.run(
+                [sys.executable, "-m", "lgmcts", "viz", str(plan), "--scene", str(scene), *extra],
+                capture_output=True,
+                text=True,
+                cwd=ROOT,
+                env={**os.environ, "PYTHONPATH": str(ROOT)},
+            )
+            print(
+                f"viz {what} of 2,000 actions on 500 objects: exit {out.returncode}, {time.perf_counter() - t0:.1f} s"
+            )
 
 
 def main() -> None:

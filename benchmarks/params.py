@@ -29,8 +29,8 @@ import numpy as np
 
 from lgmcts import check, plan
 from lgmcts.casegen import random_case
-from lgmcts.formats import parse_goals, to_dict
-from lgmcts.params import COLUMNS, HEADINGS, ROWS, SIZED, resolve, size_range
+from lgmcts.formats import parse_goals, pattern_format, to_dict
+from lgmcts.params import COLUMNS, HEADINGS, ROWS, resolve, size_range, sized_pattern
 from lgmcts.scene import Scene
 
 REGIONS = [f"{r} {c}" for r in ROWS for c in COLUMNS] + list(ROWS) + ["left", "right"]
@@ -40,14 +40,17 @@ def with_params(goals: dict, rng: np.random.Generator) -> dict:
     out = []
     for g in goals["goals"]:
         g = dict(g)
-        if g["pattern"] in (*SIZED, "tower"):
+        fmt = pattern_format(g["pattern"])
+        if fmt is not None and fmt.size:  # the patterns whose goals take a size
             while True:
                 if rng.random() < 0.7:
                     g["region"] = str(rng.choice(REGIONS))
                 if g["pattern"] != "tower" and rng.random() < 0.5:
                     g["size"] = str(rng.choice(["small", "medium", "large"]))
                 if rng.random() < 0.5:
-                    g["facing"] = str(rng.choice(list(HEADINGS))) if rng.random() < 0.5 else float(rng.uniform(-math.pi, math.pi))
+                    g["facing"] = (
+                        str(rng.choice(list(HEADINGS))) if rng.random() < 0.5 else float(rng.uniform(-math.pi, math.pi))
+                    )
                 if any(k in g for k in ("region", "size", "facing")):
                     break
         out.append(g)
@@ -57,7 +60,7 @@ def with_params(goals: dict, rng: np.random.Generator) -> dict:
 def fits(scene: Scene, goals: dict) -> bool:
     """Whether no goal's size bands collapse (the room holds the tightest arrangement)."""
     for g in goals["goals"]:
-        if g["pattern"] not in SIZED:
+        if sized_pattern(g["pattern"]) is None:
             continue
         idx = [scene.index[i] for i in g["objects"]]
         gp = resolve(g, scene.bounds, scene.radii[idx])

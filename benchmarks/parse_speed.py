@@ -22,8 +22,10 @@ os.environ.setdefault("HF_HUB_OFFLINE", "1")
 
 def _stats(xs: list[float]) -> str:
     xs = sorted(xs)
-    p95 = xs[min(len(xs) - 1, int(round(0.95 * (len(xs) - 1))))]
-    return f"mean {1e3 * statistics.fmean(xs):.1f} ms, median {1e3 * statistics.median(xs):.1f} ms, p95 {1e3 * p95:.1f} ms"
+    p95 = xs[min(len(xs) - 1, round(0.95 * (len(xs) - 1)))]
+    return (
+        f"mean {1e3 * statistics.fmean(xs):.1f} ms, median {1e3 * statistics.median(xs):.1f} ms, p95 {1e3 * p95:.1f} ms"
+    )
 
 
 def main() -> None:
@@ -43,7 +45,9 @@ def main() -> None:
     t0 = time.perf_counter()
     m.encoder.load()
     m.key_embeddings()
-    print(f"{len(cases)} instructions; model load {time.perf_counter() - t0:.2f} s; load average {os.getloadavg()[0]:.1f}")
+    print(
+        f"{len(cases)} instructions; model load {time.perf_counter() - t0:.2f} s; load average {os.getloadavg()[0]:.1f}"
+    )
     for name in ("first", "warm"):
         wall, cpu = [], []
         for c in cases:

@@ -77,7 +77,11 @@ def main(argv: list[str] | None = None) -> int:
     goals = json.loads(args.goals.read_text())
 
     def body(i: int) -> dict:
-        return {"scene": scene, "goals": goals, "options": {"method": args.method, "seed": i, "max_iter": args.max_iter}}
+        return {
+            "scene": scene,
+            "goals": goals,
+            "options": {"method": args.method, "seed": i, "max_iter": args.max_iter},
+        }
 
     proc = None
     url = args.url
@@ -92,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
             proc.terminate()
             proc.wait(timeout=30)
     meta = {
-        "date_utc": dt.datetime.now(dt.timezone.utc).strftime("%Y-%m-%d %H:%M"),
+        "date_utc": dt.datetime.now(dt.UTC).strftime("%Y-%m-%d %H:%M"),
         "machine": f"{platform.machine()} {os.cpu_count()} CPUs, {platform.system()} {platform.release()}",
         "python": platform.python_version(),
         "workers": args.workers if args.url is None else "external",
@@ -103,10 +107,17 @@ def main(argv: list[str] | None = None) -> int:
         "concurrency": args.concurrency,
     }
     if args.json:
-        out = {**meta, "count": report.count, "failures": report.failures, "unsolved": report.unsolved,
-               "median_ms": round(report.median_s * 1e3, 2), "p95_ms": round(report.p95_s * 1e3, 2),
-               "max_ms": round(report.max_s * 1e3, 2), "throughput_rps": round(report.throughput, 2),
-               "statuses": report.statuses}
+        out = {
+            **meta,
+            "count": report.count,
+            "failures": report.failures,
+            "unsolved": report.unsolved,
+            "median_ms": round(report.median_s * 1e3, 2),
+            "p95_ms": round(report.p95_s * 1e3, 2),
+            "max_ms": round(report.max_s * 1e3, 2),
+            "throughput_rps": round(report.throughput, 2),
+            "statuses": report.statuses,
+        }
         print(json.dumps(out, indent=2))
     else:
         print(" ".join(f"{k}={v}" for k, v in meta.items()))

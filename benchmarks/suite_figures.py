@@ -39,7 +39,10 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="20 tasks per run")
     args = ap.parse_args()
     out = Path(args.out)
-    print(f"machine: {platform.node()} ({platform.processor() or platform.machine()}), date {time.strftime('%Y-%m-%d', time.gmtime())}\n")
+    print(
+        f"machine: {platform.node()} ({platform.processor() or platform.machine()}), date "
+        f"{time.strftime('%Y-%m-%d', time.gmtime())}\n"
+    )
     for suite, method, cap in RUNS:
         n = 5 if args.quick else None
         folder = out / f"{suite}-{method}" if not args.quick else out / f"quick-{suite}-{method}"

@@ -37,7 +37,7 @@ import platform
 import statistics
 import sys
 import time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 import shapely
@@ -88,8 +88,7 @@ def outline_density(scene, gap: float = 0.001) -> tuple[float, float]:
 
 def physics_probe(scene, p) -> tuple[float, float]:
     """``(push, penetration)`` of plan ``p`` replayed in MuJoCo (m)."""
-    from lgmcts.sim import Executor, build_model
-    from lgmcts.sim import physics
+    from lgmcts.sim import Executor, build_model, physics
 
     sc = Scene.from_spec(scene)
     sim = build_model(sc)
@@ -178,26 +177,37 @@ def main(argv: list[str] | None = None) -> int:
         rows.append(row)
         print(json.dumps(row), file=sys.stderr, flush=True)
 
-    print(f"date: {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {platform.node()}, Python {platform.python_version()}")
+    now = datetime.now(UTC)
+    print(f"date: {now:%Y-%m-%d %H:%M} UTC; machine: {platform.node()}, Python {platform.python_version()}")
     print(f"command: python benchmarks/touching_physics.py {' '.join(argv if argv is not None else sys.argv[1:])}")
     groups = sorted({r["group"] for r in rows}, key=lambda g: (isinstance(g, str), g))
     if args.what != "labbe":
         groups = ["all"]
-    print("| group | cases | planned and valid | SR_ep | placements within 1 mm | max push (mm) | max penetration (mm) | max placement error (mm) |")
+    print(
+        "| group | cases | planned and valid | SR_ep | placements within 1 mm | max push (mm) | max "
+        "penetration (mm) | max placement error (mm) |"
+    )
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for g in groups:
         rs = [r for r in rows if g == "all" or r["group"] == g]
         ex = [r for r in rs if r["solved"]]
-        fmt = lambda key: f"{max((r[key] for r in ex if key in r), default=float('nan')):.2f}"  # noqa: E731
+        fmt = lambda key, ex=ex: f"{max((r[key] for r in ex if key in r), default=float('nan')):.2f}"  # noqa: E731
         n_ep = sum(r.get("sr_ep", False) for r in ex)
-        print(f"| {'N = ' + str(g) if args.what == 'labbe' else g} | {len(rs)} | {sum(r['valid'] for r in rs)}/{len(rs)} | "
-              f"{n_ep}/{len(ex)} | {sum(r.get('contacts', 0) for r in ex)} of {sum(r['actions'] for r in ex)} | "
-              f"{fmt('push_mm')} | {fmt('penetration_mm')} | {fmt('max_error_mm')} |")
+        print(
+            f"| {'N = ' + str(g) if args.what == 'labbe' else g} | {len(rs)} | "
+            f"{sum(r['valid'] for r in rs)}/{len(rs)} | "
+            f"{n_ep}/{len(ex)} | {sum(r.get('contacts', 0) for r in ex)} of {sum(r['actions'] for r in ex)} | "
+            f"{fmt('push_mm')} | {fmt('penetration_mm')} | {fmt('max_error_mm')} |"
+        )
     if args.observe:
         obs = [r for r in rows if "outline_near" in r]
         if obs:
-            print(f"observed outlines: {np.mean([r['outline_near'] for r in obs]):.2f} of the table-level objects within 1 mm "
-                  f"of another (mean over {len(obs)} scenes); largest overlap {max(r['outline_overlap_mm2'] for r in obs):.3f} mm^2")
+            print(
+                f"observed outlines: {np.mean([r['outline_near'] for r in obs]):.2f} of the table-level objects "
+                "within 1 mm "
+                f"of another (mean over {len(obs)} scenes); largest overlap "
+                f"{max(r['outline_overlap_mm2'] for r in obs):.3f} mm^2"
+            )
     for r in rows:
         if r.get("solved") and not r.get("sr_ep"):
             print(f"  failed in physics {r['case']}: {r['reasons']}")

@@ -29,15 +29,23 @@ def main() -> None:
              "pose": [-1.9 + 0.09 * (k % 40), -1.9 + 0.09 * (k // 40), 0.0], "on": None} for k in range(n)]
     scene = {"workspace": {"x": [-2, 2], "y": [-2, 2]}, "objects": objs}
     rng = np.random.default_rng(0)
-    acts = [{"object": int(rng.integers(n)) + 1, "to": [float(rng.uniform(-1.9, 1.9)), float(rng.uniform(0.5, 1.9)), 0.0],
-             "on": None} for _ in range(args.actions)]
+    acts = [
+        {
+            "object": int(rng.integers(n)) + 1,
+            "to": [float(rng.uniform(-1.9, 1.9)), float(rng.uniform(0.5, 1.9)), 0.0],
+            "on": None,
+        }
+        for _ in range(args.actions)
+    ]
     plan = {"solved": True, "actions": acts}
     goals = {"goals": [{"pattern": "line", "objects": [1, 2, 3]}]}
     for _ in range(args.runs):
         w, c = time.perf_counter(), time.process_time()
         verdict = check(scene, goals, plan)
-        print(f"{args.actions} actions over {n} objects: wall {time.perf_counter() - w:.2f} s, "
-              f"CPU {time.process_time() - c:.2f} s, {len(verdict.reasons)} reasons")
+        print(
+            f"{args.actions} actions over {n} objects: wall {time.perf_counter() - w:.2f} s, "
+            f"CPU {time.process_time() - c:.2f} s, {len(verdict.reasons)} reasons"
+        )
 
 
 if __name__ == "__main__":

@@ -15,19 +15,23 @@ variant of it (:func:`labbe_case`).
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
-from itertools import combinations, product
+from itertools import combinations, pairwise, product
+from pathlib import Path
 
 import numpy as np
 import shapely
 
 from . import geometry as geo
+from .errors import InputError
 from .formats import RELATIONS, GoalSpec, SceneSpec, parse_goals, parse_scene
 from .scene import TABLE, Scene
 from .validate import TOL, fit_circle, goal_satisfied, line_residuals
 
-__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count"]
+__all__ = ["Case", "random_case", "pack_clutter", "labbe_case", "labbe_protocol_case", "LABBE_VARIANTS", "lower_bound", "reference_count",
+           "TrlbArrangement", "read_trlb_arrangement", "trlb_case", "trlb_pairs", "TRLB_UNIT"]
 
 WORKSPACE = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 _COLORS = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink")
@@ -48,9 +52,16 @@ def _shape(rng: np.random.Generator) -> tuple[str, dict]:
     k = rng.integers(3)
     if k == 0:
         s = rng.uniform(0.03, 0.055)
-        return "block", {"type": "box", "size": [float(s), float(rng.uniform(0.03, 0.055)), float(rng.uniform(0.03, 0.06))]}
+        return "block", {
+            "type": "box",
+            "size": [float(s), float(rng.uniform(0.03, 0.055)), float(rng.uniform(0.03, 0.06))],
+        }
     if k == 1:
-        return "can", {"type": "cylinder", "radius": float(rng.uniform(0.016, 0.03)), "height": float(rng.uniform(0.04, 0.1))}
+        return "can", {
+            "type": "cylinder",
+            "radius": float(rng.uniform(0.016, 0.03)),
+            "height": float(rng.uniform(0.04, 0.1)),
+        }
     r = rng.uniform(0.02, 0.032)
     m = int(rng.integers(3, 7))
     a = np.arange(m) * 2 * math.pi / m
@@ -68,7 +79,12 @@ class _Placer:
     def fits(self, i: int, pose: np.ndarray) -> bool:
         v = self.scene.footprint(i, pose)
         xmin, xmax, ymin, ymax = self.scene.bounds
-        if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+        if (
+            v[:, 0].min() < xmin + 0.003
+            or v[:, 0].max() > xmax - 0.003
+            or v[:, 1].min() < ymin + 0.003
+            or v[:, 1].max() > ymax - 0.003
+        ):
             return False
         p = shapely.Polygon(v)
         return all(p.distance(q) > self.gap for q in self.polys.values())
@@ -86,7 +102,9 @@ class _Placer:
         return None
 
 
-def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, anchor_pose=None) -> list[np.ndarray]:
+def _pattern_poses(
+    kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, anchor_pose=None
+) -> list[np.ndarray]:
     rmax = float(scene.radii[objs].max())
     n = len(objs)
     c = np.array([rng.uniform(-0.25, 0.25), rng.uniform(-0.17, 0.17)])
@@ -98,12 +116,22 @@ def _pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gene
     if kind == "circle":
         r = max(0.06, (2 * rmax + 0.02) / (2 * math.sin(math.pi / n)))
         a0 = rng.uniform(-math.pi, math.pi)
-        return [np.array([c[0] + r * math.cos(a0 + 2 * math.pi * k / n), c[1] + r * math.sin(a0 + 2 * math.pi * k / n), a0 + 2 * math.pi * k / n + math.pi / 2]) for k in range(n)]
+        return [
+            np.array(
+                [
+                    c[0] + r * math.cos(a0 + 2 * math.pi * k / n),
+                    c[1] + r * math.sin(a0 + 2 * math.pi * k / n),
+                    a0 + 2 * math.pi * k / n + math.pi / 2,
+                ]
+            )
+            for k in range(n)
+        ]
     if kind == "rectangle":
         side = max(0.07, 2 * rmax + 0.02)
         w = side * (1 + (n > 4))
         h = side
-        pts = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2)] + [(0.0, -h / 2), (0.0, h / 2)][: n - 4]
+        mids = [(0.0, -h / 2), (0.0, h / 2)][: n - 4]
+        pts = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2), *mids]
         return [np.array([c[0] + x, c[1] + y, 0.0]) for x, y in pts]
     if kind == "tower":
         return [np.array([c[0], c[1], 0.0]) for _ in objs]
@@ -130,7 +158,9 @@ def random_case(seed: int, *, n_objects: int | None = None, kind: str | None = N
 _PACK_STEP, _PACK_BISECT = 0.003, 10
 
 
-def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator) -> list[dict]:
+def _pack_clutter(
+    scene: Scene, objects: list[dict], goal_feet: list, other_feet: list, rng: np.random.Generator
+) -> list[dict]:
     """Extra clutter objects (4-10, shapes as in the base cases) packed in
     contact around the goal region (see :func:`pack_clutter`)."""
     n0 = len(objects)
@@ -141,8 +171,13 @@ def _pack_clutter(scene: Scene, objects: list[dict], goal_feet: list, other_feet
     return pack_clutter(scene.bounds, specs, goal_feet, other_feet, rng)
 
 
-def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], goal_feet: list, other_feet: list,
-                 rng: np.random.Generator) -> list[dict]:
+def pack_clutter(
+    bounds: tuple[float, float, float, float],
+    specs: list[dict],
+    goal_feet: list,
+    other_feet: list,
+    rng: np.random.Generator,
+) -> list[dict]:
     """Object ``specs`` (dicts with id, name, color, shape) packed edge to
     edge around the goal region; returns those placed, with ``pose`` and
     ``on`` set, in order.
@@ -161,20 +196,31 @@ def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], g
     xmin, xmax, ymin, ymax = bounds
     goal_centres = [np.array(shapely.get_coordinates(shapely.centroid(f))[0]) for f in goal_feet]
     placed = list(goal_feet) + list(other_feet)
-    out = []
+    out: list[dict] = []
     if not goal_centres:
         return out
     for spec in specs:
         full = {**spec, "pose": [0.0, 0.0, 0.0], "on": None}
-        local = Scene.from_spec(parse_scene({"workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
-                                             "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}]})).local[0]
+        local = Scene.from_spec(
+            parse_scene(
+                {
+                    "workspace": {"x": [xmin, xmax], "y": [ymin, ymax]},
+                    "objects": [{**full, "pose": [(xmin + xmax) / 2, (ymin + ymax) / 2, 0.0]}],
+                }
+            )
+        ).local[0]
 
-        def poly_at(p):
+        def poly_at(p, local=local):
             return shapely.polygons(geo.transform(local, p))
 
-        def fits(p) -> bool:
+        def fits(p, local=local) -> bool:
             v = geo.transform(local, p)
-            if v[:, 0].min() < xmin + 0.003 or v[:, 0].max() > xmax - 0.003 or v[:, 1].min() < ymin + 0.003 or v[:, 1].max() > ymax - 0.003:
+            if (
+                v[:, 0].min() < xmin + 0.003
+                or v[:, 0].max() > xmax - 0.003
+                or v[:, 1].min() < ymin + 0.003
+                or v[:, 1].max() > ymax - 0.003
+            ):
                 return False
             arr = np.empty(len(placed), dtype=object)
             arr[:] = placed
@@ -209,14 +255,24 @@ def pack_clutter(bounds: tuple[float, float, float, float], specs: list[dict], g
     return out
 
 
-def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
-              dense_rng: np.random.Generator | None = None) -> Case | None:
+def _try_case(
+    rng: np.random.Generator, n_objects: int | None, kind: str | None, dense_rng: np.random.Generator | None = None
+) -> Case | None:
     n = int(n_objects or rng.integers(6, 17))
     kind = kind or ("blockers" if rng.random() < 0.5 else "clutter")
     objects = []
     for i in range(n):
         name, shape = _shape(rng)
-        objects.append({"id": i + 1, "name": name, "color": _COLORS[i % len(_COLORS)], "shape": shape, "pose": [0.0, 0.0, 0.0], "on": None})
+        objects.append(
+            {
+                "id": i + 1,
+                "name": name,
+                "color": _COLORS[i % len(_COLORS)],
+                "shape": shape,
+                "pose": [0.0, 0.0, 0.0],
+                "on": None,
+            }
+        )
     scene = Scene.from_spec(parse_scene({"workspace": WORKSPACE, "objects": objects}), overlap_ok=True)
     order = list(rng.permutation(n))
     n_goals = int(rng.integers(1, 3))
@@ -281,10 +337,10 @@ def _try_case(rng: np.random.Generator, n_objects: int | None, kind: str | None,
             return None
         final_pose[o] = p
     gspec = parse_goals({"goals": goals})
-    poses = np.array([final_pose[o] for o in range(n)])
+    final_poses = np.array([final_pose[o] for o in range(n)])
     on = tuple(final_on.get(o, TABLE) for o in range(n))
     for g in gspec.goals:
-        if goal_satisfied(g, scene, poses, on) is not None:
+        if goal_satisfied(g, scene, final_poses, on) is not None:
             return None
     # Start state: goal targets scattered, non-goal objects as blockers or clutter.
     targets = sorted({scene.index[i] for g in gspec.goals for i in g.objects})
@@ -350,7 +406,9 @@ def _fits_some_shape(pattern: str, xy: np.ndarray, max_radius: float) -> bool:
         # The rest of the circle's objects must spread over more than half of
         # it, so the circle cannot be much larger than the table.
         c, r = fit_circle(xy)
-        return bool(np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL)
+        return bool(
+            np.isfinite(r) and 0.05 - TOL <= r <= max_radius and np.abs(np.hypot(*(xy - c).T) - r).max() <= 2 * TOL
+        )
     if pattern == "rectangle":
         # Kept centres lie inside the final rectangle, so one deeper than the
         # tolerance inside their own convex hull is off its perimeter.
@@ -369,7 +427,11 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
     if g.pattern in ("line", "circle", "rectangle"):
         best: list[frozenset[int]] = [frozenset(c) for c in combinations(on_table, min(2, len(on_table)))]
         for k in range(3, len(on_table) + 1):
-            more = [frozenset(c) for c in combinations(on_table, k) if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)]
+            more = [
+                frozenset(c)
+                for c in combinations(on_table, k)
+                if _fits_some_shape(g.pattern, st.poses[list(c), :2], diag / 2)
+            ]
             if not more:
                 break
             best = more
@@ -378,13 +440,15 @@ def _keep_options(g, sc: Scene, st) -> list[frozenset[int]]:
         keep: list[int] = []
         if st.on[idx[0]] == TABLE:
             keep.append(idx[0])
-            for a, b in zip(idx, idx[1:]):
+            for a, b in pairwise(idx):
                 if st.on[b] != a:
                     break
                 keep.append(b)
         return [frozenset(keep)]
     if g.pattern in RELATIONS:
-        ok = frozenset(i for i in idx if goal_satisfied(g.model_copy(update={"objects": [sc.ids[i]]}), sc, st.poses, st.on) is None)
+        ok = frozenset(
+            i for i in idx if goal_satisfied(g.model_copy(update={"objects": [sc.ids[i]]}), sc, st.poses, st.on) is None
+        )
         return [ok]
     return [frozenset()]
 
@@ -500,14 +564,16 @@ def _rsa(n: int, rng: np.random.Generator, lo: np.ndarray, hi: np.ndarray, dist:
     raise RuntimeError(f"random sequential addition could not place {n} discs")  # pragma: no cover
 
 
-def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str) -> Case:
+def _disc_case(start: np.ndarray, goal: np.ndarray, r: float, ws: dict, kind: str, height: float = 0.02) -> Case:
     n = len(start)
     objs = [
-        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+        {"id": i + 1, "name": "disc", "color": _COLORS[i % len(_COLORS)], "shape": {"type": "cylinder", "radius": r, "height": height},
          "pose": [float(start[i, 0]), float(start[i, 1]), 0.0], "on": None}
         for i in range(n)
     ]
-    goals = [{"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
+    goals = [
+        {"pattern": "pose", "objects": [i + 1], "pose": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)
+    ]
     sspec = parse_scene({"workspace": ws, "objects": objs})
     gspec = parse_goals({"goals": goals})
     return Case(sspec, gspec, kind, lower_bound(sspec, gspec), reference_count(sspec, gspec))
@@ -601,16 +667,105 @@ def labbe_case(n: int, seed: int, *, variant: str = "spaced") -> Case:
                 if len(pts) == n:
                     return np.array(pts)
         cols, rows = 6, 7
-        grid = []
+        grid: list[tuple[float, float]] = []
         for j in range(rows):
             for i in range(cols):
                 x = r + 0.003 + i * (2 * r + 0.006) + (j % 2) * (r + 0.003)
                 y = r + 0.003 + j * 0.0685
                 if x <= 0.5 - r - 0.003 and y <= 0.5 - r - 0.003:
                     grid.append((x, y))
-        grid = np.array(grid)
-        pick = rng.choice(len(grid), n, replace=False)
-        return grid[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
+        cells = np.array(grid)
+        pick = rng.choice(len(cells), n, replace=False)
+        return cells[pick] + rng.uniform(-0.0005, 0.0005, (n, 2))
 
     start, goal = config(), config()
     return _disc_case(start, goal, r, ws, "labbe")
+
+
+#: Metres per length unit of TRLB's instance files (their workspace is 1000 units square; here 1 m).
+TRLB_UNIT = 1e-3
+#: Height (m) given to TRLB's discs, which are flat shapes in their files.
+TRLB_DISC_HEIGHT = 0.02
+
+
+@dataclass(frozen=True)
+class TrlbArrangement:
+    """One TRLB arrangement file: disc centres in a ``width`` x ``height`` box (TRLB units)."""
+
+    path: str
+    density: float
+    radius: float
+    width: float
+    height: float
+    points: np.ndarray
+
+
+def read_trlb_arrangement(path: str | Path) -> TrlbArrangement:
+    """Read one of TRLB's ``disk_experiments/arrangements/D=<d>/n=<n>/<k>_<n>_<d>.json`` files.
+
+    Raises :class:`~lgmcts.errors.InputError` (one line) for a file that is
+    not such an arrangement.
+    """
+    p = Path(path)
+    try:
+        data = json.loads(p.read_text())
+        pts = np.asarray(data["point_list"], dtype=float).reshape(-1, 2)
+        arr = TrlbArrangement(str(p), float(data["Workspace_Density"]), float(data["Object_Radius"]),
+                              float(data["Workspace_Width"]), float(data["Workspace_Height"]), pts)
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise InputError(f"{p}: not a TRLB arrangement file ({type(e).__name__}: {e})") from None
+    if data.get("Object_Shape", "disc") != "disc":
+        raise InputError(f"{p}: only disc arrangements are supported, not '{data.get('Object_Shape')}'")
+    if int(data.get("number_of_objects", len(pts))) != len(pts) or not len(pts):
+        raise InputError(f"{p}: number_of_objects does not match point_list")
+    if not (arr.radius > 0 and arr.width > 0 and arr.height > 0 and np.isfinite(pts).all()):
+        raise InputError(f"{p}: radius, width and height must be positive and the points finite")
+    return arr
+
+
+def trlb_case(start: str | Path | TrlbArrangement, goal: str | Path | TrlbArrangement) -> Case:
+    """A case from two TRLB arrangement files, paired as TRLB's ``generate_instance`` pairs them.
+
+    Disc ``k`` starts at the ``k``-th point of ``start`` and must end at the
+    ``k``-th point of ``goal`` (a ``pose`` goal, yaw 0). Lengths are scaled
+    by :data:`TRLB_UNIT` (1 m per 1000 units), the discs become cylinders of
+    TRLB's radius and height :data:`TRLB_DISC_HEIGHT`, and the workspace is
+    TRLB's box ``[0, width] x [0, height]``. The 24-gon that stands for a disc
+    reaches exactly its radius along both axes, so a disc is inside the
+    workspace exactly where TRLB has it inside.
+    """
+    a = start if isinstance(start, TrlbArrangement) else read_trlb_arrangement(start)
+    b = goal if isinstance(goal, TrlbArrangement) else read_trlb_arrangement(goal)
+    if len(a.points) != len(b.points) or a.radius != b.radius or (a.width, a.height) != (b.width, b.height):
+        raise InputError(f"{a.path} and {b.path} are not a start/goal pair (different counts, radii or workspaces)")
+    ws = {"x": [0.0, a.width * TRLB_UNIT], "y": [0.0, a.height * TRLB_UNIT]}
+    return _disc_case(a.points * TRLB_UNIT, b.points * TRLB_UNIT, a.radius * TRLB_UNIT, ws, "trlb",
+                      height=TRLB_DISC_HEIGHT)
+
+
+def trlb_pairs(root: str | Path, pairs: int = 5) -> list[tuple[float, int, tuple[Path, Path]]]:
+    """The (density, count, (start file, goal file)) pairs under TRLB's ``arrangements`` folder ``root``.
+
+    In each ``D=<d>/n=<n>`` folder, files ``2k_<n>_<d>.json`` (start) and
+    ``2k+1_<n>_<d>.json`` (goal) for ``k < pairs`` form a pair, where both
+    exist: two distinct files of one cell, as TRLB's ``generate_instance``
+    takes them (it is given the two file numbers). Sorted by density, count
+    and ``k``.
+    """
+    base = Path(root)
+    if not base.is_dir():
+        raise InputError(f"{base}: no such folder (TRLB's disk_experiments/arrangements)")
+    out: list[tuple[float, int, tuple[Path, Path]]] = []
+    for cell in base.glob("D=*/n=*"):
+        try:
+            d, n = float(cell.parent.name[2:]), int(cell.name[2:])
+        except ValueError:
+            continue
+        tag = cell.parent.name[2:]
+        for k in range(pairs):
+            s, g = cell / f"{2 * k}_{n}_{tag}.json", cell / f"{2 * k + 1}_{n}_{tag}.json"
+            if s.is_file() and g.is_file():
+                out.append((d, n, (s, g)))
+    if not out:
+        raise InputError(f"{base}: no TRLB arrangement pairs found (expected D=<d>/n=<n>/<k>_<n>_<d>.json)")
+    return sorted(out, key=lambda t: (t[0], t[1], str(t[2][0])))

@@ -6,13 +6,11 @@ from __future__ import annotations
 import importlib
 import json
 import os
-import sys
 from pathlib import Path
-from typing import Optional
 
 import typer
 
-from .cli_util import check_output_dir, check_output_file, configure_logging, fail, run_app, write_text
+from .cli_util import check_output_dir, check_output_file, configure_logging, fail, one_line, run_app, write_text
 from .errors import InputError
 
 app = typer.Typer(
@@ -48,26 +46,38 @@ def _root(
 _PLUGINS = ("lgmcts.language.cli", "lgmcts.sim.cli", "lgmcts.viz.cli", "lgmcts.service.cli", "lgmcts.bench.cli")
 
 
+#: Default wall-clock budget of ``lgmcts plan`` (s). A plan that the
+#: iteration budget would decide takes seconds on a tabletop; the limit only
+#: stops searches that no budget ends in reasonable time (goals the planner
+#: cannot meet but the pre-check cannot prove impossible). The library's
+#: ``plan()`` has no default limit, so its plans depend on the seed alone.
+PLAN_TIME_LIMIT = 120.0
+
+
 @app.command()
 def plan(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
-    instruction: Optional[str] = typer.Argument(None, help="Plain-language command (instead of --goal)."),
-    goal: Optional[Path] = typer.Option(None, "--goal", "-g", help="Goal JSON file."),
+    instruction: str | None = typer.Argument(None, help="Plain-language command (instead of --goal)."),
+    goal: Path | None = typer.Option(None, "--goal", "-g", help="Goal JSON file."),
     method: str = typer.Option("lgmcts", help="lgmcts, greedy or pmcts."),
     seed: int = typer.Option(0, help="Random seed; the same seed gives the same plan."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Iteration budget."),
-    time_limit: Optional[float] = typer.Option(None, "--time-limit", help="Wall-clock budget in seconds."),
+    time_limit: float = typer.Option(
+        PLAN_TIME_LIMIT, "--time-limit", help="Wall-clock budget in seconds; 0 for none (only --max-iter then)."
+    ),
     anytime: bool = typer.Option(False, help="Keep searching within the budget for a shorter plan."),
     parser: str = typer.Option("rules", help="Instruction parser: rules or llm."),
-    llm_model: Optional[str] = typer.Option(None, "--llm-model"),
-    llm_base_url: Optional[str] = typer.Option(None, "--llm-base-url"),
-    output: Optional[str] = typer.Option(None, "-o", "--output", help="Write the plan JSON here (default stdout)."),
-    viz: Optional[Path] = typer.Option(None, "--viz", help="Write pictures of the plan into this folder."),
+    llm_model: str | None = typer.Option(None, "--llm-model"),
+    llm_base_url: str | None = typer.Option(None, "--llm-base-url"),
+    output: str | None = typer.Option(None, "-o", "--output", help="Write the plan JSON here (default stdout)."),
+    viz: Path | None = typer.Option(None, "--viz", help="Write pictures of the plan into this folder."),
     verbose: int = typer.Option(0, "-v", "--verbose", count=True, help="-v: search log, -vv: debug."),
 ) -> None:
     """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
 
     Exit status: 0 solved, 1 not solved (the partial plan is still written), 2 bad input.
+    Pictures that cannot be written (--viz on a full disk) are one line on
+    stderr; the status stays the plan's, the plan being written.
     """
     from . import formats
     from .planner import plan as run_plan
@@ -84,8 +94,10 @@ def plan(
         else:
             from .language import parse
 
+            assert instruction is not None  # one of the two, checked above
             goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
-        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=time_limit, anytime=anytime)
+        limit = None if time_limit == 0 else time_limit
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=limit, anytime=anytime)
     except InputError as exc:
         fail(str(exc))
     if instruction is not None:
@@ -94,8 +106,12 @@ def plan(
     if viz is not None:
         from .viz import write_plan_figures
 
-        paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
-        typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        try:
+            paths = write_plan_figures(spec, result, viz, goals=goals, instruction=instruction)
+            typer.echo(f"wrote {len(paths)} pictures to {viz}", err=True)
+        except InputError as exc:
+            # The plan is written; its exit status stays the plan's, the pictures' failure is one line.
+            typer.echo(f"the plan was written but not its pictures: {one_line(exc)}", err=True)
     st = result.stats
     status = "solved" if result.solved else f"not solved ({st.get('reason', '')})"
     typer.echo(

@@ -2,21 +2,31 @@
 
 from __future__ import annotations
 
+import errno
+import io
 import logging
 import os
 import sys
-import tempfile
 from pathlib import Path
 from typing import NoReturn
 
 import typer
-from tqdm import tqdm
 
 
 def fail(message: str, code: int = 2) -> NoReturn:
-    """Print ``message`` as one line on stderr and exit with ``code`` (2: bad input)."""
-    typer.echo(" ".join(str(message).split()), err=True)
+    """Print ``message`` as one line on stderr and exit with ``code`` (2: bad input).
+
+    Control characters (from names in the input) are escaped, never sent raw.
+    """
+    typer.echo(one_line(message), err=True)
     raise typer.Exit(code)
+
+
+def one_line(message: object) -> str:
+    """``message`` on one line, runs of white space made single spaces, control characters escaped."""
+    from .limits import printable
+
+    return printable(" ".join(str(message).split()))
 
 
 def _click_exceptions():
@@ -36,22 +46,32 @@ def run_app(app: typer.Typer, prog_name: str = "lgmcts") -> NoReturn:
 
     cx = _click_exceptions()
     command = typer.main.get_command(app)
+    if sys.stdout is None:  # started with stdout closed: writing must fail, not vanish
+        sys.stdout = _ClosedStdout()
     try:
         code = command.main(prog_name=prog_name, standalone_mode=False)
+        sys.stdout.flush()
     except cx.NoArgsIsHelpError as exc:
         typer.echo(exc.ctx.get_help() if exc.ctx is not None else str(exc), err=True)
         sys.exit(2)
     except cx.UsageError as exc:
         where = f"{exc.ctx.command_path}: " if exc.ctx is not None else ""
-        typer.echo(" ".join(f"{where}{exc.format_message()}".split()) + " (see --help)", err=True)
+        typer.echo(one_line(f"{where}{exc.format_message()}") + " (see --help)", err=True)
         sys.exit(2)
     except cx.ClickException as exc:
-        typer.echo(" ".join(exc.format_message().split()), err=True)
+        typer.echo(one_line(exc.format_message()), err=True)
         sys.exit(exc.exit_code)
     except typer.Exit as exc:
         sys.exit(exc.exit_code)
+    except SystemExit as exc:
+        # Loaded code (a pattern module, a plug-in planner) called sys.exit: a
+        # success status would read as "solved" or "valid", so it is an error.
+        if exc.code in (0, None):
+            _stderr_line("the program was ended by sys.exit(0) in loaded code (a pattern module or plug-in)")
+            sys.exit(2)
+        raise
     except InputError as exc:  # pragma: no cover - commands catch their own
-        typer.echo(str(exc), err=True)
+        typer.echo(one_line(exc), err=True)
         sys.exit(2)
     except ModuleNotFoundError as exc:  # an optional extra that is not installed
         message = missing_extra(exc)
@@ -59,10 +79,47 @@ def run_app(app: typer.Typer, prog_name: str = "lgmcts") -> NoReturn:
             raise
         typer.echo(message, err=True)
         sys.exit(2)
+    except OSError as exc:
+        # Writing the answer failed (stdout closed, on a full device, a broken pipe):
+        # every file output has its own message; what is left is stdout.
+        _silence_stdout()
+        typer.echo(f"cannot write output: {exc.strerror or exc}", err=True)
+        sys.exit(2)
+    except MemoryError:
+        # A last resort: every input has bounds (docs/limits.md) that keep far below this.
+        typer.echo("out of memory: the input is too large for this machine (see docs/limits.md)", err=True)
+        sys.exit(2)
     except (typer.Abort, KeyboardInterrupt):
         typer.echo("interrupted", err=True)
         sys.exit(130)
     sys.exit(code if isinstance(code, int) else 0)
+
+
+class _ClosedStdout(io.TextIOBase):
+    """Stands for a stdout that was closed before the program started: writing to it fails."""
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        raise OSError(errno.EBADF, "standard output is closed")
+
+
+def _stderr_line(text: str) -> None:
+    try:
+        typer.echo(text, err=True)
+    except OSError:  # pragma: no cover - stderr gone too
+        pass
+
+
+def _silence_stdout() -> None:
+    """Point file descriptor 1 at the null device so nothing more fails on it, not even at exit."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 1)
+        os.close(devnull)
+    except OSError:
+        pass
 
 
 def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> None:
@@ -75,7 +132,7 @@ def check_output_file(path: str | Path | None, *, make_parents: bool = True) -> 
     """
     if path in (None, "-"):
         return
-    p = Path(path)  # type: ignore[arg-type]
+    p = Path(path)
     if p.is_dir():
         fail(f"cannot write {p}: it is a folder")
     if p.exists() and not p.is_file():
@@ -114,30 +171,35 @@ def _existing_parent(p: Path) -> Path:
 def write_text(text: str, path: str | None) -> None:
     """Write ``text`` to ``path`` atomically, or to stdout when ``path`` is ``None`` or ``-``.
 
-    The text goes to a temporary file beside ``path`` that then replaces it,
-    so a reader never sees half a file and a failure leaves the old one.
+    The text goes to a temporary file beside ``path`` that then replaces it
+    (:func:`lgmcts.outputs.atomic_write`), so a reader never sees half a file,
+    a failure leaves the old one, and the file's permissions follow the umask
+    (or the file it replaces). A failure is one line and exit status 2.
     """
+    from .errors import InputError
+    from .outputs import atomic_write
+
     if path in (None, "-"):
-        sys.stdout.write(text + "\n")
-        sys.stdout.flush()
+        write_stdout(text + "\n")
         return
-    target = Path(path)  # type: ignore[arg-type]
-    tmp = None
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text + "\n")
-        os.replace(tmp, target)
-        tmp = None
-    except OSError as exc:
-        fail(f"cannot write {path}: {exc.strerror}")
-    finally:
-        if tmp is not None:
-            try:
-                os.unlink(tmp)
-            except OSError:
-                pass
+        atomic_write(path, text + "\n")  # type: ignore[arg-type]
+    except InputError as exc:
+        fail(str(exc))
+
+
+def write_stdout(text: str) -> None:
+    """Print ``text`` on stdout; a closed, full or broken stdout is one line on stderr and exit status 2."""
+    out = sys.stdout
+    try:
+        if out is None:
+            raise OSError(errno.EBADF, "it is closed")
+        out.write(text)
+        out.flush()
+    except (OSError, ValueError) as exc:
+        _silence_stdout()  # nothing more may reach the broken stream, not even at exit
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else "it is closed"
+        fail(f"cannot write to standard output: {reason}")
 
 
 #: Name of the package's root logger; the planner logs to ``"lgmcts.planner"``.
@@ -153,7 +215,11 @@ class _StderrHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         try:
-            tqdm.write(self.format(record), file=sys.stderr)
+            from tqdm import tqdm  # on first use: importing it costs every command start-up
+
+            from .limits import printable
+
+            tqdm.write(printable(self.format(record)), file=sys.stderr)
             sys.stderr.flush()
         except Exception:  # pragma: no cover - logging must never raise
             self.handleError(record)

@@ -14,56 +14,42 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any, Literal, Union
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from . import limits
 from .errors import InputError
 
+if TYPE_CHECKING:  # at run time RELATIONS comes from __getattr__ below
+    from .patterns.spatial import RELATIONS
+
 __all__ = [
+    "RELATIONS",
+    "Action",
     "BoxShape",
     "CylinderShape",
-    "PolygonShape",
-    "PointsShape",
-    "ObjectSpec",
-    "Workspace",
-    "SceneSpec",
     "Goal",
     "GoalSpec",
-    "Action",
-    "PlanSpec",
-    "RELATIONS",
-    "PATTERN_NAMES",
+    "ObjectSpec",
     "PatternFormat",
+    "PlanSpec",
+    "PointsShape",
+    "PolygonShape",
+    "SceneSpec",
+    "Workspace",
     "declare_pattern",
-    "pattern_format",
-    "pattern_names",
-    "load_scene",
     "load_goals",
     "load_plan",
-    "save_json",
-    "to_dict",
-    "parse_scene",
+    "load_scene",
     "parse_goals",
     "parse_plan",
+    "parse_scene",
+    "pattern_format",
+    "pattern_names",
+    "save_json",
+    "to_dict",
 ]
-
-#: Unit direction of each spatial relation in the table frame.
-RELATIONS: dict[str, tuple[float, float]] = {
-    "left": (-1.0, 0.0),
-    "right": (1.0, 0.0),
-    "front": (0.0, -1.0),
-    "behind": (0.0, 1.0),
-    "left_front": (-math.sqrt(0.5), -math.sqrt(0.5)),
-    "left_behind": (-math.sqrt(0.5), math.sqrt(0.5)),
-    "right_front": (math.sqrt(0.5), -math.sqrt(0.5)),
-    "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
-}
-
-#: The built-in pattern names (:func:`pattern_names` adds declared ones).
-PATTERN_NAMES: tuple[str, ...] = ("line", "circle", "rectangle", "tower", *RELATIONS, "pose")
-
 
 @dataclass(frozen=True)
 class PatternFormat:
@@ -76,6 +62,8 @@ class PatternFormat:
     anchor : the goal needs an ``anchor`` (and must not list it as an object).
     pose : the goal needs a ``pose`` and exactly one object.
     on_table : the goal's objects must end on the table (not stacked).
+    size : the goal may carry a ``size`` (the pattern measures it, or, for a
+        tower, accepts and ignores it).
     """
 
     name: str
@@ -83,6 +71,7 @@ class PatternFormat:
     anchor: bool = False
     pose: bool = False
     on_table: bool = True
+    size: bool = False
 
 
 _FORMATS: dict[str, PatternFormat] = {}
@@ -103,22 +92,41 @@ def declare_pattern(fmt: PatternFormat) -> PatternFormat:
     return fmt
 
 
+def _builtins() -> dict[str, PatternFormat]:
+    """The declared formats, the built-in patterns' among them: each built-in
+    pattern module declares its own (through :func:`lgmcts.patterns.register`)
+    when it is imported, which the first look-up here makes happen."""
+    if not _BUILTINS_LOADED:
+        _BUILTINS_LOADED.append(True)
+        from .patterns.base import registry
+
+        registry()
+    return _FORMATS
+
+
+_BUILTINS_LOADED: list[bool] = []
+
+
 def pattern_format(name: str) -> PatternFormat | None:
     """The declared format of pattern ``name``, or ``None`` when unknown."""
-    return _FORMATS.get(name)
+    return _builtins().get(name)
 
 
 def pattern_names() -> tuple[str, ...]:
     """Every pattern name the goal format accepts now, built-ins first."""
-    return tuple(_FORMATS)
+    return tuple(_builtins())
 
 
-for _name, _need in (("line", 2), ("circle", 3), ("rectangle", 4)):
-    declare_pattern(PatternFormat(_name, min_objects=_need))
-declare_pattern(PatternFormat("tower", min_objects=2, on_table=False))
-for _name in RELATIONS:
-    declare_pattern(PatternFormat(_name, anchor=True))
-declare_pattern(PatternFormat("pose", pose=True, on_table=False))
+def __getattr__(name: str) -> Any:
+    # RELATIONS (each spatial relation's unit direction in the table frame)
+    # belongs to the relation patterns' module; it is read here for the
+    # modules that have always imported it from the formats.
+    if name == "RELATIONS":
+        _builtins()  # every built-in module, in the registry's order
+        from .patterns.spatial import RELATIONS
+
+        return RELATIONS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class _Model(BaseModel):
@@ -168,11 +176,32 @@ def _json_int(v: Any) -> Any:
 ObjectId = Annotated[int, BeforeValidator(_json_int)]
 
 
+def _json_number(v: Any) -> Any:
+    # Lengths, coordinates and angles are JSON numbers: "0.25" and true are not.
+    if isinstance(v, (bool, str, bytes)) or type(v).__name__ == "bool_":
+        raise ValueError(f"expected a number, got {limits.truncate(repr(v), 40)}")
+    return v
+
+
+#: A JSON number (an integer or a float; ``"0.25"`` and ``true`` are refused).
+Number = Annotated[float, BeforeValidator(_json_number)]
+
+
+def _json_bool(v: Any) -> Any:
+    if not isinstance(v, bool) and type(v).__name__ != "bool_":
+        raise ValueError(f"expected true or false, got {limits.truncate(repr(v), 40)}")
+    return v
+
+
+#: A JSON boolean (``"yes"``, ``1`` and ``"true"`` are refused).
+Flag = Annotated[bool, BeforeValidator(_json_bool)]
+
+
 class BoxShape(_Model):
     """A box; ``size`` is its full extent along the object's x, y, z axes (m)."""
 
     type: Literal["box"]
-    size: tuple[float, float, float]
+    size: tuple[Number, Number, Number]
 
     @field_validator("size")
     @classmethod
@@ -188,11 +217,11 @@ class CylinderShape(_Model):
     """An upright cylinder of ``radius`` and ``height`` (m)."""
 
     type: Literal["cylinder"]
-    radius: float
-    height: float
+    radius: Number
+    height: Number
 
     @model_validator(mode="after")
-    def _positive(self) -> "CylinderShape":
+    def _positive(self) -> CylinderShape:
         _finite((self.radius, self.height), "cylinder radius and height")
         if self.radius <= 0 or self.height <= 0:
             raise ValueError("cylinder radius and height must be positive")
@@ -204,11 +233,11 @@ class PolygonShape(_Model):
     """A convex footprint in the object frame, extruded to ``height`` (m)."""
 
     type: Literal["polygon"]
-    points: list[tuple[float, float]] = Field(max_length=limits.MAX_POLYGON_POINTS)
-    height: float
+    points: list[tuple[Number, Number]] = Field(max_length=limits.MAX_POLYGON_POINTS)
+    height: Number
 
     @model_validator(mode="after")
-    def _convex(self) -> "PolygonShape":
+    def _convex(self) -> PolygonShape:
         _finite((c for p in self.points for c in p), "polygon points")
         _finite((self.height,), "polygon height")
         if self.height <= 0:
@@ -229,10 +258,10 @@ class PointsShape(_Model):
     """A point cloud in the table frame; footprint = convex hull of its xy."""
 
     type: Literal["points"]
-    points: list[tuple[float, float, float]] = Field(max_length=limits.MAX_CLOUD_POINTS)
+    points: list[tuple[Number, Number, Number]] = Field(max_length=limits.MAX_CLOUD_POINTS)
 
     @model_validator(mode="after")
-    def _enough(self) -> "PointsShape":
+    def _enough(self) -> PointsShape:
         _finite((c for p in self.points for c in p), "cloud points")
         _bounded((c for p in self.points for c in p), "cloud points", limits.MAX_COORD)
         if len(self.points) < 3:
@@ -245,7 +274,7 @@ class PointsShape(_Model):
         return self
 
 
-Shape = Annotated[Union[BoxShape, CylinderShape, PolygonShape, PointsShape], Field(discriminator="type")]
+Shape = Annotated[BoxShape | CylinderShape | PolygonShape | PointsShape, Field(discriminator="type")]
 
 
 class ObjectSpec(_Model):
@@ -255,7 +284,7 @@ class ObjectSpec(_Model):
     name: str = Field(max_length=limits.MAX_TEXT)
     color: str = Field("", max_length=limits.MAX_TEXT)
     shape: Shape
-    pose: tuple[float, float, float] | None = None
+    pose: tuple[Number, Number, Number] | None = None
     on: ObjectId | None = None
 
     @field_validator("pose")
@@ -267,7 +296,7 @@ class ObjectSpec(_Model):
         return v
 
     @model_validator(mode="after")
-    def _pose_needed(self) -> "ObjectSpec":
+    def _pose_needed(self) -> ObjectSpec:
         if self.pose is None and self.shape.type != "points":
             raise ValueError("pose is required unless the shape is a point cloud")
         return self
@@ -276,11 +305,11 @@ class ObjectSpec(_Model):
 class Workspace(_Model):
     """The rectangle of the table the robot may place objects in (m)."""
 
-    x: tuple[float, float]
-    y: tuple[float, float]
+    x: tuple[Number, Number]
+    y: tuple[Number, Number]
 
     @model_validator(mode="after")
-    def _ordered(self) -> "Workspace":
+    def _ordered(self) -> Workspace:
         _finite((*self.x, *self.y), "workspace bounds")
         _bounded((*self.x, *self.y), "workspace bounds", limits.MAX_COORD)
         if not (self.x[0] < self.x[1] and self.y[0] < self.y[1]):
@@ -340,7 +369,7 @@ class SceneSpec(_Model):
     objects: list[ObjectSpec] = Field(max_length=limits.MAX_OBJECTS)
 
     @model_validator(mode="after")
-    def _consistent(self) -> "SceneSpec":
+    def _consistent(self) -> SceneSpec:
         ids = [o.id for o in self.objects]
         seen: set[int] = set()
         for i in ids:
@@ -374,7 +403,7 @@ class Goal(_Model):
     pattern: str = Field(max_length=limits.MAX_TEXT)
     objects: list[ObjectId] = Field(max_length=limits.MAX_OBJECTS)
     anchor: ObjectId | None = None
-    pose: tuple[float, float, float] | None = None
+    pose: tuple[Number, Number, Number] | None = None
     region: str | tuple[float, float, float, float] | None = None
     size: str | float | None = None
     facing: str | float | None = None
@@ -390,11 +419,16 @@ class Goal(_Model):
             if not isinstance(v, (list, tuple)) or len(v) != 4 or not all(
                     isinstance(c, (int, float)) and not isinstance(c, bool) for c in v):
                 raise ValueError("a region is a name such as 'top left' or a box [xmin, xmax, ymin, ymax]")
+            _bounded(v, "region box", limits.MAX_COORD)
         elif v is not None and not isinstance(v, (int, float)):
             raise ValueError(f"'{info.field_name}' must be a name or a number")
+        elif info.field_name == "facing" and v is not None:
+            _bounded((v,), "facing", limits.MAX_ANGLE)
+        elif info.field_name == "size" and v is not None:
+            _bounded((v,), "size", limits.MAX_COORD)
         return v
 
-    def _check_params(self, fmt: "PatternFormat") -> None:
+    def _check_params(self, fmt: PatternFormat) -> None:
         from . import params as gp
 
         p = self.pattern
@@ -404,7 +438,7 @@ class Goal(_Model):
         if self.region is not None:
             gp.region_box(self.region, (0.0, 1.0, 0.0, 1.0))
         if self.size is not None:
-            if p not in gp.SIZED and p != "tower":
+            if not fmt.size:
                 raise ValueError(f"a {p} goal takes no 'size'")
             if isinstance(self.size, str):
                 if self.size not in gp.SIZES:
@@ -415,9 +449,9 @@ class Goal(_Model):
             gp.heading_of(self.facing)
 
     @model_validator(mode="after")
-    def _shape(self) -> "Goal":
+    def _shape(self) -> Goal:
         p = self.pattern
-        fmt = _FORMATS.get(p)
+        fmt = pattern_format(p)
         if fmt is None:
             raise ValueError(f"unknown pattern '{p}' (known: {', '.join(pattern_names())})")
         if len(set(self.objects)) != len(self.objects):
@@ -454,9 +488,29 @@ class GoalSpec(_Model):
 
     def check_against(self, scene: SceneSpec) -> None:
         """Raise :class:`InputError` when a goal cannot refer to ``scene``."""
-        ids = {o.id for o in scene.objects}
         if not self.goals:
             raise InputError("the goal list is empty")
+        self._check_references(scene)
+        from .params import conflict
+
+        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
+        if why is not None:
+            raise InputError(why)
+        self._check_fixed_poses()
+        below = self._check_towers()
+        self._check_relations()
+        for g in self.goals:
+            if _builtins()[g.pattern].on_table:
+                for o in g.objects:
+                    if o in below:
+                        raise InputError(
+                            f"object {o} must be on the table for its {g.pattern} goal but on object {below[o]} "
+                            "for a tower"
+                        )
+
+    def _check_references(self, scene: SceneSpec) -> None:
+        """Every named object is in the scene; every region box meets the workspace."""
+        ids = {o.id for o in scene.objects}
         for k, g in enumerate(self.goals):
             for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]:
                 if i not in ids:
@@ -466,20 +520,20 @@ class GoalSpec(_Model):
                 x0, x1, y0, y1 = g.region
                 if x1 <= ws.x[0] or x0 >= ws.x[1] or y1 <= ws.y[0] or y0 >= ws.y[1]:
                     raise InputError(f"goal {k} ({g.pattern}): region box {list(g.region)} lies outside the workspace")
-        from .params import conflict
 
-        why = conflict(self.goals, (*scene.workspace.x, *scene.workspace.y))
-        if why is not None:
-            raise InputError(why)
-        # A pose goal and another fixed pose for the same object contradict.
-        fixed: dict[int, tuple[float, float, float]] = {}
+    def _check_fixed_poses(self) -> None:
+        """A pose goal and another fixed pose for the same object contradict."""
+        fixed: dict[int, tuple[float, float, float] | None] = {}
         for g in self.goals:
             if g.pattern == "pose":
                 o = g.objects[0]
                 if o in fixed and fixed[o] != g.pose:
                     raise InputError(f"object {o} has two different pose goals")
-                fixed[o] = g.pose  # type: ignore[assignment]
-        # Tower order must not contradict itself or put an object on itself.
+                fixed[o] = g.pose
+
+    def _check_towers(self) -> dict[int, int]:
+        """Tower order must not contradict itself or put an object on itself;
+        returns the object each tower member rests on."""
         below: dict[int, int] = {}
         for g in self.goals:
             if g.pattern == "tower":
@@ -487,32 +541,28 @@ class GoalSpec(_Model):
                     if b in below and below[b] != a:
                         raise InputError(f"object {b} must rest on both {below[b]} and {a}")
                     below[b] = a
-        o = _on_cycle({b: (a,) for b, a in below.items()})
-        if o is not None:
-            raise InputError(f"tower goals form a cycle through object {o}")
-        # Relations among the same goal objects must not form a cycle of dependencies.
+        on_cycle = _on_cycle({b: (a,) for b, a in below.items()})
+        if on_cycle is not None:
+            raise InputError(f"tower goals form a cycle through object {on_cycle}")
+        return below
+
+    def _check_relations(self) -> None:
+        """Relations among the same goal objects must not form a cycle of dependencies."""
         dep: dict[int, set[int]] = {}
         for g in self.goals:
             if g.anchor is not None:
                 for o in g.objects:
                     dep.setdefault(o, set()).add(g.anchor)
-        o = _on_cycle(dep)
-        if o is not None:
-            raise InputError(f"spatial relations form a cycle through object {o}")
-        for g in self.goals:
-            if _FORMATS[g.pattern].on_table:
-                for o in g.objects:
-                    if o in below:
-                        raise InputError(
-                            f"object {o} must be on the table for its {g.pattern} goal but on object {below[o]} for a tower"
-                        )
+        on_cycle = _on_cycle(dep)
+        if on_cycle is not None:
+            raise InputError(f"spatial relations form a cycle through object {on_cycle}")
 
 
 class Action(_Model):
     """Pick ``object`` and place it at ``to`` on the table or on object ``on``."""
 
     object: ObjectId
-    to: tuple[float, float, float]
+    to: tuple[Number, Number, Number]
     on: ObjectId | None = None
     purpose: Literal["goal", "relocate", "unstack"] = "goal"
 
@@ -529,7 +579,7 @@ class PlanSpec(_Model):
 
     model_config = ConfigDict(extra="allow", frozen=True)
 
-    solved: bool
+    solved: Flag
     actions: list[Action] = Field(max_length=limits.MAX_ACTIONS)
     goals: GoalSpec | None = None
     stats: dict[str, Any] = Field(default_factory=dict)
@@ -592,17 +642,17 @@ def parse_plan(data: Any) -> PlanSpec:
         raise InputError(_one_line(err, "plan")) from None
 
 
-def load_scene(source: str | Path | dict) -> SceneSpec:
+def load_scene(source: str | Path | dict | SceneSpec) -> SceneSpec:
     """Read and validate a scene JSON file (or dict)."""
     return parse_scene(_read(source, "scene"))
 
 
-def load_goals(source: str | Path | dict) -> GoalSpec:
+def load_goals(source: str | Path | dict | list | GoalSpec) -> GoalSpec:
     """Read and validate a goal JSON file (or dict)."""
     return parse_goals(_read(source, "goals"))
 
 
-def load_plan(source: str | Path | dict) -> PlanSpec:
+def load_plan(source: str | Path | dict | PlanSpec) -> PlanSpec:
     """Read and validate a plan JSON file (or dict)."""
     return parse_plan(_read(source, "plan"))
 

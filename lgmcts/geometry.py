@@ -10,7 +10,7 @@ and containment of many candidate placements cost one vectorised call.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 import shapely
@@ -20,23 +20,25 @@ __all__ = [
     "CIRCLE_SEGMENTS",
     "box_footprint",
     "circle_footprint",
+    "colliding",
+    "colliding_near",
     "convex_footprint",
-    "transform",
-    "place_each",
-    "polygons",
     "inside_workspace",
     "lens_area",
     "overlap_pairs",
     "overlapping",
-    "colliding",
-    "colliding_near",
+    "place_each",
+    "polygons",
     "radius_of",
+    "transform",
     "wrap_angle",
 ]
 
 #: A cylinder's footprint is the regular polygon of this many sides that
 #: circumscribes its circle, so the polygon is never smaller than the object.
 CIRCLE_SEGMENTS = 24
+#: Rounding allowance (m) of :func:`inside_workspace`.
+EDGE_EPS = 1e-9
 
 
 def box_footprint(sx: float, sy: float) -> np.ndarray:
@@ -55,7 +57,9 @@ def circle_footprint(radius: float, segments: int = CIRCLE_SEGMENTS) -> np.ndarr
 def convex_footprint(points: np.ndarray) -> np.ndarray:
     """Convex hull of ``(n, 2)`` points as CCW vertices (no repeated end)."""
     hull = shapely.MultiPoint(np.asarray(points, dtype=float)[:, :2]).convex_hull
-    hull = shapely.orient_polygons(hull) if hasattr(shapely, "orient_polygons") else shapely.geometry.polygon.orient(hull)
+    hull = (
+        shapely.orient_polygons(hull) if hasattr(shapely, "orient_polygons") else shapely.geometry.polygon.orient(hull)
+    )
     return np.asarray(hull.exterior.coords, dtype=float)[:-1]
 
 
@@ -111,12 +115,15 @@ def inside_workspace(vertices: np.ndarray, bounds: Sequence[float], margin: floa
 
     ``vertices`` is ``(m, k, 2)``; returns a boolean ``(m,)``. Because the
     workspace is convex, a convex footprint is inside it exactly when all its
-    vertices are.
+    vertices are. A vertex within :data:`EDGE_EPS` of the edge counts as on it
+    (rounding of the footprint's vertices; a disc whose circle touches the
+    edge is inside).
     """
     v = np.asarray(vertices)
     xmin, xmax, ymin, ymax = bounds
     x, y = v[..., 0], v[..., 1]
-    ok = (x >= xmin + margin) & (x <= xmax - margin) & (y >= ymin + margin) & (y <= ymax - margin)
+    m = margin - EDGE_EPS
+    ok = (x >= xmin + m) & (x <= xmax - m) & (y >= ymin + m) & (y <= ymax - m)
     return ok.all(axis=-1)
 
 
@@ -144,9 +151,18 @@ def colliding(tree: STRtree, candidates: np.ndarray, clearance: float) -> tuple[
     return pairs[0], pairs[1]
 
 
-def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: np.ndarray | float, obstacles: np.ndarray,
-                   obs_xy: np.ndarray, obs_r: np.ndarray, clearance: float, *, cand_disc: np.ndarray | float | None = None,
-                   obs_disc: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def colliding_near(
+    candidates: np.ndarray | None,
+    cand_xy: np.ndarray,
+    cand_r: np.ndarray | float,
+    obstacles: np.ndarray,
+    obs_xy: np.ndarray,
+    obs_r: np.ndarray,
+    clearance: float,
+    *,
+    cand_disc: np.ndarray | float | None = None,
+    obs_disc: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``(candidate index, obstacle index)`` closer than ``clearance``, as
     :func:`colliding`, without an R-tree.
 
@@ -174,12 +190,14 @@ def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: n
             hit[disc] = d2[ci[disc], oi[disc]] <= (cd[disc] + od[disc] + clearance + 1e-12) ** 2
             rest = np.flatnonzero(~disc)
             if len(rest):
+                assert candidates is not None, "candidates are needed for pairs that are not both discs"
                 if clearance > 0:
                     hit[rest] = shapely.dwithin(candidates[ci[rest]], obstacles[oi[rest]], clearance)
                 else:
                     hit[rest] = shapely.intersects(candidates[ci[rest]], obstacles[oi[rest]])
             return ci[hit], oi[hit]
     if len(ci):
+        assert candidates is not None, "candidates are needed for pairs that are not both discs"
         if clearance > 0:
             hit = shapely.dwithin(candidates[ci], obstacles[oi], clearance)
         else:
@@ -188,8 +206,15 @@ def colliding_near(candidates: np.ndarray | None, cand_xy: np.ndarray, cand_r: n
     return ci, oi
 
 
-def overlapping(a_polys: np.ndarray, a_xy: np.ndarray, a_disc: np.ndarray, b_polys: np.ndarray, b_xy: np.ndarray,
-                b_disc: np.ndarray, max_area: float) -> np.ndarray:
+def overlapping(
+    a_polys: np.ndarray,
+    a_xy: np.ndarray,
+    a_disc: np.ndarray,
+    b_polys: np.ndarray,
+    b_xy: np.ndarray,
+    b_disc: np.ndarray,
+    max_area: float,
+) -> np.ndarray:
     """Elementwise, whether shape pairs overlap by more than legal contact.
 
     Pairs of discs (both ``*_disc`` radii > 0, m) overlap when their true

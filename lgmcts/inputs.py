@@ -19,7 +19,7 @@ from typing import Any
 from . import limits
 from .errors import InputError
 
-__all__ = ["read_text", "read_lines", "loads"]
+__all__ = ["loads", "read_lines", "read_text"]
 
 
 def _open(path: Path, what: str) -> int:
@@ -91,14 +91,41 @@ def read_lines(path: str | Path, what: str) -> Iterator[tuple[int, str]]:
                 raise InputError(f"{path} line {n} is not UTF-8 text") from None
 
 
+class _DuplicateKey(Exception):
+    def __init__(self, key: str) -> None:
+        super().__init__(key)
+        self.key = key
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """``object_pairs_hook`` refusing an object that names a key twice (JSON lets the last win silently)."""
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise _DuplicateKey(key)
+        out[key] = value
+    return out
+
+
 def loads(text: str | bytes, where: str) -> Any:
     """``json.loads`` whose failures are one line naming ``where``.
 
     Malformed JSON raises ``json.JSONDecodeError`` as before (callers word
-    it); JSON nested deeper than the interpreter can parse raises
-    :class:`InputError`.
+    it); everything else that makes the text unusable raises
+    :class:`InputError`: JSON nested deeper than the interpreter can parse,
+    an object naming the same key twice, an integer longer than Python reads
+    (``sys.get_int_max_str_digits``), bytes that are not UTF-8.
     """
     try:
-        return json.loads(text)
+        return json.loads(text, object_pairs_hook=_unique_keys)
     except RecursionError:
         raise InputError(f"{where} is nested too deeply") from None
+    except _DuplicateKey as exc:
+        raise InputError(f"{where} names the key '{limits.truncate(limits.printable(exc.key), 40)}' twice in one object") from None
+    except json.JSONDecodeError:
+        raise
+    except UnicodeDecodeError:
+        raise InputError(f"{where} is not UTF-8 text") from None
+    except ValueError:
+        # json raises a bare ValueError for an integer with too many digits.
+        raise InputError(f"{where} holds a number with too many digits") from None

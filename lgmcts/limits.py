@@ -14,22 +14,25 @@ from __future__ import annotations
 import os
 
 __all__ = [
-    "MAX_COORD",
+    "MAX_ACTIONS",
     "MAX_ANGLE",
-    "MIN_LENGTH",
+    "MAX_CLOUD_POINTS",
+    "MAX_COORD",
+    "MAX_GOALS",
+    "MAX_ID",
+    "MAX_INPUT_BYTES",
+    "MAX_INPUT_BYTES_ENV",
+    "MAX_INSTRUCTION",
     "MAX_LENGTH",
     "MAX_OBJECTS",
     "MAX_POLYGON_POINTS",
-    "MAX_CLOUD_POINTS",
-    "MAX_GOALS",
-    "MAX_ACTIONS",
     "MAX_TEXT",
-    "MAX_ID",
-    "MAX_INSTRUCTION",
+    "MAX_VIEW_CELLS",
+    "MAX_VIEW_DRAWN",
+    "MIN_LENGTH",
     "START_OVERLAP_AREA",
-    "MAX_INPUT_BYTES",
-    "MAX_INPUT_BYTES_ENV",
     "max_input_bytes",
+    "printable",
     "truncate",
 ]
 
@@ -72,6 +75,17 @@ MAX_INSTRUCTION = 2_000
 #: 0, no area in common) are legal.
 START_OVERLAP_AREA = 1e-6
 
+#: Largest ``(objects + goal members) x (actions + 1)`` the viewer data
+#: (``lgmcts viz --html``, the service's ``/view``) is computed for: the
+#: replay compares every pose at every step and redraws the goals of each
+#: moved object. At the cap it takes about 7 s and 30 MB on a 2-core VM.
+MAX_VIEW_CELLS = 10_000_000
+
+#: Most objects and goal members the viewer's frames may list in all (each
+#: frame lists the objects that changed and the goals drawn anew, whole):
+#: bounds the answer of ``/view`` to tens of megabytes.
+MAX_VIEW_DRAWN = 1_000_000
+
 #: Default cap on the bytes of one input file (or one line of a JSONL file).
 MAX_INPUT_BYTES = 16 * 1024 * 1024
 
@@ -101,3 +115,15 @@ def truncate(text: str, limit: int = 80) -> str:
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"
+
+
+def printable(text: str) -> str:
+    """``text`` with every control character escaped (``\\x1b``, ``\\n``), safe to print on a terminal.
+
+    Names and other text from input files reach error messages; raw escape
+    sequences there could retitle or reprogram the reader's terminal.
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)

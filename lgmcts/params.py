@@ -19,10 +19,10 @@ Region
     (three cells), a column word alone (or ``"<col> column"``) the whole
     column, and ``"center"`` or ``"middle"`` alone the centre cell (``"middle
     center"``), as "the middle of the table" reads in English; the middle
-    row and the centre column are ``"middle row"`` and ``"center column"``. A box ``[xmin, xmax, ymin, ymax]`` (m) may be given
-    instead of a name. The goal holds when every one of its objects' centres
-    lies in the box, up to :data:`REGION_TOL` outside it (a relation's anchor
-    is not one of its objects).
+    row and the centre column are ``"middle row"`` and ``"center column"``. A box
+    ``[xmin, xmax, ymin, ymax]`` (m) may be given instead of a name. The goal
+    holds when every one of its objects' centres lies in the box, up to
+    :data:`REGION_TOL` outside it (a relation's anchor is not one of its objects).
 Size
     ``"small"``, ``"medium"``, ``"large"`` or a length in metres, compared to
     the arrangement's characteristic length L: a circle's fitted radius, a
@@ -51,28 +51,29 @@ Facing
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any
 
 __all__ = [
-    "ROWS",
     "COLUMNS",
-    "SIZES",
+    "FACING_TOL",
     "HEADINGS",
+    "NAMED_FACING_TOL",
     "REGION_NAMES",
     "REGION_TOL",
+    "ROWS",
+    "SIZES",
     "SIZE_TOL",
-    "FACING_TOL",
-    "NAMED_FACING_TOL",
-    "SIZED",
     "GoalParams",
+    "conflict",
+    "heading_of",
     "region_box",
     "region_name",
-    "heading_of",
-    "size_range",
     "resolve",
+    "size_range",
+    "sized_pattern",
     "turn_relation",
-    "conflict",
 ]
 
 #: Rows bottom to top and columns left to right, each a third of the workspace.
@@ -83,8 +84,11 @@ SIZES: tuple[str, ...] = ("small", "medium", "large")
 HEADINGS: dict[str, float] = {"east": 0.0, "north": math.pi / 2, "west": math.pi, "south": -math.pi / 2}
 #: Every region name the format accepts.
 REGION_NAMES: tuple[str, ...] = (
-    *(f"{r} {c}" for r in ROWS for c in COLUMNS), *ROWS, *COLUMNS,
-    *(f"{r} row" for r in ROWS), *(f"{c} column" for c in COLUMNS),
+    *(f"{r} {c}" for r in ROWS for c in COLUMNS),
+    *ROWS,
+    *COLUMNS,
+    *(f"{r} row" for r in ROWS),
+    *(f"{c} column" for c in COLUMNS),
 )
 
 #: How far outside its region an object's centre may end (m).
@@ -95,12 +99,7 @@ SIZE_TOL = 0.015
 FACING_TOL = 0.1
 #: Heading tolerance of a named facing (rad): half an eight-point compass sector.
 NAMED_FACING_TOL = math.pi / 8
-#: Patterns whose goals have a size (a tower's size is accepted and ignored).
-SIZED: tuple[str, ...] = ("line", "circle", "rectangle")
 
-#: Smallest circle radius and rectangle side the acceptance rules allow (m).
-_MIN_CIRCLE_RADIUS = 0.05
-_MIN_RECT_SIDE = 0.05
 
 
 def _norm(name: str) -> str:
@@ -116,7 +115,7 @@ def region_box(region: str | Sequence[float], bounds: Sequence[float]) -> tuple[
         box = tuple(float(v) for v in region)
         if len(box) != 4 or not all(math.isfinite(v) for v in box) or not (box[0] < box[1] and box[2] < box[3]):
             raise ValueError("a region box is [xmin, xmax, ymin, ymax] with min < max")
-        return box  # type: ignore[return-value]
+        return box[0], box[1], box[2], box[3]
     xmin, xmax, ymin, ymax = (float(v) for v in bounds)
     words = _norm(region).split()
     if words in (["center"], ["middle"]):
@@ -129,13 +128,17 @@ def region_box(region: str | Sequence[float], bounds: Sequence[float]) -> tuple[
     if len(words) == 2:
         row, col = words
         if row not in ROWS or col not in COLUMNS:
-            raise ValueError(f"unknown region '{region}' (a '<row> <col>' with row in {'|'.join(ROWS)}, col in {'|'.join(COLUMNS)})")
+            raise ValueError(
+                f"unknown region '{region}' (a '<row> <col>' with row in {'|'.join(ROWS)}, col in {'|'.join(COLUMNS)})"
+            )
     elif len(words) == 1 and words[0] in ROWS:
         row = words[0]
     elif len(words) == 1 and words[0] in COLUMNS:
         col = words[0]
     else:
-        raise ValueError(f"unknown region '{region}' (a '<row> <col>' with row in {'|'.join(ROWS)}, col in {'|'.join(COLUMNS)})")
+        raise ValueError(
+            f"unknown region '{region}' (a '<row> <col>' with row in {'|'.join(ROWS)}, col in {'|'.join(COLUMNS)})"
+        )
     wx, wy = (xmax - xmin) / 3, (ymax - ymin) / 3
     x0, x1 = (xmin, xmax) if col is None else (xmin + COLUMNS.index(col) * wx, xmin + (COLUMNS.index(col) + 1) * wx)
     y0, y1 = (ymin, ymax) if row is None else (ymin + ROWS.index(row) * wy, ymin + (ROWS.index(row) + 1) * wy)
@@ -168,17 +171,34 @@ def heading_of(facing: str | float) -> tuple[float, float]:
 
 def _shrunk(box: Sequence[float], bounds: Sequence[float], margin: float) -> tuple[float, float, float, float]:
     """``box`` intersected with the workspace shrunk by ``margin`` (may be empty: min > max)."""
-    return (max(box[0], bounds[0] + margin), min(box[1], bounds[1] - margin),
-            max(box[2], bounds[2] + margin), min(box[3], bounds[3] - margin))
+    return (
+        max(box[0], bounds[0] + margin),
+        min(box[1], bounds[1] - margin),
+        max(box[2], bounds[2] + margin),
+        min(box[3], bounds[3] - margin),
+    )
 
 
-def size_range(pattern: str, n: int, rmax: float, room: Sequence[float], size: str | float,
-               heading: float | None = None) -> tuple[float, float]:
+def sized_pattern(name: str) -> Any:
+    """The registered pattern ``name`` when it measures a size (its
+    ``size_word`` is set), else ``None`` (no such pattern, no size, or a size
+    accepted and ignored, as a tower's)."""
+    from .patterns.base import registry
+
+    pat = registry().get(name)
+    return pat if pat is not None and pat.size_word is not None else None
+
+
+def size_range(
+    pattern: str, n: int, rmax: float, room: Sequence[float], size: str | float, heading: float | None = None
+) -> tuple[float, float]:
     """The lengths L (m) a goal's ``size`` accepts, edges exact (no slack).
 
     ``n`` objects of largest circumradius ``rmax``; ``room`` the box their
     centres may take (region and workspace, see :func:`resolve`). Named sizes
     split [L_min, L_max] into thirds:
+
+    [L_min, L_max] is the pattern's own (its ``size_band``):
 
     * circle: L_min = max(0.05, rmax / sin(pi / n)) (neighbours' circles
       touch), L_max = half the room's shorter side;
@@ -193,22 +213,11 @@ def size_range(pattern: str, n: int, rmax: float, room: Sequence[float], size: s
     if not isinstance(size, str):
         s = float(size)
         return s, s
-    w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
-    if pattern == "circle":
-        lo = max(_MIN_CIRCLE_RADIUS, rmax / math.sin(math.pi / max(n, 3)))
-        hi = min(w, h) / 2
-    elif pattern == "line":
-        lo = 2 * rmax * (max(n, 2) - 1)
-        if heading is None:
-            hi = max(w, h)
-        else:
-            ux, uy = abs(math.sin(heading)), abs(math.cos(heading))  # the line's direction
-            hi = min(w / ux if ux > 1e-9 else math.inf, h / uy if uy > 1e-9 else math.inf)
-    elif pattern == "rectangle":
-        lo = max(_MIN_RECT_SIDE, n * rmax / 2)
-        hi = max(w, h)
-    else:
+    pat = sized_pattern(pattern)
+    if pat is None:
         raise ValueError(f"a {pattern} goal has no size")
+    r = (float(room[0]), float(room[1]), float(room[2]), float(room[3]))
+    lo, hi = pat.size_band(n, rmax, r, heading)
     hi = max(hi, lo)
     a, b = lo + (hi - lo) / 3, lo + 2 * (hi - lo) / 3
     key = _norm(size)
@@ -271,7 +280,7 @@ def resolve(goal: Any, bounds: Sequence[float], radii: Sequence[float]) -> GoalP
     room = _shrunk(box if box is not None else bounds, bounds, rmax)
     heading, tol = (None, FACING_TOL) if facing is None else heading_of(facing)
     band = None
-    if size is not None and pattern in SIZED:
+    if size is not None and sized_pattern(pattern) is not None:
         band = size_range(pattern, len(objects), rmax, room, size, heading)
     return GoalParams(box, room, band, heading, tol)
 
@@ -291,7 +300,9 @@ def turn_relation(relation: str, facing: str | float) -> str:
         raise ValueError(f"unknown relation '{relation}'")
     h, _ = heading_of(facing)
     a = math.atan2(RELATIONS[relation][1], RELATIONS[relation][0]) + h - math.pi / 2
-    best = min(RELATIONS, key=lambda r: abs(math.remainder(math.atan2(RELATIONS[r][1], RELATIONS[r][0]) - a, 2 * math.pi)))
+    best = min(
+        RELATIONS, key=lambda r: abs(math.remainder(math.atan2(RELATIONS[r][1], RELATIONS[r][0]) - a, 2 * math.pi))
+    )
     return best
 
 

@@ -9,9 +9,10 @@ footprint polygon but the moved object's, so search-tree nodes stay small.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import shapely
@@ -21,22 +22,27 @@ from . import limits
 from .errors import InputError
 from .formats import ObjectSpec, SceneSpec, Workspace
 
-__all__ = ["Scene", "State", "TABLE", "advance", "replay"]
+__all__ = ["TABLE", "Scene", "State", "advance", "replay"]
 
 #: Support index meaning "on the table".
 TABLE = -1
+
+
+def _pose3(p: Any) -> tuple[float, float, float]:
+    x, y, t = (float(v) for v in p)
+    return x, y, t
 
 
 def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, float, float]]:
     """Object-frame footprint, height and pose of one object spec."""
     s = obj.shape
     if s.type == "box":
-        return geo.box_footprint(s.size[0], s.size[1]), float(s.size[2]), tuple(obj.pose)  # type: ignore[arg-type]
+        return geo.box_footprint(s.size[0], s.size[1]), float(s.size[2]), _pose3(obj.pose)
     if s.type == "cylinder":
-        return geo.circle_footprint(s.radius), float(s.height), tuple(obj.pose)  # type: ignore[arg-type]
+        return geo.circle_footprint(s.radius), float(s.height), _pose3(obj.pose)
     if s.type == "polygon":
         pts = geo.convex_footprint(np.asarray(s.points, dtype=float))
-        return pts, float(s.height), tuple(obj.pose)  # type: ignore[arg-type]
+        return pts, float(s.height), _pose3(obj.pose)
     # A point cloud lives in the table frame; its footprint centre is the
     # centroid of the convex hull of its xy, unless the pose says otherwise.
     cloud = np.asarray(s.points, dtype=float)
@@ -46,12 +52,12 @@ def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, f
         c = shapely.Polygon(hull).centroid
         pose = (float(c.x), float(c.y), 0.0)
     else:
-        pose = tuple(float(v) for v in obj.pose)  # type: ignore[assignment]
+        pose = _pose3(obj.pose)
     x, y, t = pose
     ct, st = math.cos(-t), math.sin(-t)
     d = hull - np.array([x, y])
     local = np.stack([ct * d[:, 0] - st * d[:, 1], st * d[:, 0] + ct * d[:, 1]], axis=1)
-    return local, max(height, 1e-3), pose  # type: ignore[return-value]
+    return local, max(height, 1e-3), pose
 
 
 def _refuse_start_overlaps(spec: SceneSpec, on: tuple[int, ...], polys: np.ndarray) -> None:
@@ -97,10 +103,10 @@ class Scene:
     heights: np.ndarray
     radii: np.ndarray
     bounds: tuple[float, float, float, float]
-    initial: "State"
+    initial: State
 
     @classmethod
-    def from_spec(cls, spec: SceneSpec, *, overlap_ok: bool = False) -> "Scene":
+    def from_spec(cls, spec: SceneSpec, *, overlap_ok: bool = False) -> Scene:
         """Build the scene; raise :class:`InputError` for objects off the workspace.
 
         Table-level footprints that overlap by more than
@@ -171,7 +177,7 @@ class Scene:
         color = f"{self.colors[i]} " if self.colors[i] else ""
         return f"{self.ids[i]} {color}{self.names[i]}"
 
-    def to_spec(self, state: "State") -> SceneSpec:
+    def to_spec(self, state: State) -> SceneSpec:
         """The scene JSON model for ``state`` (point clouds moved rigidly)."""
         objs = []
         for k, o in enumerate(self.spec.objects):
@@ -187,7 +193,8 @@ class Scene:
                 moved = np.stack([x1 + c * dx - s * dy, y1 + s * dx + c * dy, pts[:, 2] + dz], axis=1)
                 shape = shape.model_copy(update={"points": [tuple(map(float, p)) for p in moved]})
             sup = state.on[k]
-            objs.append(o.model_copy(update={"pose": pose, "shape": shape, "on": None if sup == TABLE else self.ids[sup]}))
+            on = None if sup == TABLE else self.ids[sup]
+            objs.append(o.model_copy(update={"pose": pose, "shape": shape, "on": on}))
         return SceneSpec(workspace=Workspace(x=self.spec.workspace.x, y=self.spec.workspace.y), objects=objs)
 
 
@@ -205,7 +212,7 @@ class State:
     _polys: tuple = field(repr=False, default=())
 
     @classmethod
-    def make(cls, scene: Scene, poses: np.ndarray, on: tuple[int, ...], polys: np.ndarray | None = None) -> "State":
+    def make(cls, scene: Scene, poses: np.ndarray, on: tuple[int, ...], polys: np.ndarray | None = None) -> State:
         """The state with ``poses`` and supports ``on`` (``polys``: the
         footprint polygons at those poses, when already built)."""
         poses = np.array(poses, dtype=float)
@@ -214,7 +221,7 @@ class State:
             polys = geo.place_each(scene.local, poses)[1]
         return cls(scene, poses, tuple(on), tuple(polys))
 
-    def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE) -> "State":
+    def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE) -> State:
         """A new state with object ``i`` at ``pose`` resting on ``on``."""
         poses = self.poses.copy()
         poses[i] = pose
@@ -222,9 +229,9 @@ class State:
         if on == self.on[i]:
             sup = self.on
         else:
-            sup = list(self.on)
-            sup[i] = on
-            sup = tuple(sup)
+            changed = list(self.on)
+            changed[i] = on
+            sup = tuple(changed)
         polys = list(self._polys)
         polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i]))
         out = State(self.scene, poses, sup, tuple(polys))

@@ -46,6 +46,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -53,7 +54,6 @@ import shapely
 from . import geometry as geo
 from .errors import InputError
 from .formats import (
-    PATTERN_NAMES,
     Goal,
     GoalSpec,
     PlanSpec,
@@ -81,12 +81,30 @@ from .tolerances import (
     TOWER_TOL,
 )
 
-__all__ = ["Verdict", "check", "goal_satisfied", "register_rule", "TOL", "OVERLAP_AREA", "TOWER_TOL", "MAX_RELATION_DIST"]
+__all__ = [
+    "MAX_RELATION_DIST",
+    "OVERLAP_AREA",
+    "TOL",
+    "TOWER_TOL",
+    "Verdict",
+    "check",
+    "goal_satisfied",
+    "register_rule",
+]
 
 # Re-exported for callers of this module: fit_circle, line_residuals and the
 # tolerances (defined in lgmcts.patterns and lgmcts.tolerances).
-_REEXPORTED = (fit_circle, line_residuals, MAX_RELATION_DIST, MIN_CIRCLE_RADIUS, MIN_RECT_SIDE, POSE_ANGLE_TOL,
-               RELATION_HALF_ANGLE, TOL, TOWER_TOL)
+_REEXPORTED = (
+    fit_circle,
+    line_residuals,
+    MAX_RELATION_DIST,
+    MIN_CIRCLE_RADIUS,
+    MIN_RECT_SIDE,
+    POSE_ANGLE_TOL,
+    RELATION_HALF_ANGLE,
+    TOL,
+    TOWER_TOL,
+)
 #: A footprint vertex this far (m) outside the workspace is a violation
 #: whatever the area outside.
 EDGE_TOL = 1e-3
@@ -108,7 +126,8 @@ def register_rule(name: str, rule: Rule) -> Rule:
     """
     if pattern_format(name) is None:
         raise ValueError(f"declare pattern '{name}' (lgmcts.formats.declare_pattern) before its rule")
-    if name in PATTERN_NAMES:
+    built_in = registry().get(name)
+    if built_in is not None and type(built_in).__module__.startswith(f"{__package__}.patterns."):
         raise ValueError(f"'{name}' is a built-in pattern; its rule cannot be replaced")
     _RULES[name] = rule
     return rule
@@ -134,21 +153,19 @@ class Verdict:
 # ---------------------------------------------------------------- goal rules
 
 
-
-
 def _params_ok(goal: Goal, scene: Scene, poses: np.ndarray, idx: list[int]) -> str | None:
     """Why ``goal``'s region, size or facing does not hold, or ``None`` (rules in :mod:`lgmcts.params`;
     the pattern says what its size measures and which way it runs)."""
     if goal.region is None and goal.size is None and goal.facing is None:
         return None
-    gp = resolve_params(goal, scene.bounds, scene.radii[idx])
+    gp = resolve_params(goal, scene.bounds, scene.radii[idx].tolist())
     xy = poses[idx, :2]
     if gp.box is not None:
         x0, x1, y0, y1 = gp.box
         out = np.maximum.reduce([x0 - xy[:, 0], xy[:, 0] - x1, y0 - xy[:, 1], xy[:, 1] - y1, np.zeros(len(xy))])
         k = int(np.argmax(out))
         if out[k] > REGION_TOL:
-            where = f"'{goal.region}'" if isinstance(goal.region, str) else f"box {list(goal.region)}"
+            where = f"'{goal.region}'" if isinstance(goal.region, str) else f"box {list(goal.region or ())}"
             return f"object {scene.ids[idx[k]]} is {out[k]:.3f} m outside region {where}"
     pattern = registry()[goal.pattern]
     fitted = pattern.fit(xy) if gp.size is not None or gp.heading is not None else None
@@ -225,11 +242,18 @@ def _overlaps(state: State, i: int, pose: np.ndarray, poly, step: int) -> list[s
             if sc.discs[k] > 0:
                 d = math.hypot(*(poses[k, :2] - pose[:2]))
                 areas[t_k] = geo.lens_area(float(sc.discs[i]), float(sc.discs[k]), d)
-    return [f"action {step}: object {sc.ids[i]} overlaps object {sc.ids[others[int(t)]]} by {area * 1e4:.2f} cm^2"
-            for t, area in zip(touching, areas) if area > OVERLAP_AREA]
+    return [
+        f"action {step}: object {sc.ids[i]} overlaps object {sc.ids[others[int(t)]]} by {area * 1e4:.2f} cm^2"
+        for t, area in zip(touching, areas)
+        if area > OVERLAP_AREA
+    ]
 
 
-def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list | str, plan: PlanSpec | dict | str) -> Verdict:
+def check(
+    scene: SceneSpec | Scene | dict | str | Path,
+    goals: GoalSpec | dict | list | str | Path,
+    plan: PlanSpec | dict | str | Path,
+) -> Verdict:
     """Replay ``plan`` on ``scene`` and judge it against ``goals``.
 
     Raises :class:`InputError` only for inputs that are themselves malformed
@@ -255,7 +279,9 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
         i = sc.index[act.object]
         on = state.on
         if i in on:
-            reasons.append(f"action {step}: object {act.object} is not clear (object {sc.ids[on.index(i)]} rests on it)")
+            reasons.append(
+                f"action {step}: object {act.object} is not clear (object {sc.ids[on.index(i)]} rests on it)"
+            )
         new_pose = after.poses[i]
         poly = after.polys[i]
         if act.on is None:
@@ -267,8 +293,10 @@ def check(scene: SceneSpec | Scene | dict | str, goals: GoalSpec | dict | list |
             x, y = verts[:, 0], verts[:, 1]
             excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
             centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
-            if not centre_in or excursion > EDGE_TOL or (
-                excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA
+            if (
+                not centre_in
+                or excursion > EDGE_TOL
+                or (excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA)
             ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
             reasons.extend(_overlaps(state, i, new_pose, poly, step))

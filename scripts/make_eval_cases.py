@@ -282,7 +282,7 @@ def fam_whose(b: Builder, rng: random.Random, family: str, words: tuple[str, ...
         n_a, n_b = rng.randint(3, 5), rng.randint(3, 5)
         if pattern == "rectangle":
             n_a, n_b = max(n_a, 4), max(n_b, 4)
-        items, ca, cb = _two_colour_scene(rng, n_a, n_b)
+        items, _ca, cb = _two_colour_scene(rng, n_a, n_b)
         anchor_name = items[0][0]
         if refuse_kind == "ambiguous":  # a second object of that name, in the other colour
             items.append((anchor_name, cb, 1.0))
@@ -309,7 +309,7 @@ def fam_with_attr(b: Builder, rng: random.Random, n: int) -> None:
         describe = pick(rng, ("the same", "similar", "different"))
         pattern = pick(rng, ("line", "circle"))
         if attr == "color":
-            items, ca, cb = _two_colour_scene(rng, rng.randint(3, 5), rng.randint(3, 5))
+            items, _ca, _cb = _two_colour_scene(rng, rng.randint(3, 5), rng.randint(3, 5))
             anchor = items[0][0]
         else:
             # a few objects of the anchor's shape, the rest of other shapes, two colours
@@ -341,7 +341,7 @@ def fam_objects_compare_attr(b: Builder, rng: random.Random, n: int) -> None:
     made = 0
     while made < n:
         same = rng.random() < 0.6
-        items, ca, cb = _two_colour_scene(rng, rng.randint(3, 5), rng.randint(3, 5))
+        items, _ca, _cb = _two_colour_scene(rng, rng.randint(3, 5), rng.randint(3, 5))
         word = pick(rng, ("equal to", "same as", "identical to", "alike", "equivalent to") if same else
                     ("different with", "not the same as", "not equal to", "not identical to", "different from"))
         pattern = pick(rng, ("line", "circle"))
@@ -469,7 +469,7 @@ def fam_two_patterns(b: Builder, rng: random.Random, n: int) -> None:
     made = 0
     while made < n:
         p1, p2 = pick(rng, ("line", "circle")), pick(rng, ("line", "circle"))
-        items, ca, cb = _two_colour_scene(rng, rng.randint(3, 4), rng.randint(3, 4))
+        items, _ca, cb = _two_colour_scene(rng, rng.randint(3, 4), rng.randint(3, 4))
         k2 = next(k for k, it in enumerate(items) if it[1] == cb)
         if sum(it[0] == items[k2][0] for it in items) > 1:
             continue
@@ -590,7 +590,7 @@ def fam_sf_compare(b: Builder, rng: random.Random, n: int) -> None:
             des = f"{items[0][1]} object" if des_object else f"{items[0][1]} {items[0][0]}"
             jun = "as" if comp == "equal" else "than"
             sel_text = f"select objects that have {comp} {attr} {jun} the {des}."
-            test = {"greater": lambda v: v > vals[0], "less": lambda v: v < vals[0], "equal": lambda v: v == vals[0]}[comp]
+            test = {"greater": lambda v: v > vals[0], "less": lambda v: v < vals[0], "equal": lambda v: v == vals[0]}[comp]  # noqa: B023 (used in this iteration)
             sel = [ids[j] for j in range(1, len(items)) if test(vals[j])]
             if not sel:
                 struct, params = structure_sentence(rng, shape)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Install the Debian packages some features need: OSMesa for offscreen MuJoCo
 # rendering (camera perception, videos) and Chromium for the HTML viewer test.
+# `system-deps.sh demo` installs only what `make demo` needs (OpenGL for MuJoCo).
 set -euo pipefail
-pkgs=(libosmesa6 libgl1 libglfw3 chromium ffmpeg)
+pkgs=(libosmesa6 libgl1 libglfw3)
+[ "${1:-all}" = "demo" ] || pkgs+=(chromium ffmpeg)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

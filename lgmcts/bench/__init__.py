@@ -17,9 +17,9 @@ from ..lazy import lazy_names
 
 __all__ = [
     "CAUSES",
+    "SUITES",
     "Row",
     "RunOptions",
-    "SUITES",
     "Suite",
     "Task",
     "canonical_goals",

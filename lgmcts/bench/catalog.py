@@ -15,16 +15,19 @@ shape is convex; a heart or a star is its convex hull.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
-__all__ = ["Kind", "VIMA_KINDS", "VIMA_COLORS", "PLAIN_COLORS", "HOUSEHOLD_KINDS", "kind", "color_words"]
+__all__ = ["HOUSEHOLD_KINDS", "PLAIN_COLORS", "VIMA_COLORS", "VIMA_KINDS", "Kind", "color_words", "kind"]
 
 
 def _regular(r: float, m: int, phase: float = 0.0) -> list[list[float]]:
-    return [[round(r * math.cos(phase + 2 * math.pi * k / m), 5), round(r * math.sin(phase + 2 * math.pi * k / m), 5)] for k in range(m)]
+    return [
+        [round(r * math.cos(phase + 2 * math.pi * k / m), 5), round(r * math.sin(phase + 2 * math.pi * k / m), 5)]
+        for k in range(m)
+    ]
 
 
 def _scaled(points: list[list[float]], s: float) -> list[list[float]]:
@@ -66,14 +69,41 @@ VIMA_KINDS: tuple[Kind, ...] = (
     Kind("pan", "pans", _cyl(0.04, 0.02)),
     Kind("letter A", "", _poly([[-0.03, -0.03], [0.03, -0.03], [0.008, 0.03], [-0.008, 0.03]], 0.015)),
     Kind("letter R", "", _poly([[-0.025, -0.03], [0.025, -0.03], [0.025, 0.015], [0.01, 0.03], [-0.025, 0.03]], 0.015)),
-    Kind("letter T", "", _poly([[-0.03, 0.03], [-0.03, 0.018], [-0.008, -0.03], [0.008, -0.03], [0.03, 0.018], [0.03, 0.03]], 0.015)),
-    Kind("heart", "hearts", _poly([[0.0, -0.032], [0.03, 0.0], [0.028, 0.02], [0.015, 0.03], [-0.015, 0.03], [-0.028, 0.02], [-0.03, 0.0]], 0.015)),
+    Kind(
+        "letter T",
+        "",
+        _poly([[-0.03, 0.03], [-0.03, 0.018], [-0.008, -0.03], [0.008, -0.03], [0.03, 0.018], [0.03, 0.03]], 0.015),
+    ),
+    Kind(
+        "heart",
+        "hearts",
+        _poly(
+            [[0.0, -0.032], [0.03, 0.0], [0.028, 0.02], [0.015, 0.03], [-0.015, 0.03], [-0.028, 0.02], [-0.03, 0.0]],
+            0.015,
+        ),
+    ),
     Kind("triangle", "triangles", _poly(_regular(0.036, 3, math.pi / 2), 0.015)),
     Kind("flower", "flowers", _poly(_regular(0.032, 8), 0.015)),
     Kind("star", "stars", _poly(_regular(0.035, 5, math.pi / 2), 0.015)),
     Kind("hexagon", "hexagons", _poly(_regular(0.032, 6), 0.015)),
     Kind("pentagon", "pentagons", _poly(_regular(0.032, 5, -math.pi / 2), 0.015)),
-    Kind("cross", "crosses", _poly([[0.01, 0.03], [-0.01, 0.03], [-0.03, 0.01], [-0.03, -0.01], [-0.01, -0.03], [0.01, -0.03], [0.03, -0.01], [0.03, 0.01]], 0.015)),
+    Kind(
+        "cross",
+        "crosses",
+        _poly(
+            [
+                [0.01, 0.03],
+                [-0.01, 0.03],
+                [-0.03, 0.01],
+                [-0.03, -0.01],
+                [-0.01, -0.03],
+                [0.01, -0.03],
+                [0.03, -0.01],
+                [0.03, 0.01],
+            ],
+            0.015,
+        ),
+    ),
     Kind("diamond", "diamonds", _poly([[0.0, 0.036], [-0.025, 0.0], [0.0, -0.036], [0.025, 0.0]], 0.015)),
 )
 
@@ -81,7 +111,8 @@ VIMA_KINDS: tuple[Kind, ...] = (
 PLAIN_COLORS: tuple[str, ...] = ("red", "green", "blue", "yellow", "purple", "white", "orange", "pink", "cyan")
 
 #: Plain colours and VIMA's textures.
-VIMA_COLORS: tuple[str, ...] = PLAIN_COLORS + (
+VIMA_COLORS: tuple[str, ...] = (
+    *PLAIN_COLORS,
     "red swirl",
     "green and blue stripe",
     "red and green polka dot",

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -16,7 +15,7 @@ __all__ = ["register"]
 _INSTRUCTIONS_HELP = "Instruction templates: ours (written for this parser) or peer (the peers' own templates)."
 
 
-def _tasks(suite_arg: str, n: Optional[int], seed: int, instructions: str = "ours"):
+def _tasks(suite_arg: str, n: int | None, seed: int, instructions: str = "ours"):
     """Tasks and a source label from a suite name or a JSONL file."""
     from .suites import SUITES, generate
     from .tasks import read_suite
@@ -35,9 +34,9 @@ def _tasks(suite_arg: str, n: Optional[int], seed: int, instructions: str = "our
 
 def bench_generate(
     suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense or structformer."),
-    n: Optional[int] = typer.Option(None, "--n", help="Number of tasks (default: the full suite)."),
+    n: int | None = typer.Option(None, "--n", help="Number of tasks (default: the full suite)."),
     seed: int = typer.Option(0, "--seed", help="Suite seed: 0 is the reported test suite, >= 1 for tuning."),
-    category: Optional[str] = typer.Option(None, "--category", help="Only tasks of this category."),
+    category: str | None = typer.Option(None, "--category", help="Only tasks of this category."),
     output: Path = typer.Option(..., "-o", "--output", help="JSONL file to write."),
     instructions: str = typer.Option("ours", "--instructions", help=_INSTRUCTIONS_HELP),
 ) -> None:
@@ -54,17 +53,23 @@ def bench_generate(
 
 def bench(
     suite: str = typer.Option(..., "--suite", help="elgr, elgr-dense, structformer, or a suite JSONL file."),
-    method: str = typer.Option("lgmcts", help="lgmcts, greedy, pmcts, lfsp (the LLM proposes the poses; needs --llm-model), or module:function (your planner)."),
-    parser: Optional[str] = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
-    n: Optional[int] = typer.Option(None, "--n", help="Run the first N tasks."),
+    method: str = typer.Option(
+        "lgmcts",
+        help="lgmcts, greedy, pmcts, lfsp (the LLM proposes the poses; needs --llm-model), "
+        "or module:function (your planner).",
+    ),
+    parser: str | None = typer.Option(None, help="rules, llm or gt (default: rules; gt for structformer)."),
+    n: int | None = typer.Option(None, "--n", help="Run the first N tasks."),
     seed: int = typer.Option(0, "--seed", help="Suite seed when --suite names a suite."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Local processes (default: every core)."),
-    ray: Optional[str] = typer.Option(None, "--ray", help="Run as Ray tasks: 'local' or a cluster address."),
+    workers: int | None = typer.Option(
+        None, "--workers", help="Local processes (default and most: the CPUs this run may use)."
+    ),
+    ray: str | None = typer.Option(None, "--ray", help="Run as Ray tasks: 'local' or a cluster address."),
     max_iter: int = typer.Option(10_000, "--max-iter", help="Planner iteration budget per task."),
-    time_limit: Optional[float] = typer.Option(None, "--time-limit", help="Planner wall-clock budget per task (s)."),
+    time_limit: float | None = typer.Option(None, "--time-limit", help="Planner wall-clock budget per task (s)."),
     no_exec: bool = typer.Option(False, "--no-exec", help="Skip physics: report SR_p only."),
-    llm_model: Optional[str] = typer.Option(None, "--llm-model"),
-    llm_base_url: Optional[str] = typer.Option(None, "--llm-base-url"),
+    llm_model: str | None = typer.Option(None, "--llm-model"),
+    llm_base_url: str | None = typer.Option(None, "--llm-base-url"),
     output: Path = typer.Option(..., "-o", "--output", help="Output folder (an interrupted run there resumes)."),
     instructions: str = typer.Option("ours", "--instructions", help=_INSTRUCTIONS_HELP + " Only with a suite name."),
 ) -> None:
@@ -75,7 +80,7 @@ def bench(
     meeting them.
     """
     from .report import summarise, to_csv, to_markdown
-    from .runner import RunOptions, run_suite
+    from .runner import RunOptions, check_workers, run_suite
     from .tasks import write_suite
 
     try:
@@ -85,9 +90,17 @@ def bench(
             raise InputError("--instructions applies to a suite name; a suite file carries its own instructions")
         tasks, source, suite_name = _tasks(suite, n, seed, instructions)
         chosen = parser or ("gt" if suite_name == "structformer" else "rules")
-        opts = RunOptions(method=method, parser=chosen, max_iter=max_iter, time_limit=time_limit,
-                          execute=not no_exec, llm_model=llm_model, llm_base_url=llm_base_url)
+        opts = RunOptions(
+            method=method,
+            parser=chosen,
+            max_iter=max_iter,
+            time_limit=time_limit,
+            execute=not no_exec,
+            llm_model=llm_model,
+            llm_base_url=llm_base_url,
+        )
         opts.check()
+        check_workers(workers, ray)
         output.mkdir(parents=True, exist_ok=True)
         if suite in SUITES and not (output / "suite.jsonl").exists():
             write_suite(tasks, output / "suite.jsonl")
@@ -116,8 +129,10 @@ def _provenance() -> str:
     import time
 
     cmd = shlex.join(["lgmcts", *sys.argv[1:]])
-    return (f"Command: `{cmd}`; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
-            f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}.")
+    return (
+        f"Command: `{cmd}`; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
+        f"{platform.node()}, {os.cpu_count()} cores, Python {platform.python_version()}."
+    )
 
 
 def register(app: typer.Typer) -> None:

@@ -41,7 +41,7 @@ from ..scene import TABLE, Scene
 from ..validate import goal_satisfied
 from .catalog import PLAIN_COLORS, VIMA_COLORS, VIMA_KINDS, color_words, kind, scale
 from .layout import Layout, pattern_poses, relation_pose, scene_of
-from .refs import phrase, resolve, unambiguous
+from .refs import phrase, unambiguous
 from .tasks import Task
 
 __all__ = ["CATEGORIES", "WORKSPACE", "generate_task"]
@@ -53,8 +53,20 @@ CATEGORIES: tuple[str, ...] = tuple(f"{a}+{b}" for a, b in combinations_with_rep
 _SIZES = {"line": (3, 5), "circle": (3, 5), "rectangle": (4, 5)}
 
 _SHAPE_TEMPLATES = {
-    "line": ("Place {x} in a line pattern", "Put {x} in a line", "Arrange {x} in a straight line", "Line up {x}", "Move {x} into a row"),
-    "circle": ("Put {x} in a circle", "Arrange {x} in a circle pattern", "Move {x} into a circle", "Place {x} in a ring", "Form a circle with {x}"),
+    "line": (
+        "Place {x} in a line pattern",
+        "Put {x} in a line",
+        "Arrange {x} in a straight line",
+        "Line up {x}",
+        "Move {x} into a row",
+    ),
+    "circle": (
+        "Put {x} in a circle",
+        "Arrange {x} in a circle pattern",
+        "Move {x} into a circle",
+        "Place {x} in a ring",
+        "Form a circle with {x}",
+    ),
     "rectangle": (
         "Place {x} in a rectangle pattern",
         "Arrange {x} in a rectangle",
@@ -176,11 +188,13 @@ def _densify(scene: dict, goals: dict, final: dict, start: dict, meanings: list,
     for spec in specs:
         best, best_score = None, -1
         for _ in range(_DENSE_TRIES):
-            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(table_feet):], rng)
+            got = pack_clutter(bounds, [spec], goal_feet, other_feet + real[len(table_feet) :], rng)
             if not got:
                 continue
             k = st_one(got[0])
-            score = 2 * (min(shapely.distance(k, q) for q in real) <= 1e-4) + (min(shapely.distance(k, q) for q in goal_feet) <= 1e-4)
+            score = 2 * (min(shapely.distance(k, q) for q in real) <= 1e-4) + (
+                min(shapely.distance(k, q) for q in goal_feet) <= 1e-4
+            )
             if score > best_score:
                 best, best_score = (got[0], k), score
             if score == 3:
@@ -208,7 +222,9 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             continue
         lo, hi = _SIZES[k]
         n = int(rng.integers(lo, hi + 1))
-        mode = _pick(rng, ("all_name", "all_color", "same_color", "list") if n <= 4 else ("all_name", "all_color", "same_color"))
+        mode = _pick(
+            rng, ("all_name", "all_color", "same_color", "list") if n <= 4 else ("all_name", "all_color", "same_color")
+        )
         spec = {"kind": k, "mode": mode, "n": n}
         if mode == "all_name":
             free = [c for c in _PLURAL_KINDS if c not in reserved_names]
@@ -233,7 +249,11 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             names = [c for c in _ALL_NAMES if c not in reserved_names or reserved_names[c] == owner]
             name = _pick(rng, names)
         if color is None:
-            colors = [c for c in VIMA_COLORS if all(not (color_words(c) & w) or reserved_colors[rc] == owner for rc, w in taken_words.items())]
+            colors = [
+                c
+                for c in VIMA_COLORS
+                if all(not (color_words(c) & w) or reserved_colors[rc] == owner for rc, w in taken_words.items())
+            ]
             color = _pick(rng, colors)
         return {"name": name, "color": color, "shape": kind(name).make(scale(rng))}
 
@@ -263,12 +283,14 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             idx.append(extra[g])  # the referent belongs to its "same colour" set
     # Spatial goals: a new target; the anchor new or taken from another goal.
     placed_before = [i for m in members for i in m]
-    for g, spec in enumerate(goals):
+    for spec in goals:
         if spec["kind"] != "spatial":
             continue
         objs.append(make(None))
         target = len(objs) - 1
-        pool = placed_before + [i for s in goals if s["kind"] == "spatial" and "target" in s for i in (s["target"], s["anchor"])]
+        pool = placed_before + [
+            i for s in goals if s["kind"] == "spatial" and "target" in s for i in (s["target"], s["anchor"])
+        ]
         if pool and rng.random() < 0.6:
             anchor = int(pool[int(rng.integers(len(pool)))])
         else:
@@ -367,7 +389,9 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
     goal_list = []
     for g, spec in enumerate(goals):
         if spec["kind"] == "spatial":
-            goal_list.append({"pattern": spec["relation"], "objects": [ids[spec["target"]]], "anchor": ids[spec["anchor"]]})
+            goal_list.append(
+                {"pattern": spec["relation"], "objects": [ids[spec["target"]]], "anchor": ids[spec["anchor"]]}
+            )
         else:
             goal_list.append({"pattern": spec["kind"], "objects": sorted(sets[g])})
     gspec = parse_goals({"goals": goal_list})
@@ -385,7 +409,7 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
     if n_clutter < 1:
         return None
     clutter = free_statics[:n_clutter]
-    top_pool = free_statics[n_clutter:] + [i for i in movers]
+    top_pool = free_statics[n_clutter:] + list(movers)
     start = Layout(scene)
     for i in statics:
         if i not in clutter and i not in top_pool:
@@ -405,8 +429,15 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
     for top in top_pool:
         if len(tops) == n_tops:
             break
-        cands = [b for b in movers if b != top and b not in bases_used and b not in {t for t, _ in tops}
-                 and scene.radii[top] <= 1.2 * scene.radii[b] and scene.heights[b] <= 0.04]
+        cands = [
+            b
+            for b in movers
+            if b != top
+            and b not in bases_used
+            and b not in {t for t, _ in tops}
+            and scene.radii[top] <= 1.2 * scene.radii[b]
+            and scene.heights[b] <= 0.04
+        ]
         if top in bases_used or not cands:
             continue
         b = int(cands[int(rng.integers(len(cands)))])
@@ -423,17 +454,23 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         if start.random(i, rng) is None:
             return None
     poses = dict(start.poses)
-    on = {i: TABLE for i in range(n)}
+    on = dict.fromkeys(range(n), TABLE)
     for t, b in tops:
         poses[t] = np.array([poses[b][0], poses[b][1], rng.uniform(-math.pi, math.pi)])
         on[t] = b
     start_objs = []
     for i in sorted(range(n), key=lambda i: ids[i]):
         o = objs[i]
-        start_objs.append({
-            "id": ids[i], "name": o["name"], "color": o["color"], "shape": o["shape"],
-            "pose": [round(float(v), 5) for v in poses[i]], "on": None if on[i] == TABLE else ids[on[i]],
-        })
+        start_objs.append(
+            {
+                "id": ids[i],
+                "name": o["name"],
+                "color": o["color"],
+                "shape": o["shape"],
+                "pose": [round(float(v), 5) for v in poses[i]],
+                "on": None if on[i] == TABLE else ids[on[i]],
+            }
+        )
     scene_dict = {"workspace": WORKSPACE, "objects": start_objs}
     sspec = parse_scene(scene_dict)
     st = Scene.from_spec(sspec)
@@ -448,7 +485,9 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         if spec["kind"] == "spatial":
             ra, rb = refs[g]
             tpl = _pick(rng, _SPATIAL_TEMPLATES)
-            clauses.append(tpl.format(a=phrase(ra, rng), rel=_pick(rng, _REL_WORDS[spec["relation"]]), b=phrase(rb, rng)))
+            clauses.append(
+                tpl.format(a=phrase(ra, rng), rel=_pick(rng, _REL_WORDS[spec["relation"]]), b=phrase(rb, rng))
+            )
         else:
             tpl = _pick(rng, _SHAPE_TEMPLATES[spec["kind"]])
             clauses.append(tpl.format(x=phrase(refs[g], rng)))

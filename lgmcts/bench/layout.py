@@ -16,7 +16,7 @@ import shapely
 from ..formats import RELATIONS, parse_scene
 from ..scene import Scene
 
-__all__ = ["Layout", "scene_of", "pattern_poses", "relation_pose"]
+__all__ = ["Layout", "pattern_poses", "relation_pose", "scene_of"]
 
 
 def scene_of(workspace: dict, objects: list[dict]) -> Scene:
@@ -76,13 +76,17 @@ class Layout:
         xmin, xmax, ymin, ymax = self.scene.bounds
         r = float(self.scene.radii[i])
         for _ in range(tries):
-            p = np.array([rng.uniform(xmin + r, xmax - r), rng.uniform(ymin + r, ymax - r), rng.uniform(-math.pi, math.pi)])
+            p = np.array(
+                [rng.uniform(xmin + r, xmax - r), rng.uniform(ymin + r, ymax - r), rng.uniform(-math.pi, math.pi)]
+            )
             if self.try_put(i, p):
                 return p
         return None
 
 
-def pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, *, centre: np.ndarray | None = None) -> list[np.ndarray]:
+def pattern_poses(
+    kind: str, objs: list[int], scene: Scene, rng: np.random.Generator, *, centre: np.ndarray | None = None
+) -> list[np.ndarray]:
     """Poses that put ``objs`` (indices) in a ``line``, ``circle``, ``rectangle`` or ``tower``.
 
     Spacing adapts to the largest footprint radius so neighbours never touch.
@@ -129,7 +133,9 @@ def pattern_poses(kind: str, objs: list[int], scene: Scene, rng: np.random.Gener
     raise ValueError(f"unknown pattern kind {kind}")
 
 
-def relation_pose(relation: str, anchor_pose: np.ndarray, r_anchor: float, r_obj: float, rng: np.random.Generator) -> np.ndarray:
+def relation_pose(
+    relation: str, anchor_pose: np.ndarray, r_anchor: float, r_obj: float, rng: np.random.Generator
+) -> np.ndarray:
     """A pose in direction ``relation`` of the anchor: within 26 deg of it, 0.02-0.26 m gap.
 
     The angular and distance margins keep the pose well inside the
@@ -139,4 +145,6 @@ def relation_pose(relation: str, anchor_pose: np.ndarray, r_anchor: float, r_obj
     a = math.atan2(d[1], d[0]) + rng.uniform(-0.45, 0.45)
     lo = r_anchor + r_obj + 0.02
     rho = rng.uniform(lo, max(lo + 0.01, 0.26))
-    return np.array([anchor_pose[0] + rho * math.cos(a), anchor_pose[1] + rho * math.sin(a), rng.uniform(-math.pi, math.pi)])
+    return np.array(
+        [anchor_pose[0] + rho * math.cos(a), anchor_pose[1] + rho * math.sin(a), rng.uniform(-math.pi, math.pi)]
+    )

@@ -32,13 +32,14 @@ are the same in both modes.
 from __future__ import annotations
 
 import dataclasses
-from typing import Callable
+import itertools
+from collections.abc import Callable
 
 import numpy as np
 
 from .tasks import Task
 
-__all__ = ["MODES", "rephrase", "peer_instruction"]
+__all__ = ["MODES", "peer_instruction", "rephrase"]
 
 #: Instruction modes of the suite generators.
 MODES = ("ours", "peer")
@@ -106,13 +107,19 @@ def _object_set(sc: _Scene, ids: list[int], rng: np.random.Generator) -> str | N
     if len(names) == 1:
         (n,) = names
         if sc.with_name(n) == want:
-            forms.append(lambda: f"Objects {_pick(rng, ('with', 'of', 'has'))} {_pick(rng, ('the same', 'similar'))} shape as {n}")
+            forms.append(
+                lambda: (
+                    f"Objects {_pick(rng, ('with', 'of', 'has'))} {_pick(rng, ('the same', 'similar'))} shape as {n}"
+                )
+            )
     # A plain list; a description shared by several objects is said once for each (all of them are meant).
     descs = [sc.desc(i, want) for i in ids]
     if all(descs):
+
         def plain() -> str:
             order = [descs[k] for k in rng.permutation(len(descs))]
             return ", ".join(order)
+
         forms.append(plain)
     if not forms:
         return None
@@ -121,11 +128,14 @@ def _object_set(sc: _Scene, ids: list[int], rng: np.random.Generator) -> str | N
 
 def _pattern_sentence(objs: str, pattern: str, rng: np.random.Generator) -> str:
     verb, prep = _pick(rng, PUT), _pick(rng, PREP)
-    return _pick(rng, (
-        f"{verb} {objs} {prep} a {pattern} pattern",
-        f"{verb} a {pattern} pattern using {objs}",
-        f"Select {objs}, and {_pick(rng, PUT)} them {_pick(rng, PREP)} a {pattern} pattern",
-    ))
+    return _pick(
+        rng,
+        (
+            f"{verb} {objs} {prep} a {pattern} pattern",
+            f"{verb} a {pattern} pattern using {objs}",
+            f"Select {objs}, and {_pick(rng, PUT)} them {_pick(rng, PREP)} a {pattern} pattern",
+        ),
+    )
 
 
 def _pair(sc: _Scene, a: int, b: int, words: tuple[str, ...], rng: np.random.Generator) -> str | None:
@@ -142,7 +152,7 @@ def _goal_sentences(sc: _Scene, g: dict, rng: np.random.Generator) -> list[str] 
         return None if None in out else out
     if p == "tower":
         out = []
-        for lo, hi in zip(ids, ids[1:]):
+        for lo, hi in itertools.pairwise(ids):
             s = _pair(sc, hi, lo, ("on",), rng) if rng.random() < 0.7 else _pair(sc, lo, hi, ("under", "below"), rng)
             out.append(s)
         return None if None in out else out

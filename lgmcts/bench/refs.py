@@ -23,7 +23,7 @@ import numpy as np
 
 from .catalog import color_words, kind
 
-__all__ = ["resolve", "resolve_loose", "unambiguous", "phrase"]
+__all__ = ["phrase", "resolve", "resolve_loose", "unambiguous"]
 
 Ref = tuple[Any, ...]
 
@@ -93,7 +93,9 @@ def unambiguous(ref: Ref, objects: list[dict], want: frozenset[int] | set[int]) 
     want = frozenset(want)
     if ref[0] == "one" and len(want) != 1:
         return False
-    if ref[0] == "list" and not all(unambiguous(r, objects, resolve(r, objects)) and len(resolve(r, objects)) == 1 for r in ref[1]):
+    if ref[0] == "list" and not all(
+        unambiguous(r, objects, resolve(r, objects)) and len(resolve(r, objects)) == 1 for r in ref[1]
+    ):
         return False
     if ref[0] == "same_color" and len(resolve_loose(ref[1], objects)) != 1:
         return False
@@ -116,11 +118,15 @@ def phrase(ref: Ref, rng: np.random.Generator) -> str:
     if k == "all_color":
         return str(rng.choice([f"all {ref[1]} objects", f"all the {ref[1]} objects", f"all {ref[1]} items"]))
     if k == "same_color":
-        return str(rng.choice([
-            f"objects whose color is the same as {_the(ref[1])}",
-            f"all objects with the same color as {_the(ref[1])}",
-            f"the objects of the same color as {_the(ref[1])}",
-        ]))
+        return str(
+            rng.choice(
+                [
+                    f"objects whose color is the same as {_the(ref[1])}",
+                    f"all objects with the same color as {_the(ref[1])}",
+                    f"the objects of the same color as {_the(ref[1])}",
+                ]
+            )
+        )
     if k == "list":
         words = [_the(r) for r in ref[1]]
         return ", ".join(words[:-1]) + " and " + words[-1]

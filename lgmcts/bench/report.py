@@ -7,14 +7,15 @@ from __future__ import annotations
 import csv
 import io
 from collections import Counter
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import Any
 
 import numpy as np
 
 from .runner import CAUSES
 
-__all__ = ["Row", "summarise", "to_markdown", "to_csv"]
+__all__ = ["Row", "summarise", "to_csv", "to_markdown"]
 
 
 @dataclass(frozen=True)
@@ -87,14 +88,18 @@ def _causes(c: dict[str, int]) -> str:
 
 def to_markdown(rows: list[Row], *, title: str = "") -> str:
     """A Markdown table of ``rows``."""
-    head = "| group | tasks | SR_p | SR_ep | parse acc. | mean actions | plan time median (s) | plan time p95 (s) | failures by cause |"
+    head = (
+        "| group | tasks | SR_p | SR_ep | parse acc. | mean actions | plan time median (s) | plan time p95 (s) "
+        "| failures by cause |"
+    )
     sep = "|---|---:|---:|---:|---:|---:|---:|---:|---|"
     lines = [f"### {title}", ""] if title else []
     lines += [head, sep]
     for r in rows:
         lines.append(
             f"| {r.group} | {r.tasks} | {_pct(r.sr_p)} | {_pct(r.sr_ep)} | {_pct(r.parse_acc)} | "
-            f"{_num(r.mean_actions, '.2f')} | {_num(r.plan_median_s, '.3f')} | {_num(r.plan_p95_s, '.3f')} | {_causes(r.causes)} |"
+            f"{_num(r.mean_actions, '.2f')} | {_num(r.plan_median_s, '.3f')} | {_num(r.plan_p95_s, '.3f')} | "
+            f"{_causes(r.causes)} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -103,16 +108,34 @@ def to_csv(rows: list[Row]) -> str:
     """The same figures as CSV, one column per failure cause."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["group", "tasks", "sr_p", "sr_ep", "parse_acc", "mean_actions", "plan_median_s", "plan_p95_s", *CAUSES, "other_failures"])
+    w.writerow(
+        [
+            "group",
+            "tasks",
+            "sr_p",
+            "sr_ep",
+            "parse_acc",
+            "mean_actions",
+            "plan_median_s",
+            "plan_p95_s",
+            *CAUSES,
+            "other_failures",
+        ]
+    )
     for r in rows:
         other = sum(v for k, v in r.causes.items() if k not in CAUSES)
-        w.writerow([
-            r.group, r.tasks, f"{r.sr_p:.4f}",
-            "" if r.sr_ep is None else f"{r.sr_ep:.4f}",
-            "" if r.parse_acc is None else f"{r.parse_acc:.4f}",
-            "" if r.mean_actions is None else f"{r.mean_actions:.3f}",
-            "" if r.plan_median_s is None else f"{r.plan_median_s:.4f}",
-            "" if r.plan_p95_s is None else f"{r.plan_p95_s:.4f}",
-            *[r.causes.get(c, 0) for c in CAUSES], other,
-        ])
+        w.writerow(
+            [
+                r.group,
+                r.tasks,
+                f"{r.sr_p:.4f}",
+                "" if r.sr_ep is None else f"{r.sr_ep:.4f}",
+                "" if r.parse_acc is None else f"{r.parse_acc:.4f}",
+                "" if r.mean_actions is None else f"{r.mean_actions:.3f}",
+                "" if r.plan_median_s is None else f"{r.plan_median_s:.4f}",
+                "" if r.plan_p95_s is None else f"{r.plan_p95_s:.4f}",
+                *[r.causes.get(c, 0) for c in CAUSES],
+                other,
+            ]
+        )
     return buf.getvalue()

@@ -20,27 +20,28 @@ import importlib
 import json
 import math
 import os
+import signal
 import sys
 import time
-import signal
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import asdict, dataclass
 from multiprocessing import get_context
 from pathlib import Path
-from typing import Any, Callable, Iterable, Iterator
+from typing import Any
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, PlanSpec, parse_goals, parse_plan, parse_scene, to_dict
 from .tasks import Task
 
 __all__ = [
-    "RunOptions",
-    "run_task",
-    "run_suite",
-    "load_results",
-    "resolve_method",
-    "canonical_goals",
     "CAUSES",
     "RESULTS_FILE",
+    "RunOptions",
+    "canonical_goals",
+    "load_results",
+    "resolve_method",
+    "run_suite",
+    "run_task",
 ]
 
 RESULTS_FILE = "results.jsonl"
@@ -187,7 +188,13 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
         try:
             from ..language import parse
 
-            goals = parse(scene, t.instruction, parser=options.parser, llm_model=options.llm_model, llm_base_url=options.llm_base_url)
+            goals = parse(
+                scene,
+                t.instruction,
+                parser=options.parser,
+                llm_model=options.llm_model,
+                llm_base_url=options.llm_base_url,
+            )
             parse_correct = canonical_goals(goals) == canonical_goals(gt)
         except InputError as exc:
             cause, detail = "parse refused", str(exc)
@@ -204,7 +211,14 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     # 2. Planning, judged against the ground truth.
     plan: PlanSpec | None = None
     rec["plan"] = None
-    rec["planning"] = {"solved": False, "valid": False, "reasons": [], "time_s": None, "iterations": None, "actions": None}
+    rec["planning"] = {
+        "solved": False,
+        "valid": False,
+        "reasons": [],
+        "time_s": None,
+        "iterations": None,
+        "actions": None,
+    }
     if goals is not None or lfsp:
         t0 = time.perf_counter()
         try:
@@ -257,7 +271,12 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
                     cause, detail = "execution failed", _first(ex.reasons)
             except Exception as exc:
                 cause, detail = "executor error", f"{type(exc).__name__}: {exc}"
-                rec["execution"] = {"success": False, "reasons": [detail], "steps": 0, "time_s": round(time.perf_counter() - t0, 6)}
+                rec["execution"] = {
+                    "success": False,
+                    "reasons": [detail],
+                    "steps": 0,
+                    "time_s": round(time.perf_counter() - t0, 6),
+                }
     rec["sr_p"] = sr_p
     rec["sr_ep"] = sr_ep
     rec["cause"] = cause
@@ -287,12 +306,16 @@ def _lfsp(scene, instruction: str, options: RunOptions) -> PlanSpec:
 
     t0 = time.perf_counter()
     try:
-        timeout = float(os.environ.get("LGMCTS_LLM_TIMEOUT", "120"))
+        from ..language import llm_timeout
+
+        timeout = llm_timeout(120.0)
         opts = LLMOptions(model=options.llm_model, base_url=options.llm_base_url, timeout=timeout)
         return plan_lfsp(scene, instruction, options=opts)
     except InputError as exc:
         dt = round(time.perf_counter() - t0, 6)
-        return PlanSpec(solved=False, actions=[], stats={"method": "lfsp", "reason": str(exc), "iterations": 0, "time_s": dt})
+        return PlanSpec(
+            solved=False, actions=[], stats={"method": "lfsp", "reason": str(exc), "iterations": 0, "time_s": dt}
+        )
 
 
 def _safe(task: dict, options: RunOptions) -> dict[str, Any]:
@@ -301,10 +324,21 @@ def _safe(task: dict, options: RunOptions) -> dict[str, Any]:
     try:
         return run_task(task, options)
     except Exception as exc:
-        return {"id": task.get("id"), "suite": task.get("suite", ""), "category": task.get("category", ""),
-                "seed": task.get("seed"), "method": options.method, "parser": options.parser,
-                "sr_p": False, "sr_ep": False if options.execute else None, "cause": "task error",
-                "detail": f"{type(exc).__name__}: {exc}"[:300], "planning": {}, "parse": {}, "execution": None}
+        return {
+            "id": task.get("id"),
+            "suite": task.get("suite", ""),
+            "category": task.get("category", ""),
+            "seed": task.get("seed"),
+            "method": options.method,
+            "parser": options.parser,
+            "sr_p": False,
+            "sr_ep": False if options.execute else None,
+            "cause": "task error",
+            "detail": f"{type(exc).__name__}: {exc}"[:300],
+            "planning": {},
+            "parse": {},
+            "execution": None,
+        }
 
 
 # ---------------------------------------------------------------- results file
@@ -354,9 +388,29 @@ def _check_config(out: Path, config: dict[str, Any]) -> None:
             if diff:
                 k = diff[0]
                 raise InputError(
-                    f"{out} holds a run with {k}={old.get(k)!r}, not {config.get(k)!r}; resume with the same settings or use another -o"
+                    f"{out} holds a run with {k}={old.get(k)!r}, not {config.get(k)!r}; resume with the same "
+                    "settings or use another -o"
                 )
     path.write_text(json.dumps(config, indent=2) + "\n")
+
+
+def usable_cpus() -> int:
+    """The CPUs this process may run on (its affinity), at least 1: the cap on ``--workers``."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_workers(workers: int | None, ray_address: str | None = None) -> None:
+    """Refuse a worker count below 1, or above the usable CPUs for a run on this machine."""
+    if workers is not None and workers < 1:
+        raise InputError("--workers must be at least 1")
+    cpus = usable_cpus()
+    if workers is not None and workers > cpus and ray_address in (None, "local"):
+        # Each worker is a process with its own planner and simulator: more
+        # than the cores only multiplies memory.
+        raise InputError(f"--workers {workers} is more than the {cpus} CPUs this machine lets the run use")
 
 
 def run_suite(
@@ -389,6 +443,8 @@ def run_suite(
     Every record of the run in task order (those resumed included).
     """
     options.check()
+    check_workers(workers, ray_address)
+    cpus = usable_cpus()
     out = Path(out_dir)
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -397,16 +453,21 @@ def run_suite(
     _check_config(out, _config(options, source))
     done = {r["id"]: r for r in load_results(out, repair=True)}
     todo = [t for t in tasks if t.id not in done]
-    if workers is not None and workers < 1:
-        raise InputError("--workers must be at least 1")
-    n_workers = workers or os.cpu_count() or 1
+    n_workers = workers or cpus
     if show_progress is None:
         show_progress = sys.stderr.isatty()
     from tqdm import tqdm
 
     _interrupt_on_sigterm()
-    bar = tqdm(total=len(tasks), initial=len(tasks) - len(todo), desc=f"{options.method}", unit="task",
-               disable=not show_progress, file=sys.stderr, dynamic_ncols=True)
+    bar = tqdm(
+        total=len(tasks),
+        initial=len(tasks) - len(todo),
+        desc=f"{options.method}",
+        unit="task",
+        disable=not show_progress,
+        file=sys.stderr,
+        dynamic_ncols=True,
+    )
     n_ok = sum(bool(r.get("sr_p")) for r in done.values())
     n_run = len(done)
     try:

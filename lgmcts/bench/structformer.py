@@ -20,6 +20,7 @@ Success
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -119,7 +120,13 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         objs.append(_obj("bowl", bowl_color, rng, float(rng.uniform(0.85, 0.95))))
         tower = [0, 1]
         if rng.random() < 0.4:
-            objs.append({"name": "bowl", "color": _pick(rng, [c for c in PLAIN_COLORS if c != bowl_color]), "shape": kind("bowl").make(0.68)})
+            objs.append(
+                {
+                    "name": "bowl",
+                    "color": _pick(rng, [c for c in PLAIN_COLORS if c != bowl_color]),
+                    "shape": kind("bowl").make(0.68),
+                }
+            )
             tower.append(2)
         cut = list(rng.permutation(_CUTLERY)[: int(rng.integers(2, 4))])
         cut_idx = []
@@ -134,11 +141,17 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         bowls = " and ".join(_the(objs[k]) for k in tower[1:])
         plate = _the(objs[0])
         tower_words = ", ".join(_the(objs[k]) for k in tower[:-1]) + " and " + _the(objs[tower[-1]])
-        instruction = str(rng.choice([
-            f"Stack {bowls} on {plate}; and put {cut_words} in a line; and put {cut_words} to the {side} of the plate",
-            f"Put {tower_words} in a tower; then put {cut_words} in a line to the {side} of {plate}",
-            f"Build a tower of {tower_words}, from the bottom up; and arrange {cut_words} in a row on the {side} side of the plate",
-        ]))
+        instruction = str(
+            rng.choice(
+                [
+                    f"Stack {bowls} on {plate}; and put {cut_words} in a line; and put {cut_words} to the "
+                    f"{side} of the plate",
+                    f"Put {tower_words} in a tower; then put {cut_words} in a line to the {side} of {plate}",
+                    f"Build a tower of {tower_words}, from the bottom up; and arrange {cut_words} in a row on "
+                    f"the {side} side of the plate",
+                ]
+            )
+        )
     n = len(objs)
     perm = rng.permutation(n)
     for k, o in enumerate(objs):
@@ -148,7 +161,7 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
 
     # Final arrangement.
     layout = Layout(scene, gap=0.01)
-    final_on = {i: TABLE for i in range(n)}
+    final_on = dict.fromkeys(range(n), TABLE)
     if category in ("line", "circle"):
         for _ in range(40):
             poses = pattern_poses(category, goal_idx[0], scene, rng)
@@ -164,7 +177,7 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         t = goal_idx[0]
         if layout.random(t[0], rng) is None:
             return None
-        for a, b in zip(t, t[1:]):
+        for a, b in itertools.pairwise(t):
             layout.poses[b] = np.array([*layout.poses[t[0]][:2], rng.uniform(-math.pi, math.pi)])
             final_on[b] = a
         goals = [{"pattern": "tower", "objects": [ids[i] for i in t]}]
@@ -177,15 +190,20 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
             sgn = 1.0 if side == "right" else -1.0
             step = 0.045
             x0 = c[0] + sgn * (rp + 0.04)
-            cposes = [np.array([x0 + sgn * k * step, c[1] + rng.uniform(-0.003, 0.003), math.pi / 2]) for k in range(len(cut_idx))]
+            cposes = [
+                np.array([x0 + sgn * k * step, c[1] + rng.uniform(-0.003, 0.003), math.pi / 2])
+                for k in range(len(cut_idx))
+            ]
             trial = Layout(scene, gap=0.01)
-            if trial.try_put(plate, np.array([c[0], c[1], 0.0])) and all(trial.try_put(i, p) for i, p in zip(cut_idx, cposes)):
+            if trial.try_put(plate, np.array([c[0], c[1], 0.0])) and all(
+                trial.try_put(i, p) for i, p in zip(cut_idx, cposes)
+            ):
                 for i in trial.poses:
                     layout.put(i, trial.poses[i])
                 break
         else:
             return None
-        for a, b in zip(tower, tower[1:]):
+        for a, b in itertools.pairwise(tower):
             layout.poses[b] = np.array([*layout.poses[plate][:2], rng.uniform(-math.pi, math.pi)])
             final_on[b] = a
         goals = [
@@ -214,8 +232,16 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
     objs_out = []
     for i in sorted(range(n), key=lambda i: ids[i]):
         o = objs[i]
-        objs_out.append({"id": ids[i], "name": o["name"], "color": o["color"], "shape": o["shape"],
-                         "pose": [round(float(v), 5) for v in start.poses[i]], "on": None})
+        objs_out.append(
+            {
+                "id": ids[i],
+                "name": o["name"],
+                "color": o["color"],
+                "shape": o["shape"],
+                "pose": [round(float(v), 5) for v in start.poses[i]],
+                "on": None,
+            }
+        )
     scene_dict = {"workspace": WORKSPACE, "objects": objs_out}
     st = Scene.from_spec(parse_scene(scene_dict))
     if all(goal_satisfied(g, st, st.initial.poses, st.initial.on) is None for g in gspec.goals):

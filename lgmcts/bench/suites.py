@@ -8,16 +8,16 @@ len(CATEGORIES)]`` (so any prefix of a suite is balanced) and seed
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import partial
 from types import ModuleType
-from typing import Callable, Iterator
 
 from ..errors import InputError
 from . import elgr, structformer
 from .tasks import Task, task_seed
 
-__all__ = ["Suite", "SUITES", "suite", "generate", "iter_generate"]
+__all__ = ["SUITES", "Suite", "generate", "iter_generate", "suite"]
 
 
 @dataclass(frozen=True)
@@ -55,7 +55,10 @@ def suite(name: str) -> Suite:
 
 def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: str | None = None,
                   instructions: str = "ours") -> Iterator[Task]:
-    """Yield the first ``n`` tasks of suite ``name`` generated with ``seed``.
+    """The first ``n`` tasks of suite ``name`` generated with ``seed``, one at a time.
+
+    Every option is checked when this is called (:class:`InputError`), before
+    the first task is made: a caller may open its output file after the call.
 
     With ``category``, only that category's tasks (their indices and seeds
     are those they have in the full suite). ``instructions="peer"`` phrases
@@ -74,6 +77,11 @@ def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: s
     if category is not None and category not in s.categories:
         raise InputError(f"unknown category '{category}' of suite {name} (known: {', '.join(s.categories)})")
     total = s.default_n if n is None else n
+    return _generated(s, name, total, seed, category, instructions, rephrase)
+
+
+def _generated(s: "Suite", name: str, total: int, seed: int, category: str | None, instructions: str,
+               rephrase: Callable[[Task, str], Task]) -> Iterator[Task]:
     made, k = 0, 0
     while made < total:
         cat = s.categories[k % len(s.categories)]

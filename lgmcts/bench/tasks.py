@@ -19,17 +19,23 @@ reported test suite; use seeds >= 1 to tune a method ("train").
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Iterator
+from typing import Any
 
 from ..errors import InputError
 from ..formats import GoalSpec, SceneSpec, parse_goals, parse_scene
+from ..limits import truncate
 
-__all__ = ["Task", "task_seed", "read_suite", "write_suite", "SEED_STRIDE"]
+__all__ = ["SEED_STRIDE", "Task", "read_suite", "task_seed", "write_suite"]
 
 #: Task seeds of suite seed S are ``S * SEED_STRIDE + k``.
 SEED_STRIDE = 1_000_000
+
+
+def _number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
 def task_seed(suite_seed: int, index: int) -> int:
@@ -85,7 +91,7 @@ class Task:
         }
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any], *, where: str = "task") -> "Task":
+    def from_dict(cls, data: dict[str, Any], *, where: str = "task") -> Task:
         """Build a task from a JSON record; :class:`InputError` names what is missing."""
         if not isinstance(data, dict):
             raise InputError(f"{where}: a task must be a JSON object")
@@ -93,18 +99,38 @@ class Task:
         missing = [k for k in need if k not in data]
         if missing:
             raise InputError(f"{where}: missing field(s) {', '.join(missing)}")
+
+        def typed(key: str, kinds: tuple[type, ...], noun: str, default: Any = None) -> Any:
+            value = data.get(key, default)
+            if isinstance(value, bool) and bool not in kinds or not isinstance(value, kinds):
+                raise InputError(f"{where}: '{key}' must be {noun}, got {truncate(json.dumps(value), 40)}")
+            return value
+
+        ident = typed("id", (str, int), "a string")
+        seed = typed("seed", (int,), "a non-negative integer", 0)
+        if seed < 0:
+            raise InputError(f"{where}: 'seed' must be a non-negative integer, got {seed}")
+        goals = typed("goals", (dict, list), "a goal object or list")
+        final = typed("final", (dict,), "an object of poses", {}) or {}
+        for k, pose in final.items():
+            if not (isinstance(pose, list) and len(pose) == 3 and all(_number(v) for v in pose)):
+                raise InputError(f"{where}: 'final.{truncate(k, 20)}' must be a pose [x, y, theta]")
+        final_on = typed("final_on", (dict,), "an object of supports", {}) or {}
+        for k, support in final_on.items():
+            if support is not None and (isinstance(support, bool) or not isinstance(support, int)):
+                raise InputError(f"{where}: 'final_on.{truncate(k, 20)}' must be an object id or null")
         task = cls(
-            id=str(data["id"]),
-            seed=int(data.get("seed", 0)),
-            suite=str(data.get("suite", "")),
-            category=str(data.get("category", "")),
-            scene=data["scene"],
-            instruction=str(data["instruction"]),
-            goals=data["goals"] if isinstance(data["goals"], dict) else {"goals": data["goals"]},
-            final=dict(data.get("final") or {}),
-            final_on=dict(data.get("final_on") or {}),
-            start=dict(data.get("start") or {}),
-            instructions=str(data.get("instructions", "ours")),
+            id=str(ident),
+            seed=seed,
+            suite=typed("suite", (str,), "a string", ""),
+            category=typed("category", (str,), "a string", ""),
+            scene=typed("scene", (dict,), "a scene object"),
+            instruction=typed("instruction", (str,), "a string"),
+            goals=goals if isinstance(goals, dict) else {"goals": goals},
+            final=dict(final),
+            final_on=dict(final_on),
+            start=dict(typed("start", (dict,), "an object", {}) or {}),
+            instructions=typed("instructions", (str,), "a string", "ours"),
         )
         try:
             scene = task.scene_spec()
@@ -115,15 +141,20 @@ class Task:
 
 
 def write_suite(tasks: Iterable[Task], path: str | Path) -> int:
-    """Write ``tasks`` to a JSONL file; returns how many were written."""
+    """Write ``tasks`` to a JSONL file atomically; returns how many were written."""
+    from ..outputs import atomic_write
+
     n = 0
-    try:
-        with open(path, "w") as fh:
-            for t in tasks:
-                fh.write(json.dumps(t.to_dict(), separators=(",", ":")) + "\n")
-                n += 1
-    except OSError as exc:
-        raise InputError(f"cannot write {path}: {exc.strerror}") from None
+
+    def write(fh: Any) -> None:
+        nonlocal n
+        for t in tasks:
+            fh.write(json.dumps(t.to_dict(), separators=(",", ":")) + "\n")
+            n += 1
+
+    # Written beside and renamed over: a failure (a bad task, a full disk)
+    # leaves an existing file as it was.
+    atomic_write(path, write)
     return n
 
 

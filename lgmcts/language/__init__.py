@@ -19,6 +19,7 @@ poses itself, uses the same client as the LLM parser.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -39,6 +40,24 @@ def _scene(scene: Any) -> SceneSpec:
     if isinstance(scene, (str, Path, dict)):
         return load_scene(scene)
     raise InputError(f"scene must be a SceneSpec, a dict or a path, not {type(scene).__name__}")
+
+
+#: Environment variable: seconds to wait for one LLM answer (default 30).
+LLM_TIMEOUT_ENV = "LGMCTS_LLM_TIMEOUT"
+
+
+def llm_timeout(default: float = 30.0) -> float:
+    """``$LGMCTS_LLM_TIMEOUT`` in seconds (else ``default``); anything but a positive finite number is one line."""
+    raw = os.environ.get(LLM_TIMEOUT_ENV, "").strip()
+    if not raw:
+        return default
+    try:
+        value = float(raw)
+    except ValueError:
+        value = float("nan")
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"{LLM_TIMEOUT_ENV} must be a positive number of seconds, got '{truncate(raw, 40)}'")
+    return value
 
 
 def parse(
@@ -94,7 +113,7 @@ def parse(
         from .llm import LLMOptions, parse_llm
 
         if timeout is None:
-            timeout = float(os.environ.get("LGMCTS_LLM_TIMEOUT", "30"))
+            timeout = llm_timeout()
         opts = LLMOptions(model=llm_model, base_url=llm_base_url, api_key=api_key, timeout=timeout)
         return parse_llm(spec, text, options=opts)
     raise InputError(f"unknown parser '{truncate(str(parser), 40)}' (use: {', '.join(PARSERS)})")

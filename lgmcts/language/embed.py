@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..limits import printable
 
 __all__ = [
     "OnnxEncoder",
@@ -137,6 +138,13 @@ def ensure_artefact(weights: Path | None = None) -> Path:
     found = find_artefact(weights)
     if found is not None:
         return found
+    chosen = os.environ.get(ENV_DIR)
+    if chosen:
+        # The operator named the folder: never create it nor export into it unasked.
+        raise InputError(
+            f"{ENV_DIR} names {printable(chosen)[:200]}, which holds no up-to-date export of the sentence model; "
+            "make one there with 'python -m lgmcts.language.export', or unset it"
+        )
     print("sentence model: no ONNX export found; exporting it once (about a minute) ...", file=sys.stderr)
     proc = subprocess.run(
         [sys.executable, "-m", "lgmcts.language.export", "--quiet"],

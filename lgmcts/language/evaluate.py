@@ -158,6 +158,41 @@ class EvalReport:
         }
 
 
+#: Most goals one expectation may list: matching tries every order of the parsed goals.
+MAX_EXPECTED_GOALS = 8
+
+
+def _check_expect(e: Any, depth: int = 0) -> None:
+    """Raise :class:`InputError` unless ``e`` is an expectation the matcher can read."""
+    if not isinstance(e, dict):
+        raise InputError("'expect' must be a goal object {\"goals\": [...]} or {\"any_of\": [...]}")
+    if "any_of" in e:
+        alts = e["any_of"]
+        if depth > 0 or not isinstance(alts, list) or not alts:
+            raise InputError("'any_of' must be a non-empty list of goal objects (not nested)")
+        for alt in alts:
+            _check_expect(alt, depth + 1)
+        return
+    goals = e.get("goals")
+    if not isinstance(goals, list) or not all(isinstance(g, dict) and isinstance(g.get("pattern"), str) for g in goals):
+        raise InputError("'expect' must be a goal object {\"goals\": [{\"pattern\": ...}, ...]}")
+    if len(goals) > MAX_EXPECTED_GOALS:
+        raise InputError(f"'expect' lists {len(goals)} goals; at most {MAX_EXPECTED_GOALS}")
+    for g in goals:
+        for key in ("objects", "objects_from"):
+            if key in g and not (isinstance(g[key], list) and all(_integer(i) for i in g[key])):
+                raise InputError(f"'{key}' of an expected goal must be a list of object ids")
+    pairs = e.get("disjoint", [])
+    if not isinstance(pairs, list) or not all(
+        isinstance(p, list) and len(p) == 2 and all(_integer(i) and 0 <= i < len(goals) for i in p) for p in pairs
+    ):
+        raise InputError("'disjoint' must be a list of pairs of goal positions")
+
+
+def _integer(v: Any) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
 def load_cases(path: str | Path, *, split: str | None = None) -> list[Case]:
     """Read a case file (or a benchmark task file); bad lines raise :class:`InputError`.
 
@@ -197,13 +232,21 @@ def load_cases(path: str | Path, *, split: str | None = None) -> list[Case]:
             if expect is None and "goals" in row and "refuse" not in row:
                 g = row["goals"]
                 expect = g if isinstance(g, dict) else {"goals": g}
+            if expect is not None:
+                _check_expect(expect)
             refuse = row.get("refuse")
+            if refuse is not None and not isinstance(refuse, (str, bool)):
+                raise InputError("'refuse' must be true or the words the refusal must contain")
             if expect is None and refuse is None:
                 raise InputError("a case needs 'expect' (goals) or 'refuse'")
             family = row.get("family")
             category = row.get("category", family if family is not None else "uncategorised")
+            for key, value in (("id", row.get("id")), ("instruction", row["instruction"]), ("family", family),
+                               ("category", category), ("split", row.get("split"))):
+                if value is not None and not isinstance(value, str) and not (key == "id" and _integer(value)):
+                    raise InputError(f"'{key}' must be a string")
             needs = row.get("needs") or ()
-            if isinstance(needs, str) or not all(isinstance(x, str) for x in needs):
+            if not isinstance(needs, (list, tuple)) or not all(isinstance(x, str) for x in needs):
                 raise InputError("'needs' must be a list of strings")
             case = Case(str(row.get("id", f"line-{n}")), str(category), scene, str(row["instruction"]), expect, refuse,
                         None if family is None else str(family), None if row.get("split") is None else str(row["split"]),

@@ -97,10 +97,13 @@ def alternation(words: tuple[str, ...] | list[str] | frozenset[str]) -> str:
     return "(?:" + "|".join(re.escape(w) for w in ordered) + ")"
 
 
-#: Regex macros for the rewrite table: ``{HUE}`` any colour of :data:`HUES`, ``{SHAPE}`` any arrangement noun.
+#: Regex macros for the rewrite table: ``{HUE}`` any colour of :data:`HUES`, ``{SHAPE}`` any arrangement noun,
+#: ``{CIRCLE}`` ... one pattern's nouns.
 MACROS: dict[str, str] = {
     "HUE": alternation(_C["hues"]),
     "SHAPE": alternation([w for nouns in SHAPE_NOUNS.values() for w in nouns]),
+    # One pattern's nouns: {CIRCLE}, {RECTANGLE}, {LINE}, {TOWER}.
+    **{name.upper(): alternation(nouns) for name, nouns in SHAPE_NOUNS.items()},
 }
 
 

@@ -140,7 +140,8 @@ def _compile(row: dict, n: int) -> Rule:
 @lru_cache(maxsize=1)
 def rules() -> tuple[Rule, ...]:
     """Every row of the table, compiled, in order (ids checked unique)."""
-    from . import rewrite  # noqa: F401  (registers the named steps and replacers)
+    from . import rewrite  # registers the named steps and replacers
+    del rewrite
 
     out = tuple(_compile(row, n) for n, row in enumerate(_raw()["rewrite"], 1))
     seen: set[str] = set()

@@ -11,7 +11,10 @@ itself here; adding a pattern means adding a module.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import importlib
+import pkgutil
+from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import Any, ClassVar, Protocol
 
 import numpy as np
@@ -23,18 +26,18 @@ from ..params import resolve as resolve_params
 from ..scene import TABLE, Scene, State
 
 __all__ = [
-    "Pattern",
-    "load_pattern_modules",
+    "BAND",
+    "CLEARANCE",
+    "EDGE_EPS",
     "MODULES_ENV",
-    "GoalProgress",
     "CompiledGoal",
-    "compile_params",
     "Context",
+    "GoalProgress",
+    "Pattern",
+    "compile_params",
+    "load_pattern_modules",
     "register",
     "registry",
-    "CLEARANCE",
-    "BAND",
-    "EDGE_EPS",
 ]
 
 #: Gap kept between footprints by the planner (m); the validator only
@@ -58,7 +61,7 @@ class CompiledGoal:
     objects: tuple[int, ...]
     anchor: int | None = None
     pose: tuple[float, float, float] | None = None
-    params: GoalParams = GoalParams()
+    params: GoalParams = field(default_factory=GoalParams)
 
 
 #: How far the priors let centres go outside a goal's region box (m), a
@@ -69,7 +72,7 @@ REGION_SLACK = 0.005
 def compile_params(goal: Any, scene: Scene) -> GoalParams:
     """A format goal's region, size and facing resolved for ``scene``, as the
     priors use them (the region box grown by :data:`REGION_SLACK`)."""
-    gp = resolve_params(goal, scene.bounds, scene.radii[[scene.index[i] for i in goal.objects]])
+    gp = resolve_params(goal, scene.bounds, scene.radii[[scene.index[i] for i in goal.objects]].tolist())
     if gp.box is not None:
         x0, x1, y0, y1 = gp.box
         e = REGION_SLACK
@@ -92,10 +95,10 @@ class GoalProgress:
     slots: tuple[int, ...] = ()
     params: Any = None
 
-    def add(self, obj: int, slot: int = -1, params: Any = None) -> "GoalProgress":
-        return GoalProgress(self.placed + (obj,), self.slots + (slot,), self.params if params is None else params)
+    def add(self, obj: int, slot: int = -1, params: Any = None) -> GoalProgress:
+        return GoalProgress((*self.placed, obj), (*self.slots, slot), self.params if params is None else params)
 
-    def without(self, obj: int) -> "GoalProgress":
+    def without(self, obj: int) -> GoalProgress:
         if obj not in self.placed:
             return self
         keep = [(o, s) for o, s in zip(self.placed, self.slots) if o != obj]
@@ -141,19 +144,37 @@ class Pattern(Protocol):
     anchored : whether a goal names an ``anchor`` (relations).
     needs_pose : whether a goal gives a ``pose`` (and one object).
     size_word : what a goal's ``size`` measures ("radius", "length"...), or
-        ``None`` when the pattern has no size of its own.
+        ``None`` when the pattern has no size of its own; a pattern with one
+        also defines ``size`` (the measure) and ``size_band`` (the lengths
+        small, medium and large divide).
+    size_ignored : a goal may carry a ``size`` that the pattern ignores (a
+        tower, whose footprint is its base object's).
     deterministic : whether ``sample`` returns the same poses whatever the
         branch and the random generator (a fixed target), and ``region`` the
         same region for as long as the goal is unfinished; the planner may
         then remember what blocks such an object, and the region.
     """
 
-    name: str
-    keys: tuple[str, ...]
-    description: str
-    min_objects: int
-    ordered: bool
-    on_table: bool
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def keys(self) -> tuple[str, ...]: ...
+
+    @property
+    def description(self) -> str: ...
+
+    @property
+    def min_objects(self) -> int: ...
+
+    @property
+    def ordered(self) -> bool: ...
+
+    @property
+    def on_table(self) -> bool: ...
+
+    @property
+    def size_word(self) -> str | None: ...
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
         """Whether ``obj`` may be placed now (order constraints)."""
@@ -176,7 +197,9 @@ class Pattern(Protocol):
     def rank(self, goal: CompiledGoal, progress: GoalProgress, obj: int) -> int:
         """Order among the priors ``obj`` is in: the lowest ranked samples, the others filter."""
 
-    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+    def recover(
+        self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray
+    ) -> GoalProgress:
         """The search progress of ``goal`` whose ``placed`` objects stand at
         ``poses``, in a plan that ends at ``final`` (plans do not record kappa;
         the pose-field pictures rebuild it from the plan)."""
@@ -203,6 +226,15 @@ class Pattern(Protocol):
     def size(self, fitted: Any) -> float:
         """The characteristic length a goal's ``size`` is compared with (m)."""
 
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        """``(L_min, L_max)``: the shortest and longest characteristic length
+        (m) of ``n`` objects of largest circumradius ``rmax`` whose centres
+        lie in ``room`` (``xmin, xmax, ymin, ymax``), for a facing ``heading``
+        (rad) or none; :func:`lgmcts.params.size_range` splits it into the
+        named sizes."""
+
     def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:
         """The arrangement's own direction for a ``facing``: ``(angle, period,
         what)``, the angle compared with the heading modulo ``period``, or ``None``."""
@@ -228,6 +260,7 @@ def register(pattern: Pattern) -> Pattern:
             anchor=bool(getattr(pattern, "anchored", False)),
             pose=bool(getattr(pattern, "needs_pose", False)),
             on_table=pattern.on_table,
+            size=getattr(pattern, "size_word", None) is not None or bool(getattr(pattern, "size_ignored", False)),
         )
     )
     _REGISTRY[pattern.name] = pattern
@@ -235,10 +268,21 @@ def register(pattern: Pattern) -> Pattern:
 
 
 def registry() -> dict[str, Pattern]:
-    """All registered patterns by name (importing every built-in module)."""
-    from . import circle, line, pose, rectangle, spatial, tower  # noqa: F401  (registration side effect)
-
+    """All registered patterns by name (importing every built-in module: each
+    module of this package but this one registers its patterns on import)."""
+    if not _BUILTINS_IMPORTED:
+        _BUILTINS_IMPORTED.append(True)
+        for m in sorted(pkgutil.iter_modules(_package_path()), key=lambda m: m.name):
+            if m.name != "base":
+                importlib.import_module(f"{__package__}.{m.name}")
     return dict(_REGISTRY)
+
+
+_BUILTINS_IMPORTED: list[bool] = []
+
+
+def _package_path() -> list[str]:
+    return [str(Path(__file__).resolve().parent)]
 
 
 #: Environment variable naming pattern modules to import (separated by the
@@ -290,6 +334,9 @@ def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None)
                 importlib.import_module(spec)
         except InputError:
             raise
+        except SystemExit as exc:
+            # A module must not end the program (least of all with status 0, "valid").
+            raise InputError(f"pattern module {spec} failed to load: it called sys.exit({exc.code!r})") from None
         except Exception as exc:  # noqa: BLE001 - any failure is the module's, reported in one line
             raise InputError(f"pattern module {spec} failed to load: {type(exc).__name__}: {exc}") from None
         loaded.append(name)
@@ -321,7 +368,7 @@ def uniform_poses(scene: Scene, obj: int, rng: np.random.Generator, n: int, marg
 YAW_SHARE = 0.5
 
 
-def room(ctx: "Context", obj: int, margin: float = 0.0) -> tuple[float, float, float, float]:
+def room(ctx: Context, obj: int, margin: float = 0.0) -> tuple[float, float, float, float]:
     """Box where ``obj``'s centre may go: the workspace shrunk by its radius
     (plus ``margin``), cut to the goal's region. Empty when min > max."""
     xmin, xmax, ymin, ymax = ctx.scene.bounds
@@ -333,7 +380,7 @@ def room(ctx: "Context", obj: int, margin: float = 0.0) -> tuple[float, float, f
     return box
 
 
-def start_poses(ctx: "Context", obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
+def start_poses(ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
     """``(n, 3)`` poses for a goal's first object: uniform over the workspace
     (as :func:`uniform_poses`) or, with a region, over the part of it that
     ``obj`` fits in; the yaw is the goal's heading when it has one."""
@@ -348,7 +395,7 @@ def start_poses(ctx: "Context", obj: int, rng: np.random.Generator, n: int) -> n
     return with_heading(ctx, out)
 
 
-def with_heading(ctx: "Context", poses: np.ndarray) -> np.ndarray:
+def with_heading(ctx: Context, poses: np.ndarray) -> np.ndarray:
     """``poses`` with their yaw set to the goal's heading, when it has one."""
     h = ctx.goal.params.heading
     if h is not None and len(poses):
@@ -357,7 +404,7 @@ def with_heading(ctx: "Context", poses: np.ndarray) -> np.ndarray:
     return poses
 
 
-def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
+def params_mask(ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
     """Whether each of ``(m, 3)`` poses keeps ``obj`` in the goal's region
     (centre in the box) and facing its heading (yaw within :data:`YAW_SHARE`
     of the facing's tolerance: pi/16 for a named facing, 0.05 rad for an angle)."""
@@ -374,7 +421,7 @@ def params_mask(ctx: "Context", obj: int, poses: np.ndarray) -> np.ndarray:
     return ok
 
 
-def box_region(ctx: "Context") -> Any:
+def box_region(ctx: Context) -> Any:
     """The goal's region box as a shapely polygon (``None`` without one)."""
     reg = ctx.goal.params.box
     if reg is None:
@@ -395,6 +442,7 @@ class BasePattern:
     anchored: ClassVar[bool] = False
     needs_pose: ClassVar[bool] = False
     size_word: ClassVar[str | None] = None
+    size_ignored: ClassVar[bool] = False
     deterministic: ClassVar[bool] = False
 
     def ready(self, ctx: Context, obj: int, settled: frozenset[int]) -> bool:
@@ -405,6 +453,10 @@ class BasePattern:
 
     def region(self, ctx: Context) -> Any:
         return None
+
+    def _density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
+        """f_prior of the pattern alone (before a goal's region and facing narrow it)."""
+        raise NotImplementedError(f"pattern '{self.name}' defines neither density nor _density")
 
     def density(self, ctx: Context, obj: int, poses: np.ndarray) -> np.ndarray:
         # A pattern may define only _density (its own support); a goal's
@@ -420,7 +472,9 @@ class BasePattern:
             return 2
         return 3 if goal.anchor is not None else 4
 
-    def recover(self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray) -> GoalProgress:
+    def recover(
+        self, goal: CompiledGoal, placed: tuple[int, ...], poses: np.ndarray, final: np.ndarray
+    ) -> GoalProgress:
         return GoalProgress(tuple(placed), tuple(-1 for _ in placed), None)
 
     def fit(self, xy: np.ndarray) -> Any:
@@ -442,6 +496,11 @@ class BasePattern:
         return f"{self.name} of " + ", ".join(str(i) for i in goal.objects)
 
     def size(self, fitted: Any) -> float:
+        raise NotImplementedError(f"pattern '{self.name}' has no size")
+
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
         raise NotImplementedError(f"pattern '{self.name}' has no size")
 
     def facing_axis(self, fitted: Any) -> tuple[float, float, str] | None:

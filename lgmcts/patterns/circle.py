@@ -23,18 +23,18 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..tolerances import MIN_CIRCLE_RADIUS, TOL
 from ..geometry import wrap_angle
+from ..tolerances import MIN_CIRCLE_RADIUS, TOL
 from .base import (
     BAND,
     CLEARANCE,
     EDGE_EPS,
     BasePattern,
     Context,
-    fit_json,
-    goal_xy,
     GoalProgress,
     box_region,
+    fit_json,
+    goal_xy,
     register,
     start_poses,
     uniform_poses,
@@ -319,11 +319,19 @@ class Circle(BasePattern):
         slots = []
         for p in placed:
             a = math.atan2(poses[p, 1] - c[1], poses[p, 0] - c[0])
-            slots.append(int(round(((a - a0) % (2 * math.pi)) / (2 * math.pi / n))) % n)
-        return GoalProgress(tuple(placed), tuple(slots), CircleParams((float(c[0]), float(c[1])), float(r), float(a0), n))
+            slots.append(round(((a - a0) % (2 * math.pi)) / (2 * math.pi / n)) % n)
+        params = CircleParams((float(c[0]), float(c[1])), float(r), float(a0), n)
+        return GoalProgress(tuple(placed), tuple(slots), params)
 
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "radius"
+
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # Neighbours' circles touch at the smallest radius; the largest fits the room.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        return max(MIN_CIRCLE_RADIUS, rmax / math.sin(math.pi / max(n, 3))), min(w, h) / 2
 
     def fit(self, xy: np.ndarray) -> CircleParams:
         return circle_params(xy)
@@ -351,7 +359,7 @@ class Circle(BasePattern):
             return "circle", {"centre": xy.mean(axis=0), "radius": 0.0}
         return self.draw(fitted)
 
-    def draw(self, fitted: dict) -> tuple[str, dict] | None:
+    def draw(self, fitted: dict) -> tuple[str, dict]:
         return "circle", {"centre": np.asarray(fitted["centre"], dtype=float), "radius": float(fitted["radius"])}
 
     def size(self, fitted: CircleParams) -> float:

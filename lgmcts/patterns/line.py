@@ -42,7 +42,8 @@ from .base import (
 DELTA = 0.35
 #: How far inside a named size band the line's length stays (m).
 SIZE_MARGIN = 0.004
-#: Largest angle between the second object's direction and the line a facing asks for, for an object already there (rad).
+#: Largest angle between the second object's direction and the line a facing
+#: asks for, for an object already there (rad).
 DIR_EPS = 0.02
 
 
@@ -104,7 +105,9 @@ def fit_line(xy: np.ndarray) -> LineParams:
         u = vt[0]
     t = (xy - c) @ u
     a, b = c + u * t.min(), c + u * t.max()
-    return LineParams((float(c[0]), float(c[1])), (float(u[0]), float(u[1])), ((float(a[0]), float(a[1])), (float(b[0]), float(b[1]))))
+    return LineParams(
+        (float(c[0]), float(c[1])), (float(u[0]), float(u[1])), ((float(a[0]), float(a[1])), (float(b[0]), float(b[1])))
+    )
 
 
 def line_residuals(xy: np.ndarray) -> np.ndarray:
@@ -120,8 +123,21 @@ def line_residuals(xy: np.ndarray) -> np.ndarray:
 class Line(BasePattern):
     name = "line"
     keys = (
-        "line", "in a line", "into a line", "in a row", "row", "straight line", "line up", "align in a line",
-        "arrange in a line", "put in a row", "single file", "queue", "in a straight row", "strip", "straight strip",
+        "line",
+        "in a line",
+        "into a line",
+        "in a row",
+        "row",
+        "straight line",
+        "line up",
+        "align in a line",
+        "arrange in a line",
+        "put in a row",
+        "single file",
+        "queue",
+        "in a straight row",
+        "strip",
+        "straight strip",
     )
     description = "the objects' centres lie on one straight line"
     min_objects = 2
@@ -214,7 +230,11 @@ class Line(BasePattern):
                 a = heading + rng.choice([-np.pi / 2, np.pi / 2], n)
             else:
                 # Half the proposals continue the first object's heading, so rows look tidy.
-                a = np.where(rng.random(n) < 0.5, st.poses[placed[0], 2] + rng.choice([0.0, np.pi], n), rng.uniform(-np.pi, np.pi, n))
+                a = np.where(
+                    rng.random(n) < 0.5,
+                    st.poses[placed[0], 2] + rng.choice([0.0, np.pi], n),
+                    rng.uniform(-np.pi, np.pi, n),
+                )
             xy = p0 + r[:, None] * np.stack([np.cos(a), np.sin(a)], axis=1)
             out = with_heading(ctx, np.column_stack([xy, a]))
             if ctx.goal.params.box is None and _band(ctx) is None:
@@ -289,7 +309,9 @@ class Line(BasePattern):
             p0 = ctx.state.poses[prog.placed[0], :2]
             v = np.asarray(pose[:2]) - p0
             norm = float(np.hypot(*v)) or 1.0
-            return prog.add(obj, params=LineParams((float(p0[0]), float(p0[1])), (float(v[0] / norm), float(v[1] / norm))))
+            return prog.add(
+                obj, params=LineParams((float(p0[0]), float(p0[1])), (float(v[0] / norm), float(v[1] / norm)))
+            )
         return prog.add(obj)
 
     def region(self, ctx: Context):
@@ -309,10 +331,26 @@ class Line(BasePattern):
             return super().recover(goal, placed, poses, final)
         p0, p1 = poses[placed[0], :2], poses[placed[1], :2]
         u = (p1 - p0) / (np.hypot(*(p1 - p0)) or 1.0)
-        return GoalProgress(tuple(placed), tuple(-1 for _ in placed), LineParams((float(p0[0]), float(p0[1])), (float(u[0]), float(u[1]))))
+        return GoalProgress(
+            tuple(placed),
+            tuple(-1 for _ in placed),
+            LineParams((float(p0[0]), float(p0[1])), (float(u[0]), float(u[1]))),
+        )
 
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "length"
+
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # Objects side by side at the shortest; the room's extent along the
+        # line (which runs across a facing) at the longest.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        lo = 2 * rmax * (max(n, 2) - 1)
+        if heading is None:
+            return lo, max(w, h)
+        ux, uy = abs(math.sin(heading)), abs(math.cos(heading))  # the line's direction
+        return lo, min(w / ux if ux > 1e-9 else math.inf, h / uy if uy > 1e-9 else math.inf)
 
     def fit(self, xy: np.ndarray) -> LineParams:
         return fit_line(xy)
@@ -324,7 +362,10 @@ class Line(BasePattern):
         return None
 
     def shape(self, goal, scene, poses) -> tuple[str, dict]:
-        return self.draw(fit_json(fit_line(goal_xy(goal, scene, poses))))
+        xy = goal_xy(goal, scene, poses)
+        fitted = fit_json(fit_line(xy))
+        drawn = self.draw(fitted) if fitted is not None else None
+        return drawn if drawn is not None else ("points", {"points": xy})
 
     def draw(self, fitted: dict) -> tuple[str, dict] | None:
         if fitted.get("ends") is None:

@@ -69,7 +69,7 @@ class Pose(BasePattern):
         cur = poses[scene.index[goal.objects[0]]]
         if math.hypot(*(cur[:2] - tgt[:2])) > TOL:
             return f"object {goal.objects[0]} is {math.hypot(*(cur[:2] - tgt[:2])):.3f} m from its goal pose"
-        dth = wrap_angle(cur[2] - tgt[2])
+        dth = float(wrap_angle(cur[2] - tgt[2]))
         if abs(dth) > POSE_ANGLE_TOL:
             return f"object {goal.objects[0]} is {abs(dth):.2f} rad off its goal yaw"
         return None

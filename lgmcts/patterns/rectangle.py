@@ -26,7 +26,6 @@ import numpy as np
 import shapely
 
 from ..tolerances import MIN_RECT_SIDE, TOL
-from .line import fit_line
 from .base import (
     BAND,
     CLEARANCE,
@@ -42,6 +41,7 @@ from .base import (
     uniform_poses,
     with_heading,
 )
+from .line import fit_line
 
 #: How far inside a named size band the longer side stays (m).
 SIZE_MARGIN = 0.004
@@ -57,7 +57,7 @@ def _rot(phi: float) -> np.ndarray:
     return np.array([[c, -s], [s, c]])
 
 
-def corners(params: "RectangleParams") -> np.ndarray:
+def corners(params: RectangleParams) -> np.ndarray:
     """``(4, 2)`` corner positions of rectangle ``params``, counter-clockwise from corner 0."""
     (cx, cy), w, h, phi = params.centre, params.width, params.height, params.angle
     return np.array([cx, cy]) + (_CORNERS * [w / 2, h / 2]) @ _rot(phi).T
@@ -96,16 +96,29 @@ def fit_rectangle(xy: np.ndarray) -> RectangleParams | None:
         return None
     e1, e2 = cs[1] - cs[0], cs[2] - cs[1]
     ctr = cs.mean(axis=0)
-    return RectangleParams((float(ctr[0]), float(ctr[1])), float(np.hypot(*e1)), float(np.hypot(*e2)), math.atan2(e1[1], e1[0]))
+    return RectangleParams(
+        (float(ctr[0]), float(ctr[1])), float(np.hypot(*e1)), float(np.hypot(*e2)), math.atan2(e1[1], e1[0])
+    )
 
 
 @dataclass(frozen=True)
 class Rectangle(BasePattern):
     name = "rectangle"
     keys = (
-        "rectangle", "in a rectangle", "into a rectangle", "rectangular", "square", "square border", "box shape",
-        "rectangular frame", "perimeter of a rectangle", "border of a square", "arrange in a rectangle", "oblong",
-        "corners of a rectangle", "corners of a square",
+        "rectangle",
+        "in a rectangle",
+        "into a rectangle",
+        "rectangular",
+        "square",
+        "square border",
+        "box shape",
+        "rectangular frame",
+        "perimeter of a rectangle",
+        "border of a square",
+        "arrange in a rectangle",
+        "oblong",
+        "corners of a rectangle",
+        "corners of a square",
     )
     description = "the objects' centres lie on the perimeter of one rectangle, at least one on every side"
     min_objects = 4
@@ -143,7 +156,7 @@ class Rectangle(BasePattern):
         """Whether, with the first corner at ``p0`` and the second at each of
         ``p1`` (``(m, 2)``), the rectangle of least other side fits in the
         room on one side of that edge (used with a region)."""
-        lo, hi, per_min = self._sizes(ctx)
+        _lo, _hi, per_min = self._sizes(ctx)
         side_min = max(0.06, 2 * ctx.max_radius + CLEARANCE + 2 * BAND + 0.004)
         x0, x1, y0, y1 = self._room(ctx)
         e = p1 - p0
@@ -154,8 +167,12 @@ class Rectangle(BasePattern):
         for side in (1.0, -1.0):
             v = side * np.stack([-u[:, 1], u[:, 0]], axis=1)
             cs = np.stack([p0 + h[:, None] * v, p1 + h[:, None] * v], axis=1)
-            ok |= ((cs[..., 0] >= x0 - EDGE_EPS) & (cs[..., 0] <= x1 + EDGE_EPS)
-                   & (cs[..., 1] >= y0 - EDGE_EPS) & (cs[..., 1] <= y1 + EDGE_EPS)).all(axis=1)
+            ok |= (
+                (cs[..., 0] >= x0 - EDGE_EPS)
+                & (cs[..., 0] <= x1 + EDGE_EPS)
+                & (cs[..., 1] >= y0 - EDGE_EPS)
+                & (cs[..., 1] <= y1 + EDGE_EPS)
+            ).all(axis=1)
         return ok
 
     def _room(self, ctx: Context) -> tuple[float, float, float, float]:
@@ -180,7 +197,9 @@ class Rectangle(BasePattern):
         if heading is not None:
             phi = heading + rng.integers(0, 4, n) * (math.pi / 2)
         else:
-            phi = np.where(rng.random(n) < 0.5, rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
+            phi = np.where(
+                rng.random(n) < 0.5, rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n)
+            )
         side = np.where(rng.random(n) < 0.5, 1.0, -1.0)
         u = np.stack([np.cos(phi), np.sin(phi)], axis=1)
         v = side[:, None] * np.stack([-u[:, 1], u[:, 0]], axis=1)
@@ -213,7 +232,11 @@ class Rectangle(BasePattern):
             if gp.heading is not None:
                 a = gp.heading + rng.integers(0, 4, n) * (math.pi / 2)
             else:
-                a = np.where(rng.random(n) < 0.5, first[2] + rng.integers(0, 4, n) * (math.pi / 2), rng.uniform(-math.pi, math.pi, n))
+                a = np.where(
+                    rng.random(n) < 0.5,
+                    first[2] + rng.integers(0, 4, n) * (math.pi / 2),
+                    rng.uniform(-math.pi, math.pi, n),
+                )
             xy = first[:2] + d[:, None] * np.stack([np.cos(a), np.sin(a)], axis=1)
             out = with_heading(ctx, np.column_stack([xy, a]))
             if gp.box is None:
@@ -269,7 +292,7 @@ class Rectangle(BasePattern):
                 ok &= self._fits_second(ctx, ctx.state.poses[ctx.progress.placed[0], :2], poses[:, :2])
             return ok.astype(float)
         kappa = ctx.progress.params
-        (cx, cy), w, h, phi = kappa.centre, kappa.width, kappa.height, kappa.angle
+        (_cx, _cy), w, h, _phi = kappa.centre, kappa.width, kappa.height, kappa.angle
         free, extras = self._state(ctx)
         out = np.zeros(len(poses))
         cs = corners(ctx.progress.params)
@@ -315,11 +338,13 @@ class Rectangle(BasePattern):
                 cs = corners(params)
                 slots = (0, 1) if side > 0 else (3, 2)
                 best = (params, slots)
-                if ((cs[:, 0] >= xmin + m) & (cs[:, 0] <= xmax - m) & (cs[:, 1] >= ymin + m) & (cs[:, 1] <= ymax - m)).all():
+                if (
+                    (cs[:, 0] >= xmin + m) & (cs[:, 0] <= xmax - m) & (cs[:, 1] >= ymin + m) & (cs[:, 1] <= ymax - m)
+                ).all():
                     break
             params, slots = best  # type: ignore[misc]
             return GoalProgress((first, obj), slots, params)
-        free, extras = self._state(ctx)
+        free, _extras = self._state(ctx)
         cs = corners(prog.params)
         for s in free:
             if math.hypot(*(np.asarray(pose[:2]) - cs[s])) <= 1e-3:
@@ -346,6 +371,13 @@ class Rectangle(BasePattern):
 
     # The finished arrangement (the acceptance rule and what to draw).
     size_word = "longer side"
+
+    def size_band(
+        self, n: int, rmax: float, room: tuple[float, float, float, float], heading: float | None
+    ) -> tuple[float, float]:
+        # The perimeter holds all n objects at the shortest; the room's longer side at the longest.
+        w, h = max(room[1] - room[0], 0.0), max(room[3] - room[2], 0.0)
+        return max(MIN_RECT_SIDE, n * rmax / 2), max(w, h)
 
     def fit(self, xy: np.ndarray) -> RectangleParams | None:
         return fit_rectangle(xy)

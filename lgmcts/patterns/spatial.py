@@ -14,10 +14,22 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..formats import RELATIONS
-from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
 from ..geometry import wrap_angle
+from ..tolerances import MAX_RELATION_DIST, RELATION_HALF_ANGLE
 from .base import CLEARANCE, BasePattern, Context, GoalProgress, goal_xy, params_mask, register, with_heading
+
+#: Unit direction of each spatial relation in the table frame; each is a
+#: pattern of its own (also readable as ``lgmcts.formats.RELATIONS``).
+RELATIONS: dict[str, tuple[float, float]] = {
+    "left": (-1.0, 0.0),
+    "right": (1.0, 0.0),
+    "front": (0.0, -1.0),
+    "behind": (0.0, 1.0),
+    "left_front": (-math.sqrt(0.5), -math.sqrt(0.5)),
+    "left_behind": (-math.sqrt(0.5), math.sqrt(0.5)),
+    "right_front": (math.sqrt(0.5), -math.sqrt(0.5)),
+    "right_behind": (math.sqrt(0.5), math.sqrt(0.5)),
+}
 
 #: Half-angle of the sampled sector (rad), inside the 45 degree rule.
 HALF_ANGLE = math.pi / 4 - 0.06
@@ -68,6 +80,7 @@ class Relation(BasePattern):
 
     def sample(self, ctx: Context, obj: int, rng: np.random.Generator, n: int) -> np.ndarray:
         a = ctx.goal.anchor
+        assert a is not None, "a relation goal has an anchor (formats.Goal checks it)"
         base = ctx.state.poses[a, :2]
         lo = min(ctx.radius(a) + ctx.radius(obj) + CLEARANCE, MAX_DIST - 0.01)
         rho = lo + (MAX_DIST - lo) * rng.random(n) ** 2
@@ -110,16 +123,23 @@ class Relation(BasePattern):
             v = poses[i, :2] - a
             n = float(np.hypot(*v))
             if n <= 0 or n > MAX_RELATION_DIST:
-                return f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
+                return (
+                    f"object {scene.ids[i]} is {n:.3f} m from anchor {goal.anchor} (needs 0 < d <= {MAX_RELATION_DIST})"
+                )
             ang = math.acos(max(-1.0, min(1.0, float(v @ d) / n)))
             if ang > RELATION_HALF_ANGLE + 1e-9:
-                return f"object {scene.ids[i]} is {math.degrees(ang):.0f} deg off '{self.relation}' of anchor {goal.anchor}"
+                off = math.degrees(ang)
+                return f"object {scene.ids[i]} is {off:.0f} deg off '{self.relation}' of anchor {goal.anchor}"
         return None
 
     def shape(self, goal, scene, poses) -> tuple[str, dict]:
         a = np.asarray(poses[scene.index[goal.anchor], :2], dtype=float)
         xy = goal_xy(goal, scene, poses)
-        return "relation", {"anchor": a, "arrows": [(a, xy[j]) for j in range(len(xy))], "direction": np.asarray(RELATIONS[self.relation])}
+        return "relation", {
+            "anchor": a,
+            "arrows": [(a, xy[j]) for j in range(len(xy))],
+            "direction": np.asarray(RELATIONS[self.relation]),
+        }
 
 
 for _rel in RELATIONS:

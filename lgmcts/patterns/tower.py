@@ -8,6 +8,7 @@ which every object above takes from its support. A tower has no size.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -34,6 +35,8 @@ class Tower(BasePattern):
     min_objects = 2
     ordered = True
     on_table = False
+    # A tower's footprint is its base object's: a size is accepted and ignored.
+    size_ignored = True
 
     def _position(self, ctx: Context, obj: int) -> int:
         return ctx.goal.objects.index(obj)
@@ -81,7 +84,7 @@ class Tower(BasePattern):
         idx = [scene.index[i] for i in goal.objects]
         if on[idx[0]] != TABLE:
             return f"tower base {goal.objects[0]} is not on the table"
-        for a, b in zip(idx, idx[1:]):
+        for a, b in itertools.pairwise(idx):
             if on[b] != a:
                 return f"object {scene.ids[b]} is not on object {scene.ids[a]}"
             if math.hypot(*(poses[b, :2] - poses[a, :2])) > TOWER_TOL:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any, Callable
@@ -21,13 +22,15 @@ import numpy as np
 
 from ..errors import InputError
 from ..feasibility import precheck
-from ..formats import Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
-from ..patterns import registry
+from ..formats import Action, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
+from ..patterns import Pattern, registry
 from ..patterns.base import fit_json, goal_xy
 from ..scene import Scene, replay
+from ..validate import goal_satisfied
+from .domain import Accept, Rearrangement, validated
 from .polish import polished
-from .search import Accept, SearchOptions, SearchResult, greedy, mcts, validated
-from .step import Problem
+from .problem import Problem
+from .search import SearchOptions, SearchResult, greedy, mcts
 
 __all__ = ["plan", "METHODS", "goal_poses"]
 
@@ -41,7 +44,7 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     obstacle. Returns ``None`` when no arrangement was found within the budget.
     """
     blind = replace(opts, step=replace(opts.step, obstacles="placed"), max_iter=max(opts.max_iter // 10, 200))
-    res = greedy(problem, rng, blind)
+    res = greedy(Rearrangement(problem, blind), rng, blind)
     if not res.solved:
         return None
     final = {a.object: a.to for a in res.actions}
@@ -56,12 +59,13 @@ def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
         oid = scene.ids[o]
         if oid in fixed:
             continue
-        pose = final.get(oid, tuple(float(v) for v in scene.initial.poses[o]))
+        start = scene.initial.poses[o]
+        pose = final.get(oid, (float(start[0]), float(start[1]), float(start[2])))
         goals.append(Goal(pattern="pose", objects=[oid], pose=pose))
     return GoalSpec(goals=goals)
 
 
-def _stacks(pattern) -> bool:
+def _stacks(pattern: Pattern) -> bool:
     """Whether a pattern stacks its objects (a tower): PMCTS keeps such goals as they are."""
     return not pattern.on_table and not getattr(pattern, "needs_pose", False)
 
@@ -71,29 +75,33 @@ def _accept(opts: SearchOptions) -> Accept:
     return polished if opts.polish else validated
 
 
-def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    return mcts(problem, rng, opts, _accept(opts)), {}
+#: What a method returns: the search's result and extra statistics for the plan.
+Outcome = tuple[SearchResult[Action], dict[str, Any]]
 
 
-def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    return greedy(problem, rng, opts, _accept(opts)), {}
+def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
+    return mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
 
 
-def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> tuple[SearchResult, dict]:
-    if all(p.needs_pose or _stacks(p) for p in problem.patterns):
-        return mcts(problem, rng, opts, _accept(opts)), {}
+def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
+    return greedy(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
+
+
+def _run_pmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
+    if all(getattr(p, "needs_pose", False) or _stacks(p) for p in problem.patterns):
+        return mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
     t0 = time.perf_counter()
     poses = goal_poses(problem, rng, opts)
     if poses is None:
         return SearchResult(False, (), 0, 0, time.perf_counter() - t0, reason="no goal arrangement found"), {}
     fixed = Problem.build(problem.scene, poses)
-    accept = _accept(opts)
     # Searched for the fixed poses; accepted (and polished) for the goals themselves.
-    res = mcts(fixed, rng, opts, lambda _fixed, actions, worlds: accept(problem, actions, worlds))
-    return replace(res, time_s=time.perf_counter() - t0), {"pose_goals": poses.model_dump(mode="json", exclude_none=True)}
+    res = mcts(Rearrangement(fixed, opts, accept=_accept(opts), judge=problem), rng, opts)
+    extra = {"pose_goals": poses.model_dump(mode="json", exclude_none=True)}
+    return replace(res, time_s=time.perf_counter() - t0), extra
 
 
-METHODS: dict[str, Callable[[Problem, np.random.Generator, SearchOptions], tuple[SearchResult, dict]]] = {
+METHODS: dict[str, Callable[[Problem, np.random.Generator, SearchOptions], Outcome]] = {
     "lgmcts": _run_lgmcts,
     "greedy": _run_greedy,
     "pmcts": _run_pmcts,
@@ -119,7 +127,8 @@ def plan(
     method : ``"lgmcts"``, ``"greedy"`` or ``"pmcts"``.
     seed : seed of the random generator; the same seed gives the same plan
         when no ``time_limit`` cuts the search.
-    max_iter : iteration budget (expansions for MCTS, steps for greedy).
+    max_iter : iteration budget (passes of the tree search, each at most one
+        expansion; steps for greedy, a rollout without a step counting one).
     time_limit : optional wall-clock budget (s).
     anytime : keep searching within the budget for a plan with fewer actions.
     options : full :class:`SearchOptions`; ``max_iter``, ``time_limit`` and
@@ -172,12 +181,21 @@ def plan(
         stats["solutions"] = res.solutions
     if not res.solved:
         stats["reason"] = res.reason
+        if res.proved:
+            stats["infeasible"] = True
+        else:
+            # What was tried, in the same line: the budget spent and how far the best partial plan got.
+            final = replay(sc, list(res.actions))[-1]
+            met = sum(goal_satisfied(g, sc, final.poses, final.on) is None for g in gspec.goals)
+            stats["reason"] = (f"{res.reason} after {res.iterations} iterations and {res.nodes} search nodes; the best "
+                               f"partial plan ({len(res.actions)} actions) meets {met} of {len(gspec.goals)} goals; "
+                               "no proof was found that no plan exists")
     stats.update(extra)
     return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
                     fits=final_fits(sc, gspec, res.actions))
 
 
-def final_fits(scene: Scene, goals: GoalSpec, actions: list) -> list[dict | None]:
+def final_fits(scene: Scene, goals: GoalSpec, actions: Sequence[Action]) -> list[dict | None]:
     """Each goal's pattern parameters fitted to the state ``actions`` end in
     (JSON-ready; ``None`` for patterns without a fit): what a plan carries so
     that viewers draw the arrangement without fitting it again."""

@@ -17,7 +17,7 @@ still to come (the rest is unchanged). The replay checks every
 pick of a clear object, every table placement inside the workspace and
 keeping the search's clearance from every other footprint (or, for a goal
 placement on a fixed target, at most touching it: the contact that the
-search itself allows, see :func:`lgmcts.planner.step.touching_only`), every
+search itself allows, see :func:`lgmcts.planner.placement.touching_only`), every
 stacking onto a clear
 support over its footprint, and every goal met at the end (firmly, still
 met when every centre moves by up to 2 mm, for a goal whose objects no
@@ -37,8 +37,9 @@ from ..formats import Action
 from ..patterns import CLEARANCE
 from ..scene import TABLE, replay
 from ..validate import goal_satisfied
-from .search import valid_plan
-from .step import CONTACT_AREA, Problem, touching_only
+from .domain import valid_plan
+from .placement import CONTACT_AREA, touching_only
+from .problem import Problem
 
 __all__ = ["polished"]
 
@@ -137,7 +138,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
     near = np.flatnonzero(shapely.dwithin(poly, placed, CLEARANCE * 0.99))
     if not len(near):
         return False
-    # A fixed target placed in contact is no conflict (the search allows that, see step.touching_only).
+    # A fixed target placed in contact is no conflict (the search allows that, see placement.touching_only).
     a = sc.index[obj]
     b = np.array([sc.index[actions[ks[t]].object] for t in near])
     xy_a = np.array(shapely.get_coordinates(shapely.centroid(poly)))[0] if sc.discs[a] > 0 else np.zeros(2)
@@ -150,7 +151,7 @@ def _crowds(problem: Problem, actions: list[Action], worlds: list, poly, i: int,
 
 def _contact_ok(problem: Problem, action: Action, i: int) -> bool:
     """Whether the search may place ``action``'s object ``i`` closer than the
-    clearance: a goal placement on a fixed target (see step._to_table)."""
+    clearance: a goal placement on a fixed target (see placement.to_table)."""
     return action.purpose == "goal" and i in problem.fixed
 
 
@@ -187,9 +188,10 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
         if a.purpose != "goal" or moves[a.object] > 1:
             trial = actions[:i] + actions[i + 1 :]
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
-            stays = worlds[i].polys[problem.scene.index[a.object]]
-            after = (None if _crowds(problem, actions, worlds, stays, i, nxt)
-                     else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1))
+            o = problem.scene.index[a.object]
+            stays = worlds[i].polys[o]
+            skip = _crowds(problem, actions, worlds, stays, i, nxt) or _last_move_needed(problem, worlds, i, o, nxt, ref)
+            after = None if skip else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1)
             if after is not None:
                 moves[a.object] -= 1
                 actions = trial
@@ -197,6 +199,25 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
                 continue
         i += 1
     return actions
+
+
+def _last_move_needed(problem: Problem, worlds: list, i: int, o: int, nxt: int, ref: np.ndarray) -> bool:
+    """Whether dropping action ``i``, the last move of object ``o`` (``nxt``
+    past the end), surely leaves a goal unmet.
+
+    A replay of the plan without that move can never rejoin the plan's
+    states (``o`` stands elsewhere in all of them), so if it succeeds it
+    ends in the final state with ``o`` left where it stood before ``i``; the
+    goals are judged on that state now, as the replay would judge them at
+    its end, without the replay's steps. Same answer, without replaying to
+    the end of a long plan.
+    """
+    if nxt < len(worlds) - 1:
+        return False
+    before, last = worlds[i], worlds[-1]
+    if before.on[o] == last.on[o] and np.array_equal(before.poses[o], last.poses[o]):
+        return False
+    return not _goals_hold_firmly(problem, last.moved(o, before.poses[o], before.on[o]), ref)
 
 
 def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action]:
@@ -208,7 +229,7 @@ def _rewrite(problem: Problem, actions: list[Action], worlds: list | None = None
 
 
 def polished(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:
-    """The search's acceptance step with polishing (a :data:`~lgmcts.planner.search.Accept`).
+    """The search's acceptance step with polishing (a :data:`~lgmcts.planner.domain.Accept`).
 
     ``actions`` reach every goal in the planner's model but have not been
     validated. The polished plan is returned when the validator accepts it,

@@ -16,7 +16,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..formats import Action
-from .step import Problem, SearchState, Transition, attempt, clear_way, fixed_obstacles, place_fixed, probe, stay
+from .base import Rollout, Transition
+from .placement import fixed_obstacles, place_fixed
+from .problem import Problem, SearchState
+from .step import attempt, clear_way, probe, stay
 
 if TYPE_CHECKING:
     from .search import SearchOptions
@@ -70,7 +73,7 @@ class BlockMemo:
 
 
 def default_step(problem: Problem, ss: SearchState, ready: list[int], rng: np.random.Generator, opts: SearchOptions,
-          memo: BlockMemo | None = None) -> tuple[int, Transition | None]:
+                 memo: BlockMemo | None = None) -> tuple[int, Transition[SearchState, Action] | None]:
     """One default-policy step: commit an object where it stands if one can
     (a free step); else place one of the ready objects (in random order)
     whose prior has a free pose; else move the obstacle that blocks the most
@@ -161,16 +164,16 @@ def _blocking_order(problem: Problem, ss: SearchState, blocks: dict[int, tuple[i
 
 
 def rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: SearchOptions,
-             depth: int) -> tuple[float, list[Action] | None, int, list]:
-    """Random sequential placements from ``ss``: (reward, actions if solved,
-    steps, the world after each action)."""
+            depth: int) -> Rollout[SearchState, Action]:
+    """Random sequential placements from ``ss``, at most ``depth`` steps
+    (see :class:`~lgmcts.planner.base.Rollout` for what it returns)."""
     actions: list[Action] = []
-    worlds: list = []
+    trace: list[SearchState] = []
     steps = 0
     memo = BlockMemo(problem, opts.step.clearance) if opts.step.obstacles == "all" else None
     for _ in range(depth):
         if ss.done(problem):
-            return 1.0, actions, steps, worlds
+            return Rollout(1.0, actions, steps, trace)
         ready = ss.ready(problem)
         if not ready:
             break
@@ -183,7 +186,7 @@ def rollout(problem: Problem, ss: SearchState, rng: np.random.Generator, opts: S
         ss = tr.state
         if tr.action is not None:
             actions.append(tr.action)
-            worlds.append(ss.world)
+            trace.append(ss)
     if ss.done(problem):
-        return 1.0, actions, steps, worlds
-    return ss.reward(problem), None, steps, worlds
+        return Rollout(1.0, actions, steps, trace)
+    return Rollout(ss.reward(problem), None, steps, trace)

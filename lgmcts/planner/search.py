@@ -1,6 +1,11 @@
 """Search loops: Monte-Carlo tree search (paper, "MCTS for TAMP") and the
-greedy sequential sampler, both over the same simulation step
-(:mod:`.step`) and default rollout policy (:mod:`.rollout`)."""
+greedy sequential sampler.
+
+Both take the problem they search as a :class:`~lgmcts.planner.base.Domain`
+(its steps, default policy, rewards and acceptance rule), so they know
+nothing of scenes or patterns; :class:`lgmcts.planner.domain.Rearrangement`
+is the tabletop domain.
+"""
 
 from __future__ import annotations
 
@@ -8,18 +13,19 @@ import logging
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Generic, TypeVar
 
 import numpy as np
 
-from ..formats import Action, PlanSpec
-from ..validate import check
+from .base import Domain
+from .placement import StepOptions
 from .selection import select_child
-from .rollout import default_step, rollout
-from .step import Problem, SearchState, StepOptions, attempt, stay
 from .tree import Node
 
-__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy", "valid_plan", "validated"]
+__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
+
+S = TypeVar("S")
+A = TypeVar("A")
 
 log = logging.getLogger("lgmcts.planner")
 
@@ -40,8 +46,8 @@ class SearchOptions:
         may have tried ``ceil((n + 1) ** alpha)`` expansions before the
         search descends into its children; 1.0 gives the plain "expand every
         action first" rule.
-    max_depth : deepest node expanded; ``None`` for ``3 n + 8`` with n the
-        number of objects.
+    max_depth : deepest node expanded; ``None`` for the domain's
+        ``depth_limit`` (``3 n + 8`` with n the number of objects).
     rollout : after each expansion, run a random rollout with the same step
         (as greedy does) and back up its reward; a rollout that reaches every
         goal ends the search. ``False`` gives the paper's one-step simulation.
@@ -52,6 +58,14 @@ class SearchOptions:
     direct_tries : in rollouts, how many random ready objects are tried for a
         placement that needs no obstacle moved before one clears its way.
     step : options of the simulation step.
+    proof_after : after this many iterations, or ``proof_after_s`` seconds,
+        without a plan (whichever comes first), ask the domain once (its
+        optional ``impossible()``) whether the goals are provably out of
+        reach; a reason it gives ends the search unsolved with that reason.
+        ``0`` never asks. The question uses no random numbers, and a proof
+        means the search could not have succeeded, so solved plans are the
+        same with or without it.
+    proof_after_s : see ``proof_after``.
     """
 
     max_iter: int = 10_000
@@ -65,14 +79,16 @@ class SearchOptions:
     polish: bool = True
     direct_tries: int = 64
     step: StepOptions = field(default_factory=StepOptions)
+    proof_after: int = 20
+    proof_after_s: float = 0.25
 
 
 @dataclass(frozen=True)
-class SearchResult:
+class SearchResult(Generic[A]):
     """What a search returns: the plan's actions and statistics."""
 
     solved: bool
-    actions: tuple[Action, ...]
+    actions: tuple[A, ...]
     iterations: int
     nodes: int
     time_s: float
@@ -81,37 +97,34 @@ class SearchResult:
     solutions: int = 0
     #: Actions of the found plan before ``accept`` rewrote it (0 when unsolved).
     found: int = 0
+    #: Whether ``reason`` is the domain's proof that no plan exists.
+    proved: bool = False
 
 
-def valid_plan(problem: Problem, actions: list[Action]) -> bool:
-    """Whether ``actions`` meet the acceptance rules for ``problem`` (a replay by the validator)."""
-    plan = PlanSpec(solved=True, actions=actions, goals=problem.spec)
-    return check(problem.scene, problem.spec, plan).valid
+class _Prover:
+    """Asks the domain once, when the iteration or time threshold of the options is passed, why no plan exists."""
+
+    def __init__(self, domain: object, opts: SearchOptions, t0: float) -> None:
+        self.ask = getattr(domain, "impossible", None) if opts.proof_after > 0 else None
+        self.after, self.at = opts.proof_after, t0 + opts.proof_after_s
+
+    def __call__(self, it: int) -> str | None:
+        if self.ask is None or (it < self.after and time.perf_counter() < self.at):
+            return None
+        ask, self.ask = self.ask, None
+        return ask()
 
 
-#: What a search does with a plan that reaches every goal in its own model:
-#: returns the plan to keep (the same, or a rewrite of it) once the validator
-#: accepts it, or ``None`` to reject it and search on. The third argument
-#: holds the search's world states along the plan (the initial one, then the
-#: one after each action), or ``None``.
-Accept = Callable[[Problem, list[Action], "list | None"], "list[Action] | None"]
-
-
-def validated(problem: Problem, actions: list[Action], worlds: list | None = None) -> list[Action] | None:
-    """The default :data:`Accept`: ``actions`` themselves when the validator accepts them."""
-    return list(actions) if valid_plan(problem, actions) else None
-
-
-def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: SearchOptions) -> Node | None:
-    """Try one untried (object, sample) pair at ``node``; return the new child or ``None``."""
-    ready = node.state.ready(problem)
+def _expand(domain: Domain[S, A], node: Node[S, A], rng: np.random.Generator, opts: SearchOptions) -> Node[S, A] | None:
+    """Try one untried (choice, sample) pair at ``node``; return the new child or ``None``."""
+    ready = domain.choices(node.state)
     open_ = [o for o in ready if node.attempts.get(o, 0) < opts.branching]
     if not open_:
         return None
     if not node.attempts:
         # The first child follows the default policy (a free or direct move when
         # there is one), so the tree's first path is as good as a rollout's.
-        o, tr = default_step(problem, node.state, open_, rng, opts)
+        o, tr = domain.default_step(node.state, open_, rng)
         node.attempts[o] = 1
     else:
         fewest = min(node.attempts.get(o, 0) for o in open_)
@@ -119,9 +132,9 @@ def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: Search
         o = pool[int(rng.integers(len(pool)))]
         first = node.attempts.get(o, 0) == 0
         node.attempts[o] = node.attempts.get(o, 0) + 1
-        tr = stay(problem, node.state, o, rng) if first else None
+        tr = domain.stay(node.state, o, rng) if first else None
         if tr is None:
-            tr = attempt(problem, node.state, o, rng, opts.step)
+            tr = domain.step(node.state, o, rng)
     if tr is None:
         return None
     child = Node(
@@ -130,30 +143,30 @@ def _expand(problem: Problem, node: Node, rng: np.random.Generator, opts: Search
         action=tr.action,
         depth=node.depth + 1,
         n_actions=node.n_actions + (tr.action is not None),
-        reward=tr.state.reward(problem),
+        reward=domain.reward(tr.state),
     )
     node.children.append(child)
     return child
 
 
-def _fully_expanded(problem: Problem, node: Node, opts: SearchOptions) -> bool:
-    return all(node.attempts.get(o, 0) >= opts.branching for o in node.state.ready(problem))
+def _fully_expanded(domain: Domain[S, A], node: Node[S, A], opts: SearchOptions) -> bool:
+    return all(node.attempts.get(o, 0) >= opts.branching for o in domain.choices(node.state))
 
 
-def _descend(problem: Problem, node: Node, opts: SearchOptions) -> bool:
+def _descend(domain: Domain[S, A], node: Node[S, A], opts: SearchOptions) -> bool:
     """Whether selection should go below ``node`` rather than expand it now."""
     if not any(not c.dead for c in node.children):
         return False
-    if _fully_expanded(problem, node, opts):
+    if _fully_expanded(domain, node, opts):
         return True
     tried = sum(node.attempts.values())
     return tried >= math.ceil((node.visits + 1) ** opts.widening)
 
 
-def _select(problem: Problem, root: Node, rng: np.random.Generator, opts: SearchOptions) -> Node:
+def _select(domain: Domain[S, A], root: Node[S, A], rng: np.random.Generator, opts: SearchOptions) -> Node[S, A]:
     """Selection: descend from ``root`` by UCB through nodes that should not be expanded now."""
     node = root
-    while not node.dead and _descend(problem, node, opts):
+    while not node.dead and _descend(domain, node, opts):
         live = [c for c in node.children if not c.dead]
         if not live:
             break
@@ -164,18 +177,18 @@ def _select(problem: Problem, root: Node, rng: np.random.Generator, opts: Search
     return node
 
 
-def _simulate(problem: Problem, child: Node, rng: np.random.Generator, opts: SearchOptions,
-              max_depth: int) -> tuple[float, list[Action] | None, list, int]:
+def _simulate(domain: Domain[S, A], child: Node[S, A], rng: np.random.Generator, opts: SearchOptions,
+              max_depth: int) -> tuple[float, list[A] | None, list[S], int]:
     """Simulation: the value of a new child (its reward, or a default-policy
-    rollout's), the rollout's actions when it reached every goal, the world
+    rollout's), the rollout's actions when it reached every goal, the state
     after each of them, and the rollout's length."""
     if not opts.rollout:
         return child.reward, None, [], 0
-    value, tail, steps, tail_worlds = rollout(problem, child.state, rng, opts, max_depth - child.depth)
-    return value, tail, tail_worlds, steps
+    r = domain.rollout(child.state, rng, max_depth - child.depth)
+    return r.value, r.actions, r.trace, r.steps
 
 
-def _backup(node: Node | None, reward: float) -> None:
+def _backup(node: Node[S, A] | None, reward: float) -> None:
     """Back-up: add ``reward`` to the statistics of ``node`` and its ancestors."""
     while node is not None:
         node.visits += 1
@@ -183,7 +196,7 @@ def _backup(node: Node | None, reward: float) -> None:
         node = node.parent
 
 
-def _mark_dead(node: Node | None) -> None:
+def _mark_dead(node: Node[S, A] | None) -> None:
     while node is not None and not node.dead:
         if node.children and not all(c.dead for c in node.children):
             return
@@ -192,7 +205,7 @@ def _mark_dead(node: Node | None) -> None:
 
 
 @dataclass
-class Incumbent:
+class Incumbent(Generic[S, A]):
     """The best the search has found so far.
 
     ``plan`` is the shortest accepted plan (``None`` until one is found) and
@@ -200,40 +213,42 @@ class Incumbent:
     best node by (reward, fewer actions) for an unsolved search's answer.
     """
 
-    partial: tuple[float, int, Node]
-    plan: list[Action] | None = None
+    partial: tuple[float, int, Node[S, A]]
+    plan: list[A] | None = None
     found: int = 0
     solutions: int = 0
     rejected: int = 0
 
-    def offer_node(self, node: Node) -> None:
+    def offer_node(self, node: Node[S, A]) -> None:
         if (node.reward, -node.n_actions) > self.partial[:2]:
             self.partial = (node.reward, -node.n_actions, node)
 
-    def improves(self, kept: list[Action]) -> bool:
+    def improves(self, kept: list[A]) -> bool:
         return self.plan is None or len(kept) < len(self.plan)
 
-    def record(self, kept: list[Action], found: int) -> None:
+    def record(self, kept: list[A], found: int) -> None:
         self.plan, self.found = kept, found
 
 
-def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
-         accept: Accept = validated) -> SearchResult:
-    """Monte-Carlo tree search for a plan reaching every goal (as ``accept`` returns it).
+def mcts(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult[A]:
+    """Monte-Carlo tree search for a plan reaching every goal (as the domain's ``accept`` returns it).
 
     Each iteration runs four phases: select a node (:func:`_select`),
     expand one child there (:func:`_expand`), simulate from it
     (:func:`_simulate`, a default-policy rollout) and back up the value
-    (:func:`_backup`). Accepted plans go to the :class:`Incumbent`.
+    (:func:`_backup`). Accepted plans go to the :class:`Incumbent`. A pass
+    that only prunes a dead or too deep node counts as an iteration too, so
+    ``opts.max_iter`` bounds the loop whatever the domain returns.
     """
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
-    max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
-    root = Node(problem.root())
-    root.reward = root.state.reward(problem)
-    inc = Incumbent(partial=(root.reward, 0, root))
+    max_depth = opts.max_depth if opts.max_depth is not None else domain.depth_limit
+    root: Node[S, A] = Node(domain.root())
+    root.reward = domain.reward(root.state)
+    inc: Incumbent[S, A] = Incumbent(partial=(root.reward, 0, root))
     nodes, it, rollout_steps, restarts = 1, 0, 0, 0
-    if root.state.done(problem) and accept(problem, [], None) is not None:
+    prover = _Prover(domain, opts, t0)
+    if domain.terminal(root.state) and domain.accept([], None) is not None:
         return SearchResult(True, (), 0, 1, time.perf_counter() - t0, solutions=1)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
@@ -244,7 +259,10 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             root.dead = False
             root.attempts.clear()
             restarts += 1
-        node = _select(problem, root, rng, opts)
+        # Every pass counts, the ones that only prune the tree too, so the
+        # budget ends the search whatever the domain's steps return.
+        it += 1
+        node = _select(domain, root, rng, opts)
         if node.dead:
             _mark_dead(node)
             continue
@@ -252,20 +270,23 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             node.dead = True
             _mark_dead(node.parent)
             continue
-        it += 1
-        child = _expand(problem, node, rng, opts)
+        why = prover(it) if inc.plan is None else None
+        if why is not None:
+            return SearchResult(False, tuple(inc.partial[2].path()), it, nodes, time.perf_counter() - t0, reason=why,
+                                rejected=inc.rejected, proved=True)
+        child = _expand(domain, node, rng, opts)
         if child is None:
-            if _fully_expanded(problem, node, opts) and all(c.dead for c in node.children):
+            if _fully_expanded(domain, node, opts) and all(c.dead for c in node.children):
                 node.dead = True
                 _mark_dead(node.parent)
             _backup(node, node.reward)
             continue
         nodes += 1
         inc.offer_node(child)
-        if child.state.done(problem):
+        if domain.terminal(child.state):
             actions = child.path()
             child.dead = True
-            kept = accept(problem, actions, child.worlds())
+            kept = domain.accept(actions, child.trace())
             if kept is not None:
                 inc.solutions += 1
                 if inc.improves(kept):
@@ -279,12 +300,13 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
             _mark_dead(child.parent)
             continue
         if log.isEnabledFor(logging.DEBUG) and it % 500 == 0:
-            log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, inc.partial[0], inc.partial[2].depth)
-        value, tail, tail_worlds, steps = _simulate(problem, child, rng, opts, max_depth)
+            log.debug("iteration %d: %d nodes, best reward %.2f at depth %d", it, nodes, inc.partial[0],
+                      inc.partial[2].depth)
+        value, tail, tail_trace, steps = _simulate(domain, child, rng, opts, max_depth)
         rollout_steps += steps
         if tail is not None:
             actions = child.path() + tail
-            kept = accept(problem, actions, child.worlds() + tail_worlds)
+            kept = domain.accept(actions, child.trace() + tail_trace)
             if kept is not None and inc.improves(kept):
                 inc.solutions += 1
                 inc.record(kept, len(actions))
@@ -298,54 +320,67 @@ def mcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions = Searc
         shown = best if best is not None else inc.partial[2].path()
         log.info(
             "mcts: %d iterations, %d nodes, %d rollout steps, %d root restarts, best partial depth %d (reward %.2f), "
-            "%s with %d actions (%d relocations, %d unstacks), %.3f s",
-            it, nodes, rollout_steps, restarts, inc.partial[2].depth, inc.partial[0], "solved" if best is not None else "unsolved",
-            len(shown), sum(a.purpose == "relocate" for a in shown), sum(a.purpose == "unstack" for a in shown), elapsed,
+            "%s with %s, %.3f s",
+            it, nodes, rollout_steps, restarts, inc.partial[2].depth, inc.partial[0],
+            "solved" if best is not None else "unsolved", domain.describe(shown), elapsed,
         )
     if best is not None:
         return SearchResult(True, tuple(best), it, nodes, elapsed, rejected=inc.rejected, solutions=inc.solutions,
                             found=inc.found)
-    reason = "time limit reached" if deadline is not None and time.perf_counter() > deadline else "iteration budget exhausted"
+    timed_out = deadline is not None and time.perf_counter() > deadline
+    reason = "time limit reached" if timed_out else "iteration budget exhausted"
     return SearchResult(False, tuple(inc.partial[2].path()), it, nodes, elapsed, reason=reason, rejected=inc.rejected)
 
 
-def greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions = SearchOptions(),
-           accept: Accept = validated) -> SearchResult:
+def greedy(domain: Domain[S, A], rng: np.random.Generator, opts: SearchOptions = SearchOptions()) -> SearchResult[A]:
     """Sequential sampling with the same step and relocation rules, no tree.
 
     Each rollout places random ready objects one after another; a dead end
-    restarts from the initial scene. Every step counts as one iteration.
+    restarts from the initial scene. Every step counts as one iteration, and
+    a rollout that takes no step counts as one.
     """
     t0 = time.perf_counter()
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
-    max_depth = opts.max_depth if opts.max_depth is not None else 3 * problem.scene.n + 8
+    max_depth = opts.max_depth if opts.max_depth is not None else domain.depth_limit
     it, rollouts = 0, 0
-    best_partial: tuple[float, list[Action]] = (-1.0, [])
+    best_partial: tuple[float, list[A]] = (-1.0, [])
+    prover = _Prover(domain, opts, t0)
     while it < opts.max_iter:
         if deadline is not None and time.perf_counter() > deadline:
             break
         rollouts += 1
-        ss: SearchState = problem.root()
-        actions: list[Action] = []
-        worlds = [ss.world]
+        ss = domain.root()
+        actions: list[A] = []
+        trace = [ss]
+        start = it
         for _ in range(max_depth):
-            if ss.done(problem):
+            if domain.terminal(ss):
                 break
-            ready = ss.ready(problem)
+            ready = domain.choices(ss)
             if not ready or it >= opts.max_iter:
                 break
             it += 1
-            _, tr = default_step(problem, ss, ready, rng, opts)
+            _, tr = domain.default_step(ss, ready, rng)
             if tr is None:
                 break
             ss = tr.state
             if tr.action is not None:
                 actions.append(tr.action)
-                worlds.append(ss.world)
-        r = ss.reward(problem)
+                trace.append(ss)
+        if it == start:
+            # A rollout that took no step (nothing to choose, or nothing to
+            # do) still counts, or such rollouts would repeat for ever.
+            it += 1
+        r = domain.reward(ss)
         if r > best_partial[0]:
             best_partial = (r, actions)
-        kept = accept(problem, actions, worlds) if ss.done(problem) else None
+        kept = domain.accept(actions, trace) if domain.terminal(ss) else None
         if kept is not None:
-            return SearchResult(True, tuple(kept), it, rollouts, time.perf_counter() - t0, solutions=1, found=len(actions))
-    return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason="iteration budget exhausted")
+            return SearchResult(True, tuple(kept), it, rollouts, time.perf_counter() - t0, solutions=1,
+                                found=len(actions))
+        why = prover(it)
+        if why is not None:
+            return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0, reason=why,
+                                proved=True)
+    return SearchResult(False, tuple(best_partial[1]), it, rollouts, time.perf_counter() - t0,
+                        reason="iteration budget exhausted")

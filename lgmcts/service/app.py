@@ -4,9 +4,12 @@
 status     meaning
 =========  ==============================================================
 200        the result (a plan that is not solved is still 200, ``solved: false``)
-401        the server has a token and the request does not carry it
+401        the server has a token and the request does not carry it (exactly once)
+403        the request comes from a web page of another origin (``Origin``)
 408        the request body did not arrive within ``read_timeout`` / ``timeout``
 413        the request body is larger than ``max_body`` bytes
+415        a POST body not sent as ``Content-Type: application/json``
+421        the ``Host`` header names a host this server does not serve
 422        bad input; ``detail`` is the one-line message the CLI prints
 500        the planner crashed (its worker died); the service goes on
 501        an extra the request needs is not installed
@@ -19,6 +22,9 @@ thread), and every CPU-bound step after it runs in a worker process, so
 ``GET /healthz`` answers while large requests are being handled. A request's
 wall-clock timeout runs from the moment its headers arrived.
 
+A request whose client disconnects is dropped: its job is withdrawn from
+the queue, or stopped in its worker (:meth:`WorkerPool.run`).
+
 Every error body is ``{"detail": "<one line>"}``.
 """
 
@@ -26,7 +32,7 @@ from __future__ import annotations
 
 import asyncio
 import hmac
-import json
+import ipaddress
 import logging
 import math
 import os
@@ -39,14 +45,14 @@ from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.utils import get_openapi
 from fastapi.responses import HTMLResponse, JSONResponse, Response
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel
 from pydantic.json_schema import models_json_schema
 
 from .. import __version__
 from ..errors import InputError
-from ..formats import GoalSpec
-from ..limits import truncate
+from ..limits import printable, truncate
 from . import jobs
+from .bodies import Body, Policy, parse_body, validation_message
 from .models import CheckRequest, ErrorOut, HealthOut, ParseRequest, PlanRequest, VerdictOut, ViewRequest
 from .pool import JobTimeout, WorkerCrashed, WorkerPool
 from .viewer import EXAMPLE_GOALS, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE, page
@@ -56,9 +62,13 @@ __all__ = [
     "create_app",
     "options_from_env",
     "validation_message",
+    "parse_body",
     "BodyLimit",
     "TEST_HOOKS_ENV",
     "TOKEN_ENV",
+    "HOSTS_ENV",
+    "ORIGINS_ENV",
+    "LLM_MODELS_ENV",
     "ARRIVED",
 ]
 
@@ -70,6 +80,16 @@ TEST_HOOKS_ENV = "LGMCTS_SERVICE_TEST_HOOKS"
 
 #: Environment variable holding the bearer token (``lgmcts serve --token``).
 TOKEN_ENV = "LGMCTS_SERVICE_TOKEN"
+
+#: Environment variables listing (comma-separated) more ``Host`` names, page
+#: origins and client-chosen LLM models the server accepts
+#: (``lgmcts serve --allow-host/--allow-origin/--allow-llm-model`` add to them).
+HOSTS_ENV = "LGMCTS_SERVICE_HOSTS"
+ORIGINS_ENV = "LGMCTS_SERVICE_ORIGINS"
+LLM_MODELS_ENV = "LGMCTS_SERVICE_LLM_MODELS"
+
+#: The operator's LLM model (the llm parser's default; always allowed).
+LLM_MODEL_ENV = "LGMCTS_LLM_MODEL"
 
 #: Key of ``scope["state"]`` holding the ``time.time()`` at which a request's headers arrived.
 ARRIVED = "lgmcts_arrived"
@@ -107,6 +127,17 @@ class ServiceOptions:
         configuration; ``None``: ``OPENAI_BASE_URL`` or OpenAI itself).
     allow_client_llm_url : accept ``llm_base_url`` from requests. Such requests
         never receive the server's API key.
+    llm_models : the model names a request may ask for with ``llm_model``
+        (the operator's own model and those listed in ``LGMCTS_SERVICE_LLM_MODELS``);
+        any other is refused (422) unless the request also brings its own endpoint.
+    loopback : the server listens on loopback only; then a ``Host`` header
+        naming anything but this machine (or ``allowed_hosts``) is refused (421).
+    allowed_hosts : more ``Host`` names to serve (a reverse proxy's public
+        name); when not on loopback and given, the only ones served.
+    allowed_origins : page origins (``https://example.org``) besides the
+        service's own whose requests are accepted; any other ``Origin`` is 403.
+    docs : serve the interactive API page at ``/docs`` (it loads Swagger UI
+        from a public CDN); off by default, ``/openapi.json`` is always served.
     """
 
     workers: int = 2
@@ -123,6 +154,11 @@ class ServiceOptions:
     header_timeout: float = 10.0
     llm_base_url: str | None = None
     allow_client_llm_url: bool = False
+    llm_models: tuple[str, ...] = ()
+    loopback: bool = False
+    allowed_hosts: tuple[str, ...] = ()
+    allowed_origins: tuple[str, ...] = ()
+    docs: bool = False
 
     def __post_init__(self) -> None:
         if self.workers < 1:
@@ -141,8 +177,17 @@ class ServiceOptions:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise InputError(f"{name} must be a positive finite number of seconds")
-        if self.token is not None and len(self.token) < 16:
-            raise InputError("the token must be at least 16 characters long")
+        if self.token is not None:
+            if not self.token.strip():
+                raise InputError("the token is blank; give at least 16 characters that are not spaces")
+            if self.token != self.token.strip() or any(ord(c) < 32 or ord(c) == 127 for c in self.token):
+                raise InputError("the token must not start or end with spaces nor hold control characters")
+            if len(self.token) < 16:
+                raise InputError("the token must be at least 16 characters long")
+            try:
+                self.token.encode("utf-8")
+            except UnicodeEncodeError:
+                raise InputError("the token is not valid UTF-8 text") from None
 
 
 # ---------------------------------------------------------------- errors
@@ -153,40 +198,10 @@ def _error(status: int, message: str, **headers: str) -> JSONResponse:
     return JSONResponse({"detail": line}, status_code=status, headers={k.replace("_", "-"): v for k, v in headers.items()} or None)
 
 
-def _skip_loc(part: Any) -> bool:
-    # pydantic inserts validator names ("function-after[...]") into locations.
-    return isinstance(part, str) and part.startswith("function-")
-
-
-def validation_message(errors: list[dict]) -> str:
-    """One line for the first of FastAPI's body validation errors.
-
-    Errors inside the ``scene``, ``goals`` and ``plan`` parts read exactly as
-    the CLI's messages for the same file (``invalid scene at objects.0.pose:
-    ...``); other fields read ``invalid request at options.seed: ...``.
-    """
-    if not errors:
-        return "invalid request"
-    first = errors[0]
-    kind = first.get("type", "")
-    loc = [p for p in first.get("loc", ()) if not _skip_loc(p)]
-    if loc and loc[0] == "body":
-        loc = loc[1:]
-    if kind == "json_invalid":
-        reason = (first.get("ctx") or {}).get("error", "")
-        return f"invalid request: the body is not valid JSON{f' ({reason})' if reason else ''}"
-    if kind == "missing" and not loc:
-        return "invalid request: a JSON body is required"
-    if kind in ("model_attributes_type", "dict_type", "model_type") and not loc:
-        return "invalid request: the body must be a JSON object sent as Content-Type: application/json"
-    if kind == "missing" and len(loc) == 1:
-        return f"invalid request: '{loc[0]}' is required"
-    what = "request"
-    if loc and loc[0] in ("scene", "goals", "plan"):
-        what, loc = str(loc[0]), loc[1:]
-    msg = str(first.get("msg", "invalid value")).removeprefix("Value error, ")
-    where = f" at {'.'.join(str(p) for p in loc)}" if loc else ""
-    return f"invalid {what}{where}: {msg}"
+def _drop(task: asyncio.Future) -> None:
+    """Cancel ``task`` without waiting for it; whatever it ends with is collected, not logged."""
+    task.cancel()
+    task.add_done_callback(lambda t: t.cancelled() or t.exception())
 
 
 # ---------------------------------------------------------------- body limit
@@ -218,22 +233,49 @@ class BodyLimit:
         token: str | None = None,
         read_timeout: float = 10.0,
         timeout: float = 30.0,
+        loopback: bool = False,
+        allowed_hosts: tuple[str, ...] = (),
+        allowed_origins: tuple[str, ...] = (),
     ) -> None:
         self.app = app
         self.max_body = max_body
-        self.token = token
+        self.token = None if token is None else token.encode("utf-8")
         self.read_timeout = read_timeout
         self.timeout = timeout
+        self.loopback = loopback
+        self.allowed_hosts = frozenset(h.lower().rstrip(".") for h in allowed_hosts)
+        self.allowed_origins = frozenset(o.lower().rstrip("/") for o in allowed_origins)
 
     def _authorised(self, scope: dict) -> bool:
+        """Exactly one ``Authorization: Bearer <token>`` header, compared as bytes in constant time."""
         if self.token is None or scope.get("method") in ("GET", "HEAD", "OPTIONS"):
             return True
-        for name, value in scope.get("headers", ()):
-            if name == b"authorization":
-                scheme, _, given = value.decode("latin-1").partition(" ")
-                if scheme.lower() == "bearer" and hmac.compare_digest(given.strip().encode(), self.token.encode()):
-                    return True
-        return False
+        given = [value for name, value in scope.get("headers", ()) if name == b"authorization"]
+        if len(given) != 1:
+            return False  # none, or several (one guess per request)
+        scheme, _, token = given[0].strip().partition(b" ")
+        return scheme.lower() == b"bearer" and hmac.compare_digest(token.strip(), self.token)
+
+    def _host_refused(self, host: str | None) -> bool:
+        """Whether the ``Host`` header names a host this server does not serve (DNS rebinding)."""
+        if host is None or not (self.loopback or self.allowed_hosts):
+            return False
+        name = _host_name(host)
+        if name in self.allowed_hosts:
+            return False
+        return not (self.loopback and _loopback_name(name))
+
+    def _origin_refused(self, origin: str | None, host: str | None) -> bool:
+        """Whether ``Origin`` names a web page of another origin than the service's own."""
+        if origin is None:
+            return False
+        o = origin.strip().lower().rstrip("/")
+        if o in self.allowed_origins:
+            return False
+        scheme, sep, netloc = o.partition("://")
+        if not sep or scheme not in ("http", "https") or host is None:
+            return True  # "null" (a sandboxed or file page) or garbage
+        return netloc != host.strip().lower()
 
     async def __call__(self, scope: dict, receive: Callable[[], Awaitable[dict]], send: Callable) -> None:
         if scope["type"] != "http":
@@ -241,8 +283,30 @@ class BodyLimit:
             return
         arrived = time.time()
         scope.setdefault("state", {})[ARRIVED] = arrived
+        headers: dict[bytes, list[bytes]] = {}
+        for name, value in scope.get("headers", ()):
+            headers.setdefault(name, []).append(value)
+        host = headers.get(b"host", [None])[0]
+        host_text = None if host is None else host.decode("latin-1")
+        if len(headers.get(b"host", ())) > 1 or self._host_refused(host_text):
+            shown = truncate(printable(host_text or ""), 60)
+            await _error(421, f"this server does not serve host '{shown}' (see --allow-host)", connection="close")(
+                scope, receive, send
+            )
+            return
+        origins = headers.get(b"origin", [])
+        if len(origins) > 1 or (origins and self._origin_refused(origins[0].decode("latin-1"), host_text)):
+            await _error(
+                403, "requests from web pages of another origin are refused (see --allow-origin)", connection="close"
+            )(scope, receive, send)
+            return
         if not self._authorised(scope):
             await _error(401, "missing or wrong bearer token", www_authenticate="Bearer", connection="close")(
+                scope, receive, send
+            )
+            return
+        if scope.get("method") == "POST" and not _json_type(headers.get(b"content-type", [])):
+            await _error(415, "the body must be sent as Content-Type: application/json", connection="close")(
                 scope, receive, send
             )
             return
@@ -288,31 +352,35 @@ class BodyLimit:
         await self.app(scope, replay, send)
 
 
+def _host_name(host: str) -> str:
+    """The name in a ``Host`` header without its port, lower case, no trailing dot."""
+    h = host.strip().lower()
+    if h.startswith("["):
+        return h[1 : h.find("]")] if "]" in h else h
+    if h.count(":") == 1:
+        h = h.split(":", 1)[0]
+    return h.rstrip(".")
+
+
+def _loopback_name(name: str) -> bool:
+    """Whether ``name`` (a host name or address) can only mean this machine."""
+    if name == "localhost" or name.endswith(".localhost"):
+        return True
+    try:
+        return ipaddress.ip_address(name).is_loopback
+    except ValueError:
+        return False
+
+
+def _json_type(values: list[bytes]) -> bool:
+    """Whether exactly one ``Content-Type`` was sent and it is ``application/json`` (parameters allowed)."""
+    if len(values) != 1:
+        return False
+    kind = values[0].split(b";", 1)[0].strip().lower()
+    return kind == b"application/json"
+
+
 # ---------------------------------------------------------------- bodies
-
-
-def parse_body(model: type[BaseModel], raw: bytes) -> Any:
-    """Validate a request body (bytes) into ``model``; :class:`InputError` with one line otherwise.
-
-    Runs in a thread, never on the event loop: JSON parsing and the format
-    validators are CPU-bound.
-    """
-    if not raw.strip():
-        raise InputError("invalid request: a JSON body is required")
-    try:
-        data = json.loads(raw)
-    except RecursionError:
-        raise InputError("invalid request: the body is nested too deeply") from None
-    except UnicodeDecodeError:
-        raise InputError("invalid request: the body is not valid JSON (not UTF-8)") from None
-    except json.JSONDecodeError as exc:
-        raise InputError(f"invalid request: the body is not valid JSON ({exc.msg})") from None
-    try:
-        return model.model_validate(data)
-    except ValidationError as err:
-        raise InputError(validation_message(list(err.errors()))) from None
-    except RecursionError:
-        raise InputError("invalid request: the body is nested too deeply") from None
 
 
 def _body_doc(model: type[BaseModel], examples: dict | None = None) -> dict:
@@ -367,11 +435,15 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     # process that has parsed peaks at about 230 MB) is loaded once per language worker, never in the planning
     # workers nor in this process.
     language = WorkerPool(workers=opts.language_workers, grace=opts.grace, name="language")
+    # Request bodies are read and validated in a process of their own, so that
+    # a bad body is answered at once even while every planning worker is busy.
+    intake = WorkerPool(workers=1, grace=opts.grace, name="intake")
 
     @asynccontextmanager
     async def lifespan(_: FastAPI):
         pool.start(warm=opts.warm)
         language.start(warm=False)
+        intake.start(warm=opts.warm)
         if opts.preload_language:
             from .viewer import EXAMPLE_INSTRUCTION, EXAMPLE_SCENE
 
@@ -382,6 +454,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         finally:
             pool.close()
             language.close()
+            intake.close()
 
     app = FastAPI(
         title="lgmcts planning service",
@@ -392,12 +465,22 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             "Every error answers {\"detail\": \"<one line>\"}."
         ),
         lifespan=lifespan,
+        # FastAPI's /docs and /redoc pages load their scripts from a public CDN.
+        docs_url="/docs" if opts.docs else None,
+        redoc_url=None,
     )
     app.state.pool = pool
     app.state.language = language
     app.state.options = opts
     app.add_middleware(
-        BodyLimit, max_body=opts.max_body, token=opts.token, read_timeout=opts.read_timeout, timeout=opts.timeout
+        BodyLimit,
+        max_body=opts.max_body,
+        token=opts.token,
+        read_timeout=opts.read_timeout,
+        timeout=opts.timeout,
+        loopback=opts.loopback,
+        allowed_hosts=opts.allowed_hosts,
+        allowed_origins=opts.allowed_origins,
     )
 
     @app.exception_handler(Exception)
@@ -418,33 +501,39 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         limit = opts.timeout if requested is None else min(requested, opts.timeout)
         return arrived + limit
 
-    async def off_loop(fn: Callable[..., Any], *args: Any, deadline: float) -> Any:
-        """``fn(*args)`` in a thread, given up (504) at ``deadline``."""
-        remaining = deadline - time.time()
-        if remaining <= 0:
-            raise jobs.DeadlinePassed("the request's deadline passed")
-        return await asyncio.wait_for(asyncio.to_thread(fn, *args), timeout=remaining)
+    async def until_disconnect(request: Request) -> None:
+        """Return when the client of ``request`` (whose body was read) disconnects."""
+        while True:
+            message = await request.receive()
+            if message.get("type") == "http.disconnect":
+                return
 
-    def llm_endpoint(url: str | None) -> tuple[str | None, str | None]:
-        """The endpoint and key override of a request's LLM parse.
+    async def guarded(request: Request, work: Callable[[bytes], Awaitable[Any]], what: str) -> Any:
+        """Run one request's work on its body; map its failures to one-line JSON errors.
 
-        The endpoint is server configuration. A client-named URL is refused
-        unless the operator allowed it, and then never gets the server's key.
+        When the client disconnects first, the work is cancelled (its job
+        withdrawn from the queue or stopped in its worker).
         """
-        if url is None:
-            return opts.llm_base_url, None
-        if not opts.allow_client_llm_url:
-            raise InputError(
-                "llm_base_url is chosen by the server's operator (lgmcts serve --llm-base-url), not by requests"
-            )
-        if not url.startswith(("http://", "https://")):
-            raise InputError("llm_base_url must be an http:// or https:// URL")
-        return url, "none"  # a placeholder: the server's own key never leaves for a client-chosen host
-
-    async def guarded(work: Callable[[], Awaitable[Any]], what: str) -> Any:
-        """Run one request's work; map its failures to one-line JSON errors."""
+        raw = await request.body()
+        task = asyncio.ensure_future(work(raw))
+        gone = asyncio.ensure_future(until_disconnect(request))
         try:
-            return await work()
+            await asyncio.wait({task, gone}, return_when=asyncio.FIRST_COMPLETED)
+        except asyncio.CancelledError:
+            # The server is stopping and its grace period ran out: answer, do not crash.
+            _drop(task)
+            _drop(gone)
+            current = asyncio.current_task()
+            if current is not None:
+                current.uncancel()
+            return _error(503, "the service is shutting down; retry the request", retry_after="1")
+        if not task.done():
+            _drop(task)
+            log.info("%s abandoned: the client went away", what)
+            return _error(499, "the client closed the connection")
+        gone.cancel()
+        try:
+            return task.result()
         except InputError as exc:
             return _error(422, str(exc))
         except (JobTimeout, jobs.DeadlinePassed, asyncio.TimeoutError):
@@ -454,10 +543,6 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         except jobs.Unavailable as exc:
             return _error(501, str(exc))
         except asyncio.CancelledError:
-            # The server is stopping and its grace period ran out: answer, do not crash.
-            task = asyncio.current_task()
-            if task is not None:
-                task.uncancel()
             return _error(503, "the service is shutting down; retry the request", retry_after="1")
         except Exception as exc:  # a planner bug: log it whole, answer one line
             log.error("%s failed", what, exc_info=exc)
@@ -471,16 +556,44 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
             "version": __version__,
             "workers": opts.workers,
             "language_workers": opts.language_workers,
-            "restarts": pool.restarts + language.restarts,
+            "restarts": pool.restarts + language.restarts + intake.restarts,
             "timeout_s": opts.timeout,
             "max_iter": opts.max_iter,
             "max_body_bytes": opts.max_body,
         }
 
-    def prepare_parse(raw: bytes) -> tuple[ParseRequest, str | None, str | None]:
-        req = parse_body(ParseRequest, raw)
-        url, key = llm_endpoint(req.llm_base_url)
-        return req, url, key
+    policy = Policy(
+        test_hooks=opts.test_hooks,
+        max_iter=opts.max_iter,
+        llm_base_url=opts.llm_base_url,
+        allow_client_llm_url=opts.allow_client_llm_url,
+        llm_models=opts.llm_models,
+    )
+
+    async def answer(kind: str, raw: bytes, arrived: float) -> Response:
+        """Validate ``raw`` in the intake worker, then do its work in the pool that does it.
+
+        The body is parsed in worker processes only, so no request holds
+        this process's interpreter; the answer comes back as JSON bytes.
+        """
+        body = Body(kind, raw, policy)
+        meta = await intake.run(jobs.inspect, body, deadline=arrived + opts.timeout)
+        deadline = deadline_of(meta["timeout"], arrived)
+        if kind == "parse":
+            out = await language.run(jobs.run_body, jobs.BodyJob(body, deadline), deadline=deadline)
+        elif kind == "plan" and meta["instruction"]:
+            try:
+                goals = await language.run(
+                    jobs.run_body, jobs.BodyJob(body, deadline, parse_only=True), deadline=deadline
+                )
+            except (JobTimeout, jobs.DeadlinePassed):
+                return _error(504, "parsing did not finish within its wall-clock timeout")
+            except WorkerCrashed:
+                return _error(500, "the parsing process crashed on this request; the service has replaced it")
+            out = await pool.run(jobs.run_body, jobs.BodyJob(body, deadline, goals), deadline=deadline)
+        else:
+            out = await pool.run(jobs.run_body, jobs.BodyJob(body, deadline), deadline=deadline)
+        return Response(content=out, media_type="application/json")
 
     @app.post(
         "/parse",
@@ -492,34 +605,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     async def parse(request: Request) -> Any:
         """Turn an instruction into goal JSON (``{"goals": [...]}``) for the scene."""
         arrived = arrival(request)
-
-        async def work() -> Any:
-            raw = await request.body()
-            req, url, key = await off_loop(prepare_parse, raw, deadline=arrived + opts.timeout)
-            deadline = deadline_of(req.timeout, arrived)
-            job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, url, deadline, key)
-            return await language.run(jobs.run_parse, job, deadline=deadline)
-
-        return await guarded(work, "parsing")
-
-    def prepare_plan(raw: bytes) -> tuple[PlanRequest, str | None, str | None]:
-        from ..planner import METHODS
-
-        req = parse_body(PlanRequest, raw)
-        o = req.options
-        if (req.goals is None) == (req.instruction is None):
-            raise InputError("give either goals or an instruction, not both or neither")
-        if req.goals is not None:
-            req.goals.check_against(req.scene)
-        if o.seed < 0:
-            # numpy's generators take no negative seeds.
-            raise InputError("seed must be a non-negative integer")
-        if o.time_limit is not None and not (math.isfinite(o.time_limit) and o.time_limit > 0):
-            raise InputError("time_limit must be positive")
-        if o.method not in METHODS and not (opts.test_hooks and o.method in jobs.HOOK_METHODS):
-            raise InputError(f"unknown method '{truncate(o.method, 40)}' (known: {', '.join(METHODS)})")
-        url, key = llm_endpoint(req.llm_base_url) if req.instruction is not None else (None, None)
-        return req, url, key
+        return await guarded(request, lambda raw: answer("parse", raw, arrived), "parsing")
 
     @app.post(
         "/plan",
@@ -535,37 +621,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         ``goals``, ``stats`` (and ``instruction`` when one was given).
         """
         arrived = arrival(request)
-
-        async def work() -> Any:
-            raw = await request.body()
-            req, url, key = await off_loop(prepare_plan, raw, deadline=arrived + opts.timeout)
-            o = req.options
-            deadline = deadline_of(o.timeout, arrived)
-            goals = req.goals
-            if req.instruction is not None:
-                parse_job = jobs.ParseJob(req.scene, req.instruction, req.parser, req.llm_model, url, deadline, key)
-                try:
-                    parsed = await language.run(jobs.run_parse, parse_job, deadline=deadline)
-                except (JobTimeout, jobs.DeadlinePassed):
-                    return _error(504, "parsing did not finish within its wall-clock timeout")
-                except WorkerCrashed:
-                    return _error(500, "the parsing process crashed on this request; the service has replaced it")
-                goals = await off_loop(GoalSpec.model_validate, parsed, deadline=deadline)
-            job = jobs.PlanJob(
-                scene=req.scene,
-                goals=goals,
-                instruction=req.instruction,
-                method=o.method,
-                seed=o.seed,
-                max_iter=min(o.max_iter, opts.max_iter),
-                time_limit=o.time_limit,
-                anytime=o.anytime,
-                deadline=deadline,
-                hooks=opts.test_hooks,
-            )
-            return await pool.run(jobs.run_plan, job, deadline=deadline)
-
-        return await guarded(work, "planning")
+        return await guarded(request, lambda raw: answer("plan", raw, arrived), "planning")
 
     @app.post(
         "/check",
@@ -577,14 +633,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     async def check(request: Request) -> Any:
         """Replay the plan on the scene and judge it against the goals (``lgmcts check --json``)."""
         arrived = arrival(request)
-
-        async def work() -> Any:
-            raw = await request.body()
-            req = await off_loop(parse_body, CheckRequest, raw, deadline=arrived + opts.timeout)
-            deadline = deadline_of(req.timeout, arrived)
-            return await pool.run(jobs.run_check, jobs.CheckJob(req.scene, req.goals, req.plan), deadline=deadline)
-
-        return await guarded(work, "checking")
+        return await guarded(request, lambda raw: answer("check", raw, arrived), "checking")
 
     def openapi() -> dict:
         # The POST routes read their bodies themselves (off the event loop);
@@ -613,15 +662,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         """What the viewer draws for the plan: each state's poses, footprints, paints and goal shapes
         (``lgmcts.viz.viewer_data``); the page's script draws only this."""
         arrived = arrival(request)
-
-        async def work() -> Any:
-            raw = await request.body()
-            req = await off_loop(parse_body, ViewRequest, raw, deadline=arrived + opts.timeout)
-            deadline = deadline_of(req.timeout, arrived)
-            job = jobs.ViewJob(req.scene, req.plan, req.goals, req.instruction)
-            return await pool.run(jobs.run_view, job, deadline=deadline)
-
-        return await guarded(work, "drawing")
+        return await guarded(request, lambda raw: answer("view", raw, arrived), "drawing")
 
     @app.get("/", response_class=HTMLResponse, tags=["viewer"])
     async def viewer() -> HTMLResponse:
@@ -635,8 +676,22 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
     return app
 
 
+def _env_list(name: str) -> tuple[str, ...]:
+    return tuple(v.strip() for v in os.environ.get(name, "").split(",") if v.strip())
+
+
 def options_from_env(**kwargs: Any) -> ServiceOptions:
-    """:class:`ServiceOptions` from keyword arguments, with test hooks read from the environment."""
+    """:class:`ServiceOptions` from keyword arguments and the environment.
+
+    The environment gives the test hooks (:data:`TEST_HOOKS_ENV`) and adds to
+    the allowed hosts, origins and LLM models (:data:`HOSTS_ENV`,
+    :data:`ORIGINS_ENV`, :data:`LLM_MODELS_ENV`; the operator's own model,
+    :data:`LLM_MODEL_ENV`, is always allowed).
+    """
     hooks = os.environ.get(TEST_HOOKS_ENV, "").strip().lower() in ("1", "true", "yes")
+    own = _env_list(LLM_MODEL_ENV)[:1]
+    kwargs["allowed_hosts"] = tuple(kwargs.get("allowed_hosts", ())) + _env_list(HOSTS_ENV)
+    kwargs["allowed_origins"] = tuple(kwargs.get("allowed_origins", ())) + _env_list(ORIGINS_ENV)
+    kwargs["llm_models"] = tuple(kwargs.get("llm_models", ())) + own + _env_list(LLM_MODELS_ENV)
     return ServiceOptions(test_hooks=hooks, **kwargs)
 

@@ -94,8 +94,29 @@ def register(app: typer.Typer) -> None:
             "--allow-client-llm-url",
             help="Accept llm_base_url in requests; such requests never receive the server's API key.",
         ),
+        allow_llm_model: list[str] = typer.Option(
+            [],
+            "--allow-llm-model",
+            help="A model name requests may ask for besides LGMCTS_LLM_MODEL; repeatable "
+            "(also LGMCTS_SERVICE_LLM_MODELS, comma-separated).",
+        ),
+        allow_host: list[str] = typer.Option(
+            [],
+            "--allow-host",
+            help="A Host name to serve besides loopback ones (a reverse proxy's public name); repeatable "
+            "(also LGMCTS_SERVICE_HOSTS, comma-separated).",
+        ),
+        allow_origin: list[str] = typer.Option(
+            [],
+            "--allow-origin",
+            help="A web page origin (https://example.org) whose requests are accepted; repeatable "
+            "(also LGMCTS_SERVICE_ORIGINS, comma-separated).",
+        ),
+        docs: bool = typer.Option(
+            False, "--docs", help="Serve the interactive API page at /docs (it loads Swagger UI from a public CDN)."
+        ),
     ) -> None:
-        """Serve POST /plan, /parse, /check, GET /healthz, the API docs at /docs and a viewer at /.
+        """Serve POST /plan, /parse, /check, /view, GET /healthz, /openapi.json and a viewer at /.
 
         Planning runs in a pool of WORKERS processes; bad input answers 422
         with the same one-line message as the CLI.
@@ -115,11 +136,16 @@ def register(app: typer.Typer) -> None:
                 timeout=timeout,
                 max_iter=max_iter,
                 grace=grace,
-                token=token or None,
+                token=None if token == "" else token,
                 read_timeout=read_timeout,
                 header_timeout=header_timeout,
                 llm_base_url=llm_base_url,
                 allow_client_llm_url=allow_client_llm_url,
+                llm_models=tuple(allow_llm_model),
+                loopback=_loopback(host),
+                allowed_hosts=tuple(allow_host),
+                allowed_origins=tuple(allow_origin),
+                docs=docs,
             )
         except InputError as exc:
             fail(str(exc))

@@ -14,6 +14,7 @@ that need it.
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import time
@@ -30,6 +31,7 @@ __all__ = [
     "PlanJob",
     "Unavailable",
     "DeadlinePassed",
+    "Abandoned",
     "run_check",
     "run_parse",
     "run_plan",
@@ -38,6 +40,9 @@ __all__ = [
     "tracked",
     "worker_init",
     "HOOK_METHODS",
+    "inspect",
+    "BodyJob",
+    "run_body",
 ]
 
 #: Margin (s) added to the planner's own time limit beyond the request's
@@ -58,6 +63,19 @@ class Unavailable(RuntimeError):
 
 class DeadlinePassed(RuntimeError):
     """The request's wall-clock deadline passed before the work could start."""
+
+
+class Abandoned(BaseException):
+    """The client of the job went away; the job was stopped (or never started).
+
+    A ``BaseException``, like ``KeyboardInterrupt``, so that no ``except
+    Exception`` inside the planner swallows it.
+    """
+
+
+#: Signal the server sends a worker to stop the job it runs when that job's
+#: client went away (see :func:`tracked`).
+ABANDON_SIGNAL = getattr(signal, "SIGUSR1", None)
 
 
 @dataclass(frozen=True)
@@ -107,25 +125,43 @@ class CheckJob:
 
 
 _slot: tuple[Any, int] | None = None
+_withdrawn: Any = None
+_running = 0
 
 
-def worker_init(slots: Any = None, counter: Any = None) -> None:
+def _on_abandon(signum: int, frame: Any) -> None:
+    # The server asks this worker to drop its job: only when the job running
+    # now is one whose client went away (the signal may arrive late).
+    if _running and _withdrawn is not None and _running in list(_withdrawn):
+        raise Abandoned("the client went away")
+
+
+def worker_init(slots: Any = None, counter: Any = None, pids: Any = None, withdrawn: Any = None) -> None:
     """Initialise a worker: leave Ctrl-C to the server, which shuts workers down.
 
     ``slots`` (a shared integer array, one entry per worker) and ``counter``
-    (a shared integer) let :func:`tracked` publish which job each worker runs.
+    (a shared integer) let :func:`tracked` publish which job each worker runs;
+    ``pids`` (one entry per worker) publishes this process's id and
+    ``withdrawn`` (a shared ring of job ids) lists the jobs whose clients went
+    away: such a job is not started, and :data:`ABANDON_SIGNAL` stops it
+    while it runs.
     """
-    global _slot
+    global _slot, _withdrawn
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     from ..patterns import load_pattern_modules
 
     load_pattern_modules(None)  # the patterns the server process loaded (LGMCTS_PATTERN_MODULES)
+    _withdrawn = withdrawn
+    if ABANDON_SIGNAL is not None and withdrawn is not None:
+        signal.signal(ABANDON_SIGNAL, _on_abandon)
     if slots is not None and counter is not None:
         with counter.get_lock():
             index = counter.value
             counter.value += 1
         if index < len(slots):
             _slot = (slots, index)
+            if pids is not None:
+                pids[index] = os.getpid()
 
 
 def tracked(fn: Callable[[Any], Any], job_id: int, job: Any) -> Any:
@@ -134,13 +170,18 @@ def tracked(fn: Callable[[Any], Any], job_id: int, job: Any) -> Any:
     The server reads the slots to tell a job that is really running (and may
     hang) from one that only waits in the executor's queue.
     """
+    global _running
+    if _withdrawn is not None and job_id in list(_withdrawn):
+        raise Abandoned("the client went away before the job started")
     if _slot is None:
         return fn(job)
     slots, index = _slot
     slots[index] = job_id
+    _running = job_id
     try:
         return fn(job)
     finally:
+        _running = 0
         slots[index] = 0
 
 
@@ -234,11 +275,17 @@ class ViewJob:
     instruction: str | None = None
 
 
-def run_view(job: ViewJob) -> dict:
-    """The viewer's data (:func:`lgmcts.viz.viewer_data`): states, footprints, paints and goal shapes."""
+def run_view(job: ViewJob) -> bytes:
+    """The viewer's data (:func:`lgmcts.viz.viewer_data`) as JSON bytes.
+
+    Serialised here, in the worker, so that the server's event loop only
+    passes the bytes on; the size is bounded by
+    :data:`lgmcts.limits.MAX_VIEW_CELLS` (frames are deltas).
+    """
     from ..viz.html import viewer_data
 
-    return viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
+    data = viewer_data(job.scene, job.plan, goals=job.goals, instruction=job.instruction)
+    return json.dumps(data, separators=(",", ":"), allow_nan=False).encode()
 
 
 def warm_up(pause: float) -> int:
@@ -248,3 +295,75 @@ def warm_up(pause: float) -> int:
     time.sleep(pause)
     return os.getpid()
 
+
+
+# ---------------------------------------------------------------- raw bodies
+#
+# The server hands each request's raw body to the workers: reading and
+# validating it (JSON parsing holds the interpreter) and serialising the
+# answer happen here, never on the server's event loop.
+
+
+def inspect(body: Any) -> dict:
+    """Validate ``body`` (a :class:`lgmcts.service.bodies.Body`) and return what the server needs to go on.
+
+    ``timeout``: the request's own wall-clock limit (s) or ``None``;
+    ``instruction``: whether goals must first be parsed from an instruction.
+    """
+    from .bodies import read_body
+    from .models import PlanRequest
+
+    req = read_body(body)
+    timeout = req.options.timeout if isinstance(req, PlanRequest) else req.timeout
+    return {"timeout": timeout, "instruction": isinstance(req, PlanRequest) and req.instruction is not None}
+
+
+@dataclass(frozen=True)
+class BodyJob:
+    """Do the work of ``body`` (validated before by :func:`inspect`) before ``deadline``.
+
+    ``parse_only``: for a plan request with an instruction, parse the
+    instruction into goal JSON (in a language worker); ``goals``: then the
+    goal JSON so parsed, for the planning worker.
+    """
+
+    body: Any
+    deadline: float
+    goals: bytes | None = None
+    parse_only: bool = False
+
+
+def _json(data: Any) -> bytes:
+    return json.dumps(data, separators=(",", ":"), allow_nan=False).encode()
+
+
+def run_body(job: BodyJob) -> bytes:
+    """The JSON answer (bytes) of a request to ``/plan``, ``/parse``, ``/check`` or ``/view``."""
+    from .bodies import llm_endpoint, read_body
+
+    body = job.body
+    req = read_body(body)
+    if body.kind == "check":
+        return _json(run_check(CheckJob(req.scene, req.goals, req.plan)))
+    if body.kind == "view":
+        return run_view(ViewJob(req.scene, req.plan, req.goals, req.instruction))
+    if body.kind == "parse" or job.parse_only:
+        url, key = llm_endpoint(body.policy, req.llm_base_url, req.parser, req.llm_model)
+        return _json(run_parse(ParseJob(req.scene, req.instruction, req.parser, req.llm_model, url, job.deadline, key)))
+    from ..formats import parse_goals
+
+    goals = req.goals if job.goals is None else parse_goals(json.loads(job.goals))
+    o = req.options
+    plan_job = PlanJob(
+        scene=req.scene,
+        goals=goals,
+        instruction=req.instruction,
+        method=o.method,
+        seed=o.seed,
+        max_iter=min(o.max_iter, body.policy.max_iter),
+        time_limit=o.time_limit,
+        anytime=o.anytime,
+        deadline=job.deadline,
+        hooks=body.policy.test_hooks,
+    )
+    return _json(run_plan(plan_job))

@@ -26,6 +26,7 @@ import asyncio
 import itertools
 import logging
 import multiprocessing
+import os
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -38,6 +39,10 @@ __all__ = ["WorkerPool", "JobTimeout", "WorkerCrashed", "PRELOAD"]
 log = logging.getLogger("lgmcts.service")
 
 #: Modules the fork server imports once so that every worker starts warm.
+#: How many abandoned job ids the workers can see at once (a ring: the oldest
+#: falls out; by then its job has long been dropped).
+WITHDRAWN_RING = 256
+
 PRELOAD = ("lgmcts.formats", "lgmcts.scene", "lgmcts.validate", "lgmcts.planner", "lgmcts.service.jobs")
 
 
@@ -98,20 +103,30 @@ class WorkerPool:
         self.restarts = 0
         self._isolated: asyncio.Semaphore | None = None
         self._slots: Any = None
+        self._pids: Any = None
+        self._withdrawn: Any = None
+        self._withdrawn_next = 0
         self._job_ids = itertools.count(1)
+        #: Jobs dropped because their clients went away (running or queued).
+        self.abandoned = 0
 
     # ------------------------------------------------------------ lifecycle
 
     def _new_executor(self) -> ProcessPoolExecutor:
         # Each worker publishes the id of the job it runs in its slot, so a
         # job past its deadline can be told running (maybe hung) from queued.
+        # The pids let the pool stop one worker's job; ``withdrawn`` is a ring
+        # of the ids of jobs whose clients went away.
         self._slots = self._ctx.Array("q", self.workers, lock=False)
+        self._pids = self._ctx.Array("q", self.workers, lock=False)
+        self._withdrawn = self._ctx.Array("q", WITHDRAWN_RING, lock=False)
+        self._withdrawn_next = 0
         counter = self._ctx.Value("i", 0)
         return ProcessPoolExecutor(
             max_workers=self.workers,
             mp_context=self._ctx,
             initializer=jobs.worker_init,
-            initargs=(self._slots, counter),
+            initargs=(self._slots, counter, self._pids, self._withdrawn),
         )
 
     def start(self, *, warm: bool = True) -> None:
@@ -204,11 +219,41 @@ class WorkerPool:
                 return await self._run_alone(fn, job, deadline=deadline)
             except asyncio.CancelledError:
                 task = asyncio.current_task()
-                if not future.cancelled() or (task is not None and task.cancelling()):
+                if task is not None and task.cancelling():
+                    # The request was given up (its client went away, or the server stops).
+                    self._abandon(future, generation, job_id)
+                    raise
+                if not future.cancelled():
                     raise
                 # Withdrawn, unstarted, from a pool that was replaced: submit again.
                 continue
         raise WorkerCrashed()  # the pool broke on every attempt
+
+    def _abandon(self, future: Future, generation: int, job_id: int) -> None:
+        """Drop job ``job_id``: withdrawn if still queued, stopped if running.
+
+        A job already handed to the executor's call queue cannot be withdrawn;
+        its id goes into the shared ``withdrawn`` ring, so a worker refuses
+        to start it, and a worker running it gets :data:`jobs.ABANDON_SIGNAL`,
+        which ends the job there (the worker stays). A job deaf to the signal
+        (stuck in native code) is left to its deadline and ``grace``.
+        """
+        if future.done() or generation != self._generation:
+            return
+        self.abandoned += 1
+        if future.cancel():
+            return
+        ring = self._withdrawn
+        ring[self._withdrawn_next % len(ring)] = job_id
+        self._withdrawn_next += 1
+        if jobs.ABANDON_SIGNAL is None:
+            return
+        for index, running in enumerate(list(self._slots)):
+            if running == job_id and self._pids[index] > 0:
+                try:
+                    os.kill(int(self._pids[index]), jobs.ABANDON_SIGNAL)
+                except OSError:  # the worker is already gone
+                    pass
 
     def _watch(self, future: Future, generation: int, job_id: int, slots: Any) -> None:
         """Every ``grace`` s, replace the pool if job ``job_id`` is still running.

@@ -106,7 +106,7 @@ _PAGE = """<!DOCTYPE html>
 </head>
 <body>
 <header><strong>lgmcts</strong> language-guided tabletop rearrangement planner
-  <a href="/docs">API docs</a><a href="/openapi.json">OpenAPI</a><a href="/healthz">health</a></header>
+  <a href="/openapi.json">OpenAPI</a><a href="/healthz">health</a></header>
 <main>
 <section id="inputs">
   <label for="scene">Scene JSON</label>

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -16,9 +15,9 @@ from ..errors import InputError
 def execute(
     scene: Path = typer.Argument(..., help="Scene JSON file."),
     plan: Path = typer.Argument(..., help="Plan JSON file."),
-    goal: Optional[Path] = typer.Option(None, "--goal", "-g", help="Goal JSON file (default: the plan's goals)."),
-    video: Optional[Path] = typer.Option(None, "--video", help="Write an mp4 of the execution here."),
-    plan_scene: Optional[Path] = typer.Option(
+    goal: Path | None = typer.Option(None, "--goal", "-g", help="Goal JSON file (default: the plan's goals)."),
+    video: Path | None = typer.Option(None, "--video", help="Write an mp4 of the execution here."),
+    plan_scene: Path | None = typer.Option(
         None, "--plan-scene", help="The scene the plan was made on, when it differs from SCENE (e.g. an observed one)."
     ),
     as_json: bool = typer.Option(False, "--json", help="Print the outcome as JSON."),
@@ -29,6 +28,7 @@ def execute(
     """
     from .executor import execute_plan
 
+    check_output_file(video, make_parents=False)
     try:
         result = execute_plan(scene, plan, goal, video=video, plan_scene=plan_scene)
     except InputError as exc:
@@ -51,7 +51,7 @@ def execute(
 
 def observe(
     scene: Path = typer.Argument(..., help="Scene JSON file (the simulator's ground truth)."),
-    output: Optional[str] = typer.Option(None, "-o", "--output", help="Write the observed scene here (default stdout)."),
+    output: str | None = typer.Option(None, "-o", "--output", help="Write the observed scene here (default stdout)."),
     width: int = typer.Option(640, help="Image width (pixels)."),
     height: int = typer.Option(480, help="Image height (pixels)."),
 ) -> None:
@@ -74,7 +74,8 @@ def observe(
     write_text(save_json(seen), output)
     vals = list(iou.values())
     typer.echo(
-        f"observed {len(seen.objects)} of {len(vals)} objects; footprint IoU mean {sum(vals) / len(vals):.3f}, min {min(vals):.3f}",
+        f"observed {len(seen.objects)} of {len(vals)} objects; footprint IoU mean {sum(vals) / len(vals):.3f}, "
+        f"min {min(vals):.3f}",
         err=True,
     )
 

@@ -14,7 +14,7 @@ import signal
 import statistics
 import sys
 import time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 
@@ -50,28 +50,40 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--method", default="lgmcts")
     ap.add_argument("--observe", action="store_true", help="also observe each scene, plan on it and execute")
     ap.add_argument("--no-example", action="store_true", help="leave out examples/tabletop.json")
-    ap.add_argument("--tasks", default=None, help="a suite file (JSON Lines, from `lgmcts bench-generate`): run its first --n tasks with their ground-truth goals instead of random cases")
-    ap.add_argument("--n", type=int, default=20, help="number of suite tasks (with --tasks), or of configurations per N (with --labbe)")
-    ap.add_argument("--labbe", default=None,
-                    help="use --n Labbé protocol configurations (lgmcts.casegen.labbe_protocol_case, discs that may touch) "
-                         "for each N in this list, e.g. 10,25, instead of random cases")
+    ap.add_argument(
+        "--tasks",
+        default=None,
+        help="a suite file (JSON Lines, from `lgmcts bench-generate`): run its first --n tasks with their "
+        "ground-truth goals instead of random cases",
+    )
+    ap.add_argument(
+        "--n",
+        type=int,
+        default=20,
+        help="number of suite tasks (with --tasks), or of configurations per N (with --labbe)",
+    )
+    ap.add_argument(
+        "--labbe",
+        default=None,
+        help="use --n Labbé protocol configurations (lgmcts.casegen.labbe_protocol_case, discs that may touch) "
+        "for each N in this list, e.g. 10,25, instead of random cases",
+    )
     ap.add_argument("--dense", action="store_true", help="the dense variant of the random cases (packed clutter)")
     ap.add_argument("--case-timeout", type=float, default=20.0, help="skip a seed whose case takes longer to build (s)")
     args = ap.parse_args(argv)
 
     cases = []
     if args.tasks is not None:
-        import json
+        from ..bench.tasks import read_suite
+        from ..errors import InputError
 
-        from ..formats import parse_goals, parse_scene
-
-        with open(args.tasks) as fh:
-            for line in fh:
-                if len(cases) == args.n:
-                    break
-                if line.strip():
-                    t = json.loads(line)
-                    cases.append((f"{t['id']} ({t['category']})", parse_scene(t["scene"]), parse_goals(t["goals"])))
+        try:
+            tasks = read_suite(args.tasks, limit=args.n)
+        except InputError as exc:
+            print(exc, file=sys.stderr)
+            return 2
+        for t in tasks:
+            cases.append((f"{t.id} ({t.category})", t.scene_spec(), t.goal_spec()))
         args.no_example, args.seeds = True, ""
     if args.labbe is not None:
         from ..casegen import labbe_protocol_case
@@ -128,23 +140,39 @@ def main(argv: list[str] | None = None) -> int:
                 obs_ok += r.success
                 if not r.success:
                     obs_fail.append((name, r.reasons[:3]))
-        print(f"{name}: {len(scene.objects)} objects, planned {plan.solved}, {len(plan.actions)} actions", file=sys.stderr, flush=True)
+        print(
+            f"{name}: {len(scene.objects)} objects, planned {plan.solved}, {len(plan.actions)} actions",
+            file=sys.stderr,
+            flush=True,
+        )
 
     all_t = [x for v in per_action.values() for x in v]
-    print(f"date: {datetime.now(timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {platform.node()} ({platform.processor() or platform.machine()})")
+    print(
+        f"date: {datetime.now(UTC):%Y-%m-%d %H:%M} UTC; machine: {platform.node()} "
+        f"({platform.processor() or platform.machine()})"
+    )
     print(f"cases: {len(cases)} (skipped seeds whose case did not build in {args.case_timeout:.0f} s: {skipped})")
     print(f"planned ({args.method}): {planned}; executed successfully: {executed}/{planned}")
     for name, why in failures:
         print(f"  failed {name}: {why}")
     if all_t:
         print(
-            f"wall time per action: median {statistics.median(all_t):.3f} s, p95 {np.percentile(all_t, 95):.3f} s, max {max(all_t):.3f} s"
+            f"wall time per action: median {statistics.median(all_t):.3f} s, p95 {np.percentile(all_t, 95):.3f} "
+            f"s, max {max(all_t):.3f} s"
         )
         for n in sorted(per_action):
-            print(f"  {n:2d} objects: median {statistics.median(per_action[n]):.3f} s/action over {len(per_action[n])} plans")
+            print(
+                f"  {n:2d} objects: median {statistics.median(per_action[n]):.3f} s/action over "
+                f"{len(per_action[n])} plans"
+            )
     if args.observe:
-        print(f"footprint IoU over {len(ious)} objects: mean {np.mean(ious):.4f}, min {np.min(ious):.4f}, p5 {np.percentile(ious, 5):.4f}")
-        print(f"plan on observed scene: planned {obs_planned}/{len(cases)}, executed successfully {obs_ok}/{obs_planned}")
+        print(
+            f"footprint IoU over {len(ious)} objects: mean {np.mean(ious):.4f}, min {np.min(ious):.4f}, p5 "
+            f"{np.percentile(ious, 5):.4f}"
+        )
+        print(
+            f"plan on observed scene: planned {obs_planned}/{len(cases)}, executed successfully {obs_ok}/{obs_planned}"
+        )
         for name, why in obs_fail:
             print(f"  failed {name}: {why}")
     return 0

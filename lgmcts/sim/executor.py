@@ -29,9 +29,10 @@ from __future__ import annotations
 
 import copy
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -43,7 +44,7 @@ from ..validate import goal_satisfied
 from . import physics
 from .model import ModelOptions, SimModel, build_model, yaw_quat
 
-__all__ = ["ExecOptions", "StepOutcome", "Execution", "execute_plan", "Executor"]
+__all__ = ["ExecOptions", "Execution", "Executor", "StepOutcome", "execute_plan"]
 
 FrameHook = Callable[[mujoco.MjData], None]
 
@@ -279,7 +280,8 @@ class Executor:
         sup = physics.supports(sim, d)
         blockers = [sim.scene.ids[j] for j, s in enumerate(sup) if s == k]
         if blockers:
-            return StepOutcome(index, oid, False, None, math.nan, f"pick failed: object {oid} is covered by object {blockers[0]}")
+            why = f"pick failed: object {oid} is covered by object {blockers[0]}"
+            return StepOutcome(index, oid, False, None, math.nan, why)
         body = sim.body[k]
         mi = sim.mocap
         d.mocap_pos[mi] = d.xpos[body]

@@ -27,7 +27,17 @@ from ..errors import InputError
 from ..formats import SceneSpec
 from ..scene import TABLE, Scene
 
-__all__ = ["ModelOptions", "SimModel", "build_model", "yaw_quat", "look_at", "GRIPPER", "SIDE_CAMERA", "OVERHEAD_CAMERA", "VIEW_CAMERA"]
+__all__ = [
+    "GRIPPER",
+    "OVERHEAD_CAMERA",
+    "SIDE_CAMERA",
+    "VIEW_CAMERA",
+    "ModelOptions",
+    "SimModel",
+    "build_model",
+    "look_at",
+    "yaw_quat",
+]
 
 #: Name of the mocap body that plays the suction gripper.
 GRIPPER = "gripper"
@@ -163,7 +173,8 @@ def _add_object(spec: mujoco.MjSpec, scene: Scene, k: int, base_z: float, opts: 
     body = spec.worldbody.add_body(name=f"obj{o.id}", pos=[x, y, base_z + h / 2], quat=yaw_quat(th).tolist())
     body.add_freejoint(name=f"obj{o.id}_joint")
     rgba = _rgba(o.color, k)
-    common = dict(name=f"obj{o.id}_geom", density=opts.density, friction=[opts.friction, 0.005, 0.0001], rgba=rgba)
+    friction = [opts.friction, 0.005, 0.0001]
+    common = {"name": f"obj{o.id}_geom", "density": opts.density, "friction": friction, "rgba": rgba}
     s = o.shape
     if s.type == "box":
         body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[s.size[0] / 2, s.size[1] / 2, s.size[2] / 2], **common)
@@ -173,7 +184,10 @@ def _add_object(spec: mujoco.MjSpec, scene: Scene, k: int, base_z: float, opts: 
         # Polygons and point clouds: the convex footprint extruded to the height.
         local = np.asarray(scene.local[k], dtype=float)
         verts = np.concatenate(
-            [np.column_stack([local, np.full(len(local), -h / 2)]), np.column_stack([local, np.full(len(local), h / 2)])]
+            [
+                np.column_stack([local, np.full(len(local), -h / 2)]),
+                np.column_stack([local, np.full(len(local), h / 2)]),
+            ]
         )
         spec.add_mesh(name=f"obj{o.id}_mesh", uservert=verts.ravel().tolist())
         body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"obj{o.id}_mesh", **common)
@@ -244,8 +258,12 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     side = 1.1 * math.hypot(hx, hy) / t
     for j, az in enumerate((-90.0, 0.0, 90.0, 180.0)):
         a = math.radians(az)
-        eye = np.array([cx + side * math.cos(elev) * math.cos(a), cy + side * math.cos(elev) * math.sin(a), side * math.sin(elev)])
-        wb.add_camera(name=f"{SIDE_CAMERA}{j}", pos=eye.tolist(), quat=look_at(eye, np.array([cx, cy, 0.0])).tolist(), fovy=fovy)
+        eye = np.array(
+            [cx + side * math.cos(elev) * math.cos(a), cy + side * math.cos(elev) * math.sin(a), side * math.sin(elev)]
+        )
+        wb.add_camera(
+            name=f"{SIDE_CAMERA}{j}", pos=eye.tolist(), quat=look_at(eye, np.array([cx, cy, 0.0])).tolist(), fovy=fovy
+        )
     grip = wb.add_body(name=GRIPPER, mocap=True, pos=[cx, cy, height * 0.5])
     grip.add_geom(
         name="gripper_cup",
@@ -301,4 +319,3 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
         geom_object=geom_object,
         geom_who=geom_who,
     )
-

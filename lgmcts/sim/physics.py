@@ -13,7 +13,7 @@ import numpy as np
 from ..scene import TABLE
 from .model import SimModel
 
-__all__ = ["poses", "tilts", "tops", "supports", "bottom_contact", "landing", "speeds", "FLOOR"]
+__all__ = ["FLOOR", "bottom_contact", "landing", "poses", "speeds", "supports", "tilts", "tops"]
 
 #: Support value meaning "lying on the floor, off the table".
 FLOOR = -2

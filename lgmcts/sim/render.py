@@ -26,21 +26,30 @@ import os
 os.environ.setdefault("MUJOCO_GL", "osmesa")
 os.environ.setdefault("PYOPENGL_PLATFORM", os.environ["MUJOCO_GL"])
 
-import math  # noqa: E402
-from dataclasses import dataclass  # noqa: E402
-from pathlib import Path  # noqa: E402
-from typing import Any  # noqa: E402
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
-import mujoco  # noqa: E402
-import numpy as np  # noqa: E402
-import shapely  # noqa: E402
+import mujoco
+import numpy as np
+import shapely
 
-from ..errors import InputError  # noqa: E402
-from ..formats import SceneSpec, load_scene, parse_scene  # noqa: E402
-from ..scene import TABLE, Scene  # noqa: E402
-from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model  # noqa: E402
+from ..errors import InputError
+from ..formats import SceneSpec, load_scene, parse_scene
+from ..scene import TABLE, Scene
+from .model import OVERHEAD_CAMERA, SIDE_CAMERA, VIEW_CAMERA, SimModel, build_model
 
-__all__ = ["CameraOptions", "Frames", "render_frames", "backproject", "drop_strays", "observe", "footprint_iou", "VideoRecorder"]
+__all__ = [
+    "CameraOptions",
+    "Frames",
+    "VideoRecorder",
+    "backproject",
+    "drop_strays",
+    "footprint_iou",
+    "observe",
+    "render_frames",
+]
 
 
 @dataclass(frozen=True)
@@ -268,7 +277,9 @@ def observe(scene: SceneSpec | dict | str | Path, *, options: CameraOptions | No
     return parse_scene({"workspace": spec.workspace.model_dump(), "objects": objects})
 
 
-def footprint_iou(true_scene: SceneSpec | dict | str | Path, observed_scene: SceneSpec | dict | str | Path) -> dict[int, float]:
+def footprint_iou(
+    true_scene: SceneSpec | dict | str | Path, observed_scene: SceneSpec | dict | str | Path
+) -> dict[int, float]:
     """Intersection over union of each object's footprint in two scenes.
 
     Returns
@@ -322,15 +333,24 @@ class VideoRecorder:
         self._count = 0
         self._renderer: mujoco.Renderer | None = None
         self._writer: Any = None
+        self._tmp: Path | None = None
         self.frames = 0
 
-    def __enter__(self) -> "VideoRecorder":
+    def __enter__(self) -> VideoRecorder:
         import imageio.v2 as imageio
 
+        from ..outputs import temporary_beside
+
+        # The video is encoded into a temporary file beside the target, which
+        # replaces the target only once it is complete (see __exit__).
         try:
-            self._writer = imageio.get_writer(self.path, fps=self.fps, codec="libx264", macro_block_size=16)
+            self._tmp = temporary_beside(self.path, suffix=".mp4")
+            self._writer = imageio.get_writer(
+                self._tmp, fps=self.fps, codec="libx264", macro_block_size=16, ffmpeg_log_level="quiet"
+            )
         except Exception as exc:
-            raise InputError(f"cannot write video {self.path}: {exc}") from None
+            self._discard()
+            raise InputError(f"cannot write video {self.path}: {_reason(exc)}") from None
         self._renderer = _open_renderer(self.sim.model, self.height, self.width)
         return self
 
@@ -339,12 +359,75 @@ class VideoRecorder:
         if self._count % self.every == 0:
             assert self._renderer is not None
             self._renderer.update_scene(data, camera=self.camera)
-            self._writer.append_data(self._renderer.render())
+            try:
+                self._writer.append_data(self._renderer.render())
+            except Exception as exc:  # the encoder died: a full disk, a read-only folder
+                raise InputError(f"cannot write video {self.path}: {_reason(exc)}") from None
             self.frames += 1
         self._count += 1
 
-    def __exit__(self, *exc: object) -> None:
+    def _discard(self) -> None:
+        tmp = getattr(self, "_tmp", None)
+        if tmp is not None:
+            try:
+                tmp.unlink()
+            except OSError:
+                pass
+            self._tmp = None
+
+    def __exit__(self, kind: object, *exc: object) -> None:
+        """Close the encoder; publish the video only when it is complete.
+
+        An encoder that failed (or a file that reads back with fewer frames
+        than were captured) raises :class:`InputError` and leaves no video,
+        so nothing reports success over a truncated file.
+        """
         if self._renderer is not None:
             self._renderer.close()
+        failure: str | None = None
         if self._writer is not None:
-            self._writer.close()
+            try:
+                self._writer.close()
+            except Exception as err:
+                failure = _reason(err)
+        if kind is not None:
+            self._discard()
+            return
+        if failure is None:
+            failure = _incomplete(self._tmp, self.frames)
+        if failure is None:
+            from ..outputs import publish
+
+            try:
+                publish(self._tmp, self.path)
+                self._tmp = None
+            except OSError as err:
+                failure = err.strerror or str(err)
+        if failure is not None:
+            self._discard()
+            raise InputError(f"cannot write video {self.path}: {failure}")
+
+
+def _reason(exc: BaseException) -> str:
+    """The first line of an exception's text (the encoder's messages run over many lines)."""
+    lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip()]
+    for ln in lines:
+        if "No space left" in ln or "Permission denied" in ln or "Read-only" in ln or "File too large" in ln:
+            return ln
+    return lines[0] if lines else type(exc).__name__
+
+
+def _incomplete(path: Path | None, frames: int) -> str | None:
+    """Why the mp4 at ``path`` is not a complete video of ``frames`` frames, or ``None``."""
+    import imageio_ffmpeg
+
+    if path is None or frames == 0:
+        return None if frames == 0 else "the encoder wrote nothing"
+    try:
+        counted, _ = imageio_ffmpeg.count_frames_and_secs(str(path))
+    except Exception as exc:
+        del exc
+        return "the encoder left a truncated file (is the disk full?)"
+    if counted < frames:
+        return f"the video holds {counted} of {frames} frames"
+    return None

@@ -15,7 +15,16 @@ from __future__ import annotations
 
 from ..lazy import lazy_names
 
-__all__ = ["FigureOptions", "Paint", "heatmap_fields", "paint", "render_html", "viewer_data", "viewer_js", "write_plan_figures"]
+__all__ = [
+    "FigureOptions",
+    "Paint",
+    "heatmap_fields",
+    "paint",
+    "render_html",
+    "viewer_data",
+    "viewer_js",
+    "write_plan_figures",
+]
 
 # Loaded on first use, so that commands without pictures import none of it.
 _WHERE = {

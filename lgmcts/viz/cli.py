@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -14,11 +13,19 @@ from ..errors import InputError
 def viz(
     plan_file: Path = typer.Argument(..., metavar="PLAN", help="Plan JSON file (as written by `lgmcts plan`)."),
     scene: Path = typer.Option(..., "--scene", "-s", help="Scene JSON file the plan starts from."),
-    output: Optional[Path] = typer.Option(None, "-o", "--output", help="Write the PNG pictures and plan.gif into this folder."),
-    html: Optional[Path] = typer.Option(None, "--html", help="Write a self-contained HTML viewer to this file."),
-    step: Optional[int] = typer.Option(None, "--step", help="Action (counted from 1) whose pose-field heatmaps to draw; default the first goal placement."),
-    goal: Optional[Path] = typer.Option(None, "--goal", "-g", help="Goal JSON file; default the goals stored in the plan."),
-    instruction: Optional[str] = typer.Option(None, "--instruction", help="Command text to show; default the plan's own."),
+    output: Path | None = typer.Option(
+        None, "-o", "--output", help="Write the PNG pictures and plan.gif into this folder."
+    ),
+    html: Path | None = typer.Option(None, "--html", help="Write a self-contained HTML viewer to this file."),
+    step: int | None = typer.Option(
+        None,
+        "--step",
+        help="Action (counted from 1) whose pose-field heatmaps to draw; default the first goal placement.",
+    ),
+    goal: Path | None = typer.Option(
+        None, "--goal", "-g", help="Goal JSON file; default the goals stored in the plan."
+    ),
+    instruction: str | None = typer.Option(None, "--instruction", help="Command text to show; default the plan's own."),
 ) -> None:
     """Draw PLAN on SCENE: PNGs, a GIF and heatmaps (-o DIR) and/or an HTML viewer (--html FILE).
 

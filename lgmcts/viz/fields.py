@@ -18,7 +18,7 @@ import shapely
 from .. import geometry as geo
 from ..formats import Action, GoalSpec
 from ..patterns import CLEARANCE, Context
-from ..planner.step import Problem
+from ..planner.problem import Problem
 from ..scene import Scene, replay
 
 __all__ = ["Fields", "pose_fields"]
@@ -44,7 +44,9 @@ class Fields:
 MAX_FIELD_CELLS = 400
 
 
-def pose_fields(scene: Scene, goals: GoalSpec, actions: list[Action], step: int, *, resolution: float = 0.005) -> Fields:
+def pose_fields(
+    scene: Scene, goals: GoalSpec, actions: list[Action], step: int, *, resolution: float = 0.005
+) -> Fields:
     """Fields for the object moved by ``actions[step]`` (0-based), in the state before it."""
     if not 0 <= step < len(actions):
         raise IndexError(f"step {step} is outside the plan's {len(actions)} actions")

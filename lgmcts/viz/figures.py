@@ -17,9 +17,10 @@ import math
 import os
 import sys
 import textwrap
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from tqdm import tqdm
@@ -30,7 +31,7 @@ from ..scene import TABLE, Scene, State
 from .model import GOAL_COLORS, PURPOSE_COLORS, GoalShape, describe_goal, goal_shapes, replay
 from .paint import Paint, paint
 
-__all__ = ["FigureOptions", "write_plan_figures", "heatmap_fields", "step_name"]
+__all__ = ["FigureOptions", "heatmap_fields", "step_name", "write_plan_figures"]
 
 _HATCH = {"dots": "o", "stripes": "////", "checks": "++", "speckles": "..", "grain": "---", "waves": "\\\\"}
 _TABLE_FILL = "#f4efe6"
@@ -116,7 +117,9 @@ class _Ctx:
 
     def shapes(self, step: int) -> list[GoalShape]:
         """The goals' shapes after ``step`` actions (the last from the plan's fits)."""
-        return goal_shapes(self.scene, self.goals, self.states[step], fits=self.fits if step == self.n_actions else None)
+        return goal_shapes(
+            self.scene, self.goals, self.states[step], fits=self.fits if step == self.n_actions else None
+        )
 
     @property
     def n_actions(self) -> int:
@@ -174,10 +177,25 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
     ax.set_ylabel("y (m)", fontsize=fontsize - 1, color="#666666", labelpad=1)
     if viewer:
         ax.text(
-            (xmin + xmax) / 2, ymin - m * 0.5, "▼  viewer side (front, −y)  ▼", ha="center", va="center",
-            fontsize=fontsize, color="#555555", fontweight="bold", zorder=5,
+            (xmin + xmax) / 2,
+            ymin - m * 0.5,
+            "▼  viewer side (front, −y)  ▼",
+            ha="center",
+            va="center",
+            fontsize=fontsize,
+            color="#555555",
+            fontweight="bold",
+            zorder=5,
         )
-        ax.text((xmin + xmax) / 2, ymax + m * 0.22, "back (+y)", ha="center", va="center", fontsize=fontsize - 1.5, color="#999999")
+        ax.text(
+            (xmin + xmax) / 2,
+            ymax + m * 0.22,
+            "back (+y)",
+            ha="center",
+            va="center",
+            fontsize=fontsize - 1.5,
+            color="#999999",
+        )
     if scale_bar:
         L = _nice_length(w)
         x0, y0 = xmin, ymin - m * 0.5
@@ -188,7 +206,7 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
         # Axis arrows: which way +x and +y point.
         ax_x, ax_y = xmax - m * 1.4, ymin - m * 0.55
         a = m * 0.55
-        kw = dict(arrowstyle="-|>", color="#444444", lw=1.0, mutation_scale=8)
+        kw = {"arrowstyle": "-|>", "color": "#444444", "lw": 1.0, "mutation_scale": 8}
         from matplotlib.patches import FancyArrowPatch
 
         ax.add_patch(FancyArrowPatch((ax_x, ax_y), (ax_x + a, ax_y), zorder=5, **kw))
@@ -205,7 +223,9 @@ def _add(ax: Any, patch: Any) -> None:
     ax.add_artist(patch)
 
 
-def _draw_object(ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, lw: float = 1.0, alpha: float = 1.0, z: float = 2.0) -> None:
+def _draw_object(
+    ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, lw: float = 1.0, alpha: float = 1.0, z: float = 2.0
+) -> None:
     from matplotlib.patches import Polygon
 
     pt = ctx.paints[k]
@@ -215,18 +235,39 @@ def _draw_object(ax: Any, ctx: _Ctx, state: State, k: int, *, edge: Any = None, 
     if lvl:
         # A drop shadow, offset down-right, tells a stacked object from one on the table.
         off = np.array([0.006, -0.006]) * min(lvl, 3)
-        _add(ax, Polygon(verts + off, closed=True, facecolor=(0, 0, 0, 0.28 * alpha), edgecolor="none", zorder=zz - 0.01))
+        _add(
+            ax, Polygon(verts + off, closed=True, facecolor=(0, 0, 0, 0.28 * alpha), edgecolor="none", zorder=zz - 0.01)
+        )
     _add(ax, Polygon(verts, closed=True, facecolor=_rgba(pt.fill, alpha), edgecolor="none", zorder=zz))
     if pt.texture:
-        _add(ax, 
-            Polygon(verts, closed=True, fill=False, hatch=_HATCH.get(pt.texture, "//"), edgecolor=_rgba(pt.mark, alpha), lw=0, zorder=zz + 0.01)
+        _add(
+            ax,
+            Polygon(
+                verts,
+                closed=True,
+                fill=False,
+                hatch=_HATCH.get(pt.texture, "//"),
+                edgecolor=_rgba(pt.mark, alpha),
+                lw=0,
+                zorder=zz + 0.01,
+            ),
         )
-    _add(ax, 
-        Polygon(verts, closed=True, fill=False, edgecolor=edge if edge is not None else _rgba(pt.edge, alpha), lw=lw, zorder=zz + 0.02)
+    _add(
+        ax,
+        Polygon(
+            verts,
+            closed=True,
+            fill=False,
+            edgecolor=edge if edge is not None else _rgba(pt.edge, alpha),
+            lw=lw,
+            zorder=zz + 0.02,
+        ),
     )
 
 
-def _label_positions(ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], fontsize: float) -> dict[int, tuple[float, float, str, str]]:
+def _label_positions(
+    ctx: _Ctx, ax: Any, state: State, labels: dict[int, str], fontsize: float
+) -> dict[int, tuple[float, float, str, str]]:
     """Place each label next to its object, keeping clear of labels and objects.
 
     Spots around the object's bounding box (below, above, right, left, the four
@@ -314,10 +355,21 @@ def _draw_plain(ax: Any, ctx: _Ctx, state: State, ks: list[int], dim: set[int]) 
     alpha = [0.35 if k in dim else 1.0 for k in ks]
     faces = [_rgba(ctx.paints[k].fill, a) for k, a in zip(ks, alpha)]
     edges = [_rgba(ctx.paints[k].edge, a) for k, a in zip(ks, alpha)]
-    ax.add_collection(PolyCollection(verts, closed=True, facecolors=faces, edgecolors=edges, linewidths=0.9, zorder=2.0))
+    ax.add_collection(
+        PolyCollection(verts, closed=True, facecolors=faces, edgecolors=edges, linewidths=0.9, zorder=2.0)
+    )
 
 
-def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str] | None = None, rings: bool = False, fontsize: float = 7.0, dim: set[int] | None = None) -> None:
+def _draw_objects(
+    ax: Any,
+    ctx: _Ctx,
+    state: State,
+    *,
+    highlight: dict[int, str] | None = None,
+    rings: bool = False,
+    fontsize: float = 7.0,
+    dim: set[int] | None = None,
+) -> None:
     """All objects of ``state``, lowest first, with their labels and stack marks."""
     import matplotlib.patheffects as pe
     from matplotlib.patches import Polygon
@@ -342,7 +394,14 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
             for j, gk in enumerate(member[k][:2]):
                 grow = 1.0 + (0.010 + 0.006 * j) / max(float(scene.radii[k]), 1e-3)
                 ax.add_patch(
-                    Polygon(c + (verts - c) * grow, closed=True, fill=False, edgecolor=ctx.goal_color(gk), lw=1.6, zorder=1.8 + _level(state, k) * 0.1)
+                    Polygon(
+                        c + (verts - c) * grow,
+                        closed=True,
+                        fill=False,
+                        edgecolor=ctx.goal_color(gk),
+                        lw=1.6,
+                        zorder=1.8 + _level(state, k) * 0.1,
+                    )
                 )
         _draw_object(
             ax, ctx, state, k, edge=highlight.get(k), lw=2.6 if k in highlight else 0.9, alpha=0.35 if k in dim else 1.0
@@ -360,8 +419,15 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
         covered = bool(state.holding[k])
         if ids and not covered:
             ax.text(
-                x, y, str(scene.ids[k]), ha="center", va="center", fontsize=fontsize + 0.5, fontweight="bold",
-                color=pt.ink, zorder=4 + _level(state, k) * 0.1,
+                x,
+                y,
+                str(scene.ids[k]),
+                ha="center",
+                va="center",
+                fontsize=fontsize + 0.5,
+                fontweight="bold",
+                color=pt.ink,
+                zorder=4 + _level(state, k) * 0.1,
                 path_effects=[pe.withStroke(linewidth=1.6, foreground=pt.fill)],
             )
         if names and state.on[k] == TABLE:
@@ -382,12 +448,28 @@ def _draw_objects(ax: Any, ctx: _Ctx, state: State, *, highlight: dict[int, str]
         x, y, ha, va = pos[k]
         stacked = "\n" in text
         ax.text(
-            x, y, text, ha=ha, va=va, fontsize=fontsize, color="#222222", zorder=6, linespacing=1.1,
-            bbox=dict(boxstyle="round,pad=0.18", facecolor="white", edgecolor="#7048e8" if stacked else "#cccccc", lw=0.9 if stacked else 0.5, alpha=0.85),
+            x,
+            y,
+            text,
+            ha=ha,
+            va=va,
+            fontsize=fontsize,
+            color="#222222",
+            zorder=6,
+            linespacing=1.1,
+            bbox={
+                "boxstyle": "round,pad=0.18",
+                "facecolor": "white",
+                "edgecolor": "#7048e8" if stacked else "#cccccc",
+                "lw": 0.9 if stacked else 0.5,
+                "alpha": 0.85,
+            },
         )
 
 
-def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: bool = False, only_met: bool = False) -> None:
+def _draw_goal_shapes(
+    ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: bool = False, only_met: bool = False
+) -> None:
     from matplotlib.patches import Circle, FancyArrowPatch, Polygon, Rectangle
 
     for s in shapes:
@@ -395,23 +477,55 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
             continue
         col = ctx.goal_color(s.index)
         alpha = 0.55 if faint else 0.95
-        style = dict(edgecolor=_rgba(col, alpha), facecolor="none", lw=1.6 if faint else 2.2, ls=(0, (5, 3)), zorder=1.5)
+        style = {
+            "edgecolor": _rgba(col, alpha),
+            "facecolor": "none",
+            "lw": 1.6 if faint else 2.2,
+            "ls": (0, (5, 3)),
+            "zorder": 1.5,
+        }
         g = s.geometry
         if "region" in g:
             x0, x1, y0, y1 = g["region"]
-            ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, edgecolor=_rgba(col, 0.5 * alpha), facecolor=_rgba(col, 0.06),
-                                   lw=1.0, ls=(0, (1, 2)), zorder=0.6))
+            ax.add_patch(
+                Rectangle(
+                    (x0, y0),
+                    x1 - x0,
+                    y1 - y0,
+                    edgecolor=_rgba(col, 0.5 * alpha),
+                    facecolor=_rgba(col, 0.06),
+                    lw=1.0,
+                    ls=(0, (1, 2)),
+                    zorder=0.6,
+                )
+            )
         if "heading" in g:
             c, h = np.asarray(g["anchor_point"], dtype=float), g["heading"]
             tip = c + 0.06 * np.array([math.cos(h), math.sin(h)])
-            ax.add_patch(FancyArrowPatch(tuple(c), tuple(tip), arrowstyle="-|>", mutation_scale=12, color=_rgba(col, alpha),
-                                         lw=1.6, zorder=4.4))
+            ax.add_patch(
+                FancyArrowPatch(
+                    tuple(c),
+                    tuple(tip),
+                    arrowstyle="-|>",
+                    mutation_scale=12,
+                    color=_rgba(col, alpha),
+                    lw=1.6,
+                    zorder=4.4,
+                )
+            )
         if s.kind == "line":
             p = g["points"]
             d = p[1] - p[0]
             n = float(np.hypot(*d))
             ext = (d / n) * 0.03 if n > 0 else np.zeros(2)
-            ax.plot([p[0][0] - ext[0], p[1][0] + ext[0]], [p[0][1] - ext[1], p[1][1] + ext[1]], color=style["edgecolor"], lw=style["lw"], ls=style["ls"], zorder=1.5)
+            ax.plot(
+                [p[0][0] - ext[0], p[1][0] + ext[0]],
+                [p[0][1] - ext[1], p[1][1] + ext[1]],
+                color=style["edgecolor"],
+                lw=style["lw"],
+                ls=style["ls"],
+                zorder=1.5,
+            )
         elif s.kind == "circle":
             if g["radius"] > 0:
                 ax.add_patch(Circle(g["centre"], g["radius"], **style))
@@ -425,36 +539,69 @@ def _draw_goal_shapes(ax: Any, ctx: _Ctx, shapes: list[GoalShape], *, faint: boo
                     continue
                 ax.add_patch(
                     FancyArrowPatch(
-                        a, b, arrowstyle="-|>", mutation_scale=14, color=_rgba(col, alpha), lw=2.0 if not faint else 1.4,
-                        shrinkA=6, shrinkB=8, zorder=4.5,
+                        a,
+                        b,
+                        arrowstyle="-|>",
+                        mutation_scale=14,
+                        color=_rgba(col, alpha),
+                        lw=2.0 if not faint else 1.4,
+                        shrinkA=6,
+                        shrinkB=8,
+                        zorder=4.5,
                     )
                 )
                 mid = (np.asarray(a) + np.asarray(b)) / 2
                 ax.text(
-                    mid[0], mid[1], s.goal.pattern.replace("_", "-"), fontsize=6.5, color=col, ha="center", va="center", zorder=4.6,
-                    bbox=dict(boxstyle="round,pad=0.12", facecolor="white", edgecolor=col, lw=0.6, alpha=0.9),
+                    mid[0],
+                    mid[1],
+                    s.goal.pattern.replace("_", "-"),
+                    fontsize=6.5,
+                    color=col,
+                    ha="center",
+                    va="center",
+                    zorder=4.6,
+                    bbox={
+                        "boxstyle": "round,pad=0.12",
+                        "facecolor": "white",
+                        "edgecolor": col,
+                        "lw": 0.6,
+                        "alpha": 0.9,
+                    },
                 )
         elif s.kind == "tower":
             c = g["centre"]
             k0 = ctx.scene.index[s.goal.objects[0]]
             r = float(ctx.scene.radii[k0]) + 0.016
-            ax.add_patch(Circle(c, r, edgecolor=_rgba(col, alpha), facecolor="none", lw=2.0, ls=(0, (2, 2)), zorder=4.5))
+            ax.add_patch(
+                Circle(c, r, edgecolor=_rgba(col, alpha), facecolor="none", lw=2.0, ls=(0, (2, 2)), zorder=4.5)
+            )
             ax.text(
-                c[0] + r * 0.75, c[1] + r * 0.75, f"tower ×{len(s.goal.objects)}", fontsize=6.5, color=col, zorder=4.6,
-                bbox=dict(boxstyle="round,pad=0.12", facecolor="white", edgecolor=col, lw=0.6, alpha=0.9),
+                c[0] + r * 0.75,
+                c[1] + r * 0.75,
+                f"tower ×{len(s.goal.objects)}",
+                fontsize=6.5,
+                color=col,
+                zorder=4.6,
+                bbox={"boxstyle": "round,pad=0.12", "facecolor": "white", "edgecolor": col, "lw": 0.6, "alpha": 0.9},
             )
         elif s.kind == "points":
             p = np.asarray(g["points"], dtype=float).reshape(-1, 2)
-            ax.plot(p[:, 0], p[:, 1], ls="none", marker="o", mfc="none", color=style["edgecolor"], ms=9, mew=1.3, zorder=1.5)
+            ax.plot(
+                p[:, 0], p[:, 1], ls="none", marker="o", mfc="none", color=style["edgecolor"], ms=9, mew=1.3, zorder=1.5
+            )
         elif s.kind == "pose":
             t = g["target"]
             k0 = ctx.scene.index[s.goal.objects[0]]
             verts = ctx.scene.footprint(k0, t)
-            ax.add_patch(Polygon(verts, closed=True, edgecolor=_rgba(col, alpha), facecolor="none", lw=1.4, ls=":", zorder=4.5))
+            ax.add_patch(
+                Polygon(verts, closed=True, edgecolor=_rgba(col, alpha), facecolor="none", lw=1.4, ls=":", zorder=4.5)
+            )
             ax.plot(t[0], t[1], marker="x", color=col, ms=6, mew=1.4, zorder=1.9)
 
 
-def _draw_path(ax: Any, a: Sequence[float], b: Sequence[float], color: Any, *, lw: float = 2.2, faint: bool = False) -> None:
+def _draw_path(
+    ax: Any, a: Sequence[float], b: Sequence[float], color: Any, *, lw: float = 2.2, faint: bool = False
+) -> None:
     from matplotlib.patches import FancyArrowPatch
 
     a2, b2 = np.asarray(a[:2], dtype=float), np.asarray(b[:2], dtype=float)
@@ -463,9 +610,17 @@ def _draw_path(ax: Any, a: Sequence[float], b: Sequence[float], color: Any, *, l
         return
     ax.add_patch(
         FancyArrowPatch(
-            tuple(a2), tuple(b2), arrowstyle="-|>" if not faint else "->", mutation_scale=16 if not faint else 9,
-            connectionstyle="arc3,rad=-0.18", color=color, lw=lw, zorder=4.8 if not faint else 1.6,
-            shrinkA=2, shrinkB=4, alpha=1.0 if not faint else 0.45,
+            tuple(a2),
+            tuple(b2),
+            arrowstyle="-|>" if not faint else "->",
+            mutation_scale=16 if not faint else 9,
+            connectionstyle="arc3,rad=-0.18",
+            color=color,
+            lw=lw,
+            zorder=4.8 if not faint else 1.6,
+            shrinkA=2,
+            shrinkB=4,
+            alpha=1.0 if not faint else 0.45,
         )
     )
 
@@ -497,12 +652,22 @@ def _panel(ax: Any, ctx: _Ctx, shapes: list[GoalShape], step: int | None, *, fon
     lh = fontsize * 1.5 / 72.0 / h_in
     y = 1.0
 
-    def line(text: str, *, color: str = "#222222", weight: str = "normal", size: float = fontsize, x: float = 0.0, box: str | None = None) -> None:
+    def line(
+        text: str,
+        *,
+        color: str = "#222222",
+        weight: str = "normal",
+        size: float = fontsize,
+        x: float = 0.0,
+        box: str | None = None,
+    ) -> None:
         nonlocal y
         kw = {}
         if box:
-            kw["bbox"] = dict(boxstyle="round,pad=0.2", facecolor=box, edgecolor="none", alpha=0.18)
-        ax.text(x, y, text, transform=ax.transAxes, ha="left", va="top", fontsize=size, color=color, fontweight=weight, **kw)
+            kw["bbox"] = {"boxstyle": "round,pad=0.2", "facecolor": box, "edgecolor": "none", "alpha": 0.18}
+        ax.text(
+            x, y, text, transform=ax.transAxes, ha="left", va="top", fontsize=size, color=color, fontweight=weight, **kw
+        )
         y -= lh * size / fontsize
 
     if ctx.goals is not None:
@@ -513,7 +678,11 @@ def _panel(ax: Any, ctx: _Ctx, shapes: list[GoalShape], step: int | None, *, fon
             line(f"{mark} {describe_goal(s.goal)}", x=0.07, color="#222222" if s.met else "#b02a2a")
         y -= lh * 0.4
     n = ctx.n_actions
-    line(f"Plan: {n} action{'s' if n != 1 else ''}" + ("" if ctx.plan.solved else "  (NOT solved)"), weight="bold", size=fontsize + 1)
+    line(
+        f"Plan: {n} action{'s' if n != 1 else ''}" + ("" if ctx.plan.solved else "  (NOT solved)"),
+        weight="bold",
+        size=fontsize + 1,
+    )
     lo, hi = 0, n
     window = 12
     if n > window:
@@ -527,7 +696,10 @@ def _panel(ax: Any, ctx: _Ctx, shapes: list[GoalShape], step: int | None, *, fon
         verb = {"goal": "place", "relocate": "relocate", "unstack": "unstack"}[a.purpose]
         k = ctx.scene.index[a.object]
         where = f"onto {a.on}" if a.on is not None else f"→ ({a.to[0]:+.2f}, {a.to[1]:+.2f})"
-        text = textwrap.shorten(f"{j + 1}. {verb} {ctx.scene.ids[k]} {ctx.scene.names[k]}", 30, placeholder="…") + f" {where}"
+        text = (
+            textwrap.shorten(f"{j + 1}. {verb} {ctx.scene.ids[k]} {ctx.scene.names[k]}", 30, placeholder="…")
+            + f" {where}"
+        )
         col = PURPOSE_COLORS[a.purpose]
         if step is None:
             line(text, color=col)
@@ -548,13 +720,25 @@ def _panel(ax: Any, ctx: _Ctx, shapes: list[GoalShape], step: int | None, *, fon
         Patch(facecolor="#777777", edgecolor="#7048e8", lw=0.9, label="stacked: shadow, boxed label"),
         Line2D([], [], color="#1f77b4", lw=1.8, ls=(0, (5, 3)), label="goal shape (fitted)"),
     ]
-    ax.legend(handles=handles, loc="lower left", fontsize=fontsize - 1, frameon=True, framealpha=0.9, borderpad=0.5, handlelength=2.2, title="Legend", title_fontsize=fontsize)
+    ax.legend(
+        handles=handles,
+        loc="lower left",
+        fontsize=fontsize - 1,
+        frameon=True,
+        framealpha=0.9,
+        borderpad=0.5,
+        handlelength=2.2,
+        title="Legend",
+        title_fontsize=fontsize,
+    )
 
 
 def _square(ax: Any, y: float, color: str, lh: float) -> Any:
     from matplotlib.patches import Rectangle
 
-    return Rectangle((0.0, y - lh * 0.8), 0.045, lh * 0.65, transform=ax.transAxes, facecolor=color, edgecolor="none", clip_on=False)
+    return Rectangle(
+        (0.0, y - lh * 0.8), 0.045, lh * 0.65, transform=ax.transAxes, facecolor=color, edgecolor="none", clip_on=False
+    )
 
 
 def _titles(fig: Any, ctx: _Ctx, title: str, fontsize: float = 11) -> None:
@@ -611,7 +795,9 @@ def render_state(ctx: _Ctx, step: int, *, goals_drawn: str = "met") -> np.ndarra
     if step == 0:
         title = f"Initial scene · {ctx.scene.n} objects"
     elif step == n and goals_drawn == "all":
-        title = "Final scene · " + ("all goals met" if all(s.met for s in shapes) else f"{sum(not s.met for s in shapes)} goal(s) not met")
+        title = "Final scene · " + (
+            "all goals met" if all(s.met for s in shapes) else f"{sum(not s.met for s in shapes)} goal(s) not met"
+        )
     else:
         a = ctx.plan.actions[step - 1]
         title = f"Step {step} of {n} · {_PURPOSE_WORD[a.purpose]}: {ctx.scene.label(ctx.scene.index[a.object])}"
@@ -649,7 +835,7 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
     final = ctx.states[n]
     shapes = ctx.shapes(n)
     fig, (a0, a1), pax = _new_figure(ctx, panels=2)
-    for ax, st, name in ((a0, ctx.states[0], "before"), (a1, final, f"after {n} action{'s' if n != 1 else ''}")):
+    for ax, _state, name in ((a0, ctx.states[0], "before"), (a1, final, f"after {n} action{'s' if n != 1 else ''}")):
         _draw_table(ax, ctx.scene)
         ax.set_title(name, fontsize=10, fontweight="bold", loc="center", pad=3)
     moves = [
@@ -674,7 +860,9 @@ def _fields(ctx: _Ctx, step: int) -> Any:
         raise InputError("heatmaps need the goals (the plan carries none; pass them)")
     if not 1 <= step <= ctx.n_actions:
         raise InputError(f"step {step} is outside the plan's {ctx.n_actions} actions (steps count from 1)")
-    return pose_fields(ctx.scene, ctx.goals, list(ctx.plan.actions), step - 1, resolution=ctx.options.heatmap_resolution)
+    return pose_fields(
+        ctx.scene, ctx.goals, list(ctx.plan.actions), step - 1, resolution=ctx.options.heatmap_resolution
+    )
 
 
 def heatmap_fields(
@@ -721,9 +909,17 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     fig = Figure(figsize=(width, height), dpi=ctx.options.dpi, facecolor="white")
     Canvas(fig)
     data = [fields.prior, fields.free.astype(float), fields.product]
-    names = [r"$f_{\mathrm{prior}}$  (pattern prior)", r"$f_{\mathrm{free}}$  (collision-free, in workspace)", r"$f = f_{\mathrm{prior}} \times f_{\mathrm{free}}$"]
-    extent = (fields.xs[0] - (fields.xs[1] - fields.xs[0]) / 2, fields.xs[-1] + (fields.xs[1] - fields.xs[0]) / 2,
-              fields.ys[0] - (fields.ys[1] - fields.ys[0]) / 2, fields.ys[-1] + (fields.ys[1] - fields.ys[0]) / 2)
+    names = [
+        r"$f_{\mathrm{prior}}$  (pattern prior)",
+        r"$f_{\mathrm{free}}$  (collision-free, in workspace)",
+        r"$f = f_{\mathrm{prior}} \times f_{\mathrm{free}}$",
+    ]
+    extent = (
+        fields.xs[0] - (fields.xs[1] - fields.xs[0]) / 2,
+        fields.xs[-1] + (fields.xs[1] - fields.xs[0]) / 2,
+        fields.ys[0] - (fields.ys[1] - fields.ys[0]) / 2,
+        fields.ys[-1] + (fields.ys[1] - fields.ys[0]) / 2,
+    )
     im = None
     for p, (grid, name) in enumerate(zip(data, names)):
         ax = fig.add_axes(((0.5 + p * (pw + 0.5)) / width, 0.55 / height, pw / width, ph / height))
@@ -733,8 +929,19 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
                 continue
             v = _footprint(ctx, before, j)
             ax.fill(v[:, 0], v[:, 1], facecolor="none", edgecolor="#f2a541", lw=0.7)
-        ax.plot(*before.poses[k, :2], marker="o", ms=7, mfc="none", mec="#4dabf7", mew=1.6, ls="none", label=f"{ctx.scene.ids[k]} now")
-        ax.plot(a.to[0], a.to[1], marker="*", ms=13, mfc="white", mec="#e03131", mew=1.2, ls="none", label="chosen pose")
+        ax.plot(
+            *before.poses[k, :2],
+            marker="o",
+            ms=7,
+            mfc="none",
+            mec="#4dabf7",
+            mew=1.6,
+            ls="none",
+            label=f"{ctx.scene.ids[k]} now",
+        )
+        ax.plot(
+            a.to[0], a.to[1], marker="*", ms=13, mfc="white", mec="#e03131", mew=1.2, ls="none", label="chosen pose"
+        )
         ax.set_xlim(xmin, xmax)
         ax.set_ylim(ymin, ymax)
         ax.set_aspect("equal")
@@ -745,7 +952,17 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
         x0, y0 = xmin + 0.02, ymin + 0.02
         halo = [pe.withStroke(linewidth=3.2, foreground="black")]
         ax.plot([x0, x0 + L], [y0, y0], color="#ffd43b", lw=2.2, solid_capstyle="butt", path_effects=halo)
-        ax.text(x0 + L / 2, y0 + 0.008, f"{L * 100:g} cm", color="#ffd43b", fontsize=7, fontweight="bold", ha="center", va="bottom", path_effects=halo)
+        ax.text(
+            x0 + L / 2,
+            y0 + 0.008,
+            f"{L * 100:g} cm",
+            color="#ffd43b",
+            fontsize=7,
+            fontweight="bold",
+            ha="center",
+            va="bottom",
+            path_effects=halo,
+        )
         if p == 0:
             ax.legend(loc="upper left", fontsize=6.5, framealpha=0.85, handletextpad=0.3, borderpad=0.3)
     cax = fig.add_axes(((0.5 + 3 * (pw + 0.5) - 0.3) / width, 0.55 / height, 0.12 / width, ph / height))
@@ -755,11 +972,36 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     verb = _PURPOSE_WORD[a.purpose]
     member = [describe_goal(g) for g in ctx.goals.goals if ctx.scene.ids[k] in g.objects]
     why = ("; goal: " + ", ".join(member)) if member and a.purpose == "goal" else ""
-    fig.text(0.01, 0.98, f"Pose fields at step {step} of {ctx.n_actions} · {verb} of {ctx.scene.label(k)}{why}", ha="left", va="top", fontsize=10, fontweight="bold")
+    fig.text(
+        0.01,
+        0.98,
+        f"Pose fields at step {step} of {ctx.n_actions} · {verb} of {ctx.scene.label(k)}{why}",
+        ha="left",
+        va="top",
+        fontsize=10,
+        fontweight="bold",
+    )
     if a.purpose != "goal":
-        fig.text(0.01, 0.925, "not a goal placement: the prior is uniform and only free space constrains the pose", ha="left", va="top", fontsize=8, color="#555555")
+        fig.text(
+            0.01,
+            0.925,
+            "not a goal placement: the prior is uniform and only free space constrains the pose",
+            ha="left",
+            va="top",
+            fontsize=8,
+            color="#555555",
+        )
     elif ctx.instruction:
-        fig.text(0.01, 0.925, f"“{textwrap.shorten(ctx.instruction, 140, placeholder='…')}”", ha="left", va="top", fontsize=8, style="italic", color="#444444")
+        fig.text(
+            0.01,
+            0.925,
+            f"“{textwrap.shorten(ctx.instruction, 140, placeholder='…')}”",
+            ha="left",
+            va="top",
+            fontsize=8,
+            style="italic",
+            color="#444444",
+        )
     return _to_image(fig)
 
 
@@ -781,11 +1023,35 @@ def _context(scene: Any, plan: Any, goals: Any, instruction: str | None, options
     return _Ctx(sc, gs, pl, states, paints, instruction, options, pl.fits if goals is None else None)
 
 
+def _save(path: Path, save: Callable[[Path], None]) -> Path:
+    """Run ``save(tmp)`` on a temporary file beside ``path``, then rename it over ``path``.
+
+    A full disk or a read-only folder is one line (:class:`InputError`) and
+    leaves neither a truncated picture nor a temporary file.
+    """
+    from ..outputs import publish, temporary_beside
+
+    tmp: Path | None = None
+    try:
+        tmp = temporary_beside(path, suffix=path.suffix)
+        save(tmp)
+        publish(tmp, path)
+        tmp = None
+    except OSError as exc:
+        raise InputError(f"cannot write picture {path}: {exc.strerror or exc}") from None
+    finally:
+        if tmp is not None:
+            try:
+                tmp.unlink()
+            except OSError:
+                pass
+    return path
+
+
 def _save_png(img: np.ndarray, path: Path, dpi: int) -> Path:
     from PIL import Image
 
-    Image.fromarray(img).save(path, dpi=(dpi, dpi), compress_level=6)
-    return path
+    return _save(path, lambda tmp: Image.fromarray(img).save(tmp, format="PNG", dpi=(dpi, dpi), compress_level=6))
 
 
 def _gif(frames: list[np.ndarray], path: Path, opts: FigureOptions) -> Path:
@@ -802,8 +1068,9 @@ def _gif(frames: list[np.ndarray], path: Path, opts: FigureOptions) -> Path:
     durations[-1] = int(opts.last_frame_s * 1000)
     # disposal=1 and optimize=False keep one GIF frame per plan state (Pillow
     # would otherwise merge frames it finds identical).
-    ims[0].save(path, save_all=True, append_images=ims[1:], duration=durations, loop=0, optimize=False, disposal=1)
-    return path
+    return _save(path, lambda tmp: ims[0].save(
+        tmp, format="GIF", save_all=True, append_images=ims[1:], duration=durations, loop=0, optimize=False, disposal=1
+    ))
 
 
 def step_name(step: int, n_actions: int) -> str:
@@ -817,7 +1084,7 @@ def pictured_steps(n: int, most: int) -> list[int]:
         return list(range(1, n + 1))
     if most < 1:
         return []
-    return sorted({int(round(v)) for v in np.linspace(n / most, n, most)})
+    return sorted({round(v) for v in np.linspace(n / most, n, most)})
 
 
 def write_plan_figures(
@@ -876,7 +1143,13 @@ def write_plan_figures(
     written.append(_save_png(img, out / "initial.png", options.dpi))
     # A bar only on a terminal (tqdm's disable=None); LGMCTS_NO_PROGRESS=1 hides it there too.
     quiet = os.environ.get("LGMCTS_NO_PROGRESS", "") not in ("", "0")
-    steps = tqdm(pictured_steps(n, options.max_step_pictures), desc="drawing steps", file=sys.stderr, leave=False, disable=True if quiet else None)
+    steps = tqdm(
+        pictured_steps(n, options.max_step_pictures),
+        desc="drawing steps",
+        file=sys.stderr,
+        leave=False,
+        disable=True if quiet else None,
+    )
     for s in steps:
         img = render_state(ctx, s)
         frames.append(img)

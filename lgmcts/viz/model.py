@@ -9,6 +9,7 @@ viewer draw from these descriptions.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -16,11 +17,20 @@ import numpy as np
 from ..errors import InputError
 from ..formats import Action, Goal, GoalSpec, PlanSpec
 from ..params import resolve as resolve_params
-from ..scene import Scene, State, replay
 from ..patterns import registry
+from ..scene import Scene, State, replay
 from ..validate import goal_satisfied
 
-__all__ = ["GoalShape", "replay", "goal_shapes", "describe_action", "describe_goal", "plan_goals", "GOAL_COLORS", "PURPOSE_COLORS"]
+__all__ = [
+    "GOAL_COLORS",
+    "PURPOSE_COLORS",
+    "GoalShape",
+    "describe_action",
+    "describe_goal",
+    "goal_shapes",
+    "plan_goals",
+    "replay",
+]
 
 #: Colours of goals, in order (a qualitative palette that stays readable in grey).
 GOAL_COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2")
@@ -79,19 +89,30 @@ class GoalShape:
                 return int(v)
             return v
 
-        return {"index": self.index, "met": self.met, "problem": self.problem, "kind": self.kind, **{k: conv(v) for k, v in self.geometry.items()}}
+        return {
+            "index": self.index,
+            "met": self.met,
+            "problem": self.problem,
+            "kind": self.kind,
+            **{k: conv(v) for k, v in self.geometry.items()},
+        }
 
 
-def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None) -> list[GoalShape]:
+def goal_shapes(
+    scene: Scene, goals: GoalSpec | None, state: State, fits: list | None = None, only: Iterable[int] | None = None
+) -> list[GoalShape]:
     """Describe every goal's geometry in ``state`` and whether it holds.
 
     ``fits`` are the goals' fitted parameters a plan carries for its final
     state (``PlanSpec.fits``): given for that state, a goal is drawn from
-    them instead of being fitted again."""
+    them instead of being fitted again. ``only``: the indices of the goals
+    to describe (in increasing order; default all)."""
     if goals is None:
         return []
     out = []
-    for k, g in enumerate(goals.goals):
+    chosen = range(len(goals.goals)) if only is None else only
+    for k in chosen:
+        g = goals.goals[k]
         if any(i not in scene.index for i in [*g.objects, *([g.anchor] if g.anchor is not None else [])]):
             raise InputError(f"goal {k} ({g.pattern}) names an object the scene does not have")
         idx = [scene.index[i] for i in g.objects]
@@ -104,7 +125,7 @@ def goal_shapes(scene: Scene, goals: GoalSpec | None, state: State, fits: list |
         kind, geom = drawn if drawn is not None else pattern.shape(g, scene, state.poses)
         geom = dict(geom)
         if g.region is not None or g.facing is not None:
-            gp = resolve_params(g, scene.bounds, scene.radii[idx])
+            gp = resolve_params(g, scene.bounds, scene.radii[idx].tolist())
             if gp.box is not None:
                 geom["region"] = np.asarray(gp.box, dtype=float)
             if gp.heading is not None:

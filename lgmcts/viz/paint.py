@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-__all__ = ["Paint", "paint", "hex_color", "luminance", "NAMED_COLORS", "TEXTURES"]
+__all__ = ["NAMED_COLORS", "TEXTURES", "Paint", "hex_color", "luminance", "paint"]
 
 #: Colour words understood in scene files, as RGB in [0, 1].
 NAMED_COLORS: dict[str, tuple[float, float, float]] = {
@@ -152,7 +152,7 @@ def luminance(rgb: tuple[float, float, float]) -> float:
 
 def hex_color(rgb: tuple[float, float, float]) -> str:
     """``#rrggbb`` of an RGB colour in [0, 1]."""
-    return "#" + "".join(f"{int(round(max(0.0, min(1.0, c)) * 255)):02x}" for c in rgb)
+    return "#" + "".join(f"{round(max(0.0, min(1.0, c)) * 255):02x}" for c in rgb)
 
 
 def _shade(rgb: tuple[float, float, float], amount: float) -> tuple[float, float, float]:

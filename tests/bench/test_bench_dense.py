@@ -18,6 +18,8 @@ from lgmcts.formats import parse_scene
 from lgmcts.scene import TABLE, Scene
 from lgmcts.validate import OVERLAP_AREA
 
+pytestmark = pytest.mark.slow
+
 REPO = Path(__file__).resolve().parents[2]
 
 
@@ -92,8 +94,26 @@ def test_dense_generation_is_deterministic_by_seed(tmp_path):
     # The CLI writes byte-identical files for the same seed.
     outs = []
     for name in ("a.jsonl", "b.jsonl"):
-        r = subprocess.run([sys.executable, "-m", "lgmcts", "bench-generate", "--suite", "elgr-dense", "--n", "2",
-                            "--seed", "3", "-o", str(tmp_path / name)], capture_output=True, text=True, cwd=REPO, timeout=120)
+        r = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "lgmcts",
+                "bench-generate",
+                "--suite",
+                "elgr-dense",
+                "--n",
+                "2",
+                "--seed",
+                "3",
+                "-o",
+                str(tmp_path / name),
+            ],
+            capture_output=True,
+            text=True,
+            cwd=REPO,
+            timeout=120,
+        )
         assert r.returncode == 0, r.stderr
         outs.append((tmp_path / name).read_text())
     assert outs[0] == outs[1] and all(json.loads(line)["suite"] == "elgr-dense" for line in outs[0].splitlines())
@@ -110,7 +130,7 @@ def test_dense_start_scenes_are_legal_and_dense():
         # Every extra object is packed: within 0.1 mm of a start footprint or of a final spot.
         sc = Scene.from_spec(parse_scene(t.scene))
         finals = {i: shapely.Polygon(sc.footprint(sc.index[i], np.asarray(t.final[str(i)]))) for i in sc.ids}
-        table = [k for k in range(sc.n) if sc.initial.on[k] == TABLE]
+        [k for k in range(sc.n) if sc.initial.on[k] == TABLE]
         for i in t.start["packed"]:
             k = sc.index[i]
             # Not under the overhang of a stacked object either.
@@ -148,7 +168,9 @@ def test_small_dense_suite_end_to_end(tmp_path):
     from lgmcts.bench import RunOptions, run_suite, summarise
 
     tasks = generate("elgr-dense", n=3, seed=21)
-    recs = run_suite(tasks, tmp_path / "d", options=RunOptions(method="lgmcts", parser="rules", max_iter=3000), workers=1)
+    recs = run_suite(
+        tasks, tmp_path / "d", options=RunOptions(method="lgmcts", parser="rules", max_iter=3000), workers=1
+    )
     assert [r["id"] for r in recs] == [t.id for t in tasks] and all(r["suite"] == "elgr-dense" for r in recs)
     for r in recs:
         assert r["parse"]["correct"] is True, r
@@ -159,6 +181,11 @@ def test_small_dense_suite_end_to_end(tmp_path):
 
 
 def test_dense_suite_from_the_cli_and_unknown_suites(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "lgmcts", "bench-generate", "--suite", "elgr-densest", "-o",
-                        str(tmp_path / "x.jsonl")], capture_output=True, text=True, cwd=REPO, timeout=120)
+    r = subprocess.run(
+        [sys.executable, "-m", "lgmcts", "bench-generate", "--suite", "elgr-densest", "-o", str(tmp_path / "x.jsonl")],
+        capture_output=True,
+        text=True,
+        cwd=REPO,
+        timeout=120,
+    )
     assert r.returncode == 2 and "unknown suite" in r.stderr and "elgr-dense" in r.stderr

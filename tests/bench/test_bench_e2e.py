@@ -13,7 +13,9 @@ pytestmark = pytest.mark.slow
 @pytest.mark.parametrize("suite,parser", [("elgr", "rules"), ("structformer", "gt")])
 def test_small_suite_end_to_end(tmp_path, suite, parser):
     tasks = generate(suite, n=3, seed=21)
-    recs = run_suite(tasks, tmp_path / suite, options=RunOptions(method="lgmcts", parser=parser, max_iter=3000), workers=1)
+    recs = run_suite(
+        tasks, tmp_path / suite, options=RunOptions(method="lgmcts", parser=parser, max_iter=3000), workers=1
+    )
     assert [r["id"] for r in recs] == [t.id for t in tasks]
     for r in recs:
         # Every stage ran and left its verdict in the record.

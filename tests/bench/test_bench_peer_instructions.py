@@ -123,11 +123,24 @@ def test_peer_instructions_mean_exactly_the_ground_truth(suite, n):
 
 
 def test_peer_instructions_use_every_peer_family():
-    text = " | ".join(t.instruction for s in ("elgr", "structformer") for t in generate(s, n=80, seed=5, instructions="peer"))
-    for needle in ("objects whose color is", "Objects with", "pattern using", "Select ", ", and ", "select objects that are",
-                   " left to ", " on ", "; "):
+    text = " | ".join(
+        t.instruction for s in ("elgr", "structformer") for t in generate(s, n=80, seed=5, instructions="peer")
+    )
+    for needle in (
+        "objects whose color is",
+        "Objects with",
+        "pattern using",
+        "Select ",
+        ", and ",
+        "select objects that are",
+        " left to ",
+        " on ",
+        "; ",
+    ):
         assert needle in text, needle
-    assert any(f" {w} " in text for w in ("in front left of", "left and front of", "behind right of", "right behind of"))
+    assert any(
+        f" {w} " in text for w in ("in front left of", "left and front of", "behind right of", "right behind of")
+    )
     assert not re.search(r"\b(the|all)\b", text.replace("the same", "")), "our own phrasing leaked into peer mode"
 
 
@@ -137,17 +150,35 @@ def test_peer_mode_is_deterministic_by_seed_and_round_trips(tmp_path):
     c = [t.to_dict() for t in generate("elgr", n=12, seed=4, instructions="peer")]
     assert a == b and a != c
     out = tmp_path / "peer.jsonl"
-    res = CliRunner().invoke(app, ["bench-generate", "--suite", "structformer", "--n", "8", "--seed", "2",
-                                   "--instructions", "peer", "-o", str(out)])
+    res = CliRunner().invoke(
+        app,
+        [
+            "bench-generate",
+            "--suite",
+            "structformer",
+            "--n",
+            "8",
+            "--seed",
+            "2",
+            "--instructions",
+            "peer",
+            "-o",
+            str(out),
+        ],
+    )
     assert res.exit_code == 0, res.output
     tasks = read_suite(out)
-    assert [t.to_dict() for t in tasks] == [t.to_dict() for t in generate("structformer", n=8, seed=2, instructions="peer")]
+    assert [t.to_dict() for t in tasks] == [
+        t.to_dict() for t in generate("structformer", n=8, seed=2, instructions="peer")
+    ]
     assert all(json.loads(line)["instructions"] == "peer" for line in out.read_text().splitlines())
 
 
 def test_unknown_instruction_mode_is_refused(tmp_path):
     with pytest.raises(InputError):
         generate("elgr", n=1, instructions="martian")
-    res = CliRunner().invoke(app, ["bench-generate", "--suite", "elgr", "--n", "1", "--instructions", "martian",
-                                   "-o", str(tmp_path / "x.jsonl")])
+    res = CliRunner().invoke(
+        app,
+        ["bench-generate", "--suite", "elgr", "--n", "1", "--instructions", "martian", "-o", str(tmp_path / "x.jsonl")],
+    )
     assert res.exit_code == 2

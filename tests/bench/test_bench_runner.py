@@ -10,7 +10,17 @@ from pathlib import Path
 
 import pytest
 
-from lgmcts.bench import RunOptions, canonical_goals, generate, load_results, run_suite, run_task, summarise, to_csv, to_markdown
+from lgmcts.bench import (
+    RunOptions,
+    canonical_goals,
+    generate,
+    load_results,
+    run_suite,
+    run_task,
+    summarise,
+    to_csv,
+    to_markdown,
+)
 from lgmcts.bench.runner import RESULTS_FILE
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_goals
@@ -33,10 +43,21 @@ def test_run_task_plans_and_judges_against_ground_truth(tasks):
 
 
 def test_canonical_goals_compare_sets_towers_and_split_relations():
-    a = parse_goals({"goals": [{"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4, 5], "anchor": 6}]})
-    b = parse_goals({"goals": [{"pattern": "left", "objects": [5], "anchor": 6}, {"pattern": "line", "objects": [3, 1, 2]},
-                               {"pattern": "left", "objects": [4], "anchor": 6}]})
-    c = parse_goals({"goals": [{"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4, 5], "anchor": 1}]})
+    a = parse_goals(
+        {"goals": [{"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4, 5], "anchor": 6}]}
+    )
+    b = parse_goals(
+        {
+            "goals": [
+                {"pattern": "left", "objects": [5], "anchor": 6},
+                {"pattern": "line", "objects": [3, 1, 2]},
+                {"pattern": "left", "objects": [4], "anchor": 6},
+            ]
+        }
+    )
+    c = parse_goals(
+        {"goals": [{"pattern": "line", "objects": [1, 2, 3]}, {"pattern": "left", "objects": [4, 5], "anchor": 1}]}
+    )
     assert canonical_goals(a) == canonical_goals(b) != canonical_goals(c)
     t1 = parse_goals({"goals": [{"pattern": "tower", "objects": [1, 2]}]})
     t2 = parse_goals({"goals": [{"pattern": "tower", "objects": [2, 1]}]})
@@ -51,17 +72,20 @@ def _write_planner(tmp_path: Path, body: str) -> str:
 
 
 def test_plugin_planner_is_called_and_judged(tmp_path, tasks):
-    mod = _write_planner(tmp_path, (
-        "import lgmcts\n"
-        "calls = []\n"
-        "def good(scene, goals, seed, max_iter):\n"
-        "    calls.append((seed, max_iter))\n"
-        "    return lgmcts.formats.to_dict(lgmcts.plan(scene, goals, seed=seed, max_iter=max_iter))\n"
-        "def lazy(scene, goals, seed, max_iter):\n"
-        "    return {'solved': True, 'actions': []}\n"
-        "def broken(scene, goals, seed, max_iter):\n"
-        "    raise RuntimeError('boom')\n"
-    ))
+    mod = _write_planner(
+        tmp_path,
+        (
+            "import lgmcts\n"
+            "calls = []\n"
+            "def good(scene, goals, seed, max_iter):\n"
+            "    calls.append((seed, max_iter))\n"
+            "    return lgmcts.formats.to_dict(lgmcts.plan(scene, goals, seed=seed, max_iter=max_iter))\n"
+            "def lazy(scene, goals, seed, max_iter):\n"
+            "    return {'solved': True, 'actions': []}\n"
+            "def broken(scene, goals, seed, max_iter):\n"
+            "    raise RuntimeError('boom')\n"
+        ),
+    )
     try:
         rec = run_task(tasks[1], RunOptions(method=f"{mod}:good", parser="gt", execute=False, max_iter=1500))
         assert rec["sr_p"] is True
@@ -105,10 +129,42 @@ def test_interrupted_run_resumes_from_its_jsonl(tmp_path, tasks):
 
 def test_summary_counts_rates_and_causes():
     recs = [
-        {"id": "a", "category": "x", "sr_p": True, "sr_ep": True, "cause": None, "parse": {"correct": True}, "planning": {"actions": 4, "time_s": 0.1}},
-        {"id": "b", "category": "x", "sr_p": True, "sr_ep": False, "cause": "execution failed", "parse": {"correct": True}, "planning": {"actions": 6, "time_s": 0.3}},
-        {"id": "c", "category": "y", "sr_p": False, "sr_ep": False, "cause": "parse refused", "parse": {"correct": False}, "planning": {}},
-        {"id": "d", "category": "y", "sr_p": False, "sr_ep": False, "cause": "plan not found", "parse": {"correct": True}, "planning": {"actions": 9, "time_s": 2.0}},
+        {
+            "id": "a",
+            "category": "x",
+            "sr_p": True,
+            "sr_ep": True,
+            "cause": None,
+            "parse": {"correct": True},
+            "planning": {"actions": 4, "time_s": 0.1},
+        },
+        {
+            "id": "b",
+            "category": "x",
+            "sr_p": True,
+            "sr_ep": False,
+            "cause": "execution failed",
+            "parse": {"correct": True},
+            "planning": {"actions": 6, "time_s": 0.3},
+        },
+        {
+            "id": "c",
+            "category": "y",
+            "sr_p": False,
+            "sr_ep": False,
+            "cause": "parse refused",
+            "parse": {"correct": False},
+            "planning": {},
+        },
+        {
+            "id": "d",
+            "category": "y",
+            "sr_p": False,
+            "sr_ep": False,
+            "cause": "plan not found",
+            "parse": {"correct": True},
+            "planning": {"actions": 9, "time_s": 2.0},
+        },
     ]
     rows = summarise(recs)
     assert [r.group for r in rows] == ["x", "y", "all"]
@@ -139,10 +195,26 @@ def test_ray_runs_the_same_task_function(tmp_path, tasks):
         run_suite(tasks[:1], tmp_path / "ray2", options=PLAN_ONLY, ray_address="127.0.0.1:1", source="r")
 
 
+@pytest.mark.slow
 def test_bench_cli_writes_results_and_summaries(tmp_path):
     out = tmp_path / "cli"
-    cmd = [sys.executable, "-m", "lgmcts", "bench", "--suite", "structformer", "--n", "4", "--no-exec",
-           "--workers", "2", "--max-iter", "2000", "-o", str(out)]
+    cmd = [
+        sys.executable,
+        "-m",
+        "lgmcts",
+        "bench",
+        "--suite",
+        "structformer",
+        "--n",
+        "4",
+        "--no-exec",
+        "--workers",
+        "2",
+        "--max-iter",
+        "2000",
+        "-o",
+        str(out),
+    ]
     r = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO, timeout=170)
     assert r.returncode == 0, r.stderr
     assert "| all | 4 |" in r.stdout and r.stderr == ""  # no progress bar when stderr is not a terminal
@@ -150,7 +222,7 @@ def test_bench_cli_writes_results_and_summaries(tmp_path):
     assert (out / "summary.csv").read_text().startswith("group,tasks")
     assert (out / "suite.jsonl").exists() and json.loads((out / "run.json").read_text())["parser"] == "gt"
     for bad, msg in ((["--method", "nope"], "unknown method"), (["--suite", "missing.jsonl"], "not found")):
-        args = cmd[:4] + ["--suite", "elgr", "--n", "1", "-o", str(tmp_path / "bad")] + bad
+        args = [*cmd[:4], "--suite", "elgr", "--n", "1", "-o", str(tmp_path / "bad"), *bad]
         r = subprocess.run(args, capture_output=True, text=True, cwd=REPO, timeout=120)
         assert r.returncode == 2 and msg in r.stderr and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
 

@@ -168,18 +168,38 @@ def test_suite_file_round_trip_and_bad_files(tmp_path):
         read_suite(tmp_path / "missing.jsonl")
 
 
+@pytest.mark.slow
 def test_generate_cli_writes_the_same_file_for_the_same_seed(tmp_path):
     outs = []
     for name in ("a.jsonl", "b.jsonl"):
         r = subprocess.run(
-            [sys.executable, "-m", "lgmcts", "bench-generate", "--suite", "elgr", "--n", "4", "--seed", "3", "-o", str(tmp_path / name)],
-            capture_output=True, text=True, cwd=REPO, timeout=120,
+            [
+                sys.executable,
+                "-m",
+                "lgmcts",
+                "bench-generate",
+                "--suite",
+                "elgr",
+                "--n",
+                "4",
+                "--seed",
+                "3",
+                "-o",
+                str(tmp_path / name),
+            ],
+            capture_output=True,
+            text=True,
+            cwd=REPO,
+            timeout=120,
         )
         assert r.returncode == 0, r.stderr
         outs.append((tmp_path / name).read_text())
     assert outs[0] == outs[1] and len(outs[0].splitlines()) == 4
     r = subprocess.run(
         [sys.executable, "-m", "lgmcts", "bench-generate", "--suite", "nope", "-o", str(tmp_path / "c.jsonl")],
-        capture_output=True, text=True, cwd=REPO, timeout=120,
+        capture_output=True,
+        text=True,
+        cwd=REPO,
+        timeout=120,
     )
     assert r.returncode == 2 and r.stderr.strip().count("\n") == 0 and "unknown suite" in r.stderr

@@ -15,8 +15,9 @@ import argparse
 import hashlib
 import json
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import lgmcts
 from lgmcts.bench import elgr, structformer

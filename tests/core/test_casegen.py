@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from lgmcts import check, plan
-from lgmcts.formats import parse_scene
 from lgmcts.casegen import LABBE_RADIUS, LABBE_SQUARE, labbe_case, labbe_protocol_case
+from lgmcts.formats import parse_scene
 from lgmcts.scene import Scene
 
 
@@ -36,8 +36,12 @@ def test_protocol_sampling_rules(n):
     assert sc.n == n
     _, goal = _centres(c)
     actions = [{"object": i + 1, "to": [float(goal[i, 0]), float(goal[i, 1]), 0.0]} for i in range(n)]
-    far = c.scene.model_copy(update={"objects": [o.model_copy(update={"pose": (10.0 + i, 0.0, 0.0)}) for i, o in enumerate(c.scene.objects)],
-                                     "workspace": c.scene.workspace.model_copy(update={"x": (c.scene.workspace.x[0], 100.0)})})
+    far = c.scene.model_copy(
+        update={
+            "objects": [o.model_copy(update={"pose": (10.0 + i, 0.0, 0.0)}) for i, o in enumerate(c.scene.objects)],
+            "workspace": c.scene.workspace.model_copy(update={"x": (c.scene.workspace.x[0], 100.0)}),
+        }
+    )
     assert check(far, c.goals, {"solved": True, "actions": actions}).valid
 
 
@@ -109,13 +113,15 @@ def test_pack_clutter_packs_in_contact_without_overlap():
     rng = np.random.default_rng(0)
     goal = [shapely.box(-0.05, -0.05, 0.05, 0.05)]
     other = [shapely.Point(0.2, 0.1).buffer(0.03)]
-    specs = [{"id": 10 + k, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.03, 0.03]}}
-             for k in range(8)]
+    specs = [
+        {"id": 10 + k, "name": "block", "color": "red", "shape": {"type": "box", "size": [0.04, 0.03, 0.03]}}
+        for k in range(8)
+    ]
     out = pack_clutter((-0.4, 0.4, -0.3, 0.3), specs, goal, other, rng)
     assert len(out) == 8 and [o["id"] for o in out] == [s["id"] for s in specs]
     sc = Scene.from_spec(parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": out}))
     seen = list(goal) + list(other)
-    for k, p in enumerate(sc.initial.polys):
+    for p in sc.initial.polys:
         assert max(p.intersection(q).area for q in seen) <= 1e-12  # no overlap
         assert min(p.distance(q) for q in seen) <= 1e-4  # edge to edge with the goal region or a neighbour
         seen.append(p)
@@ -137,6 +143,15 @@ def test_touching_cylinders_load_as_a_start_scene():
     from lgmcts.scene import Scene
 
     r = 0.0375
-    objs = [{"id": i + 1, "name": "disc", "color": "red", "shape": {"type": "cylinder", "radius": r, "height": 0.02},
-             "pose": [0.1 + 2 * r * i, 0.25, 0.3 * i], "on": None} for i in range(2)]
+    objs = [
+        {
+            "id": i + 1,
+            "name": "disc",
+            "color": "red",
+            "shape": {"type": "cylinder", "radius": r, "height": 0.02},
+            "pose": [0.1 + 2 * r * i, 0.25, 0.3 * i],
+            "on": None,
+        }
+        for i in range(2)
+    ]
     Scene.from_spec(parse_scene({"workspace": {"x": [0, 0.5], "y": [0, 0.5]}, "objects": objs}))

@@ -8,6 +8,8 @@ import sys
 
 import pytest
 
+pytestmark = pytest.mark.slow
+
 
 def run(*args: str, cwd=None) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, cwd=cwd, timeout=300)
@@ -43,13 +45,31 @@ def test_check_rejects_a_bad_plan(example_scene, example_goals, tmp_path):
 
 
 def test_unsolved_plan_exits_1_and_still_writes(tmp_path):
-    scene = {"workspace": {"x": [-0.1, 0.2], "y": [-0.03, 0.03]}, "objects": [
-        {"id": i, "name": "block", "shape": {"type": "box", "size": [0.03, 0.03, 0.03]}, "pose": [-0.08 + 0.04 * i, 0.0, 0.0]}
-        for i in range(5)]}
+    scene = {
+        "workspace": {"x": [-0.1, 0.2], "y": [-0.03, 0.03]},
+        "objects": [
+            {
+                "id": i,
+                "name": "block",
+                "shape": {"type": "box", "size": [0.03, 0.03, 0.03]},
+                "pose": [-0.08 + 0.04 * i, 0.0, 0.0],
+            }
+            for i in range(5)
+        ],
+    }
     goals = {"goals": [{"pattern": "circle", "objects": [0, 1, 2, 3, 4]}]}
     (tmp_path / "s.json").write_text(json.dumps(scene))
     (tmp_path / "g.json").write_text(json.dumps(goals))
-    r = run("plan", str(tmp_path / "s.json"), "--goal", str(tmp_path / "g.json"), "--max-iter", "100", "-o", str(tmp_path / "p.json"))
+    r = run(
+        "plan",
+        str(tmp_path / "s.json"),
+        "--goal",
+        str(tmp_path / "g.json"),
+        "--max-iter",
+        "100",
+        "-o",
+        str(tmp_path / "p.json"),
+    )
     assert r.returncode == 1
     assert json.loads((tmp_path / "p.json").read_text())["solved"] is False
 
@@ -77,15 +97,37 @@ def test_bad_goals_exit_2_with_one_line(goals, needle, example_scene, tmp_path):
     assert r.returncode == 2 and "Traceback" not in r.stderr
 
 
-@pytest.mark.parametrize("scene,needle", [
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [
-        {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [0.5, 0.5, 0]},
-        {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [0.2, 0.2, 0]}]}, "duplicate object id"),
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [
-        {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [5, 0.5, 0]}]}, "outside the workspace"),
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [
-        {"id": 1, "name": "b", "shape": {"type": "cone"}, "pose": [0.5, 0.5, 0]}]}, "invalid scene"),
-])
+@pytest.mark.parametrize(
+    "scene,needle",
+    [
+        (
+            {
+                "workspace": {"x": [0, 1], "y": [0, 1]},
+                "objects": [
+                    {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [0.5, 0.5, 0]},
+                    {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [0.2, 0.2, 0]},
+                ],
+            },
+            "duplicate object id",
+        ),
+        (
+            {
+                "workspace": {"x": [0, 1], "y": [0, 1]},
+                "objects": [
+                    {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, 0.1, 0.1]}, "pose": [5, 0.5, 0]}
+                ],
+            },
+            "outside the workspace",
+        ),
+        (
+            {
+                "workspace": {"x": [0, 1], "y": [0, 1]},
+                "objects": [{"id": 1, "name": "b", "shape": {"type": "cone"}, "pose": [0.5, 0.5, 0]}],
+            },
+            "invalid scene",
+        ),
+    ],
+)
 def test_bad_scene_exit_2(scene, needle, example_goals, tmp_path):
     s = tmp_path / "s.json"
     s.write_text(json.dumps(scene))

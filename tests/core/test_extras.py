@@ -44,7 +44,9 @@ def _base_venv() -> Path:
     py = venv / "bin" / "python"
     if not (venv / ".ready").exists():
         subprocess.run([sys.executable, "-m", "venv", "--clear", str(venv)], check=True, timeout=120)
-        r = subprocess.run([str(py), "-m", "pip", "install", "-q", "-e", str(ROOT)], capture_output=True, text=True, timeout=600)
+        r = subprocess.run(
+            [str(py), "-m", "pip", "install", "-q", "-e", str(ROOT)], capture_output=True, text=True, timeout=600
+        )
         if r.returncode != 0:
             pytest.skip(f"pip could not install the base package (no package index?): {r.stderr.strip()[-300:]}")
         (venv / ".ready").touch()

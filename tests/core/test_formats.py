@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 
 import pytest
-
 from core_helpers import box, can, goals, scene
+
 from lgmcts import InputError, load_goals, load_plan, load_scene, save_json
 from lgmcts.formats import parse_goals, parse_scene
 from lgmcts.scene import Scene
@@ -25,13 +25,23 @@ def test_example_round_trip(example_scene, example_goals, tmp_path):
 
 
 def test_every_shape_type_builds_a_footprint():
-    spec = parse_scene(scene(
-        box(1, 0.0, 0.0),
-        can(2, 0.2, 0.0),
-        {"id": 3, "name": "tile", "shape": {"type": "polygon", "points": [[0, 0], [0.04, 0], [0, 0.04]], "height": 0.01},
-         "pose": [-0.2, 0.0, 0.3]},
-        {"id": 4, "name": "blob", "shape": {"type": "points", "points": [[0.1, 0.1, 0.0], [0.14, 0.1, 0.0], [0.12, 0.15, 0.05]]}},
-    ))
+    spec = parse_scene(
+        scene(
+            box(1, 0.0, 0.0),
+            can(2, 0.2, 0.0),
+            {
+                "id": 3,
+                "name": "tile",
+                "shape": {"type": "polygon", "points": [[0, 0], [0.04, 0], [0, 0.04]], "height": 0.01},
+                "pose": [-0.2, 0.0, 0.3],
+            },
+            {
+                "id": 4,
+                "name": "blob",
+                "shape": {"type": "points", "points": [[0.1, 0.1, 0.0], [0.14, 0.1, 0.0], [0.12, 0.15, 0.05]]},
+            },
+        )
+    )
     sc = Scene.from_spec(spec)
     assert sc.n == 4
     # A point cloud's pose is derived from its footprint centroid, its height from the z extent.
@@ -46,14 +56,44 @@ def test_every_shape_type_builds_a_footprint():
 
 
 BAD_SCENES = [
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [box(1, 0.5, 0.5), box(1, 0.2, 0.2)]}, "duplicate object id 1"),
+    (
+        {"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [box(1, 0.5, 0.5), box(1, 0.2, 0.2)]},
+        "duplicate object id 1",
+    ),
     ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [box(1, 0.5, 0.5, on=2), box(2, 0.5, 0.5, on=1)]}, "cycle"),
     ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [box(1, 1.5, 0.5)]}, "outside the workspace"),
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [{"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, -1, 0.1]}, "pose": [0.5, 0.5, 0]}]}, "box size must be positive"),
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [{"id": 1, "name": "b", "shape": {"type": "blob"}, "pose": [0.5, 0.5, 0]}]}, "invalid scene"),
+    (
+        {
+            "workspace": {"x": [0, 1], "y": [0, 1]},
+            "objects": [
+                {"id": 1, "name": "b", "shape": {"type": "box", "size": [0.1, -1, 0.1]}, "pose": [0.5, 0.5, 0]}
+            ],
+        },
+        "box size must be positive",
+    ),
+    (
+        {
+            "workspace": {"x": [0, 1], "y": [0, 1]},
+            "objects": [{"id": 1, "name": "b", "shape": {"type": "blob"}, "pose": [0.5, 0.5, 0]}],
+        },
+        "invalid scene",
+    ),
     ({"workspace": {"x": [1, 0], "y": [0, 1]}, "objects": [box(1, 0.5, 0.5)]}, "min < max"),
     ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [box(1, 0.5, 0.5, on=7)]}, "unknown object 7"),
-    ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [{"id": 1, "name": "p", "shape": {"type": "polygon", "points": [[0, 0], [1, 1], [2, 2]], "height": 0.1}, "pose": [0.5, 0.5, 0]}]}, "positive area"),
+    (
+        {
+            "workspace": {"x": [0, 1], "y": [0, 1]},
+            "objects": [
+                {
+                    "id": 1,
+                    "name": "p",
+                    "shape": {"type": "polygon", "points": [[0, 0], [1, 1], [2, 2]], "height": 0.1},
+                    "pose": [0.5, 0.5, 0],
+                }
+            ],
+        },
+        "positive area",
+    ),
     ({"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": []}, "no objects"),
 ]
 
@@ -92,14 +132,20 @@ def test_goals_checked_against_scene():
     with pytest.raises(InputError, match="unknown object id 9"):
         parse_goals(goals({"pattern": "line", "objects": [1, 9]})).check_against(sc)
     with pytest.raises(InputError, match="cycle"):
-        parse_goals(goals({"pattern": "left", "objects": [1], "anchor": 2},
-                          {"pattern": "left", "objects": [2], "anchor": 1})).check_against(sc)
+        parse_goals(
+            goals({"pattern": "left", "objects": [1], "anchor": 2}, {"pattern": "left", "objects": [2], "anchor": 1})
+        ).check_against(sc)
     with pytest.raises(InputError, match="on the table"):
-        parse_goals(goals({"pattern": "tower", "objects": [1, 2]},
-                          {"pattern": "line", "objects": [2, 3]})).check_against(sc)
+        parse_goals(
+            goals({"pattern": "tower", "objects": [1, 2]}, {"pattern": "line", "objects": [2, 3]})
+        ).check_against(sc)
     with pytest.raises(InputError, match="two different pose goals"):
-        parse_goals(goals({"pattern": "pose", "objects": [1], "pose": [0, 0, 0]},
-                          {"pattern": "pose", "objects": [1], "pose": [0.1, 0, 0]})).check_against(sc)
+        parse_goals(
+            goals(
+                {"pattern": "pose", "objects": [1], "pose": [0, 0, 0]},
+                {"pattern": "pose", "objects": [1], "pose": [0.1, 0, 0]},
+            )
+        ).check_against(sc)
 
 
 def test_missing_and_malformed_files(tmp_path):

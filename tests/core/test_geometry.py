@@ -85,8 +85,11 @@ def test_wrap_angle_is_vectorised():
 
 
 _polys = st.lists(
-    st.tuples(st.floats(-0.3, 0.3), st.floats(-0.3, 0.3), st.floats(-3.2, 3.2), st.floats(0.01, 0.08), st.floats(0.01, 0.08)),
-    min_size=1, max_size=12,
+    st.tuples(
+        st.floats(-0.3, 0.3), st.floats(-0.3, 0.3), st.floats(-3.2, 3.2), st.floats(0.01, 0.08), st.floats(0.01, 0.08)
+    ),
+    min_size=1,
+    max_size=12,
 )
 
 
@@ -120,8 +123,14 @@ def test_place_each_matches_transform(rows):
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.floats(0.01, 0.05), st.floats(0.01, 0.05), st.floats(-0.01, 0.01), st.floats(0, 2 * np.pi),
-       st.floats(-0.5, 0.5), st.booleans())
+@given(
+    st.floats(0.01, 0.05),
+    st.floats(0.01, 0.05),
+    st.floats(-0.01, 0.01),
+    st.floats(0, 2 * np.pi),
+    st.floats(-0.5, 0.5),
+    st.booleans(),
+)
 def test_overlapping_matches_exact_shapes(r1, r2, gap, ang, yaw, discs):
     # Discs against their circles' overlap; boxes against shapely's intersection area.
     d = r1 + r2 + gap
@@ -140,15 +149,29 @@ def test_overlapping_matches_exact_shapes(r1, r2, gap, ang, yaw, discs):
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.lists(st.tuples(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(0.01, 0.05)), min_size=1, max_size=6),
-       st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(0.01, 0.05), st.sampled_from([0.0, 0.002]))
+@given(
+    st.lists(st.tuples(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2), st.floats(0.01, 0.05)), min_size=1, max_size=6),
+    st.floats(-0.2, 0.2),
+    st.floats(-0.2, 0.2),
+    st.floats(0.01, 0.05),
+    st.sampled_from([0.0, 0.002]),
+)
 def test_colliding_near_decides_disc_pairs_on_circles(obs, x, y, r, clearance):
     xy = np.array([[a, b] for a, b, _ in obs])
     radii = np.array([c for _, _, c in obs])
-    polys = np.array([shapely.polygons(geo.circle_footprint(c) + (a, b)) for a, b, c in obs])
+    polys = np.array([shapely.polygons(geo.circle_footprint(c) + np.array([a, b])) for a, b, c in obs])
     rr = radii / np.cos(np.pi / geo.CIRCLE_SEGMENTS)
-    me = shapely.polygons(geo.circle_footprint(r) + (x, y))
-    _, oi = geo.colliding_near(np.array([me]), np.array([[x, y]]), r / np.cos(np.pi / geo.CIRCLE_SEGMENTS), polys, xy, rr,
-                               clearance, cand_disc=r, obs_disc=radii)
+    me = shapely.polygons(geo.circle_footprint(r) + np.array([x, y]))
+    _, oi = geo.colliding_near(
+        np.array([me]),
+        np.array([[x, y]]),
+        r / np.cos(np.pi / geo.CIRCLE_SEGMENTS),
+        polys,
+        xy,
+        rr,
+        clearance,
+        cand_disc=r,
+        obs_disc=radii,
+    )
     want = np.flatnonzero(np.hypot(*(xy - (x, y)).T) <= r + radii + clearance + 1e-12)
     assert sorted(oi.tolist()) == want.tolist()

@@ -7,9 +7,8 @@ planner improvement), regenerate with ``make golden`` and review the diff of
 
 from __future__ import annotations
 
-import pytest
-
 import golden
+import pytest
 
 RECORDED = golden.load()
 RUNS = golden.runs()

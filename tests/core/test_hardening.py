@@ -135,20 +135,20 @@ def test_ids_are_json_integers(bad, where):
     sc = scene(box(1, 0.0, 0.0), box(2, 0.2, 0.0))
     if where == "object":
         sc["objects"][0]["id"] = bad
-        with pytest.raises(InputError, match="JSON integers|within"):
+        with pytest.raises(InputError, match=r"JSON integers|within"):
             parse_scene(sc)
     elif where == "on":
         sc["objects"][1]["on"] = bad
-        with pytest.raises(InputError, match="JSON integers|within"):
+        with pytest.raises(InputError, match=r"JSON integers|within"):
             parse_scene(sc)
     elif where == "goal":
-        with pytest.raises(InputError, match="JSON integers|within"):
+        with pytest.raises(InputError, match=r"JSON integers|within"):
             parse_goals(goals({"pattern": "line", "objects": [bad, 2]}))
     elif where == "anchor":
-        with pytest.raises(InputError, match="JSON integers|within"):
+        with pytest.raises(InputError, match=r"JSON integers|within"):
             parse_goals(goals({"pattern": "left", "objects": [2], "anchor": bad}))
     else:
-        with pytest.raises(InputError, match="JSON integers|within"):
+        with pytest.raises(InputError, match=r"JSON integers|within"):
             parse_plan({"solved": True, "actions": [{"object": bad, "to": [0, 0, 0]}]})
 
 

@@ -8,10 +8,10 @@ import re
 
 import numpy as np
 import pytest
+from core_helpers import box, can, scene
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from core_helpers import box, can, scene
 from lgmcts import check, plan
 from lgmcts.errors import InputError
 from lgmcts.formats import load_goals, parse_goals, parse_scene, save_json, to_dict
@@ -107,35 +107,52 @@ def test_params_round_trip_and_old_files_unchanged(example_goals, tmp_path):
     save_json(spec, path)
     assert load_goals(path) == spec
     # Case and spacing of names are normalised.
-    assert parse_goals([{"pattern": "line", "objects": [1, 2], "region": " Top   LEFT ", "facing": "North"}]).goals[0].region == "top left"
+    assert (
+        parse_goals([{"pattern": "line", "objects": [1, 2], "region": " Top   LEFT ", "facing": "North"}])
+        .goals[0]
+        .region
+        == "top left"
+    )
 
 
-@pytest.mark.parametrize("goal, words", [
-    ({"pattern": "left", "objects": [1], "anchor": 2, "size": "large"}, "takes no 'size'"),
-    ({"pattern": "pose", "objects": [1], "pose": [0, 0, 0], "facing": "north"}, "takes no 'facing'"),
-    ({"pattern": "line", "objects": [1, 2], "region": "upper left"}, "unknown region"),
-    ({"pattern": "line", "objects": [1, 2], "region": [0.2, 0.1, 0, 1]}, "min < max"),
-    ({"pattern": "line", "objects": [1, 2], "region": [0, 1, 2]}, "a region is a name"),
-    ({"pattern": "line", "objects": [1, 2], "size": "huge"}, "unknown size"),
-    ({"pattern": "line", "objects": [1, 2], "size": 0}, "positive"),
-    ({"pattern": "line", "objects": [1, 2], "size": True}, "true/false"),
-    ({"pattern": "line", "objects": [1, 2], "facing": "up"}, "unknown facing"),
-    ({"pattern": "line", "objects": [1, 2], "facing": [1.0]}, "a name or a number"),
-])
+@pytest.mark.parametrize(
+    "goal, words",
+    [
+        ({"pattern": "left", "objects": [1], "anchor": 2, "size": "large"}, "takes no 'size'"),
+        ({"pattern": "pose", "objects": [1], "pose": [0, 0, 0], "facing": "north"}, "takes no 'facing'"),
+        ({"pattern": "line", "objects": [1, 2], "region": "upper left"}, "unknown region"),
+        ({"pattern": "line", "objects": [1, 2], "region": [0.2, 0.1, 0, 1]}, "min < max"),
+        ({"pattern": "line", "objects": [1, 2], "region": [0, 1, 2]}, "a region is a name"),
+        ({"pattern": "line", "objects": [1, 2], "size": "huge"}, "unknown size"),
+        ({"pattern": "line", "objects": [1, 2], "size": 0}, "positive"),
+        ({"pattern": "line", "objects": [1, 2], "size": True}, "true/false"),
+        ({"pattern": "line", "objects": [1, 2], "facing": "up"}, "unknown facing"),
+        ({"pattern": "line", "objects": [1, 2], "facing": [1.0]}, "a name or a number"),
+    ],
+)
 def test_bad_params_are_one_line_errors(goal, words):
     with pytest.raises(InputError) as err:
         parse_goals([goal])
     assert words in str(err.value) and "\n" not in str(err.value)
 
 
-@pytest.mark.parametrize("a, b, words", [
-    ({"facing": "north"}, {"facing": "east"}, "must face both 'north' (goal 0) and 'east' (goal 1)"),
-    ({"region": "top left"}, {"region": "bottom right"}, "must lie both in 'top left' (goal 0) and in 'bottom right' (goal 1)"),
-    ({"region": "top left"}, {"region": [0.2, 0.4, -0.3, 0.0]}, "must lie both"),
-])
+@pytest.mark.parametrize(
+    "a, b, words",
+    [
+        ({"facing": "north"}, {"facing": "east"}, "must face both 'north' (goal 0) and 'east' (goal 1)"),
+        (
+            {"region": "top left"},
+            {"region": "bottom right"},
+            "must lie both in 'top left' (goal 0) and in 'bottom right' (goal 1)",
+        ),
+        ({"region": "top left"}, {"region": [0.2, 0.4, -0.3, 0.0]}, "must lie both"),
+    ],
+)
 def test_contradicting_params_are_refused(a, b, words):
     sc = parse_scene(scene(box(1, 0, 0), box(2, 0.1, 0), box(3, 0.2, 0), box(4, -0.2, 0.1)))
-    spec = parse_goals([{"pattern": "line", "objects": [1, 2], **a}, {"pattern": "right", "objects": [1], "anchor": 4, **b}])
+    spec = parse_goals(
+        [{"pattern": "line", "objects": [1, 2], **a}, {"pattern": "right", "objects": [1], "anchor": 4, **b}]
+    )
     with pytest.raises(InputError, match="object 1 " + re.escape(words)):
         spec.check_against(sc)
 
@@ -143,10 +160,18 @@ def test_contradicting_params_are_refused(a, b, words):
 def test_compatible_params_are_kept():
     sc = parse_scene(scene(box(1, 0, 0), box(2, 0.1, 0), box(3, 0.2, 0), box(4, -0.2, 0.1)))
     # Adjacent cells meet, a heading and an angle within tolerance agree, a band contains its cell.
-    parse_goals([{"pattern": "line", "objects": [1, 2], "region": "top left", "facing": "north"},
-                 {"pattern": "right", "objects": [1], "anchor": 4, "region": "top center", "facing": 1.7}]).check_against(sc)
-    parse_goals([{"pattern": "line", "objects": [1, 2], "region": "top"},
-                 {"pattern": "line", "objects": [1, 3], "region": "top right"}]).check_against(sc)
+    parse_goals(
+        [
+            {"pattern": "line", "objects": [1, 2], "region": "top left", "facing": "north"},
+            {"pattern": "right", "objects": [1], "anchor": 4, "region": "top center", "facing": 1.7},
+        ]
+    ).check_against(sc)
+    parse_goals(
+        [
+            {"pattern": "line", "objects": [1, 2], "region": "top"},
+            {"pattern": "line", "objects": [1, 3], "region": "top right"},
+        ]
+    ).check_against(sc)
 
 
 def test_region_box_off_the_workspace_is_refused():
@@ -250,16 +275,26 @@ def _place_all(sc: Scene, goal: dict, rng: np.random.Generator, tries: int = 40)
     return world
 
 
-_PARAM = st.fixed_dictionaries({}, optional={
-    "region": st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS] + list(ROWS) + list(COLUMNS) + ["center"]),
-    "size": st.sampled_from(["small", "medium", "large"]),
-    "facing": st.one_of(st.sampled_from(list(HEADINGS)), st.floats(-math.pi, math.pi)),
-})
+_PARAM = st.fixed_dictionaries(
+    {},
+    optional={
+        "region": st.sampled_from(
+            [f"{r} {c}" for r in ROWS for c in COLUMNS] + list(ROWS) + list(COLUMNS) + ["center"]
+        ),
+        "size": st.sampled_from(["small", "medium", "large"]),
+        "facing": st.one_of(st.sampled_from(list(HEADINGS)), st.floats(-math.pi, math.pi)),
+    },
+)
 
 
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(pattern=st.sampled_from(["line", "circle", "rectangle", "tower", "right"]), n=st.integers(2, 6),
-       params=_PARAM, seed=st.integers(0, 10_000), wide=st.booleans())
+@given(
+    pattern=st.sampled_from(["line", "circle", "rectangle", "tower", "right"]),
+    n=st.integers(2, 6),
+    params=_PARAM,
+    seed=st.integers(0, 10_000),
+    wide=st.booleans(),
+)
 def test_prior_samples_satisfy_pattern_and_params(pattern, n, params, seed, wide):
     """Objects placed from a prior with parameters meet the pattern and the parameters."""
     n = max(n, {"circle": 3, "rectangle": 4}.get(pattern, 1))
@@ -268,8 +303,12 @@ def test_prior_samples_satisfy_pattern_and_params(pattern, n, params, seed, wide
     sc = Scene.from_spec(parse_scene(scene(*objs, x=ws[0], y=ws[1])))
     goal = {"pattern": pattern, "objects": list(range(1, n + 1)), **params}
     if pattern == "right":
-        goal = {"pattern": "right", "objects": list(range(1, n + 1)), "anchor": n + 1,
-                **{k: v for k, v in params.items() if k != "size"}}
+        goal = {
+            "pattern": "right",
+            "objects": list(range(1, n + 1)),
+            "anchor": n + 1,
+            **{k: v for k, v in params.items() if k != "size"},
+        }
     if pattern == "tower":
         goal.pop("size", None)
     rng = np.random.default_rng(seed)
@@ -300,7 +339,9 @@ def test_prior_sizes_differ():
     sc = Scene.from_spec(parse_scene(scene(*objs)))
     radii = {}
     for size in ("small", "medium", "large"):
-        world = _place_all(sc, {"pattern": "circle", "objects": [1, 2, 3, 4, 5], "size": size}, np.random.default_rng(1))
+        world = _place_all(
+            sc, {"pattern": "circle", "objects": [1, 2, 3, 4, 5], "size": size}, np.random.default_rng(1)
+        )
         radii[size] = fit_circle(np.array(world.poses)[:, :2])[1]
     assert radii["small"] < radii["medium"] < radii["large"]
 
@@ -308,13 +349,16 @@ def test_prior_sizes_differ():
 # ---------------------------------------------------------------- planner
 
 
-@pytest.mark.parametrize("goal", [
-    {"pattern": "circle", "objects": [1, 2, 3, 4], "region": "top left", "size": "small", "facing": "north"},
-    {"pattern": "line", "objects": [1, 2, 3, 4], "region": "bottom", "size": "large", "facing": "north"},
-    {"pattern": "rectangle", "objects": [1, 2, 3, 4], "region": "right", "facing": "east", "size": "medium"},
-    {"pattern": "tower", "objects": [2, 3, 4], "region": "bottom right", "facing": "west"},
-    {"pattern": "right", "objects": [1, 4], "anchor": 7, "region": "top", "facing": 0.5},
-])
+@pytest.mark.parametrize(
+    "goal",
+    [
+        {"pattern": "circle", "objects": [1, 2, 3, 4], "region": "top left", "size": "small", "facing": "north"},
+        {"pattern": "line", "objects": [1, 2, 3, 4], "region": "bottom", "size": "large", "facing": "north"},
+        {"pattern": "rectangle", "objects": [1, 2, 3, 4], "region": "right", "facing": "east", "size": "medium"},
+        {"pattern": "tower", "objects": [2, 3, 4], "region": "bottom right", "facing": "west"},
+        {"pattern": "right", "objects": [1, 4], "anchor": 7, "region": "top", "facing": 0.5},
+    ],
+)
 @pytest.mark.parametrize("method", ["lgmcts", "greedy"])
 def test_plans_with_params_pass_check(example_scene, goal, method):
     p = plan(example_scene, {"goals": [goal]}, seed=0, max_iter=3000, method=method)
@@ -343,6 +387,7 @@ def _cli(*args: str):
     return subprocess.run([sys.executable, "-m", "lgmcts", *args], capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.slow
 def test_cli_plans_and_checks_goals_with_params(example_scene, root, tmp_path):
     goals_file = root / "examples" / "goals_params.json"
     spec = json.loads(goals_file.read_text())
@@ -362,6 +407,7 @@ def test_cli_plans_and_checks_goals_with_params(example_scene, root, tmp_path):
     assert r.returncode == 1 and "outside region 'bottom left'" in r.stdout
 
 
+@pytest.mark.slow
 def test_cli_bad_param_exits_2(example_scene, tmp_path):
     goals_file = tmp_path / "goals.json"
     goals_file.write_text(json.dumps({"goals": [{"pattern": "line", "objects": [1, 2], "region": "upstairs"}]}))
@@ -386,13 +432,20 @@ def test_turn_relation():
 
 def test_every_goal_file_in_the_repository_loads_unchanged(root):
     """Goal JSON written before the parameters existed reads and writes back identically."""
-    docs = [json.loads(p.read_text()) for p in (root / "examples" / "goals.json", root / "tests" / "viz" / "data" / "cluttered_goals.json")]
+    docs = [
+        json.loads(p.read_text())
+        for p in (root / "examples" / "goals.json", root / "tests" / "viz" / "data" / "cluttered_goals.json")
+    ]
     docs.append(json.loads((root / "tests" / "viz" / "data" / "cluttered_plan.json").read_text())["goals"])
     for line in (root / "data" / "parse_cases.jsonl").read_text().splitlines():
         case = json.loads(line)
         exp = case.get("expect")
         # Cases may carry keys of the test harness (e.g. anchor_any); those are not goal files.
-        if isinstance(exp, dict) and "goals" in exp and all(set(g) <= {"pattern", "objects", "anchor", "pose"} for g in exp["goals"]):
+        if (
+            isinstance(exp, dict)
+            and "goals" in exp
+            and all(set(g) <= {"pattern", "objects", "anchor", "pose"} for g in exp["goals"])
+        ):
             docs.append(exp)
     assert len(docs) > 100
     for doc in docs:
@@ -402,10 +455,13 @@ def test_every_goal_file_in_the_repository_loads_unchanged(root):
 
 
 @settings(max_examples=60, deadline=None)
-@given(cell=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
-       other=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
-       facing=st.sampled_from(list(HEADINGS)), other_facing=st.sampled_from(list(HEADINGS)),
-       t=st.floats(0.05, 0.95))
+@given(
+    cell=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
+    other=st.sampled_from([f"{r} {c}" for r in ROWS for c in COLUMNS]),
+    facing=st.sampled_from(list(HEADINGS)),
+    other_facing=st.sampled_from(list(HEADINGS)),
+    t=st.floats(0.05, 0.95),
+)
 def test_validator_property_region_and_facing(cell, other, facing, other_facing, t):
     """A tight line inside one cell, every object facing one way: accepted for that
     cell and heading, rejected for any other cell and any other compass heading."""

@@ -9,15 +9,17 @@ from lgmcts import check, plan
 from lgmcts.casegen import labbe_case, random_case
 from lgmcts.planner import SearchOptions
 from lgmcts.planner import polish as pol
+from lgmcts.planner.domain import Rearrangement
+from lgmcts.planner.problem import Problem
 from lgmcts.planner.search import mcts
-from lgmcts.planner.step import Problem
 from lgmcts.scene import Scene
 
 
 def _raw(case, seed):
     """A problem and the plan the search finds for it, unpolished."""
     problem = Problem.build(Scene.from_spec(case.scene), case.goals)
-    res = mcts(problem, np.random.default_rng(seed), SearchOptions(polish=False))
+    opts = SearchOptions(polish=False)
+    res = mcts(Rearrangement(problem, opts), np.random.default_rng(seed), opts)
     assert res.solved
     return problem, list(res.actions)
 

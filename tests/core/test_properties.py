@@ -8,7 +8,6 @@ from hypothesis import strategies as st
 from lgmcts import check, plan
 from lgmcts.casegen import lower_bound, random_case
 
-
 #: Runs of test_solved_plans_are_valid and how many of them were solved; the
 #: next test requires most to be, so the property is not checked on nothing.
 _RUNS: list[bool] = []

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import pytest
-
 from core_helpers import box, can, goals, scene
+
 from lgmcts import check
 
 
@@ -145,8 +145,9 @@ def test_cylinders_may_touch_whatever_their_yaw(yaw, gap, valid):
 
 
 def test_lens_area_matches_polygons():
-    from lgmcts.geometry import lens_area as _lens_area
     import shapely
+
+    from lgmcts.geometry import lens_area as _lens_area
 
     for r1, r2, d in [(0.03, 0.03, 0.05), (0.02, 0.04, 0.05), (0.03, 0.01, 0.025), (0.02, 0.02, 0.05)]:
         a = shapely.Point(0, 0).buffer(r1, 512)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -10,7 +12,7 @@ from lgmcts.errors import InputError
 from lgmcts.formats import load_scene
 from lgmcts.language.grounding import Vocabulary, find_mentions, tokenize
 from lgmcts.language.matcher import key_vocabulary
-from lgmcts.language.ir import Measure, Order, Ref, Relation, Token
+from lgmcts.language.ir import Measure, Order, Ref, Relation
 
 
 def test_tokens_carry_their_spans_and_kinds():
@@ -27,7 +29,7 @@ def test_tokens_carry_their_spans_and_kinds():
 def test_token_spans_cover_their_text(text):
     toks = tokenize(text)
     assert all(0 <= a.start < a.end <= len(text) for a in toks)
-    assert all(a.end <= b.start for a, b in zip(toks, toks[1:]))
+    assert all(a.end <= b.start for a, b in itertools.pairwise(toks))
     for t in toks:
         assert text[t.start:t.end].lower().replace("\u2019", "'") == t.text
 

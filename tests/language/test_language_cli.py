@@ -7,9 +7,12 @@ import os
 import subprocess
 import sys
 
+import pytest
 from typer.testing import CliRunner
 
 from .conftest import ROOT
+
+pytestmark = pytest.mark.slow
 
 PY = sys.executable
 TABLETOP = str(ROOT / "examples" / "tabletop.json")

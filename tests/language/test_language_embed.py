@@ -149,6 +149,7 @@ def _loaded(mods: set[str], roots: tuple[str, ...]) -> list[str]:
     return sorted(m for m in mods if any(m == r or m.startswith(r + ".") for r in roots))
 
 
+@pytest.mark.slow
 def test_cli_parse_runs_without_torch_or_transformers(tmp_path):
     r, mods = _modules_after(tmp_path, "parse", TABLETOP, "put all blocks in a circle and the white bottle behind one block")
     assert r.returncode == 0, r.stderr

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from lgmcts.language import parse
 from lgmcts.language.evaluate import evaluate, goals_match, load_cases
 
@@ -16,6 +18,7 @@ def test_labelled_set_is_large_and_covers_refusals():
     assert sum(c.refuse is not None for c in cases) >= 30
 
 
+@pytest.mark.slow
 def test_accuracy_on_the_labelled_set(matcher):
     report = evaluate(load_cases(CASES), lambda s, t: parse(s, t))
     fails = [(r.case.id, r.error or r.got) for r in report.failures]

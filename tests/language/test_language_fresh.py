@@ -54,6 +54,7 @@ KNOWN = {"freshP-refusal-020", "freshU-combination-007", "freshXb-pattern-words-
          "fresh6b-pattern-words-004", "fresh6e-collective-negation-count-014", "fresh6e-stack-order-008"}
 
 
+@pytest.mark.slow
 def test_fresh_dev_split_holds_and_answers_no_wrong_goal(matcher):
     dev = [c for c in CASES if c.split == "dev"]
     report = evaluate(dev, lambda s, t: parse_rules(s, t, matcher=matcher))
@@ -546,6 +547,7 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("toys", "Would you put the letters in a circle and the red block on the green block?",
      [{"pattern": "circle", "objects": [1, 2, 3, 4]}, {"pattern": "tower", "objects": [8, 5]}]),
 ])
+@pytest.mark.slow
 def test_fresh_readings(scene, text, expect, matcher):
     got = _goals(scene, text, matcher)
 
@@ -556,6 +558,7 @@ def test_fresh_readings(scene, text, expect, matcher):
     assert sorted(map(key, got)) == sorted(map(key, expect)), got
 
 
+@pytest.mark.slow
 def test_open_order_sentence_keeps_the_stack(matcher):
     got = _goals("pantry", "Can the bowls become a tower? Any order is fine.", matcher)
     assert len(got) == 1 and got[0]["pattern"] == "tower" and sorted(got[0]["objects"]) == [5, 6, 7]
@@ -607,6 +610,7 @@ def test_open_order_sentence_keeps_the_stack(matcher):
     # "it" as a support after a chosen object and its reference object
     ("home", "put one of the mugs left of the phone and the other one on it", "'it' is unclear"),
 ])
+@pytest.mark.slow
 def test_fresh_refusals(scene, text, why, matcher):
     with pytest.raises(InputError, match=why):
         _goals(scene, text, matcher)

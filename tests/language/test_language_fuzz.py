@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lgmcts.errors import InputError
 from lgmcts.language import parse
+
+pytestmark = pytest.mark.slow
 
 WORDS = (
     "put place stack line up arrange all the a one two three other another except but not red blue green yellow "

@@ -54,6 +54,7 @@ def test_every_class_of_the_issue_has_cases():
     assert all(sum(c.category == k for c in CASES) >= 6 for k in CLASSES)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("category", CLASSES)
 def test_class(category, matcher):
     bad = []
@@ -66,6 +67,7 @@ def test_class(category, matcher):
     assert not bad, "\n".join(bad)
 
 
+@pytest.mark.slow
 def test_known_gaps_still_refused_not_wrong(matcher):
     """The cases not read yet are refused, never answered with a wrong goal."""
     for case in CASES:
@@ -107,6 +109,7 @@ def test_stack_roles():
     assert stack_roles(tuple("the mug next to the bowl".split()), 2) is None
 
 
+@pytest.mark.slow
 def test_unsupported_arrangement_words_are_refused_not_approximated(tabletop, matcher):
     from lgmcts.language import parse
 
@@ -115,11 +118,13 @@ def test_unsupported_arrangement_words_are_refused_not_approximated(tabletop, ma
             parse(tabletop, f"put all blocks in a {shape}")
 
 
+@pytest.mark.slow
 def test_parse_is_deterministic(matcher):
     for case in CASES[:30]:
         assert _run(case, matcher) == _run(case, matcher)
 
 
+@pytest.mark.slow
 def test_repeated_description_in_a_list_names_each_match_once(matcher):
     # LGMCTS-D lists every object by colour and name, repeating a description
     # shared by two objects: "red can, red can" then means both red cans.
@@ -134,6 +139,7 @@ def test_repeated_description_in_a_list_names_each_match_once(matcher):
         goal_dicts(s2, "Place red can, white can at a line pattern", matcher=matcher)
 
 
+@pytest.mark.slow
 def test_relations_stated_for_each_member_of_an_arrangement_are_one_goal(matcher):
     k = CASES[0].scene
     got = goal_dicts(k, "put the fork left of the plate; put the knife left of the plate; put the fork and the knife "
@@ -157,11 +163,13 @@ def test_relations_stated_for_each_member_of_an_arrangement_are_one_goal(matcher
         "put the cans in a line pointing at the bottle",
     ],
 )
+@pytest.mark.slow
 def test_commands_that_would_become_wrong_goals_are_refused(text, matcher):
     with pytest.raises(InputError):
         goal_dicts(CASES[0].scene, text, matcher=matcher)
 
 
+@pytest.mark.slow
 def test_reference_guards(matcher):
     k = CASES[0].scene
     # "it" is one object: after "the mugs", it is the plate they were placed by.

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import json
+import socket
 import threading
+import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
 import pytest
@@ -146,6 +148,64 @@ def test_unreachable_endpoint_and_missing_model(tabletop, monkeypatch):
     monkeypatch.delenv("LGMCTS_LLM_MODEL", raising=False)
     with pytest.raises(InputError, match="--llm-model"):
         parse(tabletop, "line up the blocks", parser="llm", llm_base_url=url)
+
+
+class _SilentServer:
+    """Accepts connections and reads requests but never answers: a server slower
+    than any timeout, whatever the load of the machine. It listens before the
+    test starts (the kernel completes connections to a listening socket), so a
+    client can always reach it and can only time out."""
+
+    def __init__(self) -> None:
+        self.sock = socket.create_server(("127.0.0.1", 0))
+        self.held: list[socket.socket] = []
+        self.thread = threading.Thread(target=self._accept, daemon=True)
+
+    def _accept(self) -> None:
+        while True:
+            try:
+                conn, _ = self.sock.accept()
+            except OSError:  # closed by __exit__
+                return
+            self.held.append(conn)
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.sock.getsockname()[1]}/v1"
+
+    def __enter__(self):
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.sock.close()
+        for conn in self.held:
+            conn.close()
+
+
+def test_a_server_slower_than_the_timeout_is_one_clear_error(tabletop):
+    from lgmcts.language.llm import LLMOptions, parse_llm
+
+    with _SilentServer() as srv:
+        with pytest.raises(InputError) as err:
+            parse_llm(tabletop, "line up the blocks",
+                      options=LLMOptions(model="m", base_url=srv.url, api_key="k", timeout=0.2, transport_retries=0))
+    assert str(err.value) == "the language model did not answer within 0.2 s"
+
+
+def test_a_timed_out_request_is_sent_again_when_retries_allow(tabletop):
+    from lgmcts.language.llm import LLMOptions, parse_llm
+
+    with _SilentServer() as srv:
+        with pytest.raises(InputError, match="did not answer within 0.2 s"):
+            parse_llm(tabletop, "line up the blocks",
+                      options=LLMOptions(model="m", base_url=srv.url, api_key="k", timeout=0.2, transport_retries=1))
+        # One try and one retry, each on a connection of its own. The accepting
+        # thread may lag behind the kernel on a busy machine: wait for it.
+        give_up = time.monotonic() + 30
+        while len(srv.held) < 2 and time.monotonic() < give_up:
+            time.sleep(0.05)
+        assert len(srv.held) == 2
 
 
 def test_transient_server_errors_are_retried(tabletop):

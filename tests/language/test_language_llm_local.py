@@ -1,7 +1,10 @@
 """The LLM parser and LFSP against a real server: llama-cpp-python serving
 Gemma 3 270M on loopback (the ``llm-local`` extra). A few short requests;
 what they check is the protocol (structured output as the real server takes
-it, timeouts, validation), not the small model's accuracy."""
+it, validation), not the small model's accuracy. A server slower than the
+client's timeout is tested in test_language_llm.py with a server that never
+answers: whether this one answers within a given time depends on the load of
+the machine."""
 
 from __future__ import annotations
 
@@ -58,11 +61,3 @@ def test_lfsp_over_the_real_server(server, tabletop):
     for a in plan.actions:
         assert a.object in ids and all(math.isfinite(v) for v in a.to)
         assert w.x[0] <= a.to[0] <= w.x[1] and w.y[0] <= a.to[1] <= w.y[1]
-
-
-def test_a_server_slower_than_the_timeout_is_one_clear_error(server, tabletop):
-    with pytest.raises(InputError) as err:
-        llm_mod.parse_llm(
-            tabletop, "line up the blocks", options=_opts(server, timeout=0.05, transport_retries=0)
-        )
-    assert "did not answer within 0.05 s" in str(err.value) and "\n" not in str(err.value)

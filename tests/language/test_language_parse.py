@@ -9,6 +9,8 @@ from lgmcts.formats import to_dict
 from lgmcts.language import parse
 from lgmcts.language.matcher import Encoder, PatternMatcher
 
+pytestmark = pytest.mark.slow
+
 
 def _goals(scene, text):
     return to_dict(parse(scene, text))["goals"]

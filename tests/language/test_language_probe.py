@@ -38,6 +38,7 @@ def test_probe_set_shape():
     assert sum(c.refuse is not None for c in CASES) >= 20
 
 
+@pytest.mark.slow
 def test_probe_set_no_unexpected_wrong_goals(matcher):
     report = evaluate(CASES, lambda s, t: parse_rules(s, t, matcher=matcher))
     wrong = [r.case.id for r in report.results if not r.ok and r.got is not None]
@@ -45,6 +46,7 @@ def test_probe_set_no_unexpected_wrong_goals(matcher):
     assert report.accuracy >= 0.93
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scene, text, why", [
     ("blocks", "put the blue things on top of each other in a circle", "more than one arrangement"),
     ("home", "line the cans up in a circle", "more than one arrangement"),
@@ -58,6 +60,7 @@ def test_unsure_commands_are_refused_with_the_reason(scene, text, why, matcher):
         goal_dicts(_scene(scene), text, matcher=matcher)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("scene, text, pattern", [
     ("blocks", "line the blocks up in order of size", "line"),  # a line carries no order
     ("pantry", "stack the bowls, any order", "tower"),
@@ -69,6 +72,7 @@ def test_one_arrangement_still_read(scene, text, pattern, matcher):
     assert [g["pattern"] for g in got] == [pattern]
 
 
+@pytest.mark.slow
 def test_stack_roles_keep_their_references_apart(matcher):
     # "red at the bottom and blue on top": each role phrase leaves a mark, so
     # "red" and "blue" stay two references, each with its own role.
@@ -80,6 +84,7 @@ def test_stack_roles_keep_their_references_apart(matcher):
     assert got == [{"pattern": "tower", "objects": [1, 3, 2]}]
 
 
+@pytest.mark.slow
 def test_bare_colour_takes_the_noun_of_an_earlier_reference(matcher):
     got = goal_dicts(_scene("blocks"), "put the red block in front of the white bowl and blue behind the black bowl",
                      matcher=matcher)
@@ -92,6 +97,7 @@ def test_bare_colour_takes_the_noun_of_an_earlier_reference(matcher):
         goal_dicts(_scene("home"), "put the red mug left of the plate and green behind the plate", matcher=matcher)
 
 
+@pytest.mark.slow
 def test_a_definite_count_must_match_the_scene(matcher):
     # "the three cans" with four cans: which three is not said.
     with pytest.raises(InputError, match="speaks of 3"):
@@ -102,6 +108,7 @@ def test_a_definite_count_must_match_the_scene(matcher):
     assert got[0]["pattern"] == "line" and len(got[0]["objects"]) == 3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("text", ["put the cans in a line running north to south", "put the cans in a diagonal line"])
 def test_a_direction_that_is_no_facing_is_refused(text, matcher):
     with pytest.raises(InputError, match="direction"):
@@ -110,6 +117,7 @@ def test_a_direction_that_is_no_facing_is_refused(text, matcher):
     assert got == [{"pattern": "line", "objects": [1, 2, 3, 4], "facing": "north"}]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("text, goal", [
     ("have the phone to the left of the plate", {"pattern": "left", "objects": [15], "anchor": 8}),
     ("make sure the red mug is behind the plate", {"pattern": "behind", "objects": [1], "anchor": 8}),
@@ -118,6 +126,7 @@ def test_register_verbs_that_ask_for_an_outcome(text, goal, matcher):
     assert goal_dicts(_scene("home"), text, matcher=matcher) == [goal]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("text", ["put the large cans in a line", "put a small can behind the box"])
 def test_a_size_word_that_picks_objects_is_refused(text, matcher):
     with pytest.raises(InputError, match="size word"):
@@ -127,6 +136,7 @@ def test_a_size_word_that_picks_objects_is_refused(text, matcher):
     assert got == [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": "large"}]
 
 
+@pytest.mark.slow
 def test_stack_order_words(matcher):
     b = _scene("blocks")
     # "top to bottom" lists the top first; "top" here is no role of "green".

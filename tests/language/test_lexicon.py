@@ -27,6 +27,9 @@ def test_macros_match_exactly_their_words():
     nouns = {n for ns in lexicon.SHAPE_NOUNS.values() for n in ns}
     assert {w for w in nouns if re.fullmatch(shape, w)} == nouns
     assert not re.fullmatch(shape, "lines")
+    for name, words in lexicon.SHAPE_NOUNS.items():
+        assert all(re.fullmatch(lexicon.MACROS[name.upper()], w) for w in words)
+        assert not any(re.fullmatch(lexicon.MACROS[name.upper()], w) for w in nouns - set(words))
 
 
 def test_alternation_puts_longer_words_first():

@@ -71,7 +71,18 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> Server:
     256 KiB body limit."""
     log = tmp_path_factory.mktemp("service") / "server.log"
     proc, url = start_server(
-        "--workers", "2", "--preload-language", "--timeout", "60", "--grace", "1", "--max-body", str(MAX_BODY), "--max-iter", "5000", log=log
+        "--workers",
+        "2",
+        "--preload-language",
+        "--timeout",
+        "60",
+        "--grace",
+        "1",
+        "--max-body",
+        str(MAX_BODY),
+        "--max-iter",
+        "5000",
+        log=log,
     )
     try:
         yield Server(url=url, pid=proc.pid, log=log)

@@ -15,6 +15,8 @@ import lgmcts
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_scene
 
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())
 GOALS = json.loads((ROOT / "examples" / "goals.json").read_text())
@@ -25,7 +27,7 @@ def _plan(client: httpx.Client, **options) -> httpx.Response:
     return client.post("/plan", json={"scene": SCENE, "goals": GOALS, "options": options})
 
 
-def _wait_for_restart(client: httpx.Client, before: int, within: float = 10.0) -> int:
+def _wait_for_restart(client: httpx.Client, before: int, within: float = 60.0) -> int:
     t_end = time.monotonic() + within
     while time.monotonic() < t_end:
         now = client.get("/healthz").json()["restarts"]
@@ -99,7 +101,8 @@ def test_viewer_page_and_api_docs(client):
     page = client.get("/")
     assert page.status_code == 200 and page.headers["content-type"].startswith("text/html")
     assert "LGMCTSViewer" in page.text and 'id="scene"' in page.text
-    assert client.get("/docs").status_code == 200
+    # The interactive page loads Swagger UI from a public CDN: off unless the operator asks (--docs).
+    assert client.get("/docs").status_code == 404 and "cdn" not in page.text.lower()
     spec = client.get("/openapi.json").json()
     assert {"/plan", "/parse", "/check", "/healthz"} <= set(spec["paths"])
     # The test-only methods stay out of the public description.
@@ -158,20 +161,48 @@ def test_bad_scene_message_equals_the_command_line(client, tmp_path):
 @pytest.mark.parametrize(
     "body, message",
     [
-        ({"scene": SCENE, "goals": {"goals": [{"pattern": "line", "objects": [1, 99]}]}}, "goal 0 (line) names unknown object id 99"),
-        ({"scene": SCENE, "goals": {"goals": [{"pattern": "circle", "objects": [1, 2]}]}}, "invalid goals at goals.0: a circle needs at least 3 objects, got 2 objects"),
+        (
+            {"scene": SCENE, "goals": {"goals": [{"pattern": "line", "objects": [1, 99]}]}},
+            "goal 0 (line) names unknown object id 99",
+        ),
+        (
+            {"scene": SCENE, "goals": {"goals": [{"pattern": "circle", "objects": [1, 2]}]}},
+            "invalid goals at goals.0: a circle needs at least 3 objects, got 2 objects",
+        ),
         ({"scene": SCENE}, "give either goals or an instruction, not both or neither"),
-        ({"scene": SCENE, "goals": GOALS, "instruction": "x"}, "give either goals or an instruction, not both or neither"),
-        ({"scene": SCENE, "goals": GOALS, "options": {"method": "astar"}}, "unknown method 'astar' (known: lgmcts, greedy, pmcts)"),
+        (
+            {"scene": SCENE, "goals": GOALS, "instruction": "x"},
+            "give either goals or an instruction, not both or neither",
+        ),
+        (
+            {"scene": SCENE, "goals": GOALS, "options": {"method": "astar"}},
+            "unknown method 'astar' (known: lgmcts, greedy, pmcts)",
+        ),
         ({"scene": SCENE, "goals": GOALS, "options": {"max_iter": 0}}, "max_iter must be at least 1"),
         ({"scene": SCENE, "goals": GOALS, "options": {"time_limit": -1}}, "time_limit must be positive"),
         ({"scene": SCENE, "goals": GOALS, "options": {"seed": -1}}, "seed must be a non-negative integer"),
         ({"scene": SCENE, "goals": GOALS, "options": {"timeout": 0}}, "timeout must be positive"),
-        ({"scene": SCENE, "goals": GOALS, "options": {"seed": "x"}}, "invalid request at options.seed: Input should be a valid integer, unable to parse string as an integer"),
+        (
+            {"scene": SCENE, "goals": GOALS, "options": {"seed": "x"}},
+            "invalid request at options.seed: Input should be a valid integer, unable to parse string as an integer",
+        ),
         ({"scene": SCENE, "goals": GOALS, "colour": 1}, "invalid request at colour: Extra inputs are not permitted"),
         ({"goals": GOALS}, "invalid request: 'scene' is required"),
     ],
-    ids=["unknown-id", "small-circle", "neither", "both", "method", "max-iter", "time-limit", "negative-seed", "timeout", "seed", "extra", "no-scene"],
+    ids=[
+        "unknown-id",
+        "small-circle",
+        "neither",
+        "both",
+        "method",
+        "max-iter",
+        "time-limit",
+        "negative-seed",
+        "timeout",
+        "seed",
+        "extra",
+        "no-scene",
+    ],
 )
 def test_bad_plan_request_is_one_line_422(client, body, message):
     r = client.post("/plan", json=body)
@@ -238,7 +269,9 @@ def test_timeout_is_504_and_a_hung_worker_is_replaced(client):
     elapsed = time.monotonic() - t0
     assert r.status_code == 504
     assert r.json() == {"detail": "planning did not finish within its wall-clock timeout"}
-    assert elapsed < 5.0  # 0.5 s asked; generous for a busy machine
+    # 0.5 s asked; the sleeper would hold the request 30 s. 15 s is wide
+    # enough for a machine several times slower than usual.
+    assert elapsed < 15.0
     # The sleeper ignores its deadline; after the 1 s grace its pool goes.
     _wait_for_restart(client, before)
     assert _plan(client).status_code == 200
@@ -250,9 +283,12 @@ def test_real_planning_past_a_tiny_timeout_is_504(client):
 
 
 def test_slow_request_does_not_block_others(server):
-    with httpx.Client(base_url=server.url, timeout=30.0) as slow_client, ThreadPoolExecutor(1) as ex:
-        slow = ex.submit(_plan, slow_client, method="_sleep", time_limit=3.0)
-        time.sleep(0.3)
+    with httpx.Client(base_url=server.url, timeout=120.0) as slow_client, ThreadPoolExecutor(1) as ex:
+        # The slow request sleeps 20 s: room for the other request to be planned
+        # and answered while it still runs, on a loaded machine too (planning
+        # that takes 0.5 s alone took 9 s beside two CPU-bound processes).
+        slow = ex.submit(_plan, slow_client, method="_sleep", time_limit=20.0)
+        time.sleep(1.0)
         with httpx.Client(base_url=server.url, timeout=30.0) as c:
             assert c.get("/healthz").status_code == 200
             assert _plan(c).status_code == 200
@@ -288,8 +324,10 @@ def test_queued_request_past_its_deadline_replaces_nothing(server):
     try:
         before = clients[0].get("/healthz").json()["restarts"]
         with ThreadPoolExecutor(2) as ex:
-            busy = [ex.submit(_plan, c, method="_sleep", time_limit=2.5) for c in clients[:2]]
-            time.sleep(0.4)
+            # 1.5 s for both to reach a worker, even on a loaded machine; they
+            # sleep 6 s, long past the queued request's 0.3 s.
+            busy = [ex.submit(_plan, c, method="_sleep", time_limit=6.0) for c in clients[:2]]
+            time.sleep(1.5)
             queued = _plan(clients[2], timeout=0.3)
             assert queued.status_code == 504
             assert all(f.result().status_code == 200 for f in busy)
@@ -308,10 +346,11 @@ def test_replacing_a_hung_pool_loses_no_other_request(server):
     try:
         before = clients[0].get("/healthz").json()["restarts"]
         with ThreadPoolExecutor(8) as ex:
+            # Each request gets 1 s to reach its worker before the next is sent.
             hung = ex.submit(_plan, clients[0], method="_sleep", time_limit=20.0, timeout=0.3)
-            time.sleep(0.2)
+            time.sleep(1.0)
             slow = ex.submit(_plan, clients[1], method="_sleep", time_limit=1.5)
-            time.sleep(0.2)
+            time.sleep(1.0)
             queued = [ex.submit(_plan, c, seed=k) for k, c in enumerate(clients[2:])]
             assert hung.result().status_code == 504
             answers = [slow.result(), *(f.result() for f in queued)]

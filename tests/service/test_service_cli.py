@@ -10,6 +10,8 @@ from typer.testing import CliRunner
 
 from lgmcts.service.cli import register
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def serve_app() -> typer.Typer:

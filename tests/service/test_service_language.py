@@ -12,6 +12,8 @@ import pytest
 
 import lgmcts
 
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())
 

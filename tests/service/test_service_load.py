@@ -5,8 +5,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 import lgmcts
 from lgmcts.service.load import fire
+
+pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())

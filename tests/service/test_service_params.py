@@ -5,7 +5,11 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 import lgmcts
+
+pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = json.loads((ROOT / "examples" / "tabletop.json").read_text())
@@ -33,4 +37,6 @@ def test_bad_param_is_one_line_422(client):
     goals = {"goals": [{"pattern": "line", "objects": [1, 2], "facing": "upwards"}]}
     r = client.post("/plan", json={"scene": SCENE, "goals": goals})
     assert r.status_code == 422
-    assert r.json() == {"detail": "invalid goals at goals.0: unknown facing 'upwards' (north|east|south|west or an angle in radians)"}
+    assert r.json() == {
+        "detail": "invalid goals at goals.0: unknown facing 'upwards' (north|east|south|west or an angle in radians)"
+    }

@@ -6,22 +6,46 @@ import pytest
 
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_scene
-from lgmcts.service import ServiceOptions
-from lgmcts.service import viewer
+from lgmcts.service import ServiceOptions, viewer
 from lgmcts.service.app import validation_message
+
+pytestmark = pytest.mark.slow
 
 
 @pytest.mark.parametrize(
     "errors, line",
     [
         ([], "invalid request"),
-        ([{"type": "json_invalid", "loc": ("body", 3), "msg": "JSON decode error", "ctx": {"error": "Expecting value"}}],
-         "invalid request: the body is not valid JSON (Expecting value)"),
+        (
+            [
+                {
+                    "type": "json_invalid",
+                    "loc": ("body", 3),
+                    "msg": "JSON decode error",
+                    "ctx": {"error": "Expecting value"},
+                }
+            ],
+            "invalid request: the body is not valid JSON (Expecting value)",
+        ),
         ([{"type": "missing", "loc": ("body",), "msg": "Field required"}], "invalid request: a JSON body is required"),
-        ([{"type": "missing", "loc": ("body", "goals"), "msg": "Field required"}], "invalid request: 'goals' is required"),
-        ([{"type": "value_error", "loc": ("body", "scene", "function-after[_consistent()]"), "msg": "Value error, duplicate object id 1"}],
-         "invalid scene: duplicate object id 1"),
-        ([{"type": "int_parsing", "loc": ("body", "options", "seed"), "msg": "bad int"}], "invalid request at options.seed: bad int"),
+        (
+            [{"type": "missing", "loc": ("body", "goals"), "msg": "Field required"}],
+            "invalid request: 'goals' is required",
+        ),
+        (
+            [
+                {
+                    "type": "value_error",
+                    "loc": ("body", "scene", "function-after[_consistent()]"),
+                    "msg": "Value error, duplicate object id 1",
+                }
+            ],
+            "invalid scene: duplicate object id 1",
+        ),
+        (
+            [{"type": "int_parsing", "loc": ("body", "options", "seed"), "msg": "bad int"}],
+            "invalid request at options.seed: bad int",
+        ),
     ],
 )
 def test_validation_message(errors, line):
@@ -29,7 +53,10 @@ def test_validation_message(errors, line):
 
 
 def test_validation_message_matches_the_format_loader():
-    bad = {"workspace": {"x": [0, 1], "y": [0, 1]}, "objects": [{"id": 1, "name": "a", "shape": {"type": "box", "size": [1, 1]}, "pose": [0, 0, 0]}]}
+    bad = {
+        "workspace": {"x": [0, 1], "y": [0, 1]},
+        "objects": [{"id": 1, "name": "a", "shape": {"type": "box", "size": [1, 1]}, "pose": [0, 0, 0]}],
+    }
     from pydantic import ValidationError
 
     from lgmcts.formats import SceneSpec
@@ -60,8 +87,12 @@ def test_example_scene_is_valid():
 
 @pytest.mark.parametrize(
     "kwargs, message",
-    [({"workers": 0}, "workers must be at least 1"), ({"timeout": -1.0}, "timeout must be positive"),
-     ({"max_iter": 0}, "max_iter must be at least 1"), ({"grace": 0.0}, "grace must be positive")],
+    [
+        ({"workers": 0}, "workers must be at least 1"),
+        ({"timeout": -1.0}, "timeout must be positive"),
+        ({"max_iter": 0}, "max_iter must be at least 1"),
+        ({"grace": 0.0}, "grace must be positive"),
+    ],
 )
 def test_service_options_reject_bad_limits(kwargs, message):
     with pytest.raises(InputError, match=message):
@@ -72,9 +103,7 @@ def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
     import json
     from pathlib import Path
 
-    from fastapi.testclient import TestClient
-
-    from lgmcts.service.app import TEST_HOOKS_ENV, create_app, options_from_env
+    from lgmcts.service.app import TEST_HOOKS_ENV, options_from_env
 
     monkeypatch.delenv(TEST_HOOKS_ENV, raising=False)
     assert options_from_env().test_hooks is False
@@ -86,11 +115,14 @@ def test_test_hooks_are_off_unless_the_environment_says_so(monkeypatch):
         "goals": json.loads((root / "examples" / "goals.json").read_text()),
         "options": {"method": "_crash"},
     }
-    # No lifespan, so no worker starts: the method is refused before any would be needed.
-    client = TestClient(create_app(ServiceOptions(test_hooks=False)))
-    r = client.post("/plan", json=body)
-    assert r.status_code == 422
-    assert r.json() == {"detail": "unknown method '_crash' (known: lgmcts, greedy, pmcts)"}
+    # The intake worker refuses the method before any planning worker would be needed.
+    from lgmcts.service import jobs
+    from lgmcts.service.bodies import Body, Policy
+
+    with pytest.raises(InputError) as exc:
+        jobs.inspect(Body("plan", json.dumps(body).encode(), Policy(test_hooks=False)))
+    assert str(exc.value) == "unknown method '_crash' (known: lgmcts, greedy, pmcts)"
+    assert jobs.inspect(Body("plan", json.dumps(body).encode(), Policy(test_hooks=True)))["instruction"] is False
 
 
 def test_a_missing_extra_is_a_501_naming_it(monkeypatch):

@@ -11,7 +11,7 @@ from lgmcts.formats import parse_scene
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from sim_scenes import ALL_SHAPES, POLE  # noqa: E402
+from sim_scenes import ALL_SHAPES, POLE
 
 
 @pytest.fixture(scope="session")

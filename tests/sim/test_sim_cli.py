@@ -11,6 +11,8 @@ import lgmcts
 from lgmcts.cli import app
 from lgmcts.formats import load_goals, load_scene, save_json
 
+pytestmark = pytest.mark.slow
+
 runner = CliRunner()
 
 

@@ -15,6 +15,8 @@ from lgmcts import check, plan
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
 from lgmcts.sim import ExecOptions, execute_plan
 
+pytestmark = pytest.mark.slow
+
 R = 0.0375
 WS = {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}
 PARK = [0.25, 0.2]
@@ -44,11 +46,27 @@ def _ring_of_hexagons() -> dict:
     a = 0.03
     hexa = [[a * math.cos(k * math.pi / 3), a * math.sin(k * math.pi / 3)] for k in range(6)]
     d = 2 * a * math.cos(math.pi / 6)  # flat sides shared with the centre hexagon
-    objs = [{"id": k + 1, "name": "hexagon", "color": "red", "shape": {"type": "polygon", "points": hexa, "height": 0.02},
-             "pose": [d * math.cos(k * math.pi / 3 + math.pi / 6), d * math.sin(k * math.pi / 3 + math.pi / 6), 0.0], "on": None}
-            for k in range(6)]
-    objs.append({"id": 7, "name": "hexagon", "color": "blue", "shape": {"type": "polygon", "points": hexa, "height": 0.02},
-                 "pose": [*PARK, 0.3], "on": None})
+    objs = [
+        {
+            "id": k + 1,
+            "name": "hexagon",
+            "color": "red",
+            "shape": {"type": "polygon", "points": hexa, "height": 0.02},
+            "pose": [d * math.cos(k * math.pi / 3 + math.pi / 6), d * math.sin(k * math.pi / 3 + math.pi / 6), 0.0],
+            "on": None,
+        }
+        for k in range(6)
+    ]
+    objs.append(
+        {
+            "id": 7,
+            "name": "hexagon",
+            "color": "blue",
+            "shape": {"type": "polygon", "points": hexa, "height": 0.02},
+            "pose": [*PARK, 0.3],
+            "on": None,
+        }
+    )
     return {"workspace": WS, "objects": objs}
 
 
@@ -58,8 +76,9 @@ def _pushes(scene, result, moved: set[int]) -> float:
     return max(float(np.hypot(*(end[i] - start[i]))) for i in start if i not in moved)
 
 
-@pytest.mark.parametrize("make,mover", [(_ring_of_discs, 7), (_row_of_boxes, 5), (_ring_of_hexagons, 7)],
-                         ids=["discs", "boxes", "hexagons"])
+@pytest.mark.parametrize(
+    "make,mover", [(_ring_of_discs, 7), (_row_of_boxes, 5), (_ring_of_hexagons, 7)], ids=["discs", "boxes", "hexagons"]
+)
 def test_placing_into_a_pocket_that_touches_on_every_side(make, mover):
     scene = parse_scene(make(False) if make is _ring_of_discs else make())
     goals = parse_goals({"goals": [{"pattern": "pose", "objects": [mover], "pose": [0.0, 0.0, 0.0]}]})
@@ -74,14 +93,22 @@ def test_placing_into_a_pocket_that_touches_on_every_side(make, mover):
 def test_picking_out_of_a_packed_ring_and_back():
     scene = parse_scene(_ring_of_discs(True))
     goals = parse_goals({"goals": [{"pattern": "pose", "objects": [7], "pose": [0.0, 0.0, 0.0]}]})
-    p = parse_plan({"solved": True, "actions": [{"object": 7, "to": [*PARK, 0.0]}, {"object": 7, "to": [0.0, 0.0, 1.0]},
-                                                {"object": 7, "to": [*PARK, 0.0]}, {"object": 7, "to": [0.0, 0.0, 0.0]}]})
+    p = parse_plan(
+        {
+            "solved": True,
+            "actions": [
+                {"object": 7, "to": [*PARK, 0.0]},
+                {"object": 7, "to": [0.0, 0.0, 1.0]},
+                {"object": 7, "to": [*PARK, 0.0]},
+                {"object": 7, "to": [0.0, 0.0, 0.0]},
+            ],
+        }
+    )
     res = execute_plan(scene, p, goals)
     assert res.success, res.reasons
     assert _pushes(scene, res, {7}) < 1e-3
 
 
-@pytest.mark.slow
 def test_planned_protocol_cases_with_touching_placements_execute():
     # Labbé protocol cases at N = 37 (about 1 in 5 placements lands within
     # 1 mm of a neighbour): every plan executes.
@@ -105,8 +132,24 @@ def test_a_corner_poking_into_a_neighbour_by_a_tolerated_sliver_lands_on_the_tab
     # 0.81 mm^2 failed); the executor now steps it off that rim.
     w, h = 0.04, 0.013
     to = [w / 2 + w / math.sqrt(2) - depth, 0.0, math.pi / 4]
-    objs = [{"id": 1, "name": "block", "color": "red", "shape": {"type": "box", "size": [w, w, h]}, "pose": [0, 0, 0], "on": None},
-            {"id": 2, "name": "block", "color": "blue", "shape": {"type": "box", "size": [w, w, h]}, "pose": [*PARK, 0], "on": None}]
+    objs = [
+        {
+            "id": 1,
+            "name": "block",
+            "color": "red",
+            "shape": {"type": "box", "size": [w, w, h]},
+            "pose": [0, 0, 0],
+            "on": None,
+        },
+        {
+            "id": 2,
+            "name": "block",
+            "color": "blue",
+            "shape": {"type": "box", "size": [w, w, h]},
+            "pose": [*PARK, 0],
+            "on": None,
+        },
+    ]
     scene = parse_scene({"workspace": WS, "objects": objs})
     goals = parse_goals({"goals": [{"pattern": "pose", "objects": [2], "pose": to}]})
     p = parse_plan({"solved": True, "actions": [{"object": 2, "to": to}]})

@@ -11,6 +11,8 @@ from lgmcts.errors import InputError
 from lgmcts.formats import load_goals, load_scene
 from lgmcts.sim import ExecOptions, execute_plan
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def example(example_scene, example_goals):
@@ -66,9 +68,13 @@ def test_tower_placement_rests_on_its_support(all_shapes):
 def test_unmet_goal_fails_with_the_validators_reason(all_shapes):
     # No actions: the blocks 1 and 2 and tile 3 stand on one line (y = -0.1) but
     # block 5 does not; the goal rules of lgmcts.validate judge the result.
-    on_line = execute_plan(all_shapes, {"solved": True, "actions": []}, {"goals": [{"pattern": "line", "objects": [1, 2, 3]}]})
+    on_line = execute_plan(
+        all_shapes, {"solved": True, "actions": []}, {"goals": [{"pattern": "line", "objects": [1, 2, 3]}]}
+    )
     assert on_line.success, on_line.reasons
-    off_line = execute_plan(all_shapes, {"solved": True, "actions": []}, {"goals": [{"pattern": "line", "objects": [1, 2, 5]}]})
+    off_line = execute_plan(
+        all_shapes, {"solved": True, "actions": []}, {"goals": [{"pattern": "line", "objects": [1, 2, 5]}]}
+    )
     assert not off_line.success
     assert any("off the fitted line" in r for r in off_line.reasons)
 
@@ -146,7 +152,11 @@ def test_same_inputs_same_final_poses(example):
 
 def test_bad_input_raises_one_line(all_shapes):
     with pytest.raises(InputError, match="unknown object id 42"):
-        execute_plan(all_shapes, {"solved": True, "actions": [{"object": 42, "to": [0, 0, 0]}]}, {"goals": [{"pattern": "line", "objects": [1, 2]}]})
+        execute_plan(
+            all_shapes,
+            {"solved": True, "actions": [{"object": 42, "to": [0, 0, 0]}]},
+            {"goals": [{"pattern": "line", "objects": [1, 2]}]},
+        )
     with pytest.raises(InputError, match="no goals"):
         execute_plan(all_shapes, {"solved": True, "actions": []})
     with pytest.raises(InputError, match="not found"):

@@ -8,14 +8,14 @@ import mujoco
 import numpy as np
 import pytest
 import shapely
+from sim_scenes import ALL_SHAPES
 
 from lgmcts.formats import parse_scene
 from lgmcts.scene import TABLE, Scene
-from lgmcts.sim import ModelOptions, build_model
-from lgmcts.sim import physics
+from lgmcts.sim import ModelOptions, build_model, physics
 from lgmcts.sim.executor import Executor
 
-from sim_scenes import ALL_SHAPES
+pytestmark = pytest.mark.slow
 
 
 def _single(obj: dict) -> dict:

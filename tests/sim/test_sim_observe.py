@@ -13,6 +13,8 @@ from lgmcts.formats import load_goals, load_scene, parse_scene
 from lgmcts.sim import CameraOptions, execute_plan, footprint_iou, observe
 from lgmcts.sim.render import backproject
 
+pytestmark = pytest.mark.slow
+
 #: On the example the lowest footprint IoU measured is 0.986 (the cylinders,
 #: whose reference footprint is a 32-gon) and the mean 0.995 (docs/sim.md).
 MIN_IOU = 0.97
@@ -65,7 +67,10 @@ def test_footprint_iou_scores_a_wrong_scene_low(example_scene):
     moved = parse_scene(
         {
             "workspace": true.workspace.model_dump(),
-            "objects": [o.model_copy(update={"pose": (o.pose[0] + 0.03, o.pose[1], o.pose[2])}).model_dump() for o in true.objects],
+            "objects": [
+                o.model_copy(update={"pose": (o.pose[0] + 0.03, o.pose[1], o.pose[2])}).model_dump()
+                for o in true.objects
+            ],
         }
     )
     iou = footprint_iou(true, moved)
@@ -95,7 +100,9 @@ def test_video_is_written(render_ok, all_shapes, tmp_path):
 
     out = tmp_path / "run.mp4"
     plan = {"solved": True, "actions": [{"object": 1, "to": [-0.05, 0.0, 0.0], "on": None}]}
-    result = execute_plan(all_shapes, plan, {"goals": [{"pattern": "pose", "objects": [1], "pose": [-0.05, 0.0, 0.0]}]}, video=out)
+    result = execute_plan(
+        all_shapes, plan, {"goals": [{"pattern": "pose", "objects": [1], "pose": [-0.05, 0.0, 0.0]}]}, video=out
+    )
     assert result.success, result.reasons
     frames = imageio.mimread(out, memtest=False)
     # One frame per 1/25 s of simulated time.
@@ -113,6 +120,11 @@ def test_observe_rejects_an_unknown_camera(render_ok, example_scene):
 def test_plan_scene_must_hold_the_same_objects(observed_example, example_scene, example_goals):
     from lgmcts.errors import InputError
 
-    fewer = parse_scene({"workspace": observed_example.workspace.model_dump(), "objects": [o.model_dump() for o in observed_example.objects[:3]]})
+    fewer = parse_scene(
+        {
+            "workspace": observed_example.workspace.model_dump(),
+            "objects": [o.model_dump() for o in observed_example.objects[:3]],
+        }
+    )
     with pytest.raises(InputError, match="same object ids"):
         execute_plan(example_scene, {"solved": True, "actions": []}, example_goals, plan_scene=fewer)

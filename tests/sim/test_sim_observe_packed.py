@@ -10,6 +10,8 @@ import pytest
 from lgmcts import check, plan
 from lgmcts.scene import TABLE, Scene
 
+pytestmark = pytest.mark.slow
+
 
 
 def test_drop_strays_keeps_dense_points_and_drops_lone_ones():
@@ -46,7 +48,6 @@ def _loop(scene, goals):
     return seen
 
 
-@pytest.mark.slow
 def test_observe_plan_execute_on_a_dense_elgr_scene(render_ok):
     from lgmcts.bench import generate
 
@@ -61,11 +62,8 @@ def test_observe_plan_execute_on_a_dense_elgr_scene(render_ok):
     assert worst <= 1e-6
 
 
-@pytest.mark.slow
 def test_observe_plan_execute_with_touching_discs(render_ok):
-    from lgmcts.casegen import labbe_protocol_case
-
-    from lgmcts.casegen import LABBE_RADIUS
+    from lgmcts.casegen import LABBE_RADIUS, labbe_protocol_case
 
     c = labbe_protocol_case(25, 25_005)
     xy = np.array([o.pose[:2] for o in c.scene.objects])
@@ -77,7 +75,6 @@ def test_observe_plan_execute_with_touching_discs(render_ok):
     assert worst <= 1e-6
 
 
-@pytest.mark.slow
 def test_a_rim_pixel_does_not_stretch_an_observed_disc(render_ok):
     # In this protocol case one pixel of a side camera carries a disc's label
     # with a depth 16 cm away; kept, it stretched the disc's outline to a

@@ -7,6 +7,8 @@ import pytest
 import lgmcts
 from lgmcts.sim import execute_plan
 
+pytestmark = pytest.mark.slow
+
 
 @pytest.mark.parametrize("goals", [
     {"goals": [

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
 
 from lgmcts.cli import app
+
+pytestmark = pytest.mark.slow
 
 DATA = Path(__file__).parent / "data"
 SCENE = str(DATA / "cluttered_scene.json")
@@ -39,7 +40,17 @@ def test_pictures_with_step(tmp_path):
     r = runner.invoke(app, ["viz", str(pf), "--scene", SCENE, "-o", str(tmp_path / "figs"), "--step", "2"])
     assert r.exit_code == 0, r.output
     names = sorted(p.name for p in (tmp_path / "figs").iterdir())
-    assert names == sorted(["initial.png", "step_01.png", "step_02.png", "final.png", "before_after.png", "plan.gif", "heatmaps_step_02.png"])
+    assert names == sorted(
+        [
+            "initial.png",
+            "step_01.png",
+            "step_02.png",
+            "final.png",
+            "before_after.png",
+            "plan.gif",
+            "heatmaps_step_02.png",
+        ]
+    )
 
 
 @pytest.mark.parametrize(
@@ -51,7 +62,10 @@ def test_pictures_with_step(tmp_path):
         (["viz", SCENE, "--scene", SCENE, "--html", "x.html"], "invalid plan"),
         (["viz", PLAN, "--scene", SCENE, "-o", "figs", "--step", "9"], "outside the plan"),
         (["viz", PLAN, "--scene", SCENE, "--html", "x.html", "--step", "1"], "give -o DIR"),
-        (["viz", PLAN, "--scene", SCENE, "--html", "x.html", "--goal", str(DATA / "bad_goals.json")], "unknown object id 42"),
+        (
+            ["viz", PLAN, "--scene", SCENE, "--html", "x.html", "--goal", str(DATA / "bad_goals.json")],
+            "unknown object id 42",
+        ),
         (["viz", PLAN, "--scene", SCENE, "--html", "no/such/dir/x.html"], "cannot write"),
     ],
 )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 from pathlib import Path
 
@@ -15,6 +16,8 @@ from lgmcts.scene import Scene
 from lgmcts.validate import check
 from lgmcts.viz import FigureOptions, heatmap_fields, write_plan_figures
 from lgmcts.viz.model import goal_shapes, replay
+
+pytestmark = pytest.mark.slow
 
 DATA = Path(__file__).parent / "data"
 SCENE = DATA / "cluttered_scene.json"
@@ -70,7 +73,7 @@ def test_frames_share_one_size(figures):
 def test_consecutive_step_frames_differ(figures):
     out, _ = figures
     frames = [np.asarray(Image.open(p).convert("RGB"), dtype=int) for p in sorted(out.glob("step_*.png"))]
-    for a, b in zip(frames, frames[1:]):
+    for a, b in itertools.pairwise(frames):
         assert np.abs(a - b).sum() > 0
 
 

@@ -17,6 +17,20 @@ SCENE = DATA / "cluttered_scene.json"
 PLAN = DATA / "cluttered_plan.json"
 
 
+def expand(frames: list[dict]) -> list[dict]:
+    """Full states from the viewer's delta frames, as viewer.js builds them."""
+    out: list[dict] = []
+    poses: dict = {}
+    on: dict = {}
+    goals: dict = {}
+    for f in frames:
+        poses.update(f["poses"])
+        on.update(f["on"])
+        goals.update({g["index"]: g for g in f["goals"]})
+        out.append({"poses": dict(poses), "on": dict(on), "goals": [goals[k] for k in sorted(goals)]})
+    return out
+
+
 def test_page_is_self_contained():
     page = render_html(SCENE, PLAN)
     assert page.startswith("<!DOCTYPE html>")
@@ -40,9 +54,9 @@ def test_viewer_data_contract():
     for k, i in enumerate(sc.ids):
         assert np.allclose(data["footprints"][str(i)], sc.local[k], atol=1e-6)
     assert data["paints"]["7"]["texture"] == "dots"
-    # Each frame carries the replayed state, so the script replays nothing.
+    # The frames, applied in turn, give each replayed state, so the script replays nothing.
     states = replay(sc, load_plan(PLAN).actions)
-    for f, st in zip(data["frames"], states):
+    for f, st in zip(expand(data["frames"]), states):
         for k, i in enumerate(sc.ids):
             assert np.allclose(f["poses"][str(i)], st.poses[k], atol=1e-6)
             assert f["on"][str(i)] == (None if st.on[k] < 0 else sc.ids[st.on[k]])
@@ -108,3 +122,65 @@ def test_plans_carry_fits_and_viewers_draw_from_them():
     del plan["fits"]
     refit = viewer_data(scene, plan)["frames"][-1]["goals"][k]
     assert np.isclose(refit["radius"], circle["radius"])
+
+
+# ---------------------------------------------------------------- delta frames
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+from lgmcts.errors import InputError  # noqa: E402
+from lgmcts.formats import parse_goals, parse_plan, parse_scene  # noqa: E402
+from lgmcts.limits import MAX_VIEW_CELLS  # noqa: E402
+from lgmcts.viz.model import goal_shapes  # noqa: E402
+
+
+def _grid_scene(n: int) -> dict:
+    objs = [{"id": k + 1, "name": "block", "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+             "pose": [-0.4 + 0.1 * (k % 8), -0.3 + 0.1 * (k // 8), 0.0]} for k in range(n)]
+    return {"workspace": {"x": [-0.5, 0.5], "y": [-0.4, 0.4]}, "objects": objs}
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.data())
+def test_delta_frames_replay_to_every_state_and_goal(data):
+    n = data.draw(st.integers(5, 8), label="objects")
+    ids = list(range(1, n + 1))
+    scene = parse_scene(_grid_scene(n))
+    goals = parse_goals({"goals": [
+        {"pattern": "line", "objects": ids[:3]},
+        {"pattern": "tower", "objects": [ids[3], ids[4]]},
+        {"pattern": "left", "objects": [ids[1]], "anchor": ids[2]},
+    ]})
+    acts = []
+    for _ in range(data.draw(st.integers(0, 8), label="actions")):
+        o = data.draw(st.sampled_from(ids))
+        on = data.draw(st.one_of(st.none(), st.sampled_from([i for i in ids if i != o])))
+        x = data.draw(st.floats(-0.45, 0.45))
+        y = data.draw(st.floats(-0.35, 0.35))
+        acts.append({"object": o, "to": [x, y, 0.0], "on": on})
+    plan = parse_plan({"solved": False, "actions": acts})
+    out = viewer_data(scene, plan, goals=goals)
+    sc = Scene.from_spec(scene)
+    states = replay(sc, plan.actions)
+    full = expand(out["frames"])
+    assert len(full) == len(states)
+    for f, state in zip(full, states):
+        assert f["poses"] == {str(i): [float(v) for v in state.poses[k]] for k, i in enumerate(sc.ids)}
+        want = [s.to_json() for s in goal_shapes(sc, goals, state)]
+        assert f["goals"] == json.loads(json.dumps(want))
+    # A delta lists only what moved: one object per action here, at most.
+    assert all(len(f["poses"]) <= 1 for f in out["frames"][1:])
+
+
+def test_viewer_data_of_a_huge_plan_is_one_line_not_gigabytes():
+    n = MAX_VIEW_CELLS // 100_000 + 1
+    scene = {"workspace": {"x": [-10, 10], "y": [-10, 10]}, "objects": [
+        {"id": k + 1, "name": "b", "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+         "pose": [-9 + 0.1 * (k % 100), -9 + 0.1 * (k // 100), 0.0]} for k in range(n)]}
+    acts = [{"object": 1, "to": [5.0, 5.0 + 0.1 * (k % 2), 0.0]} for k in range(100_000)]
+    try:
+        viewer_data(scene, {"solved": False, "actions": acts})
+    except InputError as exc:
+        assert "too large to draw" in str(exc) and "\n" not in str(exc)
+    else:  # pragma: no cover - the cap must refuse it
+        raise AssertionError("a plan over the cap was drawn")

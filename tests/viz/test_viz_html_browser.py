@@ -26,7 +26,10 @@ ARGS = [
 ]
 
 sync_api = pytest.importorskip("playwright.sync_api", reason="the playwright package is not installed")
-pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (run scripts/system-deps.sh)")
+pytestmark = [
+    pytest.mark.slow,
+    pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (run scripts/system-deps.sh)"),
+]
 
 
 @pytest.fixture(scope="module")
@@ -107,7 +110,7 @@ def test_page_plays_to_the_final_poses(page, tmp_path):
     assert np.abs(a - b).mean() > 0.5  # the picture changed
     (tmp_path / "viewer.png").write_bytes(shot)
     assert page.errors == []
-    assert all(u.startswith("file:") or u.startswith("data:") for u in page.requests)
+    assert all(u.startswith(("file:", "data:")) for u in page.requests)
 
 
 def test_slider_buttons_and_keys(page, tmp_path):

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
+import pytest
 
 from lgmcts.formats import parse_goals, parse_plan, parse_scene
-from lgmcts.viz.fields import MAX_FIELD_CELLS, pose_fields
 from lgmcts.scene import Scene
+from lgmcts.viz.fields import MAX_FIELD_CELLS, pose_fields
 from lgmcts.viz.figures import FigureOptions, pictured_steps, write_plan_figures
+
+pytestmark = pytest.mark.slow
 
 
 def test_pictured_steps():
@@ -20,9 +21,20 @@ def test_pictured_steps():
 
 
 def _huge():
-    scene = parse_scene({"workspace": {"x": [-1000, 1000], "y": [-1000, 1000]}, "objects": [
-        {"id": 1, "name": "slab", "shape": {"type": "box", "size": [10, 10, 10]}, "pose": [990, 990, 0]},
-        {"id": 2, "name": "speck", "shape": {"type": "box", "size": [0.001, 0.001, 0.001]}, "pose": [-999, -999, 9999]}]})
+    scene = parse_scene(
+        {
+            "workspace": {"x": [-1000, 1000], "y": [-1000, 1000]},
+            "objects": [
+                {"id": 1, "name": "slab", "shape": {"type": "box", "size": [10, 10, 10]}, "pose": [990, 990, 0]},
+                {
+                    "id": 2,
+                    "name": "speck",
+                    "shape": {"type": "box", "size": [0.001, 0.001, 0.001]},
+                    "pose": [-999, -999, 9999],
+                },
+            ],
+        }
+    )
     goals = parse_goals({"goals": [{"pattern": "pose", "objects": [2], "pose": [999, -999, -9999]}]})
     plan = parse_plan({"solved": True, "actions": [{"object": 2, "to": [999, -999, -9999], "purpose": "goal"}]})
     return scene, goals, plan
@@ -43,8 +55,10 @@ def test_huge_workspace_and_tiny_objects_draw(tmp_path):
 def test_long_plan_gets_a_bounded_number_of_pictures(tmp_path):
     rng = np.random.default_rng(0)
     spots = [(-0.9 + 0.1 * i, -0.9 + 0.1 * j) for i in range(19) for j in range(19)]
-    objs = [{"id": k + 1, "name": "block", "shape": {"type": "box", "size": [0.03, 0.03, 0.03]},
-             "pose": [*spots[k], 0.0]} for k in range(200)]
+    objs = [
+        {"id": k + 1, "name": "block", "shape": {"type": "box", "size": [0.03, 0.03, 0.03]}, "pose": [*spots[k], 0.0]}
+        for k in range(200)
+    ]
     scene = parse_scene({"workspace": {"x": [-1, 1], "y": [-1, 1]}, "objects": objs})
     free, where, acts = list(range(200, len(spots))), {k: k for k in range(200)}, []
     for _ in range(300):

@@ -24,7 +24,13 @@ def test_dark_is_darker():
 
 @pytest.mark.parametrize(
     "text, texture",
-    [("blue stripe", "stripes"), ("wooden", "grain"), ("granite", "speckles"), ("checkerboard", "checks"), ("yellow", None)],
+    [
+        ("blue stripe", "stripes"),
+        ("wooden", "grain"),
+        ("granite", "speckles"),
+        ("checkerboard", "checks"),
+        ("yellow", None),
+    ],
 )
 def test_textures(text, texture):
     assert paint(text).texture == texture

@@ -54,6 +54,7 @@ def test_describe_goal_names_the_params():
     assert describe_goal(plain) == "line of 1, 2"
 
 
+@pytest.mark.slow
 def test_pictures_of_a_plan_with_params(solved, tmp_path):
     paths = write_plan_figures(EXAMPLE, solved, tmp_path, options=FigureOptions(dpi=50, gif_width_px=320))
     assert (tmp_path / "final.png").exists() and all(p.exists() for p in paths)
@@ -106,7 +107,9 @@ def test_viewer_draws_the_regions_computed_in_python(solved):
         page.set_content(f"<html><body><div id='v'></div><script>{viewer_js()}</script></body></html>")
         page.evaluate("d => { window.v = LGMCTSViewer.render(document.getElementById('v'), d); }",
                       json.loads(json.dumps(viewer_data(scene, plan))))
-        rects = page.eval_on_selector_all(".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])")
+        rects = page.eval_on_selector_all(
+            ".lgv-region", "els => els.map(e => [+e.getAttribute('width'), +e.getAttribute('height')])"
+        )
         assert page.locator(".lgv-heading").count() == 2
         b.close()
     assert not errors

@@ -30,7 +30,9 @@ class _Tty(io.StringIO):
         return True
 
 
-@pytest.mark.parametrize("verbose, info, debug", [(0, False, False), (1, True, False), (2, True, True), (5, True, True), (-1, False, False)])
+@pytest.mark.parametrize(
+    "verbose, info, debug", [(0, False, False), (1, True, False), (2, True, True), (5, True, True), (-1, False, False)]
+)
 def test_levels(capsys, verbose, info, debug):
     configure_logging(verbose)
     log = logging.getLogger("lgmcts.planner")
@@ -58,9 +60,9 @@ def test_other_libraries_stay_quiet(capsys):
 
 
 def _draw(tmp_path, stderr, monkeypatch):
-    from lgmcts.viz import write_plan_figures
-
     import json
+
+    from lgmcts.viz import write_plan_figures
 
     plan = json.loads((DATA / "cluttered_plan.json").read_text())
     plan["actions"] = plan["actions"][:1]  # one step is enough for a bar, and quick to draw
@@ -70,11 +72,13 @@ def _draw(tmp_path, stderr, monkeypatch):
     return stderr.getvalue()
 
 
+@pytest.mark.slow
 def test_no_bar_when_piped(tmp_path, monkeypatch):
     monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
     assert "drawing steps" not in _draw(tmp_path, io.StringIO(), monkeypatch)
 
 
+@pytest.mark.slow
 def test_bar_on_a_terminal_unless_switched_off(tmp_path, monkeypatch):
     monkeypatch.delenv("LGMCTS_NO_PROGRESS", raising=False)
     assert "drawing steps" in _draw(tmp_path / "a", _Tty(), monkeypatch)
@@ -82,6 +86,7 @@ def test_bar_on_a_terminal_unless_switched_off(tmp_path, monkeypatch):
     assert "drawing steps" not in _draw(tmp_path / "b", _Tty(), monkeypatch)
 
 
+@pytest.mark.slow
 def test_cli_verbose_shows_the_search_log():
     runner = CliRunner()
     base = ["plan", str(DATA / "cluttered_scene.json"), "--goal", str(DATA / "cluttered_goals.json"), "--seed", "2"]

@@ -9,7 +9,10 @@
  *   footprints: {id: [[x, y], ...]}   object frame, metres
  *   paints: {id: {fill, second, mark, ink, edge, texture}}
  *   frames: [{poses: {id: [x, y, theta]}, on: {id: id|null}, goals: [<goal shape>, ...]}, ...]
- *           one per plan state
+ *           one per plan state, each the change over the state before: the
+ *           objects whose pose or support changed and the goals drawn anew
+ *           (a shape names its goal by `index`); the first frame lists every
+ *           object and goal
  *   goal_text: [str, ...]   one line per goal
  * }
  * The script draws what it is given: replay, footprints, fits and goal
@@ -115,6 +118,11 @@
         !data.frames.every(function (f) { return f && f.poses && f.on && Array.isArray(f.goals); })) {
       throw new Error("viewer data needs one frame (poses, on, goals) per plan state" + computed);
     }
+    data.scene.objects.forEach(function (o) {
+      if (!data.frames[0].poses[o.id] || data.frames[0].on[o.id] === undefined) {
+        throw new Error("the first frame lacks object " + o.id + computed);
+      }
+    });
   }
 
   function injectStyle(doc) {
@@ -162,7 +170,29 @@
     var byId = {};
     objects.forEach(function (o) { byId[o.id] = o; });
     var frames = data.frames;
-    var goalFrames = frames.map(function (f) { return f.goals; });
+    // Each frame holds what changed since the one before: the state at step k
+    // is built by applying frames 0..k, from the last state built when going on.
+    var cursor = null;
+    function frameAt(k) {
+      if (cursor === null || k < cursor.k) cursor = { k: -1, poses: {}, on: {}, goals: [] };
+      while (cursor.k < k) {
+        cursor.k += 1;
+        var f = frames[cursor.k], id;
+        for (id in f.poses) cursor.poses[id] = f.poses[id];
+        for (id in f.on) cursor.on[id] = f.on[id];
+        f.goals.forEach(function (s) { cursor.goals[s.index] = s; });
+      }
+      return cursor;
+    }
+    // The pose each action's object had before it moved.
+    var before = (function () {
+      var poses = {}, out = [];
+      for (var j = 0; j <= actions.length; j++) {
+        for (var id in frames[j].poses) poses[id] = frames[j].poses[id];
+        if (j < actions.length) out.push(poses[actions[j].object]);
+      }
+      return out;
+    })();
     var goalText = data.goal_text || goals.map(function (g) { return g.pattern + " of " + g.objects.join(", "); });
     var member = {};
     goals.forEach(function (g, k) { g.objects.forEach(function (i) { (member[i] = member[i] || []).push(k); }); });
@@ -301,9 +331,10 @@
       while (s !== null && s !== undefined && lv < 64) { lv += 1; s = frame.on[s]; }
       return lv;
     }
-    function holding(frame, id) {
-      for (var k in frame.on) if (frame.on[k] === id || String(frame.on[k]) === String(id)) return true;
-      return false;
+    function holders(frame) {
+      var out = {};
+      for (var k in frame.on) if (frame.on[k] !== null && frame.on[k] !== undefined) out[String(frame.on[k])] = true;
+      return out;
     }
     function placeObject(id, pose, lv) {
       var nd = nodes[id], tx = X(pose[0]), ty = Y(pose[1]), deg = -pose[2] * 180 / Math.PI;
@@ -378,7 +409,7 @@
       k = Math.max(0, Math.min(n, k | 0));
       var prevStep = state.step;
       state.step = k;
-      var f = frames[k];
+      var f = frameAt(k), held = holders(f);
       // stacking order: lower objects first
       objects.slice().sort(function (a, b) { return level(f, a.id) - level(f, b.id) || 0; }).forEach(function (o) {
         gObjs.appendChild(nodes[o.id].g);
@@ -394,33 +425,33 @@
           (f.on[o.id] !== null && f.on[o.id] !== undefined ? "\non " + f.on[o.id] : "") + (member[o.id] ? "\ngoal: " + member[o.id].map(function (g) { return goalText[g]; }).join("; ") : "");
         nd.outline.setAttribute("stroke", o.paint.edge);
         nd.outline.setAttribute("stroke-width", fs * 0.12);
-        nd.idText.style.display = holding(f, o.id) ? "none" : "";
+        nd.idText.style.display = held[String(o.id)] ? "none" : "";
         nd.name.style.display = lv ? "none" : "";
       });
       gPaths.innerHTML = "";
       gTop.innerHTML = "";
       for (var j = 0; j < k - 1; j++) {
         var aj = actions[j];
-        el(doc, "path", { d: arc(frames[j].poses[aj.object], aj.to), fill: "none", stroke: "#8d8d8d", "stroke-width": fs * 0.1, opacity: 0.6 }, gPaths);
+        el(doc, "path", { d: arc(before[j], aj.to), fill: "none", stroke: "#8d8d8d", "stroke-width": fs * 0.1, opacity: 0.6 }, gPaths);
       }
       var cap;
       if (k > 0) {
-        var a = actions[k - 1], col = PURPOSE_COLORS[a.purpose || "goal"], before = frames[k - 1].poses[a.object];
-        el(doc, "polygon", { class: "lgv-ghost", points: pointsAttr(transform(byId[a.object].local, before)), fill: "none", stroke: col, "stroke-width": fs * 0.15, "stroke-dasharray": fs * 0.5 + " " + fs * 0.35 }, gTop);
-        el(doc, "path", { class: "lgv-move", d: arc(before, a.to), fill: "none", stroke: col, "stroke-width": fs * 0.28, "marker-end": "url(#" + uid + "-arrow-" + (a.purpose || "goal") + ")" }, gTop);
+        var a = actions[k - 1], col = PURPOSE_COLORS[a.purpose || "goal"], before0 = before[k - 1];
+        el(doc, "polygon", { class: "lgv-ghost", points: pointsAttr(transform(byId[a.object].local, before0)), fill: "none", stroke: col, "stroke-width": fs * 0.15, "stroke-dasharray": fs * 0.5 + " " + fs * 0.35 }, gTop);
+        el(doc, "path", { class: "lgv-move", d: arc(before0, a.to), fill: "none", stroke: col, "stroke-width": fs * 0.28, "marker-end": "url(#" + uid + "-arrow-" + (a.purpose || "goal") + ")" }, gTop);
         nodes[a.object].outline.setAttribute("stroke", col);
         nodes[a.object].outline.setAttribute("stroke-width", fs * 0.35);
         var o = byId[a.object];
         cap = "Step " + k + " of " + n + ": " + PURPOSE_WORDS[a.purpose || "goal"] + " " + o.id + " " + (o.color ? o.color + " " : "") + o.name +
           (a.on !== null && a.on !== undefined ? " onto " + a.on : "") + " \u2192 (" + fmt(a.to[0]) + ", " + fmt(a.to[1]) + ", " + fmt(a.to[2]) + " rad)";
         caption.style.borderLeftColor = col;
-        if (animate && prevStep === k - 1) tween(a.object, before, a.to, level(f, a.object));
+        if (animate && prevStep === k - 1) tween(a.object, before0, a.to, level(f, a.object));
       } else {
         cap = "Start: " + objects.length + " objects. Press play or pick a step.";
         caption.style.borderLeftColor = "#ccc";
       }
       caption.textContent = cap;
-      var shapes = goalFrames[k];
+      var shapes = f.goals;
       drawGoals(shapes);
       if (goalList) {
         goalList.innerHTML = "";
@@ -514,7 +545,7 @@
       count: function () { return n; },
       playing: function () { return state.playing; },
       poses: function () {
-        var out = {}, f = frames[state.step];
+        var out = {}, f = frameAt(state.step);
         for (var k in f.poses) out[k] = f.poses[k].slice();
         return out;
       },
