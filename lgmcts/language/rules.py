@@ -1661,6 +1661,8 @@ class _Parser:
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
         text = stages.by_position(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
                                   self._table_xy, self._centre, self._cat_words)
+        text = stages.by_colour(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
+                                {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)

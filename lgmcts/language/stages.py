@@ -21,10 +21,11 @@ is called from a few points of :mod:`.rules`:
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
+from .colour_refs import find_colour_refs, select
 from .context import drop_context
 from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import Measure, find_measures, size_for
@@ -35,7 +36,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -290,6 +291,33 @@ def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of
     if len(found) != 1:
         return None
     return list(ids_of(found[0]))
+
+
+def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
+              colour_of: Mapping[int, str]) -> str:
+    """``text`` with each reference through another object's colour ("the cans that share a colour
+    with one of the bowls") replaced by the ids it selects (:mod:`.colour_refs`). A phrase whose head
+    or reference names nothing is left as said; one that selects nothing is refused."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    refs = find_colour_refs(words)
+    out: list[str] = []
+    at = 0
+    for ref in refs:
+        head = _ids(("the",) + ref.head if ref.head else ("everything",), find, ids_of)
+        other = _ids(ref.ref, find, ids_of)
+        if head is None or other is None:
+            continue
+        lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
+        got = select(head, other, colour_of, ref.negated)
+        if not got:
+            raise InputError(f"'{text[lo:hi]}' selects nothing: no such object has that colour")
+        out.append(text[at:lo])
+        out.append("object " + str(got[0]) if len(got) == 1 else
+                   "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")
+        at = hi
+    out.append(text[at:])
+    return "".join(out)
 
 
 def without_context(words: tuple[str, ...], object_word: Callable[[str], bool],
