@@ -12,6 +12,11 @@ A pure stage in two halves, like :mod:`.positions`:
 * :func:`select` keeps the head's candidates whose colour is (or, negated, is
   not) the colour of some object the reference names.
 
+A comparison with one object said plainly ("the things that are the same
+colour as the blue bowl") is left to the grounding's attribute grammar where
+that grammar reads it; this stage reads what it does not: a reference said
+with a quantifier, a negation, "has a block of the same colour".
+
 "One of / any of / either of / any / either" mean *some* of them: the colours
 of the reference objects are pooled ("the cans that share a colour with one
 of the bowls" are the cans whose colour any bowl has); negated, none of them
@@ -37,6 +42,8 @@ class ColourRef:
     head: tuple[str, ...]
     ref: tuple[str, ...]
     negated: bool
+    #: The reference was said as "one of / any of / either ..." (or "a block of the same colour").
+    quantified: bool = False
 
 
 _REL = frozenset({"that", "which", "who"})
@@ -69,7 +76,7 @@ def _seq(ws: tuple[str, ...], i: int, seqs) -> int:
     return i
 
 
-def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
+def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int, bool] | None:
     """"one of the bowls", "either mug", "any can's colour", "the phone": the reference's words and end."""
     j = _seq(ws, i, _ANY)
     quant = j > i
@@ -90,7 +97,7 @@ def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | Non
     elif quant:
         last = words[-1]
         words = words[:-1] + ((last if last.endswith("s") else last + "s"),)
-    return words, end
+    return words, end, quant
 
 
 def find_colour_refs(words: tuple[str, ...]) -> list[ColourRef]:
@@ -119,6 +126,8 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
     if end == j and det not in ("whichever", "whatever"):
         return None
     head = tuple(ws[j:end])
+    if head in (("one",), ("ones",)):
+        return None  # "the ones that match the red bowl": the noun is elsewhere; left to the grounding
     k = end
     if k < len(ws) and ws[k] in ("else", "other"):
         return None  # "everything else of its colour" is read elsewhere
@@ -162,23 +171,24 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
                 return None
             last = ws[noun_end - 1]
             ref = ("the",) + tuple(ws[j : noun_end - 1]) + ((last if last.endswith("s") else last + "s"),)
-            return ColourRef(i, tail, head, ref, negated)
+            return ColourRef(i, tail, head, ref, negated, True)
         if verb == k:
             return None
         k = verb
     got = _reference(ws, k)
     if got is None:
         return None
-    ref, end = got
+    ref, end, quant = got
     for tail in (("in", "colour"), ("in", "color"), ("colour", "wise"), ("'s", "colour"), ("by", "colour")):
         if ws[end : end + len(tail)] == tail:
             end += len(tail)
             break
-    return ColourRef(i, end, head, ref, negated)
+    return ColourRef(i, end, head, ref, negated, quant)
 
 
 def select(candidates: list[int], reference: list[int], colour_of: Mapping[int, str], negated: bool) -> list[int]:
-    """The candidates whose colour one of the reference objects has (none of them, ``negated``); a
-    reference object is never its own match."""
+    """The candidates whose colour one of the reference objects has (none of them, ``negated``). A
+    reference object the head names too is one of them ("the things that share a colour with the
+    blue bowl" include the blue bowl), as the free-form writers label it."""
     pool = {colour_of[r] for r in reference}
-    return [c for c in candidates if c not in reference and (colour_of[c] in pool) != negated]
+    return [c for c in candidates if (colour_of[c] in pool) != negated]

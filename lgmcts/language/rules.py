@@ -1492,6 +1492,10 @@ class _Parser:
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
         return stages.spell(text, self.vocab, lexicon, nouns, protect)
 
+    def _every_match(self, m: Mention) -> list[int]:
+        """Every object a reference may name, whatever its number ("the block": every block; ids as said)."""
+        return candidates(self.vocab, m if m.det == "ids" else replace(m, det="all", plural=True))
+
     def _table_xy(self, oid: int) -> tuple[float, float] | None:
         """Where an object stands on the table (None when it stands on another object)."""
         o = self.spec.object(oid)
@@ -1659,10 +1663,8 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
-        text = stages.by_position(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
-                                  self._table_xy, self._centre, self._cat_words)
-        text = stages.by_colour(text, self._find, lambda m: candidates(self.vocab, replace(m, det="all", plural=True)),
-                                {o.id: o.color for o in self.spec.objects})
+        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words)
+        text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)

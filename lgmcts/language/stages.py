@@ -304,6 +304,8 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     out: list[str] = []
     at = 0
     for ref in refs:
+        if not (ref.negated or ref.quantified) and _reads_whole(words[ref.start : ref.end], find):
+            continue  # "the things that are the same colour as the blue bowl": the grounding reads it
         head = _ids(("the",) + ref.head if ref.head else ("everything",), find, ids_of)
         other = _ids(ref.ref, find, ids_of)
         if head is None or other is None:
@@ -318,6 +320,15 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
         at = hi
     out.append(text[at:])
     return "".join(out)
+
+
+def _reads_whole(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list]) -> bool:
+    """Whether the grounding reads ``words`` as one reference, every word of it."""
+    try:
+        found = find(words)
+    except InputError:
+        return False
+    return len(found) >= 1 and found[0].start == 0 and found[0].end == len(words)
 
 
 def without_context(words: tuple[str, ...], object_word: Callable[[str], bool],

@@ -15,6 +15,12 @@ def _refs(text: str):
     return [(" ".join(ws[r.start : r.end]), r.head, r.ref, r.negated) for r in find_colour_refs(ws)]
 
 
+def test_a_quantified_reference_is_marked():
+    (one,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match one of the bowls")))
+    (the,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match the red bowl")))
+    assert one.quantified and not the.quantified
+
+
 @pytest.mark.parametrize("text, phrase, head, ref, negated", [
     ("line up the cups that share a colour with one of the cans", "the cups that share a colour with one of the cans",
      ("cups",), ("the", "cans"), False),
@@ -49,7 +55,7 @@ def test_select_pools_the_colours_of_the_reference():
     colour = {1: "red", 2: "blue", 3: "green", 4: "red", 5: "blue"}
     assert select([1, 2, 3], [4, 5], colour, False) == [1, 2]
     assert select([1, 2, 3], [4, 5], colour, True) == [3]
-    assert select([1, 4], [4], colour, False) == [1]   # the reference is no match of itself
+    assert select([1, 4], [4], colour, False) == [1, 4]   # the reference counts when the head names it too
 
 
 @given(st.lists(st.sampled_from(["red", "blue", "green"]), min_size=2, max_size=8))

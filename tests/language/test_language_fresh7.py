@@ -79,6 +79,15 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
      [{"pattern": "left", "objects": [11], "anchor": 8}, {"pattern": "right", "objects": [9], "anchor": 8}]),
     ("home", "the red mug goes behind the plate; the blue mug goes on the plate's other side",
      [{"pattern": "behind", "objects": [1], "anchor": 8}, {"pattern": "front", "objects": [2], "anchor": 8}]),
+    # references through another object's colour
+    ("pantry", "put the cans that don't share a colour with either bowl behind the box",
+     [{"pattern": "behind", "objects": [4], "anchor": 10}]),
+    ("pantry", "the bowl that matches the blue can goes on the box", [{"pattern": "tower", "objects": [10, 7]}]),
+    ("pantry", "the cans that match any of the bowls in colour, in a row", [{"pattern": "line", "objects": [1, 2, 3]}]),
+    ("pantry", "put every bowl that has a can of the same colour in a row", [{"pattern": "line", "objects": [5, 6, 7]}]),
+    ("home", "the mugs that are not the colour of the plate, in a row", [{"pattern": "line", "objects": [1, 2]}]),
+    ("toys", "whichever block matches the colour of the letter nearest the pan goes behind the star",
+     [{"pattern": "behind", "objects": [8], "anchor": 10}]),
     # context that asks nothing
     ("home", "my friends come over at six. line up the cans", [{"pattern": "line", "objects": [12, 13, 14]}]),
     ("home", "after lunch, put the fork behind the plate", [{"pattern": "behind", "objects": [9], "anchor": 8}]),
@@ -99,6 +108,7 @@ def test_a_reading(scene, text, expect, matcher):
     ("blocks", "put the leftmost block on the white bowl", "within 2 cm"),  # orange and purple stand 1 cm apart
     ("home", "the middle one of the four bowls goes behind the phone", "speaks of 4"),
     ("blocks", "put the white bowl on the bowx", "names nothing"),          # one edit from two words: left as said
+    ("pantry", "line up the cups that share a colour with one of the cans", "selects nothing"),
     # a stack that loses a colour said in it is refused, not answered without it
     ("blocks", "tower: red bottom, then blue, then green, yellow on top", "'blue' is named"),
 ])
