@@ -73,7 +73,7 @@ def _english() -> dict[str, int]:
         from .embed import weights_path
 
         lines = (weights_path() / "vocab.txt").read_text(encoding="utf-8").splitlines()
-    except Exception:  # noqa: BLE001 - no packaged model: only the informal table and known words apply
+    except Exception:
         return {}
     return {w: k for k, w in enumerate(lines) if w.isalpha() and w.islower()}
 
