@@ -304,7 +304,8 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     out: list[str] = []
     at = 0
     for ref in refs:
-        if not (ref.negated or ref.quantified) and _reads_whole(words[ref.start : ref.end], find):
+        plural = not ref.head or ref.head[-1].endswith("s") or ref.head[-1] in ("stuff", "everything", "anything")
+        if not (ref.negated or ref.quantified) and (plural or _reads_whole(words[ref.start : ref.end], find)):
             continue  # "the things that are the same colour as the blue bowl": the grounding reads it
         head = _ids(("the",) + ref.head if ref.head else ("everything",), find, ids_of)
         other = _ids(ref.ref, find, ids_of)
