@@ -87,6 +87,7 @@ def test_readings_are_registered_once_in_their_order_each_with_an_example():
     assert readings.READINGS[-1][0] == "arrangement"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name, ref", [(n, r) for n, refs in EXAMPLES.items() for r in refs])
 def test_reading_takes_its_examples(name, ref, seen, matcher):
     case = _case(ref)
