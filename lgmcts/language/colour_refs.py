@@ -179,10 +179,7 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
     if got is None:
         return None
     ref, end, quant = got
-    for tail in (("in", "colour"), ("in", "color"), ("colour", "wise"), ("'s", "colour"), ("by", "colour")):
-        if ws[end : end + len(tail)] == tail:
-            end += len(tail)
-            break
+    end = _seq(ws, end, (("in", "colour"), ("in", "color"), ("colour", "wise"), ("'s", "colour"), ("by", "colour")))
     return ColourRef(i, end, head, ref, negated, quant)
 
 
