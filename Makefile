@@ -14,7 +14,7 @@ export TRANSFORMERS_OFFLINE := 1
 export MUJOCO_GL ?= osmesa
 export PYOPENGL_PLATFORM ?= osmesa
 
-.PHONY: install system-deps demo-deps llm-local demo check test golden golden-parse bench bench-suites bench-language llm-eval clean
+.PHONY: install system-deps demo-deps llm-local demo demo-arm check test golden golden-parse bench bench-suites bench-language llm-eval clean
 
 $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -49,6 +49,16 @@ demo: install demo-deps
 	@cat out/demo/plan.json
 	$(PY) -m lgmcts execute examples/tabletop.json out/demo/plan.json
 	@echo "pictures: out/demo/initial.png, out/demo/final.png, out/demo/before_after.png, out/demo/plan.gif, out/demo/heatmaps_step_01.png"
+
+# The example played by a UR5e arm with a suction cup (docs/sim.md): a plan
+# for the arm's reach and a video of its execution next to the demo pictures.
+demo-arm: install system-deps
+	@mkdir -p out/demo
+	$(PY) -m lgmcts plan examples/tabletop.json \
+	    "Move all blocks into a circle; while put the white bottle behind one block" \
+	    --seed 0 --robot ur5e -o out/demo/plan_arm.json
+	$(PY) -m lgmcts execute examples/tabletop.json out/demo/plan_arm.json --robot ur5e --video out/demo/arm.mp4
+	@echo "video: out/demo/arm.mp4"
 
 # Lint (ruff), types (mypy) and the quick tests (-m "not slow", about 80 s on
 # 2 cores); what each leaves out and why: docs/design.md, "Lint and types".

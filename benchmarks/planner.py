@@ -514,8 +514,13 @@ def main() -> None:
     a = ap.parse_args()
     t0 = time.perf_counter()
     res = {"random": cmd_random, "labbe": cmd_labbe, "memory": cmd_memory, "trlb": cmd_trlb}[a.cmd](a)
-    meta = {"command": " ".join(["python", *sys.argv]), "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
-            "python": platform.python_version(), "date": time.strftime("%Y-%m-%d"), "wall_s": time.perf_counter() - t0}
+    meta = {
+        "command": " ".join(["python", *sys.argv]),
+        "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
+        "python": platform.python_version(),
+        "date": time.strftime("%Y-%m-%d"),
+        "wall_s": time.perf_counter() - t0,
+    }
     print(f"\n{meta['command']}  ({meta['date']}, {meta['wall_s']:.0f} s)")
     if a.json:
         a.json.parent.mkdir(parents=True, exist_ok=True)

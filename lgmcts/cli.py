@@ -71,6 +71,9 @@ def plan(
     llm_base_url: str | None = typer.Option(None, "--llm-base-url"),
     output: str | None = typer.Option(None, "-o", "--output", help="Write the plan JSON here (default stdout)."),
     viz: Path | None = typer.Option(None, "--viz", help="Write pictures of the plan into this folder."),
+    robot: str | None = typer.Option(
+        None, "--robot", help="Plan for this arm (ur5e): every pick and place within its reach."
+    ),
     verbose: int = typer.Option(0, "-v", "--verbose", count=True, help="-v: search log, -vv: debug."),
 ) -> None:
     """Plan actions for SCENE towards --goal GOALS.json or an INSTRUCTION.
@@ -97,7 +100,8 @@ def plan(
             assert instruction is not None  # one of the two, checked above
             goals = parse(spec, instruction, parser=parser, llm_model=llm_model, llm_base_url=llm_base_url)
         limit = None if time_limit == 0 else time_limit
-        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=limit, anytime=anytime)
+        result = run_plan(spec, goals, method=method, seed=seed, max_iter=max_iter, time_limit=limit, anytime=anytime,
+                          robot=robot)
     except InputError as exc:
         fail(str(exc))
     if instruction is not None:
@@ -126,12 +130,15 @@ def check(
     goals: Path = typer.Argument(..., help="Goal JSON file."),
     plan_file: Path = typer.Argument(..., metavar="PLAN", help="Plan JSON file."),
     as_json: bool = typer.Option(False, "--json", help="Print the verdict as JSON."),
+    robot: str | None = typer.Option(
+        None, "--robot", help="Also require every pick and place within this arm's reach (ur5e)."
+    ),
 ) -> None:
     """Replay PLAN on SCENE and judge it against GOALS (exit 0 valid, 1 invalid, 2 bad input)."""
     from .validate import check as run_check
 
     try:
-        verdict = run_check(scene, goals, plan_file)
+        verdict = run_check(scene, goals, plan_file, robot=robot)
     except InputError as exc:
         fail(str(exc))
     if as_json:

@@ -183,7 +183,7 @@ def write_text(text: str, path: str | None) -> None:
         write_stdout(text + "\n")
         return
     try:
-        atomic_write(path, text + "\n")  # type: ignore[arg-type]
+        atomic_write(path, text + "\n")
     except InputError as exc:
         fail(str(exc))
 

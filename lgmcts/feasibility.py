@@ -51,7 +51,7 @@ this test the mixed ones.
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 import shapely
@@ -166,24 +166,44 @@ def _pose_goals(sc: Scene, goals: GoalSpec, in_tower: set[int], bounds: tuple[fl
         x, y, _ = g.pose
         if not (xmin <= x <= xmax and ymin <= y <= ymax):
             raise InputError(f"goal {k} (pose) puts object {g.objects[0]} outside the workspace")
-        if g.objects[0] in ids:
-            continue  # the same pose twice (check_against refuses two different ones)
         ids.append(g.objects[0])
         poses.append(g.pose)
+    # The same pose twice counts once (check_against refuses two different ones).
+    first = {i: k for k, i in reversed(list(enumerate(ids)))}
+    ids, poses = [ids[k] for k in sorted(first.values())], [poses[k] for k in sorted(first.values())]
     if len(ids) < 2:
         return
     idx = [sc.index[i] for i in ids]
     polys = geo.place_each([sc.local[k] for k in idx], np.asarray(poses, dtype=float))[1]
-    # Two cylinders may touch, as the validator allows: judged on their circles.
-    a, b, areas = geo.overlap_pairs(polys, sc.discs[idx], np.array([p[:2] for p in poses], dtype=float))
-    for hit in np.flatnonzero(areas > _OVERLAP_AREA):
-        i, j = ids[a[hit]], ids[b[hit]]
-        if i in in_tower and j in in_tower:
-            continue
-        raise InputError(
-            f"objects {i} and {j} have pose goals whose footprints overlap by {areas[hit] * 1e4:.2f} cm^2 "
-            "(only a tower goal stacks objects)"
-        )
+    discs = sc.discs[idx]
+    xy = np.array([p[:2] for p in poses], dtype=float)
+    # Only a pair with an object outside every tower can be refused: those
+    # objects are queried, a few hundred at a time, so that targets stacked
+    # in towers (which may all overlap) cost no pairs, and the first overlap
+    # found ends the test.
+    tree = shapely.STRtree(polys)
+    loose = np.array([k for k, i in enumerate(ids) if i not in in_tower], dtype=int)
+    for c in range(0, len(loose), 256):
+        src = loose[c:c + 256]
+        qa, qb = tree.query(polys[src], predicate="intersects")
+        qa = src[qa]
+        keep = qa != qb
+        qa, qb = qa[keep], qb[keep]
+        for d in range(0, len(qa), 1024):  # the exact areas, a batch at a time, up to the first overlap
+            a, b = qa[d:d + 1024], qb[d:d + 1024]
+            areas = np.array(shapely.area(shapely.intersection(polys[a], polys[b])), dtype=float)
+            # Two cylinders may touch, as the validator allows: judged on their circles.
+            for k in np.flatnonzero((discs[a] > 0) & (discs[b] > 0)).tolist():
+                areas[k] = geo.lens_area(float(discs[a[k]]), float(discs[b[k]]),
+                                         float(np.hypot(*(xy[a[k]] - xy[b[k]]))))
+            over = np.flatnonzero(areas > _OVERLAP_AREA)
+            if len(over):
+                hit = int(over[0])
+                i, j = ids[min(a[hit], b[hit])], ids[max(a[hit], b[hit])]
+                raise InputError(
+                    f"objects {i} and {j} have pose goals whose footprints overlap by {areas[hit] * 1e4:.2f} cm^2 "
+                    "(only a tower goal stacks objects)"
+                )
 
 
 def _order(goals: GoalSpec) -> None:
@@ -230,7 +250,7 @@ def _cycle(after: dict[int, list[tuple[int, str]]]) -> list[tuple[int, int, str]
             succ, why = nxt
             if state.get(succ) == 1:
                 start = next((i for i, e in enumerate(path) if e[0] == succ), len(path))
-                return path[start:] + [(node, succ, why)]
+                return [*path[start:], (node, succ, why)]
             if succ not in state:
                 state[succ] = 1
                 path.append((node, succ, why))
@@ -283,12 +303,12 @@ def _sizes(goals: GoalSpec, rho: Callable[[int], float]) -> None:
 
 def _opposite_relations(goals: GoalSpec) -> None:
     """Refuse one object in two directions of one anchor more than twice the rule's half-angle apart."""
-    seen: dict[tuple[int, int], list[tuple[int, str]]] = {}
+    seen: dict[tuple[int, int], dict[str, int]] = {}  # (object, anchor) -> relation -> its first goal
     for k, g in enumerate(goals.goals):
         if g.anchor is None or g.pattern not in RELATIONS:
             continue
         for o in g.objects:
-            for k2, rel in seen.get((o, g.anchor), []):
+            for rel, k2 in seen.get((o, g.anchor), {}).items():
                 a = math.atan2(RELATIONS[rel][1], RELATIONS[rel][0])
                 b = math.atan2(RELATIONS[g.pattern][1], RELATIONS[g.pattern][0])
                 apart = abs(math.remainder(a - b, 2 * math.pi))
@@ -298,7 +318,7 @@ def _opposite_relations(goals: GoalSpec) -> None:
                         f"the directions are {math.degrees(apart):.0f} deg apart, each allows "
                         f"{math.degrees(_RELATION_HALF_ANGLE):.0f} deg"
                     )
-            seen.setdefault((o, g.anchor), []).append((k, g.pattern))
+            seen.setdefault((o, g.anchor), {}).setdefault(g.pattern, k)
 
 
 def _line_and_circle(goals: GoalSpec, rho: Callable[[int], float]) -> None:
@@ -315,7 +335,11 @@ def _line_and_circle(goals: GoalSpec, rho: Callable[[int], float]) -> None:
     closer than the part's diagonal. Refused when the two smallest inradii
     need more than that.
     """
-    lines = [(k, frozenset(g.objects)) for k, g in enumerate(goals.goals) if g.pattern == "line"]
+    lines: dict[int, list[tuple[int, frozenset[int]]]] = {}  # object -> the line goals holding it
+    for k, g in enumerate(goals.goals):
+        if g.pattern == "line":
+            for o in g.objects:
+                lines.setdefault(o, []).append((k, frozenset(g.objects)))
     if not lines:
         return
     r0, t = _MIN_CIRCLE_RADIUS, _TOL
@@ -323,7 +347,8 @@ def _line_and_circle(goals: GoalSpec, rho: Callable[[int], float]) -> None:
     for k, g in enumerate(goals.goals):
         if g.pattern != "circle" or len(g.objects) < 3:
             continue
-        on_line = next((kl for kl, objs in lines if set(g.objects) <= objs), None)
+        mine = set(g.objects)
+        on_line = next((kl for kl, objs in lines.get(g.objects[0], []) if mine <= objs), None)
         if on_line is None:
             continue
         n = len(g.objects)
@@ -419,12 +444,37 @@ def _unstacking(sc: Scene, goals: GoalSpec, have: float) -> None:
         return area[i]
 
     resting = sum(footprint(i) for i in range(sc.n) if i not in named and start.on[i] == TABLE)
+    # Area and count of the unnamed objects above each object, top down in one pass.
+    level = _levels(start.on)
+    carried = [0.0] * sc.n
+    count = [0] * sc.n
+    for i in sorted(range(sc.n), key=lambda j: -level[j]):
+        below = start.on[i]
+        if below != TABLE:
+            own = 0.0 if i in named else footprint(i)
+            carried[below] += carried[i] + own
+            count[below] += count[i] + (i not in named)
     for o in movers:
-        above = [b for b in start.above(o) if b not in named]
-        need = resting + sum(footprint(b) for b in above)
+        need = resting + carried[o]
         if need > have:
             raise InputError(
-                f"object {sc.ids[o]} must move but carries {len(above)} objects that no goal places: this planner "
+                f"object {sc.ids[o]} must move but carries {count[o]} objects that no goal places: this planner "
                 f"parks them on the table, where with the objects already there they need {need:.3f} m^2, more than "
                 f"the workspace's {have:.3f} m^2"
             )
+
+
+def _levels(on: tuple[int, ...] | list[int]) -> list[int]:
+    """How many objects each object rests on (0 on the table), in linear time."""
+    level = [-1] * len(on)
+    for start in range(len(on)):
+        path = []
+        i = start
+        while i != TABLE and level[i] < 0:
+            path.append(i)
+            i = on[i]
+        base = -1 if i == TABLE else level[i]
+        for j in reversed(path):
+            base += 1
+            level[j] = base
+    return level

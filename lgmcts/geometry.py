@@ -132,7 +132,7 @@ def inside_workspace(vertices: np.ndarray, bounds: Sequence[float], margin: floa
     x, y = v[..., 0], v[..., 1]
     m = margin - EDGE_EPS
     ok = (x >= xmin + m) & (x <= xmax - m) & (y >= ymin + m) & (y <= ymax - m)
-    return ok.all(axis=-1)
+    return np.asarray(ok.all(axis=-1))
 
 
 def radius_of(local: np.ndarray) -> float:

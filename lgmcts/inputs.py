@@ -121,7 +121,8 @@ def loads(text: str | bytes, where: str) -> Any:
     except RecursionError:
         raise InputError(f"{where} is nested too deeply") from None
     except _DuplicateKey as exc:
-        raise InputError(f"{where} names the key '{limits.truncate(limits.printable(exc.key), 40)}' twice in one object") from None
+        key = limits.truncate(limits.printable(exc.key), 40)
+        raise InputError(f"{where} names the key '{key}' twice in one object") from None
     except json.JSONDecodeError:
         raise
     except UnicodeDecodeError:

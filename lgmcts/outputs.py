@@ -20,7 +20,7 @@ from typing import IO
 
 from .errors import InputError
 
-__all__ = ["atomic_write", "new_file_mode", "temporary_beside", "publish"]
+__all__ = ["atomic_write", "new_file_mode", "publish", "temporary_beside"]
 
 _umask_lock = threading.Lock()
 

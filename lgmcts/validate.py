@@ -253,8 +253,13 @@ def check(
     scene: SceneSpec | Scene | dict | str | Path,
     goals: GoalSpec | dict | list | str | Path,
     plan: PlanSpec | dict | str | Path,
+    *,
+    robot: str | None = None,
 ) -> Verdict:
     """Replay ``plan`` on ``scene`` and judge it against ``goals``.
+
+    With ``robot`` (``"ur5e"``, see :mod:`lgmcts.robot`) every pick and
+    placement must also be within that robot's top-down reach.
 
     Raises :class:`InputError` only for inputs that are themselves malformed
     (unknown ids in the goals, a bad scene); an illegal plan is a verdict.
@@ -263,10 +268,15 @@ def check(
     gs = load_goals(goals)
     gs.check_against(sc.spec)
     pl = load_plan(plan)
+    if robot is not None:
+        from .robot import load_robot
+
+        load_robot(robot)  # an unknown robot is bad input
     xmin, xmax, ymin, ymax = sc.bounds
     ws = shapely.box(xmin, ymin, xmax, ymax)
     state = sc.initial
     reasons: list[str] = []
+    replayed = 0
     for step, act in enumerate(pl.actions, start=1):
         try:
             # The shared step; it refuses only meaningless actions (unknown
@@ -307,6 +317,11 @@ def check(
             if not shapely.contains_xy(state.polys[j], new_pose[0], new_pose[1]):
                 reasons.append(f"action {step}: centre of object {act.object} is not over support {act.on}")
         state = after
+        replayed = step
+    if robot is not None:
+        from .robot import plan_reach_problems, robot_of
+
+        reasons.extend(plan_reach_problems(sc, pl.actions[:replayed], robot_of(robot)))  # type: ignore[arg-type]
     results = []
     for k, g in enumerate(gs.goals):
         why = goal_satisfied(g, sc, state.poses, state.on)

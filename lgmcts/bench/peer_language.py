@@ -148,14 +148,14 @@ def _pair(sc: _Scene, a: int, b: int, words: tuple[str, ...], rng: np.random.Gen
 def _goal_sentences(sc: _Scene, g: dict, rng: np.random.Generator) -> list[str] | None:
     p, ids = g["pattern"], [int(i) for i in g["objects"]]
     if p in PAIR_WORDS:
-        out = [_pair(sc, i, int(g["anchor"]), PAIR_WORDS[p], rng) for i in ids]
-        return None if None in out else out
+        pairs = [_pair(sc, i, int(g["anchor"]), PAIR_WORDS[p], rng) for i in ids]
+        return None if None in pairs else [s for s in pairs if s is not None]
     if p == "tower":
-        out = []
+        levels: list[str | None] = []
         for lo, hi in itertools.pairwise(ids):
             s = _pair(sc, hi, lo, ("on",), rng) if rng.random() < 0.7 else _pair(sc, lo, hi, ("under", "below"), rng)
-            out.append(s)
-        return None if None in out else out
+            levels.append(s)
+        return None if None in levels else [s for s in levels if s is not None]
     objs = _object_set(sc, ids, rng)
     if objs is None:
         return None

@@ -45,10 +45,10 @@ def _row(group: str, recs: list[dict[str, Any]]) -> Row:
     sr_ep = None if all(v is None for v in ep) else sum(bool(v) for v in ep) / n
     pc = [(r.get("parse") or {}).get("correct") for r in recs]
     parse_acc = None if all(v is None for v in pc) else sum(bool(v) for v in pc) / n
-    acts = [(r.get("planning") or {}).get("actions") for r in recs if r.get("sr_p")]
-    acts = [a for a in acts if a is not None]
-    times = [(r.get("planning") or {}).get("time_s") for r in recs]
-    times = np.array([t for t in times if t is not None], dtype=float)
+    acts_or_none = [(r.get("planning") or {}).get("actions") for r in recs if r.get("sr_p")]
+    acts = [a for a in acts_or_none if a is not None]
+    times_or_none = [(r.get("planning") or {}).get("time_s") for r in recs]
+    times = np.array([t for t in times_or_none if t is not None], dtype=float)
     causes = Counter(r["cause"] for r in recs if r.get("cause"))
     return Row(
         group=group,

@@ -27,7 +27,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import asdict, dataclass
 from multiprocessing import get_context
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, PlanSpec, parse_goals, parse_plan, parse_scene, to_dict
@@ -222,7 +222,8 @@ def run_task(task: dict | Task, options: RunOptions) -> dict[str, Any]:
     if goals is not None or lfsp:
         t0 = time.perf_counter()
         try:
-            plan = _lfsp(scene, t.instruction, options) if lfsp else _plan(scene, goals, t.seed, options)
+            gs = cast(GoalSpec, goals)  # without lfsp the goals are there (the condition above)
+            plan = _lfsp(scene, t.instruction, options) if lfsp else _plan(scene, gs, t.seed, options)
         except Exception as exc:
             cause, detail = "planner error", f"{type(exc).__name__}: {exc}"
         wall = time.perf_counter() - t0

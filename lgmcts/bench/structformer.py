@@ -183,8 +183,8 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         goals = [{"pattern": "tower", "objects": [ids[i] for i in t]}]
     else:
         tower, cut_idx = goal_idx
-        plate = tower[0]
-        rp = float(scene.radii[plate])
+        base = tower[0]
+        rp = float(scene.radii[base])
         for _ in range(60):
             c = np.array([rng.uniform(-0.22, 0.22), rng.uniform(-0.15, 0.15)])
             sgn = 1.0 if side == "right" else -1.0
@@ -195,7 +195,7 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
                 for k in range(len(cut_idx))
             ]
             trial = Layout(scene, gap=0.01)
-            if trial.try_put(plate, np.array([c[0], c[1], 0.0])) and all(
+            if trial.try_put(base, np.array([c[0], c[1], 0.0])) and all(
                 trial.try_put(i, p) for i, p in zip(cut_idx, cposes)
             ):
                 for i in trial.poses:
@@ -204,12 +204,12 @@ def _attempt(category: str, rng: np.random.Generator):  # noqa: C901 - one recip
         else:
             return None
         for a, b in itertools.pairwise(tower):
-            layout.poses[b] = np.array([*layout.poses[plate][:2], rng.uniform(-math.pi, math.pi)])
+            layout.poses[b] = np.array([*layout.poses[base][:2], rng.uniform(-math.pi, math.pi)])
             final_on[b] = a
         goals = [
             {"pattern": "tower", "objects": [ids[i] for i in tower]},
             {"pattern": "line", "objects": [ids[i] for i in cut_idx]},
-            {"pattern": side, "objects": [ids[i] for i in cut_idx], "anchor": ids[plate]},
+            {"pattern": side, "objects": [ids[i] for i in cut_idx], "anchor": ids[base]},
         ]
     for i in range(n):
         if i not in layout.poses and layout.random(i, rng) is None:

@@ -80,7 +80,7 @@ def iter_generate(name: str, *, n: int | None = None, seed: int = 0, category: s
     return _generated(s, name, total, seed, category, instructions, rephrase)
 
 
-def _generated(s: "Suite", name: str, total: int, seed: int, category: str | None, instructions: str,
+def _generated(s: Suite, name: str, total: int, seed: int, category: str | None, instructions: str,
                rephrase: Callable[[Task, str], Task]) -> Iterator[Task]:
     made, k = 0, 0
     while made < total:

@@ -102,7 +102,7 @@ class Task:
 
         def typed(key: str, kinds: tuple[type, ...], noun: str, default: Any = None) -> Any:
             value = data.get(key, default)
-            if isinstance(value, bool) and bool not in kinds or not isinstance(value, kinds):
+            if (isinstance(value, bool) and bool not in kinds) or not isinstance(value, kinds):
                 raise InputError(f"{where}: '{key}' must be {noun}, got {truncate(json.dumps(value), 40)}")
             return value
 

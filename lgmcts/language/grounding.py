@@ -34,6 +34,8 @@ from dataclasses import dataclass, replace
 
 from ..errors import InputError
 from ..formats import SceneSpec
+from . import lexicon
+from .ir import Token
 from .matcher import STOPWORDS
 
 __all__ = [
@@ -96,16 +98,9 @@ GENERIC = frozenset({"object", "objects", "thing", "things", "item", "items", "p
 
 #: Colour and texture words used only to recognise a reference to an object
 #: the scene does not have ("the purple giraffe").
-COLOUR_WORDS = frozenset(
-    """red green blue yellow purple white black orange pink brown gray grey cyan magenta violet golden gold silver
-    beige teal turquoise navy maroon swirl striped stripe stripes polka dot dotted granite tiger rainbow wooden metal
-    plastic checkerboard checkered marble dark light transparent""".split()
-)
+COLOUR_WORDS = lexicon.COLOUR_WORDS
 
-NUMBERS = {
-    "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
-    "eleven": 11, "twelve": 12, "a couple of": 2, "a pair of": 2, "couple of": 2, "pair of": 2,
-}
+NUMBERS = lexicon.NUMBERS
 
 #: Tokens before a pattern noun: "in a square", "into a ring", "form a cross".
 PATTERN_LEAD = frozenset({"in", "into", "as", "form", "forming", "forms", "make", "making", "like", "shape"})
@@ -129,19 +124,11 @@ def _pattern_context(words: tuple[str, ...], i: int) -> bool:
 _TOKEN_RE = re.compile(r"-?\d+(?:\.\d+)?|[a-z]+(?:'[a-z]+)?|[;,.!?#()&:]")
 
 
-@dataclass(frozen=True)
-class Token:
-    """One lower-cased word or punctuation mark and where it starts in the text."""
-
-    text: str
-    pos: int
-
-
 def tokenize(text: str) -> tuple[Token, ...]:
-    """Lower-case words, numbers and punctuation of ``text``."""
+    """Lower-case words, numbers and punctuation of ``text``, each with its span in ``text`` (:class:`.ir.Token`)."""
     low = text.lower().replace("\u2019", "'").replace("\u2018", "'")
     low = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", low)
-    return tuple(Token(m.group(0), m.start()) for m in _TOKEN_RE.finditer(low))
+    return tuple(Token(m.group(0), m.start(), m.end(), Token.kind_of(m.group(0))) for m in _TOKEN_RE.finditer(low))
 
 
 _COLOUR_FORMS = {"striped": "stripe", "stripes": "stripe", "dots": "dot", "dotted": "dot", "swirls": "swirl",
@@ -551,7 +538,7 @@ _COORD = frozenset({"and", ",", "or", "&", "plus"})
 _AFTER_PRONOUN = frozenset({"in", "into", "up", "out", "on", "onto", "together", "around", "behind", "to", "next", "beside",
                             "along", "as", "and", ",", ".", "!", "?", ";", ":", "please", "for", "so", "side", "one",
                             "down", "over", "under", "at", "neatly", "too"})
-_PUT_VERBS = frozenset({"put", "place", "line", "set", "stack", "arrange", "move", "get", "make", "pile", "lay"})
+_PUT_VERBS = lexicon.COMMAND_VERBS
 
 
 def _starts(words: tuple[str, ...], i: int, seq: tuple[str, ...]) -> bool:

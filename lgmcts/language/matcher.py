@@ -27,6 +27,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..formats import RELATIONS
+from . import lexicon
 
 __all__ = [
     "MatcherOptions",
@@ -41,19 +42,10 @@ __all__ = [
 ]
 
 #: Words that carry no meaning for pattern choice or grounding.
-STOPWORDS = frozenset(
-    """a an the of to in into on onto at by with from for and or but as so that this these those it its them they
-    their there here is are be been being was were do does please me my i you your we us our can could would will
-    i'd i'm we'd let's you'd that's it's
-    shall should let lets let's just then also up all each every some any one ones way kindly neatly nicely carefully
-    together side""".split()
-)
+STOPWORDS = lexicon.STOPWORDS
 
 #: Verbs and fillers that ask for a rearrangement without naming one.
-_FILLER_WORDS = """put place move arrange set position make form get bring organize organise lay rearrange sort order
-    reorder create build shape pattern formation configuration layout arrangement pick locate relocate drop leave keep
-    want need like would table workspace tabletop please group go goes going should must end ends stand stands sit
-    sits located placed positioned moved put arranged use using like have has ensure sure""".split()
+_FILLER_WORDS = lexicon.FILLER_WORDS
 
 
 @dataclass(frozen=True)

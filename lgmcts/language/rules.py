@@ -33,13 +33,22 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
-from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from . import lexicon
+from .grounding import _ATTRS, COLOUR_WORDS, GROUPS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .lexicon import HUES, MACROS
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
+from . import stages
+from .measures import UNITS
+from .places import BAND_MARKS, POINTING_PARTS
+
+if TYPE_CHECKING:
+    from .readings import Frame
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
@@ -628,7 +637,7 @@ _LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do no
                     r"they are)| untouched| as is)?(?: please)?$")
 
 #: Plain colour words, said one after another for one object each ("red orange yellow").
-_HUES = frozenset("red green blue yellow purple white black orange pink brown gray grey".split())
+_HUES = HUES
 
 
 class _Parser:
@@ -640,6 +649,8 @@ class _Parser:
         self.infos = matcher.infos()
         self.key_vocab = matcher.vocabulary
         self.state = _State()
+        #: The readings that answered, one per clause read (:mod:`.readings`).
+        self.fired: list[str] = []
         #: Every word of the scene's category names ("letter", "a", "block" ...).
         self._cat_words = frozenset(x for key in self.vocab.categories for x in key)
         #: The clause being read starts "B on it": what the clause before named goes below B.
@@ -658,6 +669,11 @@ class _Parser:
         #: used; the rewritten text.
         self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
         self._said = ""
+        #: The measures said in numbers (.stages.mark_measures) and those a goal took.
+        self._measures: list = []
+        self._measured: set[int] = set()
+        #: The last goal read from a clause (a later clause with only a facing may be its).
+        self._last_read: _Pending | None = None
 
     # ------------------------------------------------------------ one clause
     def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
@@ -864,51 +880,34 @@ class _Parser:
         return res
 
     def clause(self, words: tuple[str, ...]) -> list[_Pending]:
+        """The pending goals one clause asks for: the early handlers of :mod:`.readings` on its words, then
+        its frame (:meth:`_frame`), then the readings in their registered order; the first that answers
+        gives the result. ``self.fired`` records the name of each reading that answered."""
+        from .readings import EARLY, READINGS, Frame
+
         words = self._arrangement_refs(words)
         if not words:
             return []
-        text = " ".join(words)
-        rel_words_ = self._word_kinds()[0]
-        for k, w in enumerate(words):
-            nxt = [x for x in words[k + 1 : k + 5] if x not in ("be", "end", "ends", "up", "placed", "put", "go", "sit",
-                                                                "sitting", "stand", "standing", "to", "the")]
-            if w in ("not", "never", "nowhere") and nxt and (
-                    nxt[0] in _DIR_WORDS or nxt[0] in _VERT_WORDS - {"of", "top"} or _stem(nxt[0]) in rel_words_
-                    or tuple(nxt[:2]) == ("in", "front")):
-                # "make sure the box is not behind the bowl": a goal that something must not hold.
-                raise InputError(f"'{text}': goals that something must not hold are not read; say where it should go")
-        if any(w in ("itself", "themselves", "himself", "herself") for w in words):
-            raise InputError(f"'{text}': an object cannot be placed relative to itself")
-        for k in range(1, len(words) - 1):
-            if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
-                skip = 2 if words[k + 1] == "that" else 1
-                sub_words = words[k + skip :]
-                if any(_stacking(w) for w in words[:k]) and sum(w in _VERT_WORDS - {"to", "of", "top"}
-                                                                for w in sub_words) >= 2:
-                    # "stack the cans so that the green one sits on the red one and the white one
-                    # sits on the green one": the stacking steps make the stack.
-                    out: list[_Pending] = []
-                    self._note_nouns(self._find(words[:k]))  # "the green one": a can
-                    for part in _weak_split(sub_words, self._find(sub_words), self.key_vocab, self._word_kinds()[0]):
-                        for step in _on_pairs_split(part, self._find(part)):
-                            out.extend(self.clause(tuple(w for w in step if w not in (",", "and"))
-                                                   if step[:1] in ((",",), ("and",)) else step))
-                    if out and all(p.pattern == "tower" for p in out):
-                        return out
-                if any(_stacking(w) for w in words[:k]) and not any(
-                        w in ("it", "they", "them") for w in words[k + skip :]):
-                    # "stack the mugs so that the blue one is at the bottom": the
-                    # stack's roles, as "with the blue one at the bottom".
-                    sub = tuple(w for w in words[k + skip :] if w not in ("is", "are", "be", "should", "ends", "end",
-                                                                         "up", "goes", "go", "sits", "will"))
-                    return self.clause(words[:k] + ("with",) + sub)
-                return self._so_that(words, k, skip)
-            if words[k : k + 2] in (("until", "the"), ("until", "it"), ("leaving", "the"), ("that", "leaves"),
-                                    ("where", "the")) and k > 1:
-                # "shift A until B is on its left", "put A somewhere that leaves B on its left".
-                after = words[k + 1 :] if words[k + 1] in ("the", "it") else words[k + 2 :]
-                main = tuple(w for w in words[:k] if w not in ("somewhere", "anywhere"))
-                return self._so_that(main + ("so", "that") + after, len(main), 2)
+        f = Frame(words, " ".join(words))
+        for name, handler in EARLY:
+            got = handler(self, f)
+            if got is not None:
+                self.fired.append(name)
+                return got
+        f = self._frame(f.words, f.text)
+        for name, handler in READINGS:
+            got = handler(self, f)
+            if got is not None:
+                self.fired.append(name)
+                return got
+        raise AssertionError("the last reading answers every clause")
+
+    def _frame(self, words: tuple[str, ...], text: str) -> Frame:
+        """A clause's references, stack roles, parameters and the words between its references (see
+        :class:`.readings.Frame`); refuses what no reading can take (an object size word, a count of
+        groups, a compass direction that is no facing, an exception with nothing to leave out)."""
+        from .readings import Frame
+
         mentions = self._find(words)
         role_at, reduced = self._roles(words, mentions)
         if role_at is not None:
@@ -927,7 +926,8 @@ class _Parser:
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if self.state.header is not None or (not mentions and self.state.last_shape is not None) or any(
-                self._free_word(w) for k, w in enumerate(words) if k not in inside):
+                self._free_word(w) or stages.is_mark(w) or w in _FACING_CUES for k, w in enumerate(words)
+                if k not in inside) or (not mentions and self._last_read is not None):
             stackish = any(_stacking(w) for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None
@@ -991,307 +991,8 @@ class _Parser:
                              f"'facing north', 'east', 'south' or 'west'")
         if any(w in ("except", "excluding", "minus") for w in phrase_words):
             raise InputError(f"'{text}': cannot tell what to leave out")
-        if not mentions and params and not meaningful and self.state.last_shape is not None:
-            # "..., red on top, in the front right corner": the place of the arrangement just read.
-            _add_params(self.state.last_shape, params, text)
-            return []
-        if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
-                and self.state.tower is not None and self.state.header is None:
-            # "stack red, blue, green. bottom up.": the order the stack was listed in; a list
-            # after it ("pile up the cans. from top to bottom: green, blue, ...") goes downward.
-            if "top to bottom" in text:
-                self.state.tower.objects.reverse()
-                self.state.downward = True
-            return []
-        if not mentions:
-            if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
-                # "from the bottom up: green, red, blue": a stack named by its order.
-                self.state.header = ("tower", params, text)
-                return []
-            if not meaningful:
-                return []  # a preamble such as "set the table" or "please"
-            if self.state.selection is not None:
-                # "select objects that are red. small circle in the top left": the
-                # structure sentence takes the objects selected before it.
-                sel = self.state.selection
-                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
-                                                                     if not i.anchored and not i.needs_pose))
-                p = self._shape(m.pattern, [[sel]], words, [], text, phrase_words)
-                p.params = params
-                return [p]
-            if any(self._free_word(w) for w in meaningful):
-                m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
-                                                                     if not i.anchored and not i.needs_pose))
-                self.state.header = (m.pattern, params, text)
-                return []  # "make a tower:" names its objects in the next clause
-            raise InputError(f"'{text}' names no object in the scene")
-        if words[0] in _SELECT_VERBS and roles is None and all(
-                w in _SELECT_VERBS or w in ("up", "out", "only", "just") for w in meaningful):
-            sel: list[int | Choice] = []
-            for g in groups:
-                for got in self._select_group(g):
-                    for x in got if isinstance(got, list) else [got]:
-                        if x not in sel:
-                            sel.append(x)
-            self.state.selection = sel
-            self.state.last = list(sel)
-            self.state.it_pair = None
-            self.state.last_tower = False
-            if self.state.header is not None:
-                # "small line in the top left. select objects that are mug.": the
-                # structure sentence first, its objects selected after it.
-                pat, hparams, htext = self.state.header
-                self.state.header = None
-                p = self._shape(pat, [[sel]], words, [], htext, [])
-                p.params = dict(hparams)
-                return [p]
-            return []
-        if (roles is not None and self.state.tower is not None and self.state.header is None
-                and not any(self._free_word(w) for w in meaningful) and any(roles)):
-            # "...; the red one goes in between": a role for an object of the tower just built.
-            tower = self.state.tower.objects
-            before = [x for x in tower if isinstance(x, int)]
-            prev = None
-            pairs = list(zip(mentions, roles))
-            if re.search(r"\btop to (the )?bottom\b", text) and not self.state.downward:
-                # "black bowl, then white bowl, then the blue block, from the top down, black bowl
-                # highest": the list read downward first, then the roles.
-                for mm, r in pairs:
-                    if r is None:
-                        got = self._select(mm)
-                        tower.extend(x for x in (got if isinstance(got, list) else [got]) if x not in tower)
-                tower.reverse()
-                self.state.downward = True
-                pairs = [(mm, r) for mm, r in pairs if r is not None]
-            for mm, role in pairs:
-                got = self._select(mm)
-                xs = got if isinstance(got, list) else [got]
-                # "..., then green, red at the bottom": a role after a list is the last one's.
-                listed = len(xs) > 1 and role in ("bottom", "top", "under_it") and any(
-                    w in ("and", ",") for w in mm.text.split())
-                for k, x in enumerate(xs):
-                    r = None if listed and k < len(xs) - 1 else role
-                    if x in tower:
-                        tower.remove(x)
-                    # "white at the bottom, then green": one without a role goes right above the one before.
-                    after = tower.index(prev) + 1 if prev in tower else len(tower)
-                    at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
-                    if r == "under_it":
-                        # "purple on top, orange under it": right below the one before ("orange on top.
-                        # green underneath it": the last one given a place, where none was given here).
-                        below = prev if prev is not None else self.state.tower_prev
-                        if below is None and self.state.tower.said:
-                            below = list(self.state.tower.said)[-1]
-                        if below in tower:
-                            at = tower.index(below)
-                    tower.insert(at, x)
-                    self.state.tower.said[x] = r
-                    prev = x
-            self.state.tower_prev = prev if roles[-1] != "top" else None
-            # "red highest, then yellow, then blue": after the top, each next one goes right below.
-            self.state.tower_down = prev if roles[-1] == "top" else None
-            if self.state.tower_fixed and [x for x in tower if x in before] != before:
-                # "stack the white bowl on the black bowl, but keep the black bowl on top"
-                said = " ".join(w for w in text.split() if w != _ROLE_MARK)
-                raise InputError(f"'{said}' contradicts the stacking order said before it")
-            if params:
-                _add_params(self.state.tower, params, text)  # "..., the red one on top, in the front right corner"
-            return []
-        # "white at the bottom, then green": the next one up, right above the one placed before; after the
-        # top ("red highest, then yellow"), the next one down, right below it.
-        objs = self.state.tower.objects if self.state.tower is not None else []
-        up = self.state.tower_prev in objs
-        ref = self.state.tower_prev if up else (
-            self.state.tower_down if self.state.tower_prev is None and self.state.tower_down in objs else None)
-        if (mentions and not meaningful and ref is not None and self.state.header is None
-                and (roles is None or not any(roles))
-                and all(x in objs for mm in mentions
-                        for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
-            for mm in mentions:
-                got = self._select(mm)
-                for x in got if isinstance(got, list) else [got]:
-                    if x != ref and x in objs:
-                        objs.remove(x)
-                        objs.insert(objs.index(ref) + up, x)
-                        self.state.tower.said[x] = "next" if up else "under_it"
-                        ref = x
-            if up:
-                self.state.tower_prev = ref
-            else:
-                self.state.tower_down = ref
-            if params:
-                _add_params(self.state.tower, params, text)
-            return []
-        if roles is not None and not any(self._free_word(w) for w in meaningful):
-            phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
-            meaningful = ["stack"]
-            if self.state.header is not None and self.state.header[0] == "tower":
-                params = {**self.state.header[1], **params}
-                self.state.header = None
-        if re.search(r"\b(top to bottom|bottom to top)\b", text) and len(mentions) >= 2 and not any(
-                self._free_word(w) for w in meaningful):
-            # "from top to bottom the cans should go white, red, blue, green": a stack by its order.
-            phrase_words, meaningful = ["stack"], ["stack"]
-        joined = " ".join(phrase_words)
-        if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
-                     joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
-            # "the cans behind each other", "next to one another": one after the other, a line.
-            phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
-            meaningful = ["line"]
-        vertical = None
-        if len(groups) == 2 and roles is None:
-            lo, hi = gaps[1]
-            rel_words_, _ = self._word_kinds()
-            # Between the two objects: the vertical words, whatever verb goes
-            # with them ("rest A on B", "A should end up below B"), unless a
-            # word there names a direction or an arrangement.
-            between = tuple(w for w in words[lo:hi] if w in _VERT_WORDS or w in ("top", "of", "to", "neath"))
-            while between and between[0] == "to" and between[:2] != ("to", "the"):
-                between = between[1:]  # "to end up underneath": the "to" of the verb
-            if any(_stem(w) in rel_words_ or w in _DIR_WORDS for w in words[lo:hi]):
-                between = ()
-            if between in _VERT_ON or between in _VERT_UNDER:
-                others = [w for w in meaningful if w not in _VERT_WORDS and w not in _VERT_SKIP
-                          and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")
-                          and (self._free_word(w) or _stem(w) in rel_words_ or w in _DIR_WORDS)]
-                if not others:
-                    vertical = "on" if between in _VERT_ON else "under"
-                    phrase_words = ["stack"]
-                    meaningful = ["stack"]
-        if not meaningful and self.state.header is not None:
-            pat, hparams, htext = self.state.header
-            self.state.header = None
-            sels = [self._select_group(g) for g in groups]
-            # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
-            p = self._shape(pat, sels, words, gaps, f"{htext} {text}" if "top to" in htext else text, phrase_words,
-                            defer_min=True)
-            p.params = {**hparams, **params}
-            return [p]
-        if not meaningful and self.state.tower is not None and len(groups) == 1:
-            # "stack A as the base, then B, then C": each next clause goes on top.
-            tower = self.state.tower
-            for mm in groups[0]:
-                got = self._select(mm)
-                for x in got if isinstance(got, list) else [got]:
-                    if x in tower.objects:
-                        tower.objects.remove(x)
-                    # Read from the top down, each next object goes below the others.
-                    tower.objects.insert(0, x) if self.state.downward else tower.objects.append(x)
-            if params:
-                _add_params(tower, params, text)
-            return []
-        # Order and emphasis words ("the first one at the bottom", "another")
-        # carry no pattern meaning: leave them out of the phrase to match.
-        phrase = " ".join(w for w in phrase_words if w not in _ALLOWED_EXTRA or _stem(w) in self.key_vocab)
-        if not meaningful and len(groups) >= 2:
-            for lo, hi in gaps[1:-1]:
-                if tuple(words[lo:hi]) in _ON_WORDS:
-                    phrase = "on top of each other"
-                    break
-        infos = self.infos
-        n_numbers = len(_numbers(tuple(phrase_words)))
-        usable = frozenset(n for n, inf in infos.items() if not inf.needs_pose or n_numbers >= 2)
-        anchored = frozenset(n for n in usable if infos[n].anchored)
-        rel_words, free_words = self._word_kinds()
-        rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
-        free_pos = [k for k in rest if any(f in free_words for f in _forms(words[k]))]
-        sels = [self._select_group(g) for g in groups]
-        if "using" in words and len(groups) >= 2:
-            # "place the cans in a line using the red, white and blue can": the
-            # objects after "using" are those of the arrangement, taken from the set before.
-            u = words.index("using")
-            before = [g for g, (lo, hi) in enumerate(gaps[1:]) if hi <= u or lo <= u < hi]
-            after = [g for g in range(len(groups)) if g not in before]
-            flat = lambda gs: {x for g in gs for s in sels[g] for x in (s if isinstance(s, list) else [s])  # noqa: E731
-                               if isinstance(x, int)}
-            if before and after and flat(after) and flat(after) < flat(before):
-                sels = [[] if g in before else sels[g] for g in range(len(sels))]
-        if re.search(r"\b(another|second|new|separate|different)\b", phrase):
-            # "another line": a second arrangement of objects no other goal uses.
-            sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
-        if rel_pos and free_pos:
-            # One clause, two goals: "line up the forks to the left of the plate".
-            k0 = rel_pos[0]
-            g_rel = next(g for g, (lo, hi) in enumerate(gaps) if lo <= k0 < hi)
-            lo, hi = gaps[g_rel]
-            start = k0
-            while start > lo and words[start - 1] in ("to", "the", "on", "in", "at", "and", "of", "towards", "toward"):
-                start -= 1
-            rel_phrase = " ".join(words[start:hi])
-            shape_phrase = " ".join(words[k] for k in rest if not start <= k < hi)
-            m_rel = self._match(rel_phrase, text, anchored)
-            m_shape = self._match(shape_phrase, text, usable - anchored)
-            out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
-            targets = out[0].objects
-            out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
-            out[-1].params = params
-            return out
-        if self.state.selection is not None and len(groups) == 1 and roles is None:
-            lead = tuple(w for w in words[gaps[0][0] : gaps[0][1]] if w not in _VERT_SKIP and w not in _COMMAND_VERBS
-                         and w != "the")
-            if lead in _VERT_ON or lead in _VERT_UNDER:
-                # "heart: on the granite bowl": the selected objects on (or under) it.
-                sel, self.state.selection = list(self.state.selection), None
-                base = [x for y in sels[0] for x in (y if isinstance(y, list) else [y])]
-                objs = base + sel if lead in _VERT_ON else sel + base
-                self.state.last, self.state.last_tower = sel, True
-                self.state.it_pair = None
-                return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
-        if meaningful and set(meaningful) <= {"down", "first"} and "down" in meaningful and not rel_pos and not free_pos \
-                and roles is None:
-            meaningful, phrase = [], ""  # "first put down the yellow block, (then) stack the green block on it"
-        if not meaningful and roles is None and not rel_pos and not free_pos and phrase.strip() == "":
-            # "cans: line", "the knife, the fork and the spoon. make a circle with
-            # them": objects named on their own are those of the next clause.
-            sel: list[int | Choice] = []
-            for g in sels:
-                for y in g:
-                    for x in y if isinstance(y, list) else [y]:
-                        if x not in sel:
-                            sel.append(x)
-            self.state.selection = sel
-            self.state.last = list(sel)
-            self.state.it_pair = None
-            self.state.last_tower = False
-            return []
-        named = self._arrangements_named(phrase_words)
-        if len(named) >= 2:
-            raise InputError(f"'{text}' names more than one arrangement ({' and '.join(sorted(named))}) "
-                             f"for the same objects")
-        m = self._match(phrase, text, usable)
-        if infos[m.pattern].anchored:
-            counts = [len([k for k in rel_pos if lo <= k < hi]) for lo, hi in gaps]
-            if not any(counts):
-                counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
-            p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
-            return self._relation(m.pattern, groups, sels, p, text)
-        if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
-            # Objects of one arrangement are joined by "and", "with", "of", "using" or the
-            # pattern phrase itself; any other word between them ("in a line next to the
-            # plate", "a circle around the bottle", "in a row beside them") relates them in a
-            # way no goal here expresses: refuse rather than put them all in the arrangement.
-            for lo, hi in gaps[1:-1]:
-                odd = [w for w in words[lo:hi] if w in _NOT_JOIN or (
-                    w not in _JOIN_OK and not self._free_word(w) and _stem(w) not in FILLERS
-                    and w not in _COMMAND_VERBS and w not in SIZES)]
-                if odd:
-                    raise InputError(f"'{text}': cannot tell what '{' '.join(words[lo:hi])}' asks of the objects "
-                                     f"around it")
-        if any(_is_number(w) or w in _MEASURE_WORDS for w in phrase_words) and not infos[m.pattern].needs_pose:
-            raise InputError(f"'{text}': sizes and distances in numbers are not read; use small, medium or large")
-        role_of: dict = {}
-        if roles is not None:
-            for mm, r in zip(mentions, roles):
-                if r is not None:
-                    got = self._select(mm)
-                    for x in got if isinstance(got, list) else [got]:
-                        role_of[x] = r
-        # A tower may grow over the next clauses ("green at the bottom, then red"):
-        # its size is checked once the command is read.
-        shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of,
-                            defer_min=m.pattern == "tower")
-        shape.params = params
-        return [shape]
+        return Frame(words=words, text=text, mentions=mentions, params=params, meaningful=meaningful,
+                     phrase_words=phrase_words, roles=roles, groups=groups, gaps=gaps, rest=rest)
 
     def _relation(self, pattern: str, groups, sels, p: int, text: str) -> list[_Pending]:
         words_rel = pattern.replace("_", " and ")
@@ -1781,11 +1482,48 @@ class _Parser:
         text = _SUPERLATIVE_AT.sub(superlative, text)
         return _FROM_SIDE_AT.sub(from_side, text)
 
+    def _spelled_right(self, text: str) -> str:
+        """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
+        lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
+                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | set(_SUPERLATIVE)
+                   | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
+                                       "everything", "object", "objects", "please", "square", "center", "centre"})
+        nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
+        protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
+        return stages.spell(text, self.vocab, lexicon, nouns, protect)
+
+    def _every_match(self, m: Mention) -> list[int]:
+        """Every object a reference may name, whatever its number ("the block": every block; ids as said)."""
+        return candidates(self.vocab, m if m.det == "ids" else replace(m, det="all", plural=True))
+
+    def _table_xy(self, oid: int) -> tuple[float, float] | None:
+        """Where an object stands on the table (None when it stands on another object)."""
+        o = self.spec.object(oid)
+        return None if o.pose is None or o.on is not None else (o.pose[0], o.pose[1])
+
+    @property
+    def _centre(self) -> tuple[float, float]:
+        ws = self.spec.workspace
+        return ((ws.x[0] + ws.x[1]) / 2, (ws.y[0] + ws.y[1]) / 2)
+
+    def _object_word(self, w: str) -> bool:
+        """Whether ``w`` names objects of the scene (a name, a colour, a group, an id)."""
+        return (w in self.vocab.color_words or w in self._cat_words or _stem(w) in self._cat_words or w in GROUPS
+                or w.startswith("#") or w in ("object", "objects", "everything", "anything"))
+
+    def _request_word(self, w: str) -> bool:
+        """Whether ``w`` may ask for a goal: a pattern, direction, place, facing or stack word, a command verb."""
+        st = _stem(w)
+        return ((st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT
+                or w in _COMMAND_VERBS or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+                or w in _ROLE_WORDS or w in _FACING_CUES or w in _DINNER_CUES or w in BAND_MARKS
+                or w in ("on", "onto", "under", "below", "above", "atop", "upon", "stacked", "piled", "lined", "order"))
+
     def _content_word(self, w: str) -> bool:
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
         st = _stem(w)
-        if _is_number(w) or w.startswith("#"):
+        if _is_number(w) or w.startswith("#") or stages.is_mark(w) or w in BAND_MARKS:
             return True
         if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
             return True
@@ -1906,6 +1644,9 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
+        text = self._spelled_right(text)
+        text, self._measures = stages.mark_measures(text)
+        text = stages.other_side(stages.said_places(stages.said_facings(text)))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
@@ -1922,6 +1663,8 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
+        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words)
+        text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
@@ -1948,6 +1691,7 @@ class _Parser:
                     w == "none" and nxt == "of"):
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
         words = self._parentheses(words)
+        words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
         words = self._trailing_remarks(words)
         words = self._former_latter(words)
@@ -1955,6 +1699,7 @@ class _Parser:
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
         cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
+                and not stages.is_mark(w)
                 and _stem(w) not in STOPWORDS and _stem(w) not in FILLERS and w not in STOPWORDS
                 and (w,) not in self.vocab.categories and w not in self.vocab.color_words and w not in COLOUR_WORDS]
         if cand:
@@ -2081,7 +1826,10 @@ class _Parser:
                         m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(
                         w in _DIR_WORDS or w in _VERT_WORDS - {"to", "of"} for w in sub[own[0].end : own[1].start]):
                     self._first = own[0]
-                pending.extend(self.clause(sub))
+                read = self.clause(sub)
+                pending.extend(read)
+                if read:
+                    self._last_read = read[-1]
                 self._implicit = None
                 self._first = None
                 try:
@@ -2256,10 +2004,12 @@ class _Parser:
         read from it uses that object: a part of the command was not read."""
         used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
         used |= {o for g in goals for o in g.get("anchor_any", ())}
+        stacked = any(g["pattern"] == "tower" for g in goals)
         for clause, ms in self._named_in:
             for m in ms:
                 group = m.plural and m.det in ("the", "all") and m.names is not None and not m.head
-                if not group and (m.det != "the" or m.plural or m.names is None or m.head):
+                bare = m.names is None and bool(m.colors) and stacked  # "then blue" said in a stack and lost
+                if not group and (m.det != "the" or m.plural or (m.names is None and not bare) or m.head):
                     continue
                 before = clause[max(0, m.start - 3) : m.start]
                 if any(w in _NOT_USED_BEFORE for w in before):
@@ -2517,10 +2267,16 @@ class _Parser:
                 g["anchor"] = anchor
             if p.pose is not None:
                 g["pose"] = list(p.pose)
-            if p.params and anchor is None and p.pose is None:
-                g.update(p.params)
+            if p.params and p.pose is None:
+                params = stages.measured_size(p.pattern, p.params, self._measures, len(objs), anchor is not None)
+                self._measured.update([p.params["measure"]] if "measure" in p.params else [])
+                g.update(params if anchor is None else {k: v for k, v in params.items() if k == "facing"})
             if g not in goals:
                 goals.append(g)
+        unread_measure = next((m for k, m in enumerate(self._measures) if k not in self._measured), None)
+        if unread_measure is not None:
+            raise InputError(f"'{unread_measure.text}': a size said in numbers that no goal read from the command "
+                             f"takes; say which arrangement it is for")
         goals = _chain_towers(goals)
         goals = _same_goals_merged(goals)
         goals = _diagonals(_merge_relations(goals))
@@ -2580,6 +2336,14 @@ class _Parser:
                 if o in pos and tuple(pos[o]) != tuple(g["pose"]):
                     raise InputError(f"contradiction: object {o} is given two different poses")
                 pos[o] = g["pose"]
+
+
+def _with_facing(goals: list[_Pending], params: dict) -> list[_Pending]:
+    """Relation goals with the facing (and any measure, refused when the goal is written) said in their clause."""
+    own = {k: v for k, v in params.items() if k in ("facing", "measure")}
+    for g in goals:
+        g.params = {**g.params, **own}
+    return goals
 
 
 def _add_params(shape: _Pending, params: dict, text: str) -> None:
@@ -2730,13 +2494,21 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
     return [merged.get(k, g) for k, g in enumerate(goals) if k not in drop]
 
 
-_DIR_WORDS = {"left": (-1, 0), "right": (1, 0), "front": (0, -1), "ahead": (0, -1), "behind": (0, 1), "back": (0, 1),
-              "rear": (0, 1), "forward": (0, -1), "forwards": (0, -1)}
+#: Words that start a facing ("facing", "pointing", "tines" ...): a clause with one reads its parameters.
+_FACING_CUES = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "points"})
+#: Words of the free place and position readings (.places, .positions), known to the spelling corrector.
+_PLACE_WORDS = frozenset({"strip", "band", "partway", "halfway", "midway", "dead", "centred", "centered", "corner",
+                          "edge", "wall", "viewer", "nearest", "closest", "furthest", "farthest", "leftmost",
+                          "rightmost", "frontmost", "backmost", "rearmost", "middle", "column", "across", "apart",
+                          "wide", "long", "side", "each", "toward", "towards", "facing", "pointing", "turned"})
+_DINNER_CUES = frozenset({"dinner", "setting", "laid", "lay", "meal", "lunch", "breakfast", "supper"})
+_SHAPES_PROTECT = frozenset({"lol", "haha", "ok", "okay", "thanks", "thank", "hey", "hi", "hello", "yeah", "yes", "no",
+                             "nope", "sure", "cheers", "please", "pls", "plz", "thx", "wanna", "gonna", "gimme",
+                             "lemme", "btw", "asap", "thru", "obj", "objs"})
+_DIR_WORDS = lexicon.DIRECTIONS
 
 #: Words of stack roles and orders, which a remark never has.
-_ROLE_WORDS = frozenset({"lowest", "highest", "bottom", "top", "base", "middle", "summit", "peak", "foundation",
-                         "upward", "upwards", "downward", "downwards", "working", "underneath", "beneath", "between",
-                         "finish", "crowning", "layer", "carrying", "supporting", "holding", "capping", "topping"})
+_ROLE_WORDS = lexicon.ROLE_WORDS
 
 #: Superlatives of place -> (axis of the pose, sign): the object with the least signed value is meant.
 _SUPERLATIVE = {"leftmost": (0, 1), "rightmost": (0, -1), "frontmost": (1, 1), "nearest": (1, 1), "closest": (1, 1),
@@ -2787,7 +2559,7 @@ _CUES = (
                 r"on the (?:left|right) of)"), _LEFT_RIGHT),
     (re.compile(r"\b(lin(?:e|es|ed|ing) (?:them |it |those |these )?up|(?:a|one|single|straight) (?:line|row)|in (?:a )?row)\b"),
      ("line",)),
-    (re.compile(r"\b(circle|ring|loop)\b"), ("circle",)),
+    (re.compile(rf"\b({MACROS['CIRCLE']})\b"), ("circle",)),
     (re.compile(r"\b(rectangle|square|rectangular)\b"), ("rectangle",)),
     (re.compile(r"\b(stack(?:ed|ing|s)?|pil(?:e|es|ed|ing)|tower|on top of)\b"), ("tower",)),
 )

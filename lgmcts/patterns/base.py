@@ -337,7 +337,7 @@ def load_pattern_modules(specs: str | list[str] | tuple[str, ...] | None = None)
         except SystemExit as exc:
             # A module must not end the program (least of all with status 0, "valid").
             raise InputError(f"pattern module {spec} failed to load: it called sys.exit({exc.code!r})") from None
-        except Exception as exc:  # noqa: BLE001 - any failure is the module's, reported in one line
+        except Exception as exc:
             raise InputError(f"pattern module {spec} failed to load: {type(exc).__name__}: {exc}") from None
         loaded.append(name)
     return loaded

@@ -12,6 +12,7 @@ footprints (circles for two cylinders) with the step's clearance; contact
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
@@ -23,8 +24,8 @@ from ..scene import TABLE, Scene, State
 from .base import Transition
 from .problem import Problem, SearchState, commit
 
-__all__ = ["CONTACT_AREA", "StepOptions", "collisions", "fixed_obstacles", "free_mask", "make_action", "place",
-           "place_fixed", "required_support", "sample_poses", "to_table", "touching_only", "wrapped"]
+__all__ = ["CONTACT_AREA", "StepOptions", "collisions", "fixed_obstacles", "free_mask", "make_action", "pickable", "place",
+           "place_fixed", "reachable", "required_support", "sample_poses", "to_table", "touching_only", "wrapped"]
 
 #: Largest footprint intersection (m²) the planner counts as contact rather
 #: than overlap where a goal leaves no room for its clearance: half the
@@ -44,11 +45,33 @@ class StepOptions:
     obstacles : ``"all"`` (every table-level object is an obstacle) or
         ``"placed"`` (only objects committed to goals, and anchors that no
         goal moves; used to sample goal arrangements for the PMCTS baseline).
+    reach : a robot (:class:`lgmcts.robot.Robot`) or ``None``: with one, an
+        object is picked and placed only where the robot reaches a top-down
+        grasp of it (:func:`reachable`).
     """
 
     samples: int = 24
     clearance: float = CLEARANCE
     obstacles: str = "all"
+    reach: Any = None
+
+
+def reachable(problem: Problem, world: State, o: int, poses: np.ndarray, opts: StepOptions,
+              support: int = TABLE) -> np.ndarray:
+    """Mask over poses ``(k, >=2)`` of ``o`` on ``support`` in ``world``:
+    whether ``opts.reach`` grasps ``o`` there from above (all true without a
+    robot)."""
+    if opts.reach is None:
+        return np.ones(len(poses), dtype=bool)
+    sc = problem.scene
+    base = 0.0 if support == TABLE else world.base_z(support) + float(sc.heights[support])
+    top = np.full(len(poses), base + float(sc.heights[o]))
+    return np.asarray(opts.reach.reachable(sc.bounds, np.asarray(poses)[:, :2], top), dtype=bool)
+
+
+def pickable(problem: Problem, world: State, o: int, opts: StepOptions) -> bool:
+    """Whether ``o`` can be picked where it is in ``world``."""
+    return bool(reachable(problem, world, o, world.poses[o][None], opts, world.on[o])[0])
 
 
 def wrapped(pose: np.ndarray) -> np.ndarray:
@@ -112,6 +135,7 @@ def collision_pairs(problem: Problem, ss: SearchState, o: int, poses: np.ndarray
     scene, world = problem.scene, ss.world
     verts = scene.footprint(o, poses).reshape(len(poses), -1, 2)
     inside = geo.inside_workspace(verts, scene.bounds, margin=opts.clearance / 2)
+    inside &= reachable(problem, world, o, poses, opts)
     # Disc against discs is decided on circles: no polygons needed then.
     polys = None if scene.discs[o] > 0 and problem.all_discs else shapely.polygons(verts)
     if scene.n <= 1:
@@ -145,7 +169,7 @@ def free_mask(problem: Problem, ss: SearchState, o: int, poses: np.ndarray, opts
     ``contact``, inside and at most touching (see :func:`touching_only`)."""
     inside, ci, oi, polys, verts = collision_pairs(problem, ss, o, poses, opts)
     if contact:
-        inside = geo.inside_workspace(verts, problem.scene.bounds)
+        inside = geo.inside_workspace(verts, problem.scene.bounds) & reachable(problem, ss.world, o, poses, opts)
         if len(ci):
             world, scene = ss.world, problem.scene
             mine = polys[ci] if polys is not None else np.full(len(ci), None, dtype=object)
@@ -204,7 +228,7 @@ def to_table(problem: Problem, ss: SearchState, o: int, cand: np.ndarray, rng: n
     # A fixed target (a pose goal) has no other pose: where it lies closer
     # than the clearance to a neighbour or the edge, contact is allowed.
     # Obstacles are then only what it would overlap.
-    edge = geo.inside_workspace(verts, problem.scene.bounds)
+    edge = geo.inside_workspace(verts, problem.scene.bounds) & reachable(problem, ss.world, o, cand, opts)
     hard = overlaps_beyond_contact(problem, ss, o, cand, polys, hits, np.flatnonzero(edge))
     touch = edge & np.array([not h for h in hard])
     if touch.any():
@@ -222,7 +246,8 @@ def fixed_obstacles(problem: Problem, ss: SearchState, objs: list[int],
     """
     world = ss.world
     feet = problem.fixed_footprints
-    objs = [o for o in objs if o in feet and world.clear(o) and required_support(problem, ss, o) == TABLE]
+    objs = [o for o in objs if o in feet and world.clear(o) and required_support(problem, ss, o) == TABLE
+            and pickable(problem, world, o, opts) and reachable(problem, world, o, problem.fixed[o][None], opts)[0]]
     out: dict[int, list[int]] = {o: [] for o in objs}
     if objs and problem.scene.n > 1:
         polys = np.empty(len(objs), dtype=object)

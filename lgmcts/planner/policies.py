@@ -25,6 +25,7 @@ from ..feasibility import precheck
 from ..formats import Action, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..patterns import Pattern, registry
 from ..patterns.base import BasePattern, fit_json, goal_xy
+from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
 from .domain import Accept, Rearrangement, validated
@@ -72,8 +73,20 @@ def _stacks(pattern: Pattern) -> bool:
 
 
 def _accept(opts: SearchOptions) -> Accept:
-    """Found plans are polished (:mod:`.polish`) as they are validated, unless ``opts.polish`` is off."""
-    return polished if opts.polish else validated
+    """Found plans are polished (:mod:`.polish`) as they are validated, unless ``opts.polish`` is off;
+    with a robot (``opts.step.reach``), a plan is accepted only when the robot reaches every pick and place."""
+    base = polished if opts.polish else validated
+    robot = opts.step.reach
+    if robot is None:
+        return base
+
+    def within_reach(problem: Problem, actions: list, worlds: list | None) -> list | None:
+        out = base(problem, actions, worlds)
+        if out is None or plan_reach_problems(problem.scene, out, robot):
+            return None
+        return out
+
+    return within_reach
 
 
 #: What a method returns: the search's result and extra statistics for the plan.
@@ -83,8 +96,8 @@ Outcome = tuple[SearchResult[Action], dict[str, Any]]
 def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
     """The fast first attempt of :mod:`.sequence` (pose goals on discs), accepted like a found plan; ``None`` when
     it does not apply, gets stuck or is refused."""
-    if not opts.sequence or not eligible(problem):
-        return None
+    if not opts.sequence or opts.step.reach is not None or not eligible(problem):
+        return None  # with a robot, the search's steps keep every pick and place within its reach
     t0 = time.perf_counter()
     actions = sequence_plan(problem)
     if actions is None:
@@ -137,6 +150,7 @@ def plan(
     time_limit: float | None = None,
     anytime: bool = False,
     options: SearchOptions | None = None,
+    robot: str | None = None,
 ) -> PlanSpec:
     """Plan pick-and-place actions that bring ``scene`` to a state meeting ``goals``.
 
@@ -152,6 +166,9 @@ def plan(
     anytime : keep searching within the budget for a plan with fewer actions.
     options : full :class:`SearchOptions`; ``max_iter``, ``time_limit`` and
         ``anytime`` override its fields.
+    robot : a robot's name (``"ur5e"``, see :mod:`lgmcts.robot`): every pick
+        and placement of the plan is then one the robot reaches from above.
+        ``None`` (default): no robot, the plan is the same as before.
 
     Returns
     -------
@@ -177,6 +194,8 @@ def plan(
     problem = Problem.build(sc, gspec)
     opts = options or SearchOptions()
     opts = replace(opts, max_iter=max_iter, time_limit=time_limit, anytime=anytime or opts.anytime)
+    if robot is not None:
+        opts = replace(opts, step=replace(opts.step, reach=robot_of(robot)))
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
     res, extra = METHODS[method](problem, rng, opts)
@@ -192,6 +211,15 @@ def plan(
         "relocations": sum(a.purpose != "goal" for a in res.actions),
         "max_iter": max_iter,
     }
+    if robot is not None:
+        stats["robot"] = robot
+        rb = opts.step.reach
+        w = sc.initial
+        tops = np.array([w.base_z(k) + float(sc.heights[k]) for k in range(sc.n)])
+        far = ~rb.reachable(sc.bounds, w.poses[:, :2], tops)
+        if far.any():
+            # Objects the arm cannot pick where they stand: a goal that must move one is not solved.
+            stats["out_of_reach"] = [sc.ids[k] for k in np.flatnonzero(far)]
     if res.solved and found != len(res.actions):
         stats["actions_before_polish"] = found
     if time_limit is not None:

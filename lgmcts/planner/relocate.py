@@ -10,6 +10,7 @@ and candidate poses.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -17,7 +18,7 @@ import shapely
 
 from ..scene import TABLE, Scene, State
 from .base import Transition
-from .placement import StepOptions, free_mask, make_action, wrapped
+from .placement import StepOptions, free_mask, make_action, pickable, reachable, wrapped
 from .problem import Problem, SearchState, uncommit
 
 __all__ = ["GRID_STEP", "MAX_GRID_CELLS", "clear_centres", "grid_step", "region_scores", "relocate", "snuggest"]
@@ -188,10 +189,16 @@ def relocate(problem: Problem, ss: SearchState, b: int, rng: np.random.Generator
     goals is taken only when there is no other.
     """
     scene, world = problem.scene, ss.world
+    if not pickable(problem, world, b, opts):
+        return None
     xmin, xmax, ymin, ymax = scene.bounds
     r = float(scene.radii[b])
-    check = StepOptions(opts.samples, opts.clearance, "all")
-    off = _off_target(problem, b, avoid)
+    check = replace(opts, obstacles="all")
+    target = _off_target(problem, b, avoid)
+
+    def off(poses: np.ndarray) -> np.ndarray:
+        return target(poses) & reachable(problem, world, b, poses, opts)
+
     # Candidates from the grid of clear centres first, then, if it has none
     # (elongated neighbours make it pessimistic), larger uniform batches.
     room = clear_centres(scene, world, b, opts.clearance)

@@ -70,7 +70,8 @@ class SearchOptions:
         cylinder and all stand on the table, first try the plan of
         :mod:`lgmcts.planner.sequence` (goal order by what blocks what,
         parking spots where blocked in a cycle); the tree search runs only
-        when that plan gets stuck or is refused by the validator.
+        when that plan gets stuck or is refused by the validator, and always
+        with a robot (``step.reach``).
     """
 
     max_iter: int = 10_000

@@ -23,7 +23,9 @@ from .base import Transition
 from .placement import (
     CONTACT_AREA,
     StepOptions,
+    pickable,
     place,
+    reachable,
     required_support,
     sample_poses,
     to_table,
@@ -94,6 +96,8 @@ def probe(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
     table candidate collides, the obstacles of its least obstructed one."""
     if not ss.world.clear(o) or required_support(problem, ss, o) != TABLE:
         return attempt(problem, ss, o, rng, opts, direct=True), ()
+    if not pickable(problem, ss.world, o, opts):
+        return None, ()
     cand = sample_poses(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
         return None, ()
@@ -131,7 +135,7 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
             return None
         return _move_blocker(problem, ss, _clear_top(world, o, rng), rng, opts, "unstack", o)
     support = required_support(problem, ss, o)
-    if support is None:
+    if support is None or not pickable(problem, world, o, opts):
         return None
     cand = sample_poses(problem, ss, o, rng, opts.samples)
     if len(cand) == 0:
@@ -143,6 +147,8 @@ def attempt(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator,
             return _move_blocker(problem, ss, _clear_top(world, support, rng, exclude=o), rng, opts, "unstack", o)
         pose = wrapped(cand[0])
         if not shapely.contains_xy(world.polys[support], pose[0], pose[1]):
+            return None
+        if not reachable(problem, world, o, pose[None], opts, support)[0]:
             return None
         return place(problem, ss, o, pose, support, rng)
     tr, inside, hits = to_table(problem, ss, o, cand, rng, opts)

@@ -394,10 +394,13 @@ def _body_doc(model: type[BaseModel], examples: dict | None = None) -> dict:
 # ---------------------------------------------------------------- app
 
 
-_ERRORS = {
+_ERRORS: dict[int | str, dict[str, Any]] = {
     401: {"model": ErrorOut, "description": "The server has a token and the request lacks it."},
+    403: {"model": ErrorOut, "description": "The request comes from a web page of another origin."},
     408: {"model": ErrorOut, "description": "The request body arrived too slowly."},
     413: {"model": ErrorOut, "description": "Request body too large."},
+    415: {"model": ErrorOut, "description": "The body was not sent as Content-Type: application/json."},
+    421: {"model": ErrorOut, "description": "The Host header names a host this server does not serve."},
     422: {"model": ErrorOut, "description": "Bad input; the same one-line message as the CLI."},
     500: {"model": ErrorOut, "description": "The planner crashed; the service goes on."},
     503: {"model": ErrorOut, "description": "The service is shutting down."},
@@ -447,7 +450,7 @@ def create_app(options: ServiceOptions | None = None) -> FastAPI:
         if opts.preload_language:
             from .viewer import EXAMPLE_INSTRUCTION, EXAMPLE_SCENE
 
-            for _ in range(opts.language_workers):
+            for _k in range(opts.language_workers):
                 language.submit_background(jobs.warm_language, EXAMPLE_INSTRUCTION, EXAMPLE_SCENE)
         try:
             yield

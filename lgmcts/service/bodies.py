@@ -106,7 +106,7 @@ def parse_body(model: type[BaseModel], raw: bytes) -> Any:
     try:
         return model.model_validate(data)
     except ValidationError as err:
-        raise InputError(validation_message(list(err.errors()))) from None
+        raise InputError(validation_message([dict(e) for e in err.errors()])) from None
     except RecursionError:
         raise InputError("invalid request: the body is nested too deeply") from None
 

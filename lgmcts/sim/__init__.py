@@ -1,7 +1,8 @@
 """Physics execution and perception in MuJoCo.
 
-* :func:`execute_plan` runs a plan with a suction gripper in MuJoCo and
-  judges the final state (:class:`Execution`).
+* :func:`execute_plan` runs a plan with a suction gripper in MuJoCo (a
+  floating cup, or with ``robot="ur5e"`` a UR5e arm) and judges the final
+  state (:class:`Execution`).
 * :func:`observe` renders the scene from a camera above the table and turns
   each object's pixels into a point cloud (a scene of ``points`` objects);
   :func:`footprint_iou` scores the result against the true footprints.
@@ -35,12 +36,16 @@ _WHERE = {
     "Executor": ".executor",
     "StepOutcome": ".executor",
     "execute_plan": ".executor",
+    "ArmExecutor": ".arm_exec",
+    "ArmOptions": ".arm_exec",
     "ModelOptions": ".model",
     "SimModel": ".model",
     "build_model": ".model",
 }
 
 __all__ = [
+    "ArmExecutor",
+    "ArmOptions",
     "CameraOptions",
     "ExecOptions",
     "Execution",

@@ -21,6 +21,9 @@ def execute(
         None, "--plan-scene", help="The scene the plan was made on, when it differs from SCENE (e.g. an observed one)."
     ),
     as_json: bool = typer.Option(False, "--json", help="Print the outcome as JSON."),
+    robot: str | None = typer.Option(
+        None, "--robot", help="Execute with this arm (ur5e) instead of the floating suction cup."
+    ),
 ) -> None:
     """Execute PLAN on SCENE in MuJoCo and judge the final state.
 
@@ -30,7 +33,7 @@ def execute(
 
     check_output_file(video, make_parents=False)
     try:
-        result = execute_plan(scene, plan, goal, video=video, plan_scene=plan_scene)
+        result = execute_plan(scene, plan, goal, video=video, plan_scene=plan_scene, robot=robot)
     except InputError as exc:
         fail(str(exc))
     except RuntimeError as exc:  # no OpenGL for the video

@@ -72,7 +72,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--case-timeout", type=float, default=20.0, help="skip a seed whose case takes longer to build (s)")
     args = ap.parse_args(argv)
 
-    cases = []
+    cases: list = []
     if args.tasks is not None:
         from ..bench.tasks import read_suite
         from ..errors import InputError
@@ -121,9 +121,9 @@ def main(argv: list[str] | None = None) -> int:
         plan = run_plan(scene, goals, method=args.method, seed=0)
         if plan.solved:
             planned += 1
-            t = time.perf_counter()
+            t0 = time.perf_counter()
             res = execute_plan(scene, plan, goals)
-            dt = time.perf_counter() - t
+            dt = time.perf_counter() - t0
             if plan.actions:
                 per_action.setdefault(len(scene.objects), []).append(dt / len(plan.actions))
             if res.success:

@@ -48,6 +48,9 @@ __all__ = ["ExecOptions", "Execution", "Executor", "StepOutcome", "execute_plan"
 
 FrameHook = Callable[[mujoco.MjData], None]
 
+#: Step failures that only the arm causes; each fails an execution with the arm.
+ARM_FAILURES = ("out of reach", "joint limit", "arm collision", "dropped in transfer")
+
 
 @dataclass(frozen=True)
 class ExecOptions:
@@ -332,15 +335,15 @@ class Executor:
         self.settle()
         pose = physics.poses(sim, d)[k]
         tilt = math.degrees(float(physics.tilts(sim, d)[k]))
-        sup = physics.supports(sim, d)[k]
+        rests_on = physics.supports(sim, d)[k]
         err = float(math.hypot(pose[0] - to[0], pose[1] - to[1]))
         problems = []
         if not landed:
             problems.append("released without touching a support")
         if tilt > o.max_tilt_deg:
             problems.append(f"toppled ({tilt:.0f} deg)")
-        if sup != want:
-            problems.append(f"ended on {self._name(sup)}, planned on {self._name(want)}")
+        if rests_on != want:
+            problems.append(f"ended on {self._name(rests_on)}, planned on {self._name(want)}")
         if err > o.place_tol:
             problems.append(f"{err * 1000:.1f} mm from the planned pose")
         msg = "placed" if not problems else "; ".join(problems)
@@ -397,6 +400,7 @@ def execute_plan(
     options: ExecOptions | None = None,
     video: str | Path | None = None,
     plan_scene: SceneSpec | dict | str | Path | None = None,
+    robot: str | None = None,
 ) -> Execution:
     """Execute ``plan`` on ``scene`` in MuJoCo and judge the final state.
 
@@ -414,6 +418,8 @@ def execute_plan(
         makes in ``plan_scene``, which keeps the planned footprint where the
         planner put it even when the observed pose frame differs from the
         true one.
+    robot : ``"ur5e"``: execute with a UR5e arm and suction cup
+        (:mod:`lgmcts.sim.arm_exec`) instead of the floating cup.
 
     Returns
     -------
@@ -435,13 +441,31 @@ def execute_plan(
         if set(ps.ids) != set(sc.ids):
             raise InputError("plan_scene and scene do not hold the same object ids")
         offsets = {i: _relative(ps.initial.poses[ps.index[i]], sc.initial.poses[sc.index[i]]) for i in sc.ids}
-    sim = build_model(sc, options=opts.model)
+    sim = build_model(sc, options=opts.model, robot=robot)
     if video is not None:
+        from .model import ARM_VIEW_CAMERA, VIEW_CAMERA
         from .render import VideoRecorder
 
-        with VideoRecorder(sim, video) as rec:
+        with VideoRecorder(sim, video, camera=ARM_VIEW_CAMERA if sim.arm is not None else VIEW_CAMERA) as rec:
             return _run(sim, sc, pl, gs, opts, offsets, rec.capture)
     return _run(sim, sc, pl, gs, opts, offsets, None)
+
+
+def _executor(sim: SimModel, opts: ExecOptions, hook: FrameHook | None) -> Executor:
+    """The floating cup's executor, or the arm's when the model holds one."""
+    if sim.arm is not None:
+        from .arm_exec import ArmExecutor
+
+        return ArmExecutor(sim, options=opts, on_step=hook)
+    return Executor(sim, options=opts, on_step=hook)
+
+
+def _arm_failure(sim: SimModel, n: int, out: StepOutcome) -> list[str]:
+    """The step as a reason when it names a failure only the arm causes (a
+    real arm stops on these: the plan fails even if the scene ends right)."""
+    if sim.arm is not None and out.reached is not None and any(c in out.message for c in ARM_FAILURES):
+        return [f"action {n}: {out.message}"]
+    return []
 
 
 def _run(
@@ -453,7 +477,7 @@ def _run(
     offsets: dict[int, np.ndarray] | None,
     hook: FrameHook | None,
 ) -> Execution:
-    ex = Executor(sim, options=opts, on_step=hook)
+    ex = _executor(sim, opts, hook)
     ex.settle()
     steps: list[StepOutcome] = []
     targets: dict[int, tuple[np.ndarray, int]] = {}
@@ -466,6 +490,7 @@ def _run(
         on = None if a.on is None else sc.index[a.on]
         out = ex.pick_and_place(k, to, on, index=n)
         steps.append(out)
+        reasons.extend(_arm_failure(sim, n, out))
         if out.reached is None:
             reasons.append(f"action {n}: {out.message}")
             if opts.stop_on_failure:
@@ -497,15 +522,14 @@ def _run(
         if sup[k] != want and sup[k] != physics.FLOOR:
             reasons.append(f"object {i} rests on {ex._name(sup[k])}, the plan put it on {ex._name(want)}")
     # The acceptance rules see the floor as the table: falling off is reported above.
-    on = tuple(TABLE if s == physics.FLOOR else s for s in sup)
-    on = _acyclic(on)
+    final_on = _acyclic(tuple(TABLE if s == physics.FLOOR else s for s in sup))
     results = []
     for g_i, g in enumerate(gs.goals):
-        why = goal_satisfied(g, sc, poses, on)
+        why = goal_satisfied(g, sc, poses, final_on)
         results.append(why is None)
         if why is not None:
             reasons.append(f"goal {g_i} ({g.pattern} {g.objects}): {why}")
-    final = sc.to_spec(State.make(sc, poses, on))
+    final = sc.to_spec(State.make(sc, poses, final_on))
     return Execution(
         success=not reasons,
         reasons=tuple(reasons),

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -28,6 +29,7 @@ from ..formats import SceneSpec
 from ..scene import TABLE, Scene
 
 __all__ = [
+    "ARM_VIEW_CAMERA",
     "GRIPPER",
     "OVERHEAD_CAMERA",
     "SIDE_CAMERA",
@@ -45,6 +47,9 @@ GRIPPER = "gripper"
 OVERHEAD_CAMERA = "overhead"
 #: Name of the angled camera used for videos.
 VIEW_CAMERA = "view"
+#: Name of the camera that films a scene with the arm (from the front right,
+#: so the arm does not hide the table).
+ARM_VIEW_CAMERA = "arm_view"
 #: Prefix of the four angled perception cameras (``side0`` ... ``side3``).
 SIDE_CAMERA = "side"
 
@@ -145,6 +150,8 @@ class SimModel:
     geom_object : ``(ngeom,)`` object index of each geom, -1 for the rest.
     geom_who : ``(ngeom,)`` object index of each geom, ``-1`` for the table,
         ``-2`` for the floor, ``-3`` for the rest (contact bookkeeping).
+    arm : the robot arm's parts (:class:`lgmcts.sim.arm.ArmParts`), or
+        ``None`` for a scene with the floating gripper only.
     """
 
     scene: Scene
@@ -159,6 +166,7 @@ class SimModel:
     mocap: int
     geom_object: np.ndarray
     geom_who: np.ndarray
+    arm: Any = None
 
     @property
     def heights(self) -> np.ndarray:
@@ -193,7 +201,7 @@ def _add_object(spec: mujoco.MjSpec, scene: Scene, k: int, base_z: float, opts: 
         body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"obj{o.id}_mesh", **common)
 
 
-def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None) -> SimModel:
+def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None, robot: str | None = None) -> SimModel:
     """Compile a MuJoCo model of ``scene`` with every object at its pose.
 
     Stacked objects start resting on their supports: an object's bottom is at
@@ -203,6 +211,9 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     ----------
     scene : the scene (a validated spec or a :class:`lgmcts.scene.Scene`).
     options : physical parameters; defaults to :class:`ModelOptions`.
+    robot : ``"ur5e"`` adds a UR5e arm with a suction cup, its base at the
+        centre of the table's front edge (:mod:`lgmcts.sim.arm`), and one
+        inactive weld per object between the cup and the object.
     """
     opts = options or ModelOptions()
     sc = scene if isinstance(scene, Scene) else Scene.from_spec(scene)
@@ -289,6 +300,16 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
             data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
             solref=[opts.weld_timeconst, 1.0],
         )
+    if robot is not None:
+        from .arm import add_arm, add_cup_welds, base_pose, robot_spec
+
+        arm_spec = robot_spec(robot)
+        add_arm(spec, base_pose(sc.bounds, opts.table_margin, arm_spec), arm_spec)
+        add_cup_welds(spec, sc.ids, opts.weld_timeconst)
+        reach = max(hx, hy) * 2.2 + 0.6
+        eye = np.array([cx + 0.75 * reach, cy - 0.55 * reach, 0.7 * reach])
+        look = np.array([cx, cy - 0.2 * hy, 0.1])
+        wb.add_camera(name=ARM_VIEW_CAMERA, pos=eye.tolist(), quat=look_at(eye, look).tolist(), fovy=fovy)
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -305,6 +326,11 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     geom_who[geoms] = np.arange(sc.n)
     geom_who[model.geom("table").id] = TABLE
     geom_who[model.geom("floor").id] = -2
+    arm = None
+    if robot is not None:
+        from .arm import arm_parts
+
+        arm = arm_parts(model, sc.ids, robot_spec(robot), base_pose(sc.bounds, opts.table_margin, robot_spec(robot)))
     return SimModel(
         scene=sc,
         model=model,
@@ -318,4 +344,5 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
         mocap=int(model.body_mocapid[model.body(GRIPPER).id]),
         geom_object=geom_object,
         geom_who=geom_who,
+        arm=arm,
     )

@@ -395,7 +395,9 @@ class VideoRecorder:
             return
         if failure is None:
             failure = _incomplete(self._tmp, self.frames)
-        if failure is None:
+        if failure is None and self._tmp is None:
+            failure = "the encoder wrote nothing"
+        if failure is None and self._tmp is not None:
             from ..outputs import publish
 
             try:

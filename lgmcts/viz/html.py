@@ -28,9 +28,9 @@ from __future__ import annotations
 import html as _html
 import json
 import re
+from collections.abc import Iterator
 from functools import lru_cache
 from importlib import resources
-from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -42,7 +42,7 @@ from ..scene import TABLE, Scene, State, advance
 from .model import describe_goal, goal_shapes
 from .paint import paint
 
-__all__ = ["render_html", "viewer_data", "viewer_js", "script_json", "check_view_size"]
+__all__ = ["check_view_size", "render_html", "script_json", "viewer_data", "viewer_js"]
 
 
 @lru_cache(maxsize=1)

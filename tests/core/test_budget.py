@@ -15,7 +15,8 @@ import math
 import tracemalloc
 
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from lgmcts import limits
 from lgmcts.errors import InputError
@@ -91,7 +92,7 @@ def _peak(fn, *args, **kwargs):
 @given(near_bounds())
 def test_check_and_view_stay_within_the_memory_budget(case):
     scene, goals, plan = case
-    verdict, peak = _peak(check, scene, goals, plan)
+    _verdict, peak = _peak(check, scene, goals, plan)
     assert peak < BUDGET, f"/check peaked at {peak / 2**20:.0f} MiB"
     data, peak = _peak(viewer_data, scene, plan, goals=goals)
     assert peak < BUDGET, f"/view peaked at {peak / 2**20:.0f} MiB"

@@ -226,10 +226,10 @@ def test_a_5000_digit_integer_is_one_line_exit_2(where, tmp_path):
         f.write_text(scene_text.replace('"id": 1,', f'"id": {BIG_INT},', 1))
         out = run("check", str(f), GOALS, GOALS)
     elif where == "goals":
-        f.write_text('{"goals": [{"pattern": "line", "objects": [1, %s]}]}' % BIG_INT)
+        f.write_text(f'{{"goals": [{{"pattern": "line", "objects": [1, {BIG_INT}]}}]}}')
         out = run("check", SCENE, str(f), GOALS)
     elif where == "plan":
-        f.write_text('{"solved": true, "actions": [{"object": %s, "to": [0, 0, 0]}]}' % BIG_INT)
+        f.write_text(f'{{"solved": true, "actions": [{{"object": {BIG_INT}, "to": [0, 0, 0]}}]}}')
         out = run("check", SCENE, GOALS, str(f))
     elif where == "suite":
         f = tmp_path / "suite.jsonl"
@@ -311,7 +311,10 @@ def test_pictures_on_a_full_disk_leave_the_written_plan_and_its_status(tmp_path)
 def test_a_video_on_a_full_disk_is_not_reported_written(tmp_path):
     plan, video = tmp_path / "plan.json", tmp_path / "run.mp4"
     assert run("plan", SCENE, "-g", GOALS, "-o", str(plan)).returncode == 0
-    env = {"MUJOCO_GL": os.environ.get("MUJOCO_GL", "osmesa"), "PYOPENGL_PLATFORM": os.environ.get("PYOPENGL_PLATFORM", "osmesa")}
+    env = {
+        "MUJOCO_GL": os.environ.get("MUJOCO_GL", "osmesa"),
+        "PYOPENGL_PLATFORM": os.environ.get("PYOPENGL_PLATFORM", "osmesa"),
+    }
     out = run_limited("execute", SCENE, str(plan), "--video", str(video), nbytes=30_000, env=env)
     if "OpenGL" in out.stderr or "EGL" in out.stderr:
         pytest.skip("no OpenGL for the video")
@@ -339,8 +342,14 @@ def test_outputs_follow_the_umask_and_keep_an_existing_mode(tmp_path):
     kept.chmod(0o644)
     fresh, private = tmp_path / "fresh.json", tmp_path / "private.json"
     for path, mask in ((kept, 0o077), (fresh, 0o022), (private, 0o077)):
-        out = subprocess.run([sys.executable, "-m", "lgmcts", "plan", SCENE, "-g", GOALS, "-o", str(path)],
-                             capture_output=True, text=True, timeout=120, cwd=ROOT, preexec_fn=lambda m=mask: os.umask(m))
+        out = subprocess.run(
+            [sys.executable, "-m", "lgmcts", "plan", SCENE, "-g", GOALS, "-o", str(path)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            cwd=ROOT,
+            preexec_fn=lambda m=mask: os.umask(m),
+        )
         assert out.returncode == 0, out.stderr
     assert stat.S_IMODE(kept.stat().st_mode) == 0o644
     assert stat.S_IMODE(fresh.stat().st_mode) == 0o644
@@ -349,8 +358,18 @@ def test_outputs_follow_the_umask_and_keep_an_existing_mode(tmp_path):
 
 @pytest.mark.slow
 def test_llm_timeout_variable_is_checked(tmp_path):
-    out = run("parse", SCENE, "put the blocks in a line", "--parser", "llm", "--llm-model", "m",
-              "--llm-base-url", "http://127.0.0.1:9/v1", env={"LGMCTS_LLM_TIMEOUT": "abc"})
+    out = run(
+        "parse",
+        SCENE,
+        "put the blocks in a line",
+        "--parser",
+        "llm",
+        "--llm-model",
+        "m",
+        "--llm-base-url",
+        "http://127.0.0.1:9/v1",
+        env={"LGMCTS_LLM_TIMEOUT": "abc"},
+    )
     assert out.returncode == 2 and one_line(out.stderr) and "LGMCTS_LLM_TIMEOUT" in out.stderr
 
 
@@ -360,8 +379,10 @@ def test_a_pattern_module_calling_sys_exit_cannot_make_a_tampered_plan_pass(tmp_
     module.write_text("import sys\nsys.exit(0)\n")
     plan = tmp_path / "tampered.json"
     plan.write_text('{"solved": true, "actions": [{"object": 1, "to": [5.0, 5.0, 0.0]}]}')
-    for out in (run("--pattern-module", str(module), "check", SCENE, GOALS, str(plan)),
-                run("check", SCENE, GOALS, str(plan), env={"LGMCTS_PATTERN_MODULES": str(module)})):
+    for out in (
+        run("--pattern-module", str(module), "check", SCENE, GOALS, str(plan)),
+        run("check", SCENE, GOALS, str(plan), env={"LGMCTS_PATTERN_MODULES": str(module)}),
+    ):
         assert out.returncode == 2 and one_line(out.stderr) and "sys.exit(0)" in out.stderr, out.stderr
 
 
@@ -401,42 +422,65 @@ def _obj(**change) -> dict:
     return o
 
 
-@pytest.mark.parametrize("scene", [
-    {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [_obj(pose=["-0.25", 0.0, 0.0])]},
-    {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [_obj(shape={"type": "box", "size": [True, 0.05, 0.05]})]},
-    {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [_obj(shape={"type": "box", "size": ["0.05", 0.05, 0.05]})]},
-    {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [_obj(shape={"type": "cylinder", "radius": "0.1", "height": 0.1})]},
-    {"workspace": {"x": ["-0.4", 0.4], "y": [-0.3, 0.3]}, "objects": [_obj()]},
-    {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, True]}, "objects": [_obj()]},
-])
+@pytest.mark.parametrize(
+    "scene",
+    [
+        {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [_obj(pose=["-0.25", 0.0, 0.0])]},
+        {
+            "workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+            "objects": [_obj(shape={"type": "box", "size": [True, 0.05, 0.05]})],
+        },
+        {
+            "workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+            "objects": [_obj(shape={"type": "box", "size": ["0.05", 0.05, 0.05]})],
+        },
+        {
+            "workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]},
+            "objects": [_obj(shape={"type": "cylinder", "radius": "0.1", "height": 0.1})],
+        },
+        {"workspace": {"x": ["-0.4", 0.4], "y": [-0.3, 0.3]}, "objects": [_obj()]},
+        {"workspace": {"x": [-0.4, 0.4], "y": [-0.3, True]}, "objects": [_obj()]},
+    ],
+)
 def test_numbers_given_as_strings_or_booleans_are_refused_in_scenes(scene):
     with pytest.raises(InputError, match="expected a number"):
         parse_scene(scene)
 
 
-@pytest.mark.parametrize("plan", [
-    {"solved": "yes", "actions": []},
-    {"solved": 1, "actions": []},
-    {"solved": True, "actions": [{"object": 1, "to": ["0.1", 0.0, 0.0]}]},
-    {"solved": True, "actions": [{"object": 1, "to": [0.1, False, 0.0]}]},
-])
+@pytest.mark.parametrize(
+    "plan",
+    [
+        {"solved": "yes", "actions": []},
+        {"solved": 1, "actions": []},
+        {"solved": True, "actions": [{"object": 1, "to": ["0.1", 0.0, 0.0]}]},
+        {"solved": True, "actions": [{"object": 1, "to": [0.1, False, 0.0]}]},
+    ],
+)
 def test_plans_take_json_booleans_and_numbers_only(plan):
     with pytest.raises(InputError, match="expected"):
         parse_plan(plan)
 
 
-@pytest.mark.parametrize("goal, words", [
-    ({"pattern": "pose", "objects": [1], "pose": ["0.1", 0, 0]}, "expected a number"),
-    ({"pattern": "line", "objects": [1, 2], "facing": 1e300}, "facing"),
-    ({"pattern": "line", "objects": [1, 2], "region": [-1e300, 1e300, -1, 1]}, "region box"),
-    ({"pattern": "line", "objects": [1, 2], "size": True}, "not true/false"),
-    ({"pattern": "line", "objects": [1, 2], "size": 1e300}, "size"),
-])
+@pytest.mark.parametrize(
+    "goal, words",
+    [
+        ({"pattern": "pose", "objects": [1], "pose": ["0.1", 0, 0]}, "expected a number"),
+        ({"pattern": "line", "objects": [1, 2], "facing": 1e300}, "facing"),
+        ({"pattern": "line", "objects": [1, 2], "region": [-1e300, 1e300, -1, 1]}, "region box"),
+        ({"pattern": "line", "objects": [1, 2], "size": True}, "not true/false"),
+        ({"pattern": "line", "objects": [1, 2], "size": 1e300}, "size"),
+    ],
+)
 def test_goal_numbers_are_json_numbers_within_bounds(goal, words):
     with pytest.raises(InputError, match=words):
         parse_goals({"goals": [goal]})
 
 
 def test_in_bounds_goal_parameters_still_load():
-    parse_goals({"goals": [{"pattern": "line", "objects": [1, 2], "facing": 1.5, "region": [-0.2, 0.2, -0.1, 0.1],
-                            "size": 0.3}]})
+    parse_goals(
+        {
+            "goals": [
+                {"pattern": "line", "objects": [1, 2], "facing": 1.5, "region": [-0.2, 0.2, -0.1, 0.1], "size": 0.3}
+            ]
+        }
+    )

@@ -128,3 +128,13 @@ def test_only_a_disc_on_a_cycle_is_parked():
     assert len(actions) == 7 and len(parked) == 1 and parked[0] in (1, 2)
     p = plan(c.scene, c.goals, seed=0)
     assert p.solved and p.stats.get("sequenced") and check(c.scene, c.goals, p).valid
+
+
+def test_a_robot_leaves_the_plan_to_the_search():
+    # The fast attempt knows nothing of an arm's reach: with a robot the tree search plans, within reach.
+    r = 30.0
+    row = [(400.0, 500.0), (460.0, 500.0), (520.0, 500.0)]
+    c = _case(row, row[1:] + row[:1], r)
+    p = plan(c.scene, c.goals, seed=0, max_iter=500, robot="ur5e")
+    assert "sequenced" not in p.stats and p.stats["robot"] == "ur5e"
+    assert plan(c.scene, c.goals, seed=0, max_iter=500).stats.get("sequenced")

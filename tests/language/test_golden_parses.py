@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
-import golden_parse  # noqa: E402
+import golden_parse
 
 
 def test_reason_drops_quoted_words_and_numbers():

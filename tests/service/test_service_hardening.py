@@ -128,8 +128,11 @@ def test_slow_body_gets_408(secure):
     url, _ = secure
     u = urlparse(url)
     body = json.dumps({"scene": SCENE, "goals": GOALS, "plan": {"solved": True, "actions": []}}).encode()
-    head = (f"POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
-            f"Content-Length: {len(body)}\r\n\r\n").encode()
+    head = (
+        "POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+        f"Authorization: Bearer {TOKEN}\r\n"
+        f"Content-Length: {len(body)}\r\n\r\n"
+    ).encode()
     with socket.create_connection((u.hostname, u.port), timeout=10) as s:
         s.sendall(head + body[:10])
         time.sleep(2.5)  # past the 1 s read timeout
@@ -231,8 +234,11 @@ def test_timeout_runs_from_arrival(secure):
     url, _ = secure
     u = urlparse(url)
     body = json.dumps({"scene": SCENE, "goals": GOALS, "plan": {"solved": True, "actions": []}, "timeout": 2}).encode()
-    head = (f"POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nAuthorization: Bearer {TOKEN}\r\n"
-            f"Content-Length: {len(body)}\r\n\r\n").encode()
+    head = (
+        "POST /check HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+        f"Authorization: Bearer {TOKEN}\r\n"
+        f"Content-Length: {len(body)}\r\n\r\n"
+    ).encode()
     with socket.create_connection((u.hostname, u.port), timeout=10) as s:
         s.sendall(head)
         t0 = time.monotonic()

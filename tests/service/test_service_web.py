@@ -9,7 +9,6 @@ import subprocess
 import sys
 import threading
 import time
-from pathlib import Path
 
 import httpx
 import pytest
@@ -121,6 +120,16 @@ def test_clients_choose_only_allowed_llm_models(operator_llm):
             assert sent and set(sent) == {model or "operator-model"}
 
 
+def test_long_integers_and_repeated_keys_are_one_line_422(client):
+    body = json.dumps(CHECK)
+    for raw, words in ((body.replace('"solved": true', '"solved": true, "solved": false'), "'solved' twice"),
+                       (body.replace('"actions": []', '"actions": [%s]' % ("1" + "0" * 5000)), "too many digits"),
+                       ('{"scene": {}, "scene": {}}', "'scene' twice")):
+        r = client.post("/check", content=raw, headers={"content-type": "application/json"})
+        assert r.status_code == 422 and words in r.json()["detail"], r.text[:300]
+        assert "\n" not in r.json()["detail"]
+
+
 # ---------------------------------------------------------------- tokens
 
 
@@ -172,11 +181,14 @@ def test_abandoned_requests_are_cancelled(tmp_path):
     proc, url = start_server("--workers", "1", "--timeout", "120", log=tmp_path / "s.log", hooks=True)
     try:
         # Each would hold the only worker for 20 s.
-        sleeper = json.dumps({"scene": SCENE, "goals": GOALS, "options": {"method": "_sleep", "time_limit": 20}}).encode()
+        options = {"method": "_sleep", "time_limit": 20}
+        sleeper = json.dumps({"scene": SCENE, "goals": GOALS, "options": options}).encode()
         for _ in range(4):
             _hang_up(url, sleeper, 0.3)
         t0 = time.monotonic()
-        r = httpx.post(url + "/plan", json={"scene": SCENE, "goals": GOALS, "options": {"method": "greedy"}}, timeout=120)
+        r = httpx.post(
+            url + "/plan", json={"scene": SCENE, "goals": GOALS, "options": {"method": "greedy"}}, timeout=120
+        )
         took = time.monotonic() - t0
         assert r.status_code == 200 and r.json()["solved"]
         assert took < 10, f"a real request waited {took:.1f} s behind abandoned ones"
@@ -192,8 +204,10 @@ def test_abandoned_requests_are_cancelled(tmp_path):
 def _boxes_and_moves(n: int, m: int) -> tuple[dict, dict]:
     side = int((2 * n) ** 0.5) + 2
     spots = [(-4.5 + 0.1 * i, -4.5 + 0.1 * j) for i in range(side) for j in range(side)]
-    objects = [{"id": k + 1, "name": "box", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
-                "pose": [*spots[k], 0.0]} for k in range(n)]
+    objects = [
+        {"id": k + 1, "name": "box", "shape": {"type": "box", "size": [0.05, 0.05, 0.05]}, "pose": [*spots[k], 0.0]}
+        for k in range(n)
+    ]
     free, where, actions = list(range(n, len(spots))), list(range(n)), []
     for k in range(m):
         o = (k * 7919) % n
@@ -201,8 +215,7 @@ def _boxes_and_moves(n: int, m: int) -> tuple[dict, dict]:
         free.append(where[o])
         where[o] = s
         actions.append({"object": o + 1, "to": [*spots[s], 0.0], "purpose": "relocate"})
-    return ({"workspace": {"x": [-5, 5], "y": [-5, 5]}, "objects": objects},
-            {"solved": False, "actions": actions})
+    return ({"workspace": {"x": [-5, 5], "y": [-5, 5]}, "objects": objects}, {"solved": False, "actions": actions})
 
 
 def test_healthz_stays_fast_while_a_large_view_is_drawn(tmp_path):

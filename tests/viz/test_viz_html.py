@@ -126,7 +126,8 @@ def test_plans_carry_fits_and_viewers_draw_from_them():
 
 # ---------------------------------------------------------------- delta frames
 
-from hypothesis import given, settings, strategies as st  # noqa: E402
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as hst  # noqa: E402
 
 from lgmcts.errors import InputError  # noqa: E402
 from lgmcts.formats import parse_goals, parse_plan, parse_scene  # noqa: E402
@@ -141,9 +142,9 @@ def _grid_scene(n: int) -> dict:
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.data())
+@given(hst.data())
 def test_delta_frames_replay_to_every_state_and_goal(data):
-    n = data.draw(st.integers(5, 8), label="objects")
+    n = data.draw(hst.integers(5, 8), label="objects")
     ids = list(range(1, n + 1))
     scene = parse_scene(_grid_scene(n))
     goals = parse_goals({"goals": [
@@ -152,11 +153,11 @@ def test_delta_frames_replay_to_every_state_and_goal(data):
         {"pattern": "left", "objects": [ids[1]], "anchor": ids[2]},
     ]})
     acts = []
-    for _ in range(data.draw(st.integers(0, 8), label="actions")):
-        o = data.draw(st.sampled_from(ids))
-        on = data.draw(st.one_of(st.none(), st.sampled_from([i for i in ids if i != o])))
-        x = data.draw(st.floats(-0.45, 0.45))
-        y = data.draw(st.floats(-0.35, 0.35))
+    for _ in range(data.draw(hst.integers(0, 8), label="actions")):
+        o = data.draw(hst.sampled_from(ids))
+        on = data.draw(hst.one_of(hst.none(), hst.sampled_from([i for i in ids if i != o])))
+        x = data.draw(hst.floats(-0.45, 0.45))
+        y = data.draw(hst.floats(-0.35, 0.35))
         acts.append({"object": o, "to": [x, y, 0.0], "on": on})
     plan = parse_plan({"solved": False, "actions": acts})
     out = viewer_data(scene, plan, goals=goals)
@@ -168,7 +169,7 @@ def test_delta_frames_replay_to_every_state_and_goal(data):
         assert f["poses"] == {str(i): [float(v) for v in state.poses[k]] for k, i in enumerate(sc.ids)}
         want = [s.to_json() for s in goal_shapes(sc, goals, state)]
         assert f["goals"] == json.loads(json.dumps(want))
-    # A delta lists only what moved: one object per action here, at most.
+    # A delta lists only what moved: one object per action here, at mohst.
     assert all(len(f["poses"]) <= 1 for f in out["frames"][1:])
 
 

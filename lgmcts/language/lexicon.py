@@ -1,0 +1,122 @@
+"""The closed-class words of the offline parser, defined once in ``data/lexicon.toml``.
+
+Colours, arrangement nouns, sizes, table places, facings, directions, count
+words, length units, fillers, command verbs and stack-role words. The other
+modules of the language package take their word sets from here, and the
+rewrite table (:mod:`.normalise`) writes ``{HUE}`` or ``{SHAPE}`` in a pattern
+instead of spelling the alternation out:
+
+>>> import re; bool(re.fullmatch(MACROS["HUE"], "grey"))
+True
+>>> "ring" in SHAPE_NOUNS["circle"]
+True
+>>> UNITS["cm"]
+0.01
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "COLOUR_WORDS",
+    "COLS",
+    "COMMAND_VERBS",
+    "COMPASS",
+    "DIRECTIONS",
+    "FACE_VERBS",
+    "FACINGS",
+    "FILLER_WORDS",
+    "HUES",
+    "MACROS",
+    "NUMBERS",
+    "REGION_NOUNS",
+    "ROLE_WORDS",
+    "ROWS",
+    "SHAPE_NOUNS",
+    "SIDE_FACINGS",
+    "SIZES",
+    "STOPWORDS",
+    "TABLE_WORDS",
+    "UNITS",
+    "VIEWER_WORDS",
+    "alternation",
+    "check_shape_nouns",
+]
+
+FILE = Path(__file__).with_name("data") / "lexicon.toml"
+
+with FILE.open("rb") as _f:
+    _DATA: dict[str, Any] = tomllib.load(_f)
+
+_C = _DATA["colours"]
+#: Colour words read as an object's colour.
+HUES: frozenset[str] = frozenset(_C["hues"])
+#: Every colour, texture and material word (a reference with one the scene lacks names nothing).
+COLOUR_WORDS: frozenset[str] = frozenset([*_C["hues"], *_C["more"], *_C["textures"]])
+#: Pattern name -> the nouns that name it in the rewrite rules (each one of the pattern's keys).
+SHAPE_NOUNS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _DATA["shapes"].items()}
+#: Size word -> small / medium / large.
+SIZES: dict[str, str] = {w: size for size, words in _DATA["sizes"].items() for w in words}
+_R = _DATA["regions"]
+#: Row word -> bottom / middle / top; column word -> left / center / right.
+ROWS: dict[str, str] = dict(_R["rows"])
+COLS: dict[str, str] = dict(_R["cols"])
+REGION_NOUNS: frozenset[str] = frozenset(_R["nouns"])
+TABLE_WORDS: frozenset[str] = frozenset(_R["table"])
+VIEWER_WORDS: frozenset[str] = frozenset(_R["viewer"])
+_F = _DATA["facing"]
+#: Facing word -> north / east / south / west.
+FACINGS: dict[str, str] = dict(_F["words"])
+SIDE_FACINGS: dict[str, str] = dict(_F["sides"])
+FACE_VERBS: frozenset[str] = frozenset(_F["verbs"])
+#: Direction word -> a unit step (x right, y away from the viewer).
+DIRECTIONS: dict[str, tuple[int, int]] = {k: (int(v[0]), int(v[1])) for k, v in _DATA["directions"].items()
+                                          if isinstance(v, list)}
+#: Compass word -> the side of the table it names.
+COMPASS: dict[str, str] = dict(_DATA["directions"]["compass"])
+#: Count word (or phrase) -> count.
+NUMBERS: dict[str, int] = dict(_DATA["numbers"]["words"])
+#: Length unit -> metres.
+UNITS: dict[str, float] = {k: float(v) for k, v in _DATA["units"]["metres"].items()}
+_W = _DATA["words"]
+STOPWORDS: frozenset[str] = frozenset(_W["stopwords"])
+#: Verbs and fillers that ask for a rearrangement without naming one (in order, as written).
+FILLER_WORDS: tuple[str, ...] = tuple(_W["fillers"])
+COMMAND_VERBS: frozenset[str] = frozenset(_W["commands"])
+ROLE_WORDS: frozenset[str] = frozenset(_W["roles"])
+
+
+def alternation(words: tuple[str, ...] | list[str] | frozenset[str]) -> str:
+    """A non-capturing regex group matching any of ``words`` (longest first, so no word shadows a longer one)."""
+    ordered = sorted(words, key=lambda w: (-len(w), w)) if isinstance(words, frozenset) else \
+        sorted(words, key=lambda w: -len(w))  # stable: the file's order among words of one length
+    return "(?:" + "|".join(re.escape(w) for w in ordered) + ")"
+
+
+#: Regex macros for the rewrite table: ``{HUE}`` any colour of :data:`HUES`, ``{SHAPE}`` any arrangement noun,
+#: ``{CIRCLE}`` ... one pattern's nouns.
+MACROS: dict[str, str] = {
+    "HUE": alternation(_C["hues"]),
+    "SHAPE": alternation([w for nouns in SHAPE_NOUNS.values() for w in nouns]),
+    # One pattern's nouns: {CIRCLE}, {RECTANGLE}, {LINE}, {TOWER}.
+    **{name.upper(): alternation(nouns) for name, nouns in SHAPE_NOUNS.items()},
+}
+
+
+def check_shape_nouns() -> list[str]:
+    """Problems with :data:`SHAPE_NOUNS` against the pattern registry (empty when every noun is a key of its pattern)."""
+    from ..patterns import registry
+
+    reg = registry()
+    out: list[str] = []
+    for name, nouns in SHAPE_NOUNS.items():
+        if name not in reg:
+            out.append(f"no pattern '{name}' is registered")
+            continue
+        keys = {w for k in reg[name].keys for w in k.lower().split()}
+        out += [f"'{n}' is not a word of the keys of '{name}'" for n in nouns if n not in keys]
+    return out

@@ -1,0 +1,170 @@
+"""The rewrite engine: an ordered table of text rewrites, read from ``data/rewrites.toml``.
+
+Each ``[[rewrite]]`` row of the table has
+
+* ``id``: a unique name (used in test reports and in ``trace``);
+* ``pattern``: a regular expression, in which ``{NAME}`` (capitals) is a macro
+  expanded from the lexicon (:data:`lexicon.MACROS`: ``{HUE}``, ``{SHAPE}`` ...)
+  or from the table's own ``[macros]``; and one of
+
+  * ``replace``: a :func:`re.sub` template (``\\1`` for a group),
+  * ``fn``: the name of a replacement function ``(re.Match) -> str``
+    registered with :func:`replacer`,
+  * ``step``: the name of a function ``(str) -> str`` registered with
+    :func:`step` that rewrites the whole text (a step has no ``pattern``);
+
+* optionally ``count`` (at most that many replacements), ``when`` / ``unless``
+  (an expression or a list: the row applies only when every ``when`` and no
+  ``unless`` expression is found in the text),
+  ``note`` (why the row exists) and ``examples``: ``[input, output]`` pairs
+  that the row alone turns one into the other (``tests/language/test_rewrites.py``
+  runs them all).
+
+Rows apply in the order of the file, each to the output of the one before.
+Nothing here knows the scene.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+__all__ = ["TABLE", "Rule", "apply", "expand", "replacer", "rules", "step", "trace"]
+
+#: The table of rewrites, in order.
+TABLE = Path(__file__).with_name("data") / "rewrites.toml"
+
+_STEPS: dict[str, Callable[[str], str]] = {}
+_REPLACERS: dict[str, Callable[[re.Match[str]], str]] = {}
+_MACRO = re.compile(r"\{([A-Z][A-Z_]*)\}")
+
+
+def step(name: str) -> Callable[[Callable[[str], str]], Callable[[str], str]]:
+    """Register ``fn`` as the whole-text step ``name`` of the table."""
+    def add(fn: Callable[[str], str]) -> Callable[[str], str]:
+        if name in _STEPS:
+            raise ValueError(f"rewrite step {name!r} registered twice")
+        _STEPS[name] = fn
+        return fn
+    return add
+
+
+def replacer(name: str) -> Callable[[Callable[[re.Match[str]], str]], Callable[[re.Match[str]], str]]:
+    """Register ``fn`` as the replacement function ``name`` of the table."""
+    def add(fn: Callable[[re.Match[str]], str]) -> Callable[[re.Match[str]], str]:
+        if name in _REPLACERS:
+            raise ValueError(f"rewrite replacer {name!r} registered twice")
+        _REPLACERS[name] = fn
+        return fn
+    return add
+
+
+def expand(pattern: str, macros: dict[str, str] | None = None) -> str:
+    """``pattern`` with every ``{NAME}`` macro replaced (table macros first, then the lexicon's)."""
+    from .lexicon import MACROS
+
+    table = _table_macros() if macros is None else macros
+
+    def one(m: re.Match[str]) -> str:
+        name = m.group(1)
+        if name in table:
+            return expand(table[name], table)
+        if name in MACROS:
+            return MACROS[name]
+        raise KeyError(f"unknown macro {{{name}}} in a rewrite pattern")
+
+    return _MACRO.sub(one, pattern)
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One row of the table, compiled."""
+
+    id: str
+    pattern: re.Pattern[str] | None
+    replace: str | None
+    fn: Callable[[re.Match[str]], str] | None
+    step: Callable[[str], str] | None
+    count: int
+    when: tuple[re.Pattern[str], ...]
+    unless: tuple[re.Pattern[str], ...]
+    note: str
+    examples: tuple[tuple[str, str], ...]
+
+    def __call__(self, text: str) -> str:
+        if not all(w.search(text) for w in self.when) or any(u.search(text) for u in self.unless):
+            return text
+        if self.step is not None:
+            return self.step(text)
+        assert self.pattern is not None
+        repl: str | Callable[[re.Match[str]], str] = self.fn if self.fn is not None else (self.replace or "")
+        return self.pattern.sub(repl, text, count=self.count)
+
+
+@lru_cache(maxsize=1)
+def _raw() -> dict:
+    with TABLE.open("rb") as f:
+        return tomllib.load(f)
+
+
+def _table_macros() -> dict[str, str]:
+    return dict(_raw().get("macros", {}))
+
+
+def _compile(row: dict, n: int) -> Rule:
+    rid = row.get("id")
+    if not isinstance(rid, str) or not rid:
+        raise ValueError(f"{TABLE.name}: row {n} has no id")
+    kinds = [k for k in ("replace", "fn", "step") if k in row]
+    if len(kinds) != 1:
+        raise ValueError(f"{TABLE.name}: row {rid!r} needs exactly one of replace, fn, step")
+    if ("pattern" in row) == ("step" in row):
+        raise ValueError(f"{TABLE.name}: row {rid!r}: a step has no pattern, any other row needs one")
+
+    def rxs(key: str) -> tuple[re.Pattern[str], ...]:
+        said = row.get(key, ())
+        return tuple(re.compile(expand(p)) for p in ([said] if isinstance(said, str) else said))
+
+    fn = _REPLACERS[row["fn"]] if "fn" in row else None
+    st = _STEPS[row["step"]] if "step" in row else None
+    examples = tuple((str(a), str(b)) for a, b in row.get("examples", ()))
+    pattern = re.compile(expand(row["pattern"])) if "pattern" in row else None
+    return Rule(rid, pattern, row.get("replace"), fn, st, int(row.get("count", 0)), rxs("when"), rxs("unless"),
+                str(row.get("note", "")), examples)
+
+
+@lru_cache(maxsize=1)
+def rules() -> tuple[Rule, ...]:
+    """Every row of the table, compiled, in order (ids checked unique)."""
+    from . import rewrite  # registers the named steps and replacers
+    del rewrite
+
+    out = tuple(_compile(row, n) for n, row in enumerate(_raw()["rewrite"], 1))
+    seen: set[str] = set()
+    for r in out:
+        if r.id in seen:
+            raise ValueError(f"{TABLE.name}: id {r.id!r} appears twice")
+        seen.add(r.id)
+    return out
+
+
+def apply(text: str) -> str:
+    """``text`` after every row of the table, in order."""
+    for rule in rules():
+        text = rule(text)
+    return text
+
+
+def trace(text: str) -> list[tuple[str, str]]:
+    """The rows that change ``text``, in order, each with the text after it (for debugging a phrasing)."""
+    out: list[tuple[str, str]] = []
+    for rule in rules():
+        new = rule(text)
+        if new != text:
+            out.append((rule.id, new))
+        text = new
+    return out

@@ -1,0 +1,736 @@
+"""The readings of one clause, as registered handlers tried in order (:meth:`.rules._Parser.clause`).
+
+A clause is read in three parts. The *early* handlers look at its words alone
+(a goal that must not hold, an object relative to itself, "so that"). Then
+:meth:`.rules._Parser._frame` grounds its references and takes its stack roles
+and its place, size and facing words into a :class:`Frame`. Then the
+*readings* are tried in the order they are registered here: the first that
+answers (a list of pending goals, empty for a clause that only adds to an
+earlier one) gives the clause's reading; an *adjustment* (``adjusts=True``)
+only changes the frame for the readings after it and answers nothing. Each
+handler's docstring gives an example of what it reads;
+``tests/language/test_readings.py`` parses labelled commands that each
+reading answers and checks that it is the one that answers them.
+
+To add a reading, write a handler with ``@reading("name")`` at the place in
+this file where it must be tried (before the readings that would take its
+clauses otherwise), with its example, and check ``python
+tests/language/golden_parse.py``: only the commands meant to change may move.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
+
+from ..errors import InputError
+from .grounding import Choice, Mention
+from .matcher import FILLERS, _forms, _stem
+from .rules import (
+    _ALLOWED_EXTRA,
+    _COMMAND_VERBS,
+    _DIR_WORDS,
+    _JOIN_OK,
+    _MEASURE_WORDS,
+    _NOT_JOIN,
+    _ON_WORDS,
+    _ROLE_MARK,
+    _SELECT_VERBS,
+    _VERT_ON,
+    _VERT_SKIP,
+    _VERT_UNDER,
+    _VERT_WORDS,
+    _add_params,
+    _is_number,
+    _numbers,
+    _on_pairs_split,
+    _pattern_positions,
+    _Pending,
+    _stacking,
+    _weak_split,
+    _with_facing,
+)
+from .shapes import SIZES
+
+if TYPE_CHECKING:
+    from .rules import _Parser
+
+__all__ = ["ADJUSTS", "EARLY", "READINGS", "Frame", "early", "reading"]
+
+
+@dataclass
+class Frame:
+    """What the readings of one clause share: its words and text, its references (``mentions``), the
+    parameters said (``params``), the stack role of each reference (``roles``), the references grouped
+    (``groups``) with the word spans between them (``gaps``), the indices of the words outside references
+    (``rest``), those words (``phrase_words``) and the ones that mean something (``meaningful``); the
+    adjustments add the phrase to match, the usable patterns and the objects each reference selects."""
+
+    words: tuple[str, ...]
+    text: str
+    mentions: list[Mention] = field(default_factory=list)
+    params: dict[str, Any] = field(default_factory=dict)
+    meaningful: list[str] = field(default_factory=list)
+    phrase_words: list[str] = field(default_factory=list)
+    roles: list[str | None] | None = None
+    groups: list[list[Mention]] = field(default_factory=list)
+    gaps: list[tuple[int, int]] = field(default_factory=list)
+    rest: list[int] = field(default_factory=list)
+    rel_pos: list[int] = field(default_factory=list)
+    free_pos: list[int] = field(default_factory=list)
+    anchored: frozenset[str] = frozenset()
+    usable: frozenset[str] = frozenset()
+    sels: list[Any] = field(default_factory=list)
+    phrase: str = ""
+    infos: dict[str, Any] = field(default_factory=dict)
+    vertical: str | None = None
+
+
+Handler = Callable[["_Parser", Frame], "list[_Pending] | None"]
+#: The handlers on a clause's words, in order.
+EARLY: list[tuple[str, Handler]] = []
+#: The readings (and adjustments) on a clause's frame, in order.
+READINGS: list[tuple[str, Handler]] = []
+#: The names of the adjustments among :data:`READINGS`.
+ADJUSTS: set[str] = set()
+
+
+def early(name: str) -> Callable[[Handler], Handler]:
+    """Register a handler on a clause's words, tried after those registered before it."""
+    def add(fn: Handler) -> Handler:
+        if any(n == name for n, _ in EARLY):
+            raise ValueError(f"early reading {name!r} registered twice")
+        EARLY.append((name, fn))
+        return fn
+    return add
+
+
+def reading(name: str, adjusts: bool = False) -> Callable[[Handler], Handler]:
+    """Register a reading on a clause's frame (``adjusts``: it only changes the frame), tried after those before it."""
+    def add(fn: Handler) -> Handler:
+        if any(n == name for n, _ in READINGS):
+            raise ValueError(f"reading {name!r} registered twice")
+        READINGS.append((name, fn))
+        if adjusts:
+            ADJUSTS.add(name)
+        return fn
+    return add
+
+
+# ------------------------------------------------------------------ on the words
+
+
+@early("not-a-goal")
+def _read_not_a_goal(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"make sure the box is not behind the bowl": a goal that something must not hold is refused."""
+    words = f.words
+    text = f.text
+    rel_words_ = self._word_kinds()[0]
+    for k, w in enumerate(words):
+        nxt = [x for x in words[k + 1 : k + 5] if x not in ("be", "end", "ends", "up", "placed", "put", "go", "sit",
+                                                            "sitting", "stand", "standing", "to", "the")]
+        if w in ("not", "never", "nowhere") and nxt and (
+                nxt[0] in _DIR_WORDS or nxt[0] in _VERT_WORDS - {"of", "top"} or _stem(nxt[0]) in rel_words_
+                or tuple(nxt[:2]) == ("in", "front")):
+            # "make sure the box is not behind the bowl": a goal that something must not hold.
+            raise InputError(f"'{text}': goals that something must not hold are not read; say where it should go")
+    return None
+
+
+@early("itself")
+def _read_itself(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"put the cup next to itself": an object placed relative to itself is refused."""
+    words = f.words
+    text = f.text
+    if any(w in ("itself", "themselves", "himself", "herself") for w in words):
+        raise InputError(f"'{text}': an object cannot be placed relative to itself")
+    return None
+
+
+@early("so-that")
+def _read_so_that(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"stack the cans so that ...", "shift A until B is on its left": the state the move must bring about."""
+    words = f.words
+    for k in range(1, len(words) - 1):
+        if words[k : k + 2] in (("so", "that"), ("such", "that"), ("so", "it"), ("so", "they"), ("so", "the")):
+            skip = 2 if words[k + 1] == "that" else 1
+            sub_words = words[k + skip :]
+            if any(_stacking(w) for w in words[:k]) and sum(w in _VERT_WORDS - {"to", "of", "top"}
+                                                            for w in sub_words) >= 2:
+                # "stack the cans so that the green one sits on the red one and the white one
+                # sits on the green one": the stacking steps make the stack.
+                out: list[_Pending] = []
+                self._note_nouns(self._find(words[:k]))  # "the green one": a can
+                for part in _weak_split(sub_words, self._find(sub_words), self.key_vocab, self._word_kinds()[0]):
+                    for step in _on_pairs_split(part, self._find(part)):
+                        out.extend(self.clause(tuple(w for w in step if w not in (",", "and"))
+                                               if step[:1] in ((",",), ("and",)) else step))
+                if out and all(p.pattern == "tower" for p in out):
+                    return out
+            if any(_stacking(w) for w in words[:k]) and not any(
+                    w in ("it", "they", "them") for w in words[k + skip :]):
+                # "stack the mugs so that the blue one is at the bottom": the
+                # stack's roles, as "with the blue one at the bottom".
+                sub = tuple(w for w in words[k + skip :] if w not in ("is", "are", "be", "should", "ends", "end",
+                                                                     "up", "goes", "go", "sits", "will"))
+                return self.clause(words[:k] + ("with",) + sub)
+            return self._so_that(words, k, skip)
+        if words[k : k + 2] in (("until", "the"), ("until", "it"), ("leaving", "the"), ("that", "leaves"),
+                                ("where", "the")) and k > 1:
+            # "shift A until B is on its left", "put A somewhere that leaves B on its left".
+            after = words[k + 1 :] if words[k + 1] in ("the", "it") else words[k + 2 :]
+            main = tuple(w for w in words[:k] if w not in ("somewhere", "anywhere"))
+            return self._so_that(main + ("so", "that") + after, len(main), 2)
+    return None
+
+
+# ------------------------------------------------------------------ on the frame
+
+
+@reading("params-of-last-arrangement")
+def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"..., in the front right corner": a place, size or facing for the arrangement just read."""
+    mentions = f.mentions
+    params = f.params
+    meaningful = f.meaningful
+    text = f.text
+    last = self._last_read
+    if not mentions and params and not meaningful and last is not None and last.anchor is not None \
+            and set(params) <= {"facing", "measure"}:
+        # "fork left of the plate, tines toward the right edge": the facing of the relation just read.
+        _add_params(last, params, text)
+        return []
+    if not mentions and params and not meaningful and self.state.last_shape is not None:
+        # "..., red on top, in the front right corner": the place of the arrangement just read.
+        _add_params(self.state.last_shape, params, text)
+        return []
+    return None
+
+
+@reading("order-of-last-stack")
+def _read_order_of_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"stack red, blue, green. bottom up.": the order the stack just read was listed in."""
+    mentions = f.mentions
+    text = f.text
+    if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
+            and self.state.tower is not None and self.state.header is None:
+        # "stack red, blue, green. bottom up.": the order the stack was listed in; a list
+        # after it ("pile up the cans. from top to bottom: green, blue, ...") goes downward.
+        if "top to bottom" in text:
+            self.state.tower.objects.reverse()
+            self.state.downward = True
+        return []
+    return None
+
+
+@reading("no-object")
+def _read_no_object(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """A clause that names no object: a stack's order as a header ("from the bottom up: ..."), a preamble
+    ("set the table"), the arrangement of the objects selected before, an arrangement whose objects come
+    next ("make a tower:"); else refused."""
+    mentions = f.mentions
+    text = f.text
+    params = f.params
+    meaningful = f.meaningful
+    phrase_words = f.phrase_words
+    words = f.words
+    if not mentions:
+        if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
+            # "from the bottom up: green, red, blue": a stack named by its order.
+            self.state.header = ("tower", params, text)
+            return []
+        if not meaningful:
+            return []  # a preamble such as "set the table" or "please"
+        if self.state.selection is not None:
+            # "select objects that are red. small circle in the top left": the
+            # structure sentence takes the objects selected before it.
+            sel = self.state.selection
+            m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                 if not i.anchored and not i.needs_pose))
+            p = self._shape(m.pattern, [[sel]], words, [], text, phrase_words)
+            p.params = params
+            return [p]
+        if any(self._free_word(w) for w in meaningful):
+            m = self._match(" ".join(phrase_words), text, frozenset(n for n, i in self.infos.items()
+                                                                 if not i.anchored and not i.needs_pose))
+            self.state.header = (m.pattern, params, text)
+            return []  # "make a tower:" names its objects in the next clause
+        raise InputError(f"'{text}' names no object in the scene")
+    return None
+
+
+@reading("selection-verb")
+def _read_selection_verb(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"select the red objects": objects chosen for the next clause (or for the header before)."""
+    words = f.words
+    roles = f.roles
+    meaningful = f.meaningful
+    groups = f.groups
+    if words[0] in _SELECT_VERBS and roles is None and all(
+            w in _SELECT_VERBS or w in ("up", "out", "only", "just") for w in meaningful):
+        sel: list[int | Choice] = []
+        for g in groups:
+            for got in self._select_group(g):
+                for x in got if isinstance(got, list) else [got]:
+                    if x not in sel:
+                        sel.append(x)
+        self.state.selection = sel
+        self.state.last = list(sel)
+        self.state.it_pair = None
+        self.state.last_tower = False
+        if self.state.header is not None:
+            # "small line in the top left. select objects that are mug.": the
+            # structure sentence first, its objects selected after it.
+            pat, hparams, htext = self.state.header
+            self.state.header = None
+            p = self._shape(pat, [[sel]], words, [], htext, [])
+            p.params = dict(hparams)
+            return [p]
+        return []
+    return None
+
+
+@reading("roles-in-last-stack")
+def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"...; the red one goes in between": roles for objects of the stack just built."""
+    roles = f.roles
+    meaningful = f.meaningful
+    mentions = f.mentions
+    text = f.text
+    params = f.params
+    if (roles is not None and self.state.tower is not None and self.state.header is None
+            and not any(self._free_word(w) for w in meaningful) and any(roles)):
+        # "...; the red one goes in between": a role for an object of the tower just built.
+        tower = self.state.tower.objects
+        before = [x for x in tower if isinstance(x, int)]
+        prev = None
+        pairs = list(zip(mentions, roles))
+        if re.search(r"\btop to (the )?bottom\b", text) and not self.state.downward:
+            # "black bowl, then white bowl, then the blue block, from the top down, black bowl
+            # highest": the list read downward first, then the roles.
+            for mm, r in pairs:
+                if r is None:
+                    got = self._select(mm)
+                    tower.extend(x for x in (got if isinstance(got, list) else [got]) if x not in tower)
+            tower.reverse()
+            self.state.downward = True
+            pairs = [(mm, r) for mm, r in pairs if r is not None]
+        for mm, role in pairs:
+            got = self._select(mm)
+            xs = got if isinstance(got, list) else [got]
+            # "..., then green, red at the bottom": a role after a list is the last one's.
+            listed = len(xs) > 1 and role in ("bottom", "top", "under_it") and any(
+                w in ("and", ",") for w in mm.text.split())
+            for k, x in enumerate(xs):
+                r = None if listed and k < len(xs) - 1 else role
+                if x in tower:
+                    tower.remove(x)
+                # "white at the bottom, then green": one without a role goes right above the one before.
+                after = tower.index(prev) + 1 if prev in tower else len(tower)
+                at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
+                if r == "under_it":
+                    # "purple on top, orange under it": right below the one before ("orange on top.
+                    # green underneath it": the last one given a place, where none was given here).
+                    below = prev if prev is not None else self.state.tower_prev
+                    if below is None and self.state.tower.said:
+                        below = list(self.state.tower.said)[-1]
+                    if below in tower:
+                        at = tower.index(below)
+                tower.insert(at, x)
+                self.state.tower.said[x] = r
+                prev = x
+        self.state.tower_prev = prev if roles[-1] != "top" else None
+        # "red highest, then yellow, then blue": after the top, each next one goes right below.
+        self.state.tower_down = prev if roles[-1] == "top" else None
+        if self.state.tower_fixed and [x for x in tower if x in before] != before:
+            # "stack the white bowl on the black bowl, but keep the black bowl on top"
+            said = " ".join(w for w in text.split() if w != _ROLE_MARK)
+            raise InputError(f"'{said}' contradicts the stacking order said before it")
+        if params:
+            _add_params(self.state.tower, params, text)  # "..., the red one on top, in the front right corner"
+        return []
+    return None
+
+
+@reading("next-in-last-stack")
+def _read_next_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"white at the bottom, then green": the next one up (or, after the top, down) in the stack."""
+    mentions = f.mentions
+    meaningful = f.meaningful
+    roles = f.roles
+    params = f.params
+    text = f.text
+    # "white at the bottom, then green": the next one up, right above the one placed before; after the
+    # top ("red highest, then yellow"), the next one down, right below it.
+    objs = self.state.tower.objects if self.state.tower is not None else []
+    up = self.state.tower_prev in objs
+    ref = self.state.tower_prev if up else (
+        self.state.tower_down if self.state.tower_prev is None and self.state.tower_down in objs else None)
+    if (mentions and not meaningful and ref is not None and self.state.header is None
+            and (roles is None or not any(roles))
+            and all(x in objs for mm in mentions
+                    for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
+        for mm in mentions:
+            got = self._select(mm)
+            for x in got if isinstance(got, list) else [got]:
+                if x != ref and x in objs:
+                    objs.remove(x)
+                    objs.insert(objs.index(ref) + up, x)
+                    self.state.tower.said[x] = "next" if up else "under_it"
+                    ref = x
+        if up:
+            self.state.tower_prev = ref
+        else:
+            self.state.tower_down = ref
+        if params:
+            _add_params(self.state.tower, params, text)
+        return []
+    return None
+
+
+@reading("roles-make-a-stack", adjusts=True)
+def _read_roles_make_a_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """Stack roles with no other arrangement word make a stack (with the stack header's parameters)."""
+    roles = f.roles
+    meaningful = f.meaningful
+    phrase_words = f.phrase_words
+    params = f.params
+    if roles is not None and not any(self._free_word(w) for w in meaningful):
+        phrase_words = [w for w in phrase_words if w not in _SELECT_VERBS] + ["stack"]
+        meaningful = ["stack"]
+        if self.state.header is not None and self.state.header[0] == "tower":
+            params = {**self.state.header[1], **params}
+            self.state.header = None
+    f.params = params
+    f.meaningful = meaningful
+    f.phrase_words = phrase_words
+    return None
+
+
+@reading("order-makes-a-stack", adjusts=True)
+def _read_order_makes_a_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"from top to bottom the cans should go white, red, blue": a stack by its order."""
+    phrase_words = f.phrase_words
+    text = f.text
+    mentions = f.mentions
+    meaningful = f.meaningful
+    if re.search(r"\b(top to bottom|bottom to top)\b", text) and len(mentions) >= 2 and not any(
+            self._free_word(w) for w in meaningful):
+        # "from top to bottom the cans should go white, red, blue, green": a stack by its order.
+        phrase_words, meaningful = ["stack"], ["stack"]
+    f.meaningful = meaningful
+    f.phrase_words = phrase_words
+    return None
+
+
+@reading("each-other-line", adjusts=True)
+def _read_each_other_line(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"the cans behind each other", "next to one another": one after the other, a line."""
+    meaningful = f.meaningful
+    phrase_words = f.phrase_words
+    joined = " ".join(phrase_words)
+    if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
+                 joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
+        # "the cans behind each other", "next to one another": one after the other, a line.
+        phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
+        meaningful = ["line"]
+    f.meaningful = meaningful
+    f.phrase_words = phrase_words
+    return None
+
+
+@reading("vertical-pair", adjusts=True)
+def _read_vertical_pair(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"rest A on B", "A should end up below B": two references with vertical words between them, a stack."""
+    phrase_words = f.phrase_words
+    vertical = f.vertical
+    groups = f.groups
+    roles = f.roles
+    gaps = f.gaps
+    words = f.words
+    meaningful = f.meaningful
+    vertical = None
+    if len(groups) == 2 and roles is None:
+        lo, hi = gaps[1]
+        rel_words_, _ = self._word_kinds()
+        # Between the two objects: the vertical words, whatever verb goes
+        # with them ("rest A on B", "A should end up below B"), unless a
+        # word there names a direction or an arrangement.
+        between = tuple(w for w in words[lo:hi] if w in _VERT_WORDS or w in ("top", "of", "to", "neath"))
+        while between and between[0] == "to" and between[:2] != ("to", "the"):
+            between = between[1:]  # "to end up underneath": the "to" of the verb
+        if any(_stem(w) in rel_words_ or w in _DIR_WORDS for w in words[lo:hi]):
+            between = ()
+        if between in _VERT_ON or between in _VERT_UNDER:
+            others = [w for w in meaningful if w not in _VERT_WORDS and w not in _VERT_SKIP
+                      and w not in _COMMAND_VERBS and _stem(w) not in ("stack", "tower", "pile", "top")
+                      and (self._free_word(w) or _stem(w) in rel_words_ or w in _DIR_WORDS)]
+            if not others:
+                vertical = "on" if between in _VERT_ON else "under"
+                phrase_words = ["stack"]
+                meaningful = ["stack"]
+    f.meaningful = meaningful
+    f.phrase_words = phrase_words
+    f.vertical = vertical
+    return None
+
+
+@reading("header-objects")
+def _read_header_objects(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"make a stack: plate, then white bowl": the objects of the arrangement named in the clause before."""
+    sels = f.sels
+    meaningful = f.meaningful
+    groups = f.groups
+    words = f.words
+    gaps = f.gaps
+    text = f.text
+    phrase_words = f.phrase_words
+    params = f.params
+    if not meaningful and self.state.header is not None:
+        pat, hparams, htext = self.state.header
+        self.state.header = None
+        sels = [self._select_group(g) for g in groups]
+        # "make a stack: plate, then white bowl, then green bowl": the next clauses add to it.
+        p = self._shape(pat, sels, words, gaps, f"{htext} {text}" if "top to" in htext else text, phrase_words,
+                        defer_min=True)
+        p.params = {**hparams, **params}
+        return [p]
+    f.sels = sels
+    return None
+
+
+@reading("continue-last-stack")
+def _read_continue_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"stack A as the base, then B, then C": each next clause goes on top."""
+    meaningful = f.meaningful
+    groups = f.groups
+    params = f.params
+    text = f.text
+    if not meaningful and self.state.tower is not None and len(groups) == 1:
+        # "stack A as the base, then B, then C": each next clause goes on top.
+        tower = self.state.tower
+        for mm in groups[0]:
+            got = self._select(mm)
+            for x in got if isinstance(got, list) else [got]:
+                if x in tower.objects:
+                    tower.objects.remove(x)
+                # Read from the top down, each next object goes below the others.
+                tower.objects.insert(0, x) if self.state.downward else tower.objects.append(x)
+        if params:
+            _add_params(tower, params, text)
+        return []
+    return None
+
+
+@reading("phrase-and-choices", adjusts=True)
+def _read_phrase_and_choices(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """The phrase to match against the pattern keys, the usable patterns, and the objects each reference selects."""
+    rel_pos = f.rel_pos
+    free_pos = f.free_pos
+    anchored = f.anchored
+    usable = f.usable
+    sels = f.sels
+    phrase = f.phrase
+    infos = f.infos
+    phrase_words = f.phrase_words
+    meaningful = f.meaningful
+    groups = f.groups
+    gaps = f.gaps
+    words = f.words
+    rest = f.rest
+    # Order and emphasis words ("the first one at the bottom", "another")
+    # carry no pattern meaning: leave them out of the phrase to match.
+    phrase = " ".join(w for w in phrase_words if w not in _ALLOWED_EXTRA or _stem(w) in self.key_vocab)
+    if not meaningful and len(groups) >= 2:
+        for lo, hi in gaps[1:-1]:
+            if tuple(words[lo:hi]) in _ON_WORDS:
+                phrase = "on top of each other"
+                break
+    infos = self.infos
+    n_numbers = len(_numbers(tuple(phrase_words)))
+    usable = frozenset(n for n, inf in infos.items() if not inf.needs_pose or n_numbers >= 2)
+    anchored = frozenset(n for n in usable if infos[n].anchored)
+    rel_words, free_words = self._word_kinds()
+    rel_pos = [k for k in rest if _stem(words[k]) in rel_words]
+    free_pos = [k for k in rest if any(f in free_words for f in _forms(words[k]))]
+    sels = [self._select_group(g) for g in groups]
+    if "using" in words and len(groups) >= 2:
+        # "place the cans in a line using the red, white and blue can": the
+        # objects after "using" are those of the arrangement, taken from the set before.
+        u = words.index("using")
+        before = [g for g, (lo, hi) in enumerate(gaps[1:]) if hi <= u or lo <= u < hi]
+        after = [g for g in range(len(groups)) if g not in before]
+        flat = lambda gs: {x for g in gs for s in sels[g] for x in (s if isinstance(s, list) else [s])  # noqa: E731
+                           if isinstance(x, int)}
+        if before and after and flat(after) and flat(after) < flat(before):
+            sels = [[] if g in before else sels[g] for g in range(len(sels))]
+    if re.search(r"\b(another|second|new|separate|different)\b", phrase):
+        # "another line": a second arrangement of objects no other goal uses.
+        sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
+    f.rel_pos = rel_pos
+    f.free_pos = free_pos
+    f.anchored = anchored
+    f.usable = usable
+    f.sels = sels
+    f.phrase = phrase
+    f.infos = infos
+    return None
+
+
+@reading("relation-and-arrangement")
+def _read_relation_and_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"line up the forks to the left of the plate": one clause, a relation and an arrangement."""
+    rel_pos = f.rel_pos
+    free_pos = f.free_pos
+    gaps = f.gaps
+    words = f.words
+    rest = f.rest
+    text = f.text
+    anchored = f.anchored
+    usable = f.usable
+    groups = f.groups
+    sels = f.sels
+    phrase_words = f.phrase_words
+    params = f.params
+    if rel_pos and free_pos:
+        # One clause, two goals: "line up the forks to the left of the plate".
+        k0 = rel_pos[0]
+        g_rel = next(g for g, (lo, hi) in enumerate(gaps) if lo <= k0 < hi)
+        lo, hi = gaps[g_rel]
+        start = k0
+        while start > lo and words[start - 1] in ("to", "the", "on", "in", "at", "and", "of", "towards", "toward"):
+            start -= 1
+        rel_phrase = " ".join(words[start:hi])
+        shape_phrase = " ".join(words[k] for k in rest if not start <= k < hi)
+        m_rel = self._match(rel_phrase, text, anchored)
+        m_shape = self._match(shape_phrase, text, usable - anchored)
+        out = _with_facing(self._relation(m_rel.pattern, groups, sels, g_rel, text), params)
+        targets = out[0].objects
+        out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
+        out[-1].params = params
+        return out
+    return None
+
+
+@reading("selection-on-or-under")
+def _read_selection_on_or_under(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"heart: on the granite bowl": the selected objects on (or under) it."""
+    groups = f.groups
+    roles = f.roles
+    words = f.words
+    gaps = f.gaps
+    sels = f.sels
+    text = f.text
+    if self.state.selection is not None and len(groups) == 1 and roles is None:
+        lead = tuple(w for w in words[gaps[0][0] : gaps[0][1]] if w not in _VERT_SKIP and w not in _COMMAND_VERBS
+                     and w != "the")
+        if lead in _VERT_ON or lead in _VERT_UNDER:
+            # "heart: on the granite bowl": the selected objects on (or under) it.
+            sel, self.state.selection = list(self.state.selection), None
+            base = [x for y in sels[0] for x in (y if isinstance(y, list) else [y])]
+            objs = base + sel if lead in _VERT_ON else sel + base
+            self.state.last, self.state.last_tower = sel, True
+            self.state.it_pair = None
+            return [self._shape("tower", [[objs]], words, [], text, ["stack"])]
+    return None
+
+
+@reading("put-down-first", adjusts=True)
+def _read_put_down_first(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"first put down the yellow block, then stack ...": "down" and "first" ask for nothing."""
+    phrase = f.phrase
+    meaningful = f.meaningful
+    rel_pos = f.rel_pos
+    free_pos = f.free_pos
+    roles = f.roles
+    if meaningful and set(meaningful) <= {"down", "first"} and "down" in meaningful and not rel_pos and not free_pos \
+            and roles is None:
+        meaningful, phrase = [], ""  # "first put down the yellow block, (then) stack the green block on it"
+    f.meaningful = meaningful
+    f.phrase = phrase
+    return None
+
+
+@reading("objects-for-next-clause")
+def _read_objects_for_next_clause(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"cans: line", "the knife, the fork and the spoon. make a circle with them": objects named on their own."""
+    meaningful = f.meaningful
+    roles = f.roles
+    rel_pos = f.rel_pos
+    free_pos = f.free_pos
+    phrase = f.phrase
+    sels = f.sels
+    if not meaningful and roles is None and not rel_pos and not free_pos and phrase.strip() == "":
+        # "cans: line", "the knife, the fork and the spoon. make a circle with
+        # them": objects named on their own are those of the next clause.
+        sel: list[int | Choice] = []
+        for g in sels:
+            for y in g:
+                for x in y if isinstance(y, list) else [y]:
+                    if x not in sel:
+                        sel.append(x)
+        self.state.selection = sel
+        self.state.last = list(sel)
+        self.state.it_pair = None
+        self.state.last_tower = False
+        return []
+    return None
+
+
+@reading("arrangement")
+def _read_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """The arrangement or relation the phrase matches best, over the objects of the clause."""
+    phrase_words = f.phrase_words
+    text = f.text
+    phrase = f.phrase
+    usable = f.usable
+    infos = f.infos
+    gaps = f.gaps
+    rel_pos = f.rel_pos
+    words = f.words
+    groups = f.groups
+    sels = f.sels
+    roles = f.roles
+    mentions = f.mentions
+    vertical = f.vertical
+    params = f.params
+    named = self._arrangements_named(phrase_words)
+    if len(named) >= 2:
+        raise InputError(f"'{text}' names more than one arrangement ({' and '.join(sorted(named))}) "
+                         f"for the same objects")
+    m = self._match(phrase, text, usable)
+    if infos[m.pattern].anchored:
+        counts = [len([k for k in rel_pos if lo <= k < hi]) for lo, hi in gaps]
+        if not any(counts):
+            counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
+        p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
+        return _with_facing(self._relation(m.pattern, groups, sels, p, text), params)
+    if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
+        # Objects of one arrangement are joined by "and", "with", "of", "using" or the
+        # pattern phrase itself; any other word between them ("in a line next to the
+        # plate", "a circle around the bottle", "in a row beside them") relates them in a
+        # way no goal here expresses: refuse rather than put them all in the arrangement.
+        for lo, hi in gaps[1:-1]:
+            odd = [w for w in words[lo:hi] if w in _NOT_JOIN or (
+                w not in _JOIN_OK and not self._free_word(w) and _stem(w) not in FILLERS
+                and w not in _COMMAND_VERBS and w not in SIZES)]
+            if odd:
+                raise InputError(f"'{text}': cannot tell what '{' '.join(words[lo:hi])}' asks of the objects "
+                                 f"around it")
+    if any(_is_number(w) or w in _MEASURE_WORDS for w in phrase_words) and not infos[m.pattern].needs_pose:
+        raise InputError(f"'{text}': sizes and distances in numbers are not read; use small, medium or large")
+    role_of: dict = {}
+    if roles is not None:
+        for mm, r in zip(mentions, roles):
+            if r is not None:
+                got = self._select(mm)
+                for x in got if isinstance(got, list) else [got]:
+                    role_of[x] = r
+    # A tower may grow over the next clauses ("green at the bottom, then red"):
+    # its size is checked once the command is read.
+    shape = self._shape(m.pattern, sels, words, gaps, text, phrase_words, vertical=vertical, roles=role_of,
+                        defer_min=m.pattern == "tower")
+    shape.params = params
+    return [shape]

@@ -1,0 +1,100 @@
+"""The readings of a clause (lgmcts/language/readings.py): registered in a fixed order, each one answering
+(or, for an adjustment, changing the frame for) labelled commands of its kind."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import pytest
+
+from lgmcts.errors import InputError
+from lgmcts.language import readings
+from lgmcts.language.evaluate import load_cases
+from lgmcts.language.rules import RulesOptions, _Parser
+
+ROOT = Path(__file__).resolve().parents[2]
+
+#: For each reading, labelled commands ("case file:case id", from dev splits only) it takes part in: an early
+#: handler or a reading answers them (or refuses them), an adjustment changes their frame.
+EXAMPLES: dict[str, tuple[str, ...]] = {
+    "not-a-goal": ("tests/language/fresh_cases.jsonl:freshH-refusal-002",),
+    "itself": ("data/parse_cases.jsonl:refusal-028",),
+    "so-that": ("data/paraphrase_cases.jsonl:reference-inverted-002",),
+    "params-of-last-arrangement": ("tests/language/fresh_cases.jsonl:freshM2-where-how-big-001",),
+    "order-of-last-stack": ("tests/language/fresh_cases.jsonl:freshM-stack-order-002",),
+    "no-object": ("tests/language/fresh_cases.jsonl:freshC-pattern-words-003",),
+    "selection-verb": ("tests/language/issue9_cases.jsonl:peer_selection-012",),
+    "roles-in-last-stack": ("tests/language/fresh_cases.jsonl:fresh3c-stack-order-005",),
+    "next-in-last-stack": ("tests/language/fresh_cases.jsonl:freshF-stack-order-002",),
+    "roles-make-a-stack": ("tests/language/fresh_cases.jsonl:fresh3g-pattern-words-006",),
+    "order-makes-a-stack": ("tests/language/fresh_cases.jsonl:freshB-stack-order-003",),
+    "each-other-line": ("tests/language/fresh_cases.jsonl:fresh5d-pattern-words-001",),
+    "vertical-pair": ("tests/language/fresh_cases.jsonl:freshC-vertical-025",),
+    "header-objects": ("tests/language/fresh_cases.jsonl:fresh3g-pattern-words-009",),
+    "continue-last-stack": ("tests/language/fresh_cases.jsonl:fresh6a-stack-order-009",),
+    "phrase-and-choices": ("tests/language/probe_cases.jsonl:probe-refusal-018",),
+    "relation-and-arrangement": ("tests/language/fresh_cases.jsonl:fresh3g-dinner-006",),
+    "selection-on-or-under": ("tests/language/fresh_cases.jsonl:fresh3g-vertical-008",),
+    "put-down-first": ("tests/language/fresh_cases.jsonl:fresh3c-dinner-010",),
+    "objects-for-next-clause": ("tests/language/fresh_cases.jsonl:freshP-casual-007",),
+    "arrangement": ("data/paraphrase_cases.jsonl:pattern-words-028",),
+}
+
+
+def _state(f: readings.Frame) -> dict:
+    return {k: copy.copy(v) for k, v in vars(f).items()}
+
+
+def _watched(seen: list[str], name: str, fn: readings.Handler, adjusts: bool) -> readings.Handler:
+    def run(parser, f):
+        before = _state(f) if adjusts else None
+        try:
+            got = fn(parser, f)
+        except InputError:
+            seen.append(name)
+            raise
+        if got is not None or (before is not None and _state(f) != before):
+            seen.append(name)
+        return got
+    return run
+
+
+@pytest.fixture()
+def seen(monkeypatch):
+    """The names of the handlers that took part in the parses of the test, in order."""
+    out: list[str] = []
+    adjusting = readings.ADJUSTS
+    monkeypatch.setattr(readings, "EARLY", [(n, _watched(out, n, fn, False)) for n, fn in readings.EARLY])
+    monkeypatch.setattr(readings, "READINGS", [(n, _watched(out, n, fn, n in adjusting)) for n, fn in readings.READINGS])
+    return out
+
+
+_CASES: dict[str, dict] = {}
+
+
+def _case(ref: str):
+    file, cid = ref.split(":")
+    if file not in _CASES:
+        _CASES[file] = {c.id: c for c in load_cases(ROOT / file)}
+    return _CASES[file][cid]
+
+
+def test_readings_are_registered_once_in_their_order_each_with_an_example():
+    names = [n for n, _ in readings.EARLY] + [n for n, _ in readings.READINGS]
+    assert names == list(EXAMPLES)
+    assert all(EXAMPLES[n] for n in names)
+    assert readings.READINGS[-1][0] == "arrangement"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, ref", [(n, r) for n, refs in EXAMPLES.items() for r in refs])
+def test_reading_takes_its_examples(name, ref, seen, matcher):
+    case = _case(ref)
+    assert case.split != "test"
+    parser = _Parser(case.scene, matcher, RulesOptions())
+    try:
+        parser.command(case.instruction)
+    except InputError:
+        pass
+    assert name in seen, f"{case.instruction!r}: {seen}"
