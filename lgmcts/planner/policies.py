@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -34,7 +34,7 @@ from .problem import Problem
 from .search import SearchOptions, SearchResult, greedy, mcts
 from .sequence import eligible, sequence_plan
 
-__all__ = ["plan", "METHODS", "goal_poses"]
+__all__ = ["METHODS", "goal_poses", "plan"]
 
 
 def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> GoalSpec | None:

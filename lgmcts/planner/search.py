@@ -22,7 +22,7 @@ from .placement import StepOptions
 from .selection import select_child
 from .tree import Node
 
-__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
+__all__ = ["SearchOptions", "SearchResult", "greedy", "mcts"]
 
 S = TypeVar("S")
 A = TypeVar("A")
