@@ -223,7 +223,8 @@ def _trlb_row(d: float, n: int, files: tuple[Path, Path], a: argparse.Namespace,
         row.update(time_s=time.perf_counter() - t, cpu_s=time.process_time() - tc, refused=str(e), actions=0)
     else:
         row.update(time_s=time.perf_counter() - t, cpu_s=time.process_time() - tc, actions=len(p.actions),
-                   iterations=p.stats["iterations"], reason=p.stats.get("reason", ""))
+                   iterations=p.stats["iterations"], reason=p.stats.get("reason", ""),
+                   sequenced=bool(p.stats.get("sequenced")))
         if p.stats.get("infeasible"):
             # The planner's proof that no table-only plan exists (lgmcts.confinement).
             row["refused"] = row["reason"]

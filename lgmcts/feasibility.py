@@ -105,7 +105,9 @@ def precheck(scene: Scene | SceneSpec, goals: GoalSpec) -> None:
             on_table.update(g.objects)
     _order(goals)
     _pose_goals(sc, goals, in_tower, (xmin, xmax, ymin, ymax))
-    area = {i: float(shapely.area(shapely.Polygon(sc.local[sc.index[i]]))) for i in on_table}
+    table = sorted(on_table)
+    shapes = geo.place_each([sc.local[sc.index[i]] for i in table], np.zeros((len(table), 3)))[1]
+    area = dict(zip(table, shapely.area(shapes).tolist()))
     need = sum(area.values())
     have = (xmax - xmin) * (ymax - ymin)
     if need > have:
@@ -172,8 +174,7 @@ def _pose_goals(sc: Scene, goals: GoalSpec, in_tower: set[int], bounds: tuple[fl
     if len(ids) < 2:
         return
     idx = [sc.index[i] for i in ids]
-    polys = np.array([shapely.Polygon(sc.footprint(k, np.asarray(p, dtype=float))) for k, p in zip(idx, poses)],
-                     dtype=object)
+    polys = geo.place_each([sc.local[k] for k in idx], np.asarray(poses, dtype=float))[1]
     discs = sc.discs[idx]
     xy = np.array([p[:2] for p in poses], dtype=float)
     # Only a pair with an object outside every tower can be refused: those

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from functools import lru_cache
 
 import numpy as np
 import shapely
@@ -48,10 +49,17 @@ def box_footprint(sx: float, sy: float) -> np.ndarray:
 
 
 def circle_footprint(radius: float, segments: int = CIRCLE_SEGMENTS) -> np.ndarray:
-    """Regular polygon circumscribing a circle of ``radius``, CCW."""
+    """Regular polygon circumscribing a circle of ``radius``, CCW (read-only: scenes of equal discs share it)."""
+    return _circle(float(radius), int(segments))
+
+
+@lru_cache(maxsize=1024)
+def _circle(radius: float, segments: int) -> np.ndarray:
     a = np.arange(segments) * (2 * math.pi / segments) + math.pi / segments
     r = radius / math.cos(math.pi / segments)
-    return np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
+    out = np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
+    out.setflags(write=False)
+    return out
 
 
 def convex_footprint(points: np.ndarray) -> np.ndarray:

@@ -60,6 +60,20 @@ def _local_footprint(obj: ObjectSpec) -> tuple[np.ndarray, float, tuple[float, f
     return local, max(height, 1e-3), pose
 
 
+def _outside(verts: list[np.ndarray], on: tuple[int, ...], bounds: tuple[float, float, float, float]) -> list[int]:
+    """Indices of the table-level footprints (vertices ``verts``) not inside the workspace, in order; one test per
+    vertex count."""
+    groups: dict[int, list[int]] = {}
+    for k, v in enumerate(verts):
+        if on[k] == TABLE:
+            groups.setdefault(len(v), []).append(k)
+    out: list[int] = []
+    for ks in groups.values():
+        ok = geo.inside_workspace(np.stack([verts[k] for k in ks]), bounds, margin=-1e-6)
+        out += [k for k, good in zip(ks, ok.tolist()) if not good]
+    return sorted(out)
+
+
 def _refuse_start_overlaps(spec: SceneSpec, on: tuple[int, ...], polys: np.ndarray) -> None:
     """Raise :class:`InputError` when two table-level footprints share more than
     :data:`lgmcts.limits.START_OVERLAP_AREA` m^2 (:func:`geometry.overlap_pairs`).
@@ -130,9 +144,10 @@ class Scene:
         pose_arr = np.asarray(poses, dtype=float)
         on = tuple(TABLE if o.on is None else index[o.on] for o in spec.objects)
         verts, polys = geo.place_each(local, pose_arr)
-        for k, o in enumerate(spec.objects):
-            if on[k] == TABLE and not geo.inside_workspace(verts[k][None], bounds, margin=-1e-6)[0]:
-                raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
+        outside = _outside(verts, on, bounds)
+        if outside:
+            o = spec.objects[outside[0]]
+            raise InputError(f"object {o.id} ({o.name}) lies outside the workspace")
         if not overlap_ok:
             _refuse_start_overlaps(spec, on, polys)
         scene = cls(

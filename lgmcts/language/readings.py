@@ -50,6 +50,7 @@ from .rules import (
     _Pending,
     _stacking,
     _weak_split,
+    _with_facing,
 )
 from .shapes import SIZES
 
@@ -195,6 +196,12 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
     params = f.params
     meaningful = f.meaningful
     text = f.text
+    last = self._last_read
+    if not mentions and params and not meaningful and last is not None and last.anchor is not None \
+            and set(params) <= {"facing", "measure"}:
+        # "fork left of the plate, tines toward the right edge": the facing of the relation just read.
+        _add_params(last, params, text)
+        return []
     if not mentions and params and not meaningful and self.state.last_shape is not None:
         # "..., red on top, in the front right corner": the place of the arrangement just read.
         _add_params(self.state.last_shape, params, text)
@@ -599,7 +606,7 @@ def _read_relation_and_arrangement(self: _Parser, f: Frame) -> list[_Pending] | 
         shape_phrase = " ".join(words[k] for k in rest if not start <= k < hi)
         m_rel = self._match(rel_phrase, text, anchored)
         m_shape = self._match(shape_phrase, text, usable - anchored)
-        out = self._relation(m_rel.pattern, groups, sels, g_rel, text)
+        out = _with_facing(self._relation(m_rel.pattern, groups, sels, g_rel, text), params)
         targets = out[0].objects
         out.append(self._shape(m_shape.pattern, [[targets]], words, [], text, phrase_words))
         out[-1].params = params
@@ -699,7 +706,7 @@ def _read_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
         if not any(counts):
             counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
         p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
-        return self._relation(m.pattern, groups, sels, p, text)
+        return _with_facing(self._relation(m.pattern, groups, sels, p, text), params)
     if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
         # Objects of one arrangement are joined by "and", "with", "of", "using" or the
         # pattern phrase itself; any other word between them ("in a line next to the

@@ -38,11 +38,14 @@ from typing import TYPE_CHECKING
 from ..errors import InputError
 from ..formats import RELATIONS, GoalSpec, SceneSpec, parse_goals
 from . import lexicon
-from .grounding import COLOUR_WORDS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
+from .grounding import _ATTRS, COLOUR_WORDS, GROUPS, NUMBERS, Choice, candidates, Mention, Vocabulary, describe, find_mentions, select, tokenize
 from .lexicon import HUES, MACROS
 from .matcher import FILLERS, STOPWORDS, PatternMatcher, _forms, _stem
 from .rewrite import ASKS_TO_ACT, FREE_ORDER, QUESTION, rewrite, unframe
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, merged_region, normalise, stack_roles, take_params
+from . import stages
+from .measures import UNITS
+from .places import BAND_MARKS, POINTING_PARTS
 
 if TYPE_CHECKING:
     from .readings import Frame
@@ -666,6 +669,11 @@ class _Parser:
         #: used; the rewritten text.
         self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
         self._said = ""
+        #: The measures said in numbers (.stages.mark_measures) and those a goal took.
+        self._measures: list = []
+        self._measured: set[int] = set()
+        #: The last goal read from a clause (a later clause with only a facing may be its).
+        self._last_read: _Pending | None = None
 
     # ------------------------------------------------------------ one clause
     def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
@@ -918,7 +926,8 @@ class _Parser:
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if self.state.header is not None or (not mentions and self.state.last_shape is not None) or any(
-                self._free_word(w) for k, w in enumerate(words) if k not in inside):
+                self._free_word(w) or stages.is_mark(w) or w in _FACING_CUES for k, w in enumerate(words)
+                if k not in inside) or (not mentions and self._last_read is not None):
             stackish = any(_stacking(w) for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None
@@ -1473,11 +1482,48 @@ class _Parser:
         text = _SUPERLATIVE_AT.sub(superlative, text)
         return _FROM_SIDE_AT.sub(from_side, text)
 
+    def _spelled_right(self, text: str) -> str:
+        """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
+        lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
+                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | set(_SUPERLATIVE)
+                   | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
+                                       "everything", "object", "objects", "please", "square", "center", "centre"})
+        nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
+        protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
+        return stages.spell(text, self.vocab, lexicon, nouns, protect)
+
+    def _every_match(self, m: Mention) -> list[int]:
+        """Every object a reference may name, whatever its number ("the block": every block; ids as said)."""
+        return candidates(self.vocab, m if m.det == "ids" else replace(m, det="all", plural=True))
+
+    def _table_xy(self, oid: int) -> tuple[float, float] | None:
+        """Where an object stands on the table (None when it stands on another object)."""
+        o = self.spec.object(oid)
+        return None if o.pose is None or o.on is not None else (o.pose[0], o.pose[1])
+
+    @property
+    def _centre(self) -> tuple[float, float]:
+        ws = self.spec.workspace
+        return ((ws.x[0] + ws.x[1]) / 2, (ws.y[0] + ws.y[1]) / 2)
+
+    def _object_word(self, w: str) -> bool:
+        """Whether ``w`` names objects of the scene (a name, a colour, a group, an id)."""
+        return (w in self.vocab.color_words or w in self._cat_words or _stem(w) in self._cat_words or w in GROUPS
+                or w.startswith("#") or w in ("object", "objects", "everything", "anything"))
+
+    def _request_word(self, w: str) -> bool:
+        """Whether ``w`` may ask for a goal: a pattern, direction, place, facing or stack word, a command verb."""
+        st = _stem(w)
+        return ((st in self.key_vocab and st not in FILLERS) or w in _DIR_WORDS or w in _COMPASS_LEFT
+                or w in _COMMAND_VERBS or w in ROWS or w in COLS or w in FACINGS or w in REGION_NOUNS
+                or w in _ROLE_WORDS or w in _FACING_CUES or w in _DINNER_CUES or w in BAND_MARKS
+                or w in ("on", "onto", "under", "below", "above", "atop", "upon", "stacked", "piled", "lined", "order"))
+
     def _content_word(self, w: str) -> bool:
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
         st = _stem(w)
-        if _is_number(w) or w.startswith("#"):
+        if _is_number(w) or w.startswith("#") or stages.is_mark(w) or w in BAND_MARKS:
             return True
         if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
             return True
@@ -1598,6 +1644,9 @@ class _Parser:
     def command(self, text: str) -> GoalSpec:
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
+        text = self._spelled_right(text)
+        text, self._measures = stages.mark_measures(text)
+        text = stages.other_side(stages.said_places(stages.said_facings(text)))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         # The order along a line ("from left to right") is not part of any goal.
@@ -1614,6 +1663,8 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
+        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words)
+        text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
@@ -1640,6 +1691,7 @@ class _Parser:
                     w == "none" and nxt == "of"):
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
         words = self._parentheses(words)
+        words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
         words = self._trailing_remarks(words)
         words = self._former_latter(words)
@@ -1647,6 +1699,7 @@ class _Parser:
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
         cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
+                and not stages.is_mark(w)
                 and _stem(w) not in STOPWORDS and _stem(w) not in FILLERS and w not in STOPWORDS
                 and (w,) not in self.vocab.categories and w not in self.vocab.color_words and w not in COLOUR_WORDS]
         if cand:
@@ -1773,7 +1826,10 @@ class _Parser:
                         m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(
                         w in _DIR_WORDS or w in _VERT_WORDS - {"to", "of"} for w in sub[own[0].end : own[1].start]):
                     self._first = own[0]
-                pending.extend(self.clause(sub))
+                read = self.clause(sub)
+                pending.extend(read)
+                if read:
+                    self._last_read = read[-1]
                 self._implicit = None
                 self._first = None
                 try:
@@ -1948,10 +2004,12 @@ class _Parser:
         read from it uses that object: a part of the command was not read."""
         used = {o for g in goals for o in g["objects"]} | {g["anchor"] for g in goals if "anchor" in g}
         used |= {o for g in goals for o in g.get("anchor_any", ())}
+        stacked = any(g["pattern"] == "tower" for g in goals)
         for clause, ms in self._named_in:
             for m in ms:
                 group = m.plural and m.det in ("the", "all") and m.names is not None and not m.head
-                if not group and (m.det != "the" or m.plural or m.names is None or m.head):
+                bare = m.names is None and bool(m.colors) and stacked  # "then blue" said in a stack and lost
+                if not group and (m.det != "the" or m.plural or (m.names is None and not bare) or m.head):
                     continue
                 before = clause[max(0, m.start - 3) : m.start]
                 if any(w in _NOT_USED_BEFORE for w in before):
@@ -2209,10 +2267,16 @@ class _Parser:
                 g["anchor"] = anchor
             if p.pose is not None:
                 g["pose"] = list(p.pose)
-            if p.params and anchor is None and p.pose is None:
-                g.update(p.params)
+            if p.params and p.pose is None:
+                params = stages.measured_size(p.pattern, p.params, self._measures, len(objs), anchor is not None)
+                self._measured.update([p.params["measure"]] if "measure" in p.params else [])
+                g.update(params if anchor is None else {k: v for k, v in params.items() if k == "facing"})
             if g not in goals:
                 goals.append(g)
+        unread_measure = next((m for k, m in enumerate(self._measures) if k not in self._measured), None)
+        if unread_measure is not None:
+            raise InputError(f"'{unread_measure.text}': a size said in numbers that no goal read from the command "
+                             f"takes; say which arrangement it is for")
         goals = _chain_towers(goals)
         goals = _same_goals_merged(goals)
         goals = _diagonals(_merge_relations(goals))
@@ -2272,6 +2336,14 @@ class _Parser:
                 if o in pos and tuple(pos[o]) != tuple(g["pose"]):
                     raise InputError(f"contradiction: object {o} is given two different poses")
                 pos[o] = g["pose"]
+
+
+def _with_facing(goals: list[_Pending], params: dict) -> list[_Pending]:
+    """Relation goals with the facing (and any measure, refused when the goal is written) said in their clause."""
+    own = {k: v for k, v in params.items() if k in ("facing", "measure")}
+    for g in goals:
+        g.params = {**g.params, **own}
+    return goals
 
 
 def _add_params(shape: _Pending, params: dict, text: str) -> None:
@@ -2422,6 +2494,17 @@ def _merge_relations(goals: list[dict]) -> list[dict]:
     return [merged.get(k, g) for k, g in enumerate(goals) if k not in drop]
 
 
+#: Words that start a facing ("facing", "pointing", "tines" ...): a clause with one reads its parameters.
+_FACING_CUES = frozenset({"facing", "pointing", "oriented", "orientated", "turned", "aimed", "faces", "face", "points"})
+#: Words of the free place and position readings (.places, .positions), known to the spelling corrector.
+_PLACE_WORDS = frozenset({"strip", "band", "partway", "halfway", "midway", "dead", "centred", "centered", "corner",
+                          "edge", "wall", "viewer", "nearest", "closest", "furthest", "farthest", "leftmost",
+                          "rightmost", "frontmost", "backmost", "rearmost", "middle", "column", "across", "apart",
+                          "wide", "long", "side", "each", "toward", "towards", "facing", "pointing", "turned"})
+_DINNER_CUES = frozenset({"dinner", "setting", "laid", "lay", "meal", "lunch", "breakfast", "supper"})
+_SHAPES_PROTECT = frozenset({"lol", "haha", "ok", "okay", "thanks", "thank", "hey", "hi", "hello", "yeah", "yes", "no",
+                             "nope", "sure", "cheers", "please", "pls", "plz", "thx", "wanna", "gonna", "gimme",
+                             "lemme", "btw", "asap", "thru", "obj", "objs"})
 _DIR_WORDS = lexicon.DIRECTIONS
 
 #: Words of stack roles and orders, which a remark never has.

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from ..errors import InputError
 from . import lexicon
+from .places import POINTING_PARTS, read_facing, read_place
 
 __all__ = ["normalise", "take_params", "stack_roles", "SIZES", "ROWS", "COLS", "FACINGS", "REGION_NOUNS"]
 
@@ -138,6 +139,14 @@ def merged_region(old: str, new: str) -> str | None:
     column band are the region where they cross ("along the front edge, on the left" -> "bottom left")."""
     if old == new:
         return old
+    bands = {"middle row": "middle", "center column": "center"}  # a whole band crossed by another band
+    if (old in bands) != (new in bands) and {bands.get(old, old), bands.get(new, new)} not in ({"middle"}, {"center"}):
+        old, new = bands.get(old, old), bands.get(new, new)
+        if {old, new} == {"middle", "center"}:
+            return None
+        if old == "center" or new == "center":
+            other = new if old == "center" else old
+            return f"{other} center" if other in ("top", "middle", "bottom") else None
     a, b = old.split(), new.split()
     if len(a) == 1 and len(b) == 1:
         rows = [x for x in (a[0], b[0]) if x in ("top", "middle", "bottom")]
@@ -221,13 +230,14 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                 protected[k] = max(protected.get(k, k), k + len(seq))
     seen_pattern = False
     blocked = False
-    params: dict[str, str] = {}
+    band = False
+    params: dict[str, str | int] = {}
     keep: list[str] = []
     row = col = None
     n = len(words)
     i = 0
 
-    def put(key: str, val: str, text: str) -> None:
+    def put(key: str, val: str | int, text: str) -> None:
         if key in params and params[key] != val:
             raise InputError(f"'{text}': two different {key}s ({params[key]}, {val}) for one arrangement")
         params[key] = val
@@ -248,6 +258,16 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             continue
         if pattern_nouns(w):
             seen_pattern, blocked = True, False
+        if w.startswith("sizemark") and len(w) == 9:
+            put("measure", ord(w[-1]) - 97, " ".join(words))  # a measure in numbers (.stages.mark_measures)
+            i += 1
+            continue
+        if w in _FACE_VERBS or w in POINTING_PARTS:
+            face = read_facing(words, i)  # by an edge or the viewer: "facing the back wall", "tines toward me"
+            if face is not None:
+                put("facing", face[0], " ".join(words))
+                i = face[1]
+                continue
         if w in _FACE_VERBS:
             j = i + 1
             while j < n and (words[j] in ("to", "the", "toward", "towards", "in", "direction", "of", ",", "like")
@@ -282,13 +302,23 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
                                           "size", "scale", "scaled")
                              or words[j] in SIZES):
                 j += 1
-            if j < n and pattern_nouns(words[j]):
+            if j < n and (pattern_nouns(words[j]) or (
+                    words[j] in ("shape", "formation", "pattern", "arrangement") and pattern_nouns(words[j - 1]))):
+                # "a big circle"; "a big round shape" (the shape named by the word before the generic noun)
                 if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
                     put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
                 i += 1
                 continue
-        got = _region_run(words, i, stack)
-        if blocked and got is not None and not (
+        free = read_place(words, i)  # said freely: "dead centre", "partway back on the right", "a strip along the front"
+        got = (free[0].row, free[0].col, free[1]) if free is not None else _region_run(words, i, stack)
+        if free is not None and not seen_pattern:
+            # "in a strip along the front": "strip" names the line as well as the band it lies in
+            noun = next((k for k in range(i, free[1]) if words[k] in ("strip", "band") and pattern_nouns(words[k])
+                         and words[k - 2 : k] in (("in", "a"), ("into", "a"), ("as", "a"), ("form", "a"))), None)
+            if noun is not None:
+                keep.extend(words[i : noun + 1])
+                seen_pattern = True
+        if blocked and got is not None and free is None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
             got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
@@ -296,6 +326,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             got = None
         if got is not None:
             r, c, j = got
+            band = band or (free is not None and free[0].band)
             if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
                 # "at the back of the table, in the middle": the middle of that band.
                 r, c = None, "center"
@@ -321,6 +352,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         params["region"] = f"{row} {col}"
     elif row is not None or col is not None:
         params["region"] = row or col  # one band of the table: "bottom", "left"
+        if band and params["region"] in ("middle", "center"):
+            params["region"] = "middle row" if row else "center column"  # never the centre cell
     return params, tuple(keep)
 
 

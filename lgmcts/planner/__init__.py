@@ -5,4 +5,4 @@ from .policies import METHODS, plan
 from .search import SearchOptions, SearchResult
 from .step import StepOptions
 
-__all__ = ["METHODS", "Domain", "plan", "SearchOptions", "SearchResult", "StepOptions"]
+__all__ = ["METHODS", "Domain", "SearchOptions", "SearchResult", "StepOptions", "plan"]

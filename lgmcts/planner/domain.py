@@ -8,8 +8,7 @@ rollout policy (:mod:`.rollout`).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Callable
+from collections.abc import Callable, Sequence
 
 import numpy as np
 

@@ -24,8 +24,23 @@ from ..scene import TABLE, Scene, State
 from .base import Transition
 from .problem import Problem, SearchState, commit
 
-__all__ = ["CONTACT_AREA", "StepOptions", "collisions", "fixed_obstacles", "free_mask", "make_action", "pickable", "place",
-           "place_fixed", "reachable", "required_support", "sample_poses", "to_table", "touching_only", "wrapped"]
+__all__ = [
+    "CONTACT_AREA",
+    "StepOptions",
+    "collisions",
+    "fixed_obstacles",
+    "free_mask",
+    "make_action",
+    "pickable",
+    "place",
+    "place_fixed",
+    "reachable",
+    "required_support",
+    "sample_poses",
+    "to_table",
+    "touching_only",
+    "wrapped",
+]
 
 #: Largest footprint intersection (m²) the planner counts as contact rather
 #: than overlap where a goal leaves no room for its clearance: half the

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..feasibility import precheck
 from ..formats import Action, Goal, GoalSpec, PlanSpec, SceneSpec, load_goals, load_scene
 from ..patterns import Pattern, registry
-from ..patterns.base import fit_json, goal_xy
+from ..patterns.base import BasePattern, fit_json, goal_xy
 from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
@@ -32,8 +32,9 @@ from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
 from .search import SearchOptions, SearchResult, greedy, mcts
+from .sequence import eligible, sequence_plan
 
-__all__ = ["plan", "METHODS", "goal_poses"]
+__all__ = ["METHODS", "goal_poses", "plan"]
 
 
 def goal_poses(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> GoalSpec | None:
@@ -92,8 +93,26 @@ def _accept(opts: SearchOptions) -> Accept:
 Outcome = tuple[SearchResult[Action], dict[str, Any]]
 
 
+def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
+    """The fast first attempt of :mod:`.sequence` (pose goals on discs), accepted like a found plan; ``None`` when
+    it does not apply, gets stuck or is refused."""
+    if not opts.sequence or opts.step.reach is not None or not eligible(problem):
+        return None  # with a robot, the search's steps keep every pick and place within its reach
+    t0 = time.perf_counter()
+    actions = sequence_plan(problem)
+    if actions is None:
+        return None
+    # A plan without a parked disc moves each disc once, straight to its goal: polishing has nothing to drop.
+    parked = any(a.purpose == "relocate" for a in actions)
+    kept = (_accept(opts) if parked else validated)(problem, actions, None)
+    if kept is None:
+        return None
+    return SearchResult(True, tuple(kept), 0, 0, time.perf_counter() - t0, solutions=1, found=len(actions)), \
+        {"sequenced": True}
+
+
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
-    return mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
+    return _sequenced(problem, opts) or (mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {})
 
 
 def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
@@ -228,5 +247,7 @@ def final_fits(scene: Scene, goals: GoalSpec, actions: Sequence[Action]) -> list
     (JSON-ready; ``None`` for patterns without a fit): what a plan carries so
     that viewers draw the arrangement without fitting it again."""
     reg = registry()
+    if all(type(reg[g.pattern]).fit is BasePattern.fit for g in goals.goals):
+        return [None] * len(goals.goals)  # patterns without a fit (pose goals): no replay needed
     final = replay(scene, actions)[-1]
     return [fit_json(reg[g.pattern].fit(goal_xy(g, scene, final.poses))) for g in goals.goals]

@@ -190,7 +190,9 @@ def _drop(problem: Problem, actions: list[Action], worlds: list, ref: np.ndarray
             nxt = next((j for j in range(i + 1, len(actions)) if actions[j].object == a.object), len(actions))
             o = problem.scene.index[a.object]
             stays = worlds[i].polys[o]
-            skip = _crowds(problem, actions, worlds, stays, i, nxt) or _last_move_needed(problem, worlds, i, o, nxt, ref)
+            skip = _crowds(problem, actions, worlds, stays, i, nxt) or _last_move_needed(
+                problem, worlds, i, o, nxt, ref
+            )
             after = None if skip else _replay(problem, trial, i, worlds[i], ref, worlds, i, 1)
             if after is not None:
                 moves[a.object] -= 1

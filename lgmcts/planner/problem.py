@@ -34,7 +34,7 @@ class Problem:
     patterns: tuple[Pattern, ...]
 
     @classmethod
-    def build(cls, scene: Scene, spec: GoalSpec) -> "Problem":
+    def build(cls, scene: Scene, spec: GoalSpec) -> Problem:
         spec.check_against(scene.spec)
         reg = registry()
         goals, patterns = [], []
@@ -131,7 +131,7 @@ class Problem:
     def targets(self) -> tuple[int, ...]:
         return tuple(sorted(self.member))
 
-    def root(self) -> "SearchState":
+    def root(self) -> SearchState:
         return SearchState(self.scene.initial, tuple(GoalProgress() for _ in self.goals))
 
 

@@ -10,8 +10,8 @@ and candidate poses.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
-from typing import Callable
 
 import numpy as np
 import shapely

@@ -22,7 +22,7 @@ from .placement import StepOptions
 from .selection import select_child
 from .tree import Node
 
-__all__ = ["SearchOptions", "SearchResult", "mcts", "greedy"]
+__all__ = ["SearchOptions", "SearchResult", "greedy", "mcts"]
 
 S = TypeVar("S")
 A = TypeVar("A")
@@ -66,6 +66,12 @@ class SearchOptions:
         means the search could not have succeeded, so solved plans are the
         same with or without it.
     proof_after_s : see ``proof_after``.
+    sequence : for ``lgmcts``, where every goal is a ``pose`` goal of one
+        cylinder and all stand on the table, first try the plan of
+        :mod:`lgmcts.planner.sequence` (goal order by what blocks what,
+        parking spots where blocked in a cycle); the tree search runs only
+        when that plan gets stuck or is refused by the validator, and always
+        with a robot (``step.reach``).
     """
 
     max_iter: int = 10_000
@@ -81,6 +87,7 @@ class SearchOptions:
     step: StepOptions = field(default_factory=StepOptions)
     proof_after: int = 20
     proof_after_s: float = 0.25
+    sequence: bool = True
 
 
 @dataclass(frozen=True)

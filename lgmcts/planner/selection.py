@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ucb_scores", "select_child"]
+__all__ = ["select_child", "ucb_scores"]
 
 
 def ucb_scores(value: np.ndarray, visits: np.ndarray, parent_visits: int, c: float) -> np.ndarray:

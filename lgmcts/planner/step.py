@@ -35,8 +35,19 @@ from .placement import (
 from .problem import Problem, SearchState, commit
 from .relocate import relocate
 
-__all__ = ["Problem", "SearchState", "Transition", "attempt", "stay", "probe", "clear_way", "relocate", "StepOptions",
-           "CONTACT_AREA", "touching_only"]
+__all__ = [
+    "CONTACT_AREA",
+    "Problem",
+    "SearchState",
+    "StepOptions",
+    "Transition",
+    "attempt",
+    "clear_way",
+    "probe",
+    "relocate",
+    "stay",
+    "touching_only",
+]
 
 
 def stay(problem: Problem, ss: SearchState, o: int, rng: np.random.Generator) -> Transition | None:

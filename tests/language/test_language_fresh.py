@@ -335,7 +335,7 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("toys", "take the tiger pan as the base and put the purple star onto it", [{"pattern": "tower", "objects": [12, 10]}]),
     # places, orientation and distance in other words; an exception put first; arrows
     ("blocks", "stack the two bowls in the middle of the right-hand side of the table, with the black bowl beneath the "
-               "white one", [{"pattern": "tower", "objects": [8, 7], "region": "right"}]),
+               "white one", [{"pattern": "tower", "objects": [8, 7], "region": "middle right"}]),  # a cell (issue 24)
     ("home", "form a rectangle from both mugs and both bottles in the centre of the table, oriented so that it faces west",
      [{"pattern": "rectangle", "objects": [1, 2, 6, 7], "region": "middle center", "facing": "west"}]),
     ("dinner", "place the green cup farther from the viewer than the blue bowl", [{"pattern": "behind", "objects": [7],
@@ -418,7 +418,7 @@ def _goals(scene: str, text: str, matcher) -> list[dict]:
     ("blocks", "move the purple block so it's diagonally in front of the black bowl, on the left",
      [{"pattern": "left_front", "objects": [6], "anchor": 8}]),
     ("toys", "line the letters up on the right side of the table, halfway back, facing away from me",
-     [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "right", "facing": "north"}]),
+     [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "middle right", "facing": "north"}]),  # never the column
     ("blocks", "build a stack where the red block is at the bottom and the blue block is at the top, with the green "
                "block in between", [{"pattern": "tower", "objects": [1, 3, 2]}]),
     ("blocks", "make a tower, uh, yellow block at the base, green block next, and, um, the red block up top",

@@ -158,7 +158,7 @@ def test_relations_stated_for_each_member_of_an_arrangement_are_one_goal(matcher
         "put the cans in two lines",  # which cans go in which line?
         "put some cans in a line",
         "put half the cans in a line",  # three cans
-        "put the cans in a circle of radius 10 cm",
+        "put the cans in a line of radius 10 cm",  # a measure no goal can take (a circle of radius 10 cm is read)
         "put the cans in a line except for the red can which goes behind the plate",
         "put the cans in a line pointing at the bottle",
     ],

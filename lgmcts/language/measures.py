@@ -1,0 +1,289 @@
+"""Measures said in numbers: "a 25 cm row", "a ring with a 15 cm radius", "half a metre".
+
+A pure stage on the command's text, before it is tokenised for the rest of
+the parser. :func:`find_measures` reads every quantity (a number, a fraction
+or a number word, and a unit) together with the words that say what it
+measures (its *role*: a radius, a width across, a side, a length, a spacing),
+and returns them with their character spans. :func:`size_for` turns one
+measure into the ``size`` of a goal (``docs/formats.md``): a circle's
+radius, a line's length, a rectangle's longer side. A measure on a stack or
+a relation has nothing to set and is refused with a line that quotes it, so
+that a size said is never dropped from the goals.
+
+Units: m, cm, mm, inches, feet (and their spellings); results are metres,
+rounded to the millimetre.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Literal
+
+from ..errors import InputError
+from . import lexicon
+
+__all__ = ["UNITS", "Measure", "Role", "find_measures", "size_for"]
+
+Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain"]
+
+#: Unit words -> metres: the lexicon's length units, with the plural and short spellings people type.
+UNITS: dict[str, float] = {
+    **lexicon.UNITS, "cms": 0.01, "mms": 0.001, "mtr": 1.0, "mtrs": 1.0, '"': 0.0254, "ft": 0.3048, "foot": 0.3048,
+    "feet": 0.3048,
+}
+_NUMBER_WORDS = {
+    "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
+    "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15, "sixteen": 16,
+    "seventeen": 17, "eighteen": 18, "nineteen": 19, "twenty": 20, "thirty": 30, "forty": 40, "fifty": 50,
+    "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90,
+}
+_TENS = frozenset({"twenty", "thirty", "forty", "fifty", "sixty", "seventy", "eighty", "ninety"})
+_FRACTIONS = {"half": 0.5, "third": 1 / 3, "quarter": 0.25, "fifth": 0.2, "tenth": 0.1,
+              "halves": 0.5, "thirds": 1 / 3, "quarters": 0.25, "fifths": 0.2, "tenths": 0.1}
+#: Hedges before a quantity, taken with it ("about 30 cm").
+_HEDGES = frozenset({"about", "around", "roughly", "approximately", "approx", "exactly", "some", "precisely", "just",
+                     "circa", "~"})
+#: Words after a quantity that say what it measures, longest first.
+_AFTER: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
+    (("radius",), "radius"), (("in", "radius"), "radius"), (("of", "radius"), "radius"),
+    (("wide",), "across"), (("across",), "across"), (("diameter",), "across"), (("in", "diameter"), "across"),
+    (("in", "width"), "across"), (("width",), "across"), (("diam",), "across"),
+    (("long",), "length"), (("in", "length"), "length"), (("end", "to", "end"), "length"),
+    (("from", "end", "to", "end"), "length"), (("in", "total"), "length"), (("total",), "length"),
+    (("length",), "length"), (("from", "one", "end", "to", "the", "other"), "length"),
+    (("apart",), "spacing"), (("between", "them"), "spacing"), (("between", "each"), "spacing"),
+    (("between", "each", "one"), "spacing"), (("from", "each", "other"), "spacing"), (("spacing",), "spacing"),
+    (("gap",), "spacing"), (("gaps",), "spacing"), (("gap", "between", "them"), "spacing"),
+    (("each", "side"), "side"), (("a", "side"), "side"), (("per", "side"), "side"), (("on", "each", "side"), "side"),
+    (("on", "a", "side"), "side"), (("on", "every", "side"), "side"), (("to", "a", "side"), "side"),
+    (("each", "way"), "side"), (("square",), "side"), (("on", "each", "edge"), "side"), (("each", "edge"), "side"),
+    (("a", "side", "length"), "side"), (("sides",), "side"),
+    (("on", "the", "long", "side"), "long_side"), (("on", "the", "longer", "side"), "long_side"),
+    (("on", "its", "long", "side"), "long_side"), (("along", "the", "long", "side"), "long_side"),
+), key=lambda pr: -len(pr[0])))
+#: Words before a quantity that say what it measures, longest first (they end right before it).
+_BEFORE: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
+    (("radius",), "radius"), (("radius", "of"), "radius"), (("a", "radius", "of"), "radius"),
+    (("radius", "is"), "radius"), (("radius", ":"), "radius"), (("radius", "="), "radius"),
+    (("diameter",), "across"), (("diameter", "of"), "across"), (("a", "diameter", "of"), "across"),
+    (("across",), "across"), (("width", "of"), "across"), (("a", "width", "of"), "across"),
+    (("long", "side"), "long_side"), (("long", "side", "of"), "long_side"), (("longer", "side"), "long_side"),
+    (("longer", "side", "of"), "long_side"), (("longest", "side"), "long_side"), (("long", "edge"), "long_side"),
+    (("long", "sides"), "long_side"), (("long", "side", "is"), "long_side"), (("longer", "side", "is"), "long_side"),
+    (("sides", "of"), "side"), (("side", "of"), "side"), (("side", "length", "of"), "side"), (("each", "side"), "side"),
+    (("each", "side", "is"), "side"), (("sides",), "side"), (("side",), "side"), (("a", "side", "of"), "side"),
+    (("length", "of"), "length"), (("a", "length", "of"), "length"), (("length",), "length"),
+    (("spaced",), "spacing"), (("spaced", "out"), "spacing"), (("spaced", "by"), "spacing"),
+    (("spacing", "of"), "spacing"), (("a", "spacing", "of"), "spacing"), (("gaps", "of"), "spacing"),
+    (("a", "gap", "of"), "spacing"), (("spaced", "out", "by"), "spacing"), (("every",), "spacing"),
+), key=lambda pr: -len(pr[0])))
+#: "with their centres 15 cm apart": words before a spacing that belong to it.
+_SPACING_LEAD = (("with", "their", "centres"), ("with", "their", "centers"), ("with", "the", "centres"),
+                 ("with", "the", "centers"), ("their", "centres"), ("their", "centers"), ("centres",), ("centers",),
+                 ("with",))
+
+_TOKEN = re.compile(r"\d+(?:\.\d+)?|\.\d+|[a-z]+(?:'[a-z]+)?|\S")
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One quantity said in a command.
+
+    ``start``/``end`` are character offsets of the whole phrase in the text
+    (role words and hedges included); ``metres`` is the quantity (for "A by
+    B" the longer of the two), ``dims`` every number said, ``role`` what it
+    measures ("plain" where no word says: "a 25 cm row").
+    """
+
+    start: int
+    end: int
+    text: str
+    metres: float
+    role: Role
+    dims: tuple[float, ...]
+
+
+def _tokens(text: str) -> list[tuple[str, int, int]]:
+    low = text.lower().replace("\u2019", "'").replace("\u201d", '"').replace("\u2033", '"')
+    return [(m.group(0), m.start(), m.end()) for m in _TOKEN.finditer(low)]
+
+
+def _number(ws: list[str], i: int) -> tuple[float, int] | None:
+    """A number at ``i`` (digits, "twenty five", "twenty-five" as two words): (value, end)."""
+    if i >= len(ws):
+        return None
+    w = ws[i]
+    if re.fullmatch(r"\d+(?:\.\d+)?|\.\d+", w):
+        return float(w), i + 1
+    if w in _NUMBER_WORDS:
+        v = float(_NUMBER_WORDS[w])
+        j = i + 1
+        if w in _TENS and j < len(ws) and ws[j] == "-":
+            j += 1
+        if w in _TENS and j < len(ws) and ws[j] in _NUMBER_WORDS and 0 < _NUMBER_WORDS[ws[j]] < 10:
+            return v + _NUMBER_WORDS[ws[j]], j + 1
+        return v, i + 1
+    return None
+
+
+def _unit(ws: list[str], i: int) -> tuple[float, int] | None:
+    """A unit word at ``i``: (metres per unit, end). "in" counts only where no phrase follows it."""
+    if i >= len(ws) or ws[i] not in UNITS:
+        return None
+    if ws[i] == "in" and i + 1 < len(ws) and ws[i + 1] not in (",", ".", ";", "!", "?", "long", "wide", "across",
+                                                             "apart", "radius", "diameter", "square", "each", "by",
+                                                             "x", "on", "per"):
+        return None  # "3 in a line": a preposition
+    if ws[i] == "m" and i + 1 < len(ws) and ws[i + 1] == "'":
+        return None
+    return UNITS[ws[i]], i + 1
+
+
+def _quantity(ws: list[str], i: int) -> tuple[tuple[float, ...], int] | None:
+    """A quantity starting at ``i``: (values in metres, end)."""
+    # Fractions of a unit: "half a metre", "a third of a metre", "two thirds of a metre", "a quarter metre".
+    j = i
+    count = 1.0
+    if j < len(ws) and ws[j] in ("a", "an", "one") and j + 1 < len(ws) and ws[j + 1] in _FRACTIONS:
+        j += 1
+    elif j < len(ws) and ws[j] in _NUMBER_WORDS and j + 1 < len(ws) and ws[j + 1] in _FRACTIONS \
+            and _NUMBER_WORDS[ws[j]] > 1:
+        count = float(_NUMBER_WORDS[ws[j]])
+        j += 1
+    if j < len(ws) and ws[j] in _FRACTIONS:
+        frac = _FRACTIONS[ws[j]] * count
+        k = j + 1
+        if k < len(ws) and ws[k] == "of":
+            k += 1
+        if k < len(ws) and ws[k] in ("a", "an", "one"):
+            k += 1
+        u = _unit(ws, k)
+        if u is not None and ws[k] not in ("in", '"'):
+            return (frac * u[0],), u[1]
+        return None
+    # "a metre", "a metre and a half", "one and a half metres"
+    if i < len(ws) and ws[i] in ("a", "an") and i + 1 < len(ws) and ws[i + 1] in UNITS and ws[i + 1] not in ("in", "m", '"'):
+        per = UNITS[ws[i + 1]]
+        if ws[i + 2 : i + 5] == ["and", "a", "half"]:
+            return (1.5 * per,), i + 5
+        return (per,), i + 2
+    got = _number(ws, i)
+    if got is None:
+        return None
+    v, j = got
+    if ws[j : j + 3] == ["and", "a", "half"]:
+        v, j = v + 0.5, j + 3
+    # "40 by 20 cm", "30 x 12 cm", "40 cm by 20 cm"
+    u = _unit(ws, j)
+    if j < len(ws) and ws[j] in ("by", "x", "\u00d7", "*"):
+        second = _number(ws, j + 1)
+        if second is not None:
+            u2 = _unit(ws, second[1])
+            if u2 is not None:
+                return (v * u2[0], second[0] * u2[0]), u2[1]
+        return None
+    if u is None:
+        return None
+    k = u[1]
+    if k < len(ws) and ws[k] in ("by", "x", "\u00d7", "*"):
+        second = _number(ws, k + 1)
+        if second is not None:
+            u2 = _unit(ws, second[1])
+            if u2 is not None:
+                return (v * u[0], second[0] * u2[0]), u2[1]
+            return (v * u[0], second[0] * u[0]), second[1]
+    return (v * u[0],), k
+
+
+def _role_after(ws: list[str], j: int) -> tuple[Role, int] | None:
+    for seq, role in _AFTER:
+        if tuple(ws[j : j + len(seq)]) == seq:
+            return role, j + len(seq)
+    return None
+
+
+def _role_before(ws: list[str], i: int) -> tuple[Role, int] | None:
+    for seq, role in _BEFORE:
+        if i - len(seq) >= 0 and tuple(ws[i - len(seq) : i]) == seq:
+            return role, i - len(seq)
+    return None
+
+
+def find_measures(text: str) -> list[Measure]:
+    """Every quantity with a unit in ``text``, with its role and its span."""
+    toks = _tokens(text)
+    ws = [t[0] for t in toks]
+    out: list[Measure] = []
+    i = 0
+    while i < len(ws):
+        got = _quantity(ws, i)
+        if got is None:
+            i += 1
+            continue
+        dims, j = got
+        lo, hi = i, j
+        role: Role = "plain"
+        after = _role_after(ws, hi)
+        if after is not None:
+            role, hi = after
+        k = lo
+        while k > 0 and ws[k - 1] in _HEDGES:
+            k -= 1
+        before = _role_before(ws, k)
+        if before is not None and (after is None or before[0] == role):
+            role, k = before[0], before[1]
+        lo = k
+        while lo > 0 and ws[lo - 1] in _HEDGES:
+            lo -= 1
+        if role == "spacing":
+            for seq in _SPACING_LEAD:
+                if lo - len(seq) >= 0 and tuple(ws[lo - len(seq) : lo]) == seq:
+                    lo -= len(seq)
+                    break
+        if len(dims) == 2 and role == "plain":
+            role = "long_side"
+        value = round(max(dims), 3)
+        if value <= 0:
+            raise InputError(f"'{text[toks[i][1]:toks[j - 1][2]]}': a size must be more than zero")
+        out.append(Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
+                           tuple(round(d, 3) for d in dims)))
+        i = hi
+    return out
+
+
+_TOWERS = frozenset({"tower", "stack"})
+
+
+def size_for(pattern: str, measure: Measure, n_objects: int) -> float:
+    """The goal ``size`` (m) that ``measure`` asks of a ``pattern`` goal over ``n_objects`` objects.
+
+    circle: the radius ("15 cm radius"; "36 cm wide/across", "a 30 cm circle" are
+    diameters); line: the length from the first centre to the last ("a 25 cm row",
+    "30 cm long"; "15 cm apart" times the gaps between n objects); rectangle: the
+    longer side ("18 cm each side", "40 by 20 cm", "long side 0.26 m", "a 20 cm
+    square"). Anything else is refused with a line that quotes the words.
+    """
+    said = f"'{measure.text}'"
+    role, v = measure.role, measure.metres
+    if pattern == "circle":
+        if role == "radius":
+            return v
+        if role in ("across", "plain"):
+            return round(v / 2, 3)
+        raise InputError(f"{said}: a circle's size is its radius or its width across; say one of them")
+    if pattern == "line":
+        if role in ("length", "plain"):
+            return v
+        if role == "spacing":
+            if n_objects < 2:
+                raise InputError(f"{said}: a spacing needs at least two objects in the line")
+            return round(v * (n_objects - 1), 3)
+        raise InputError(f"{said}: a line's size is its length from end to end; say how long it is")
+    if pattern == "rectangle":
+        if role in ("side", "long_side", "plain", "length"):
+            return v
+        raise InputError(f"{said}: a rectangle's size is its longer side; say how long a side is")
+    if pattern in _TOWERS:
+        raise InputError(f"{said}: a stack has no size in numbers (its footprint is its base object's)")
+    raise InputError(f"{said}: a {pattern} goal takes no size or distance in numbers")

@@ -1,0 +1,181 @@
+"""Misspellings and informal spellings, corrected before the command is read.
+
+A pure stage on the command's text: :func:`correct_text` returns the text
+with each misspelt word replaced, and nothing else touched. Conservative on
+purpose, since a wrong correction is a wrong goal:
+
+* a word the parser knows (the scene's names and colours, the pattern
+  database's words, the parser's own closed-class words) is never changed,
+  so "bowl" never becomes "box" even in a scene with a box and no bowl;
+* informal spellings come from a short table (:data:`INFORMAL`: "teh",
+  "infront", "cn", "b4" ...);
+* a word that is no English word (not a whole word of the sentence model's
+  vocabulary) is corrected when exactly one known word lies one edit away
+  (an insertion, a deletion, a substitution or two neighbouring letters
+  swapped: "recangle", "behnd", "circel", "purpel"), two edits for words of
+  eight letters or more; of two known words at the same distance, the one
+  the word is with a letter left out wins ("stak": stack, not star), and
+  any other tie leaves the word as it is;
+* a rare English word (:data:`RARE_RANK`) one dropped letter away from
+  exactly one of the scene's names or colours or a pattern noun is that word
+  ("blu" blue, "hart" heart when the scene has a heart, "lin" line);
+  a common word is never corrected; a three-letter word only ever becomes a
+  colour or a pattern noun.
+
+Words of one or two letters and numbers are left alone.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Collection
+from functools import lru_cache
+
+__all__ = ["INFORMAL", "RARE_RANK", "Corrector", "correct_text", "edit_distance", "english_rank"]
+
+#: Informal spellings with one reading, whole words only.
+INFORMAL: dict[str, str] = {
+    "teh": "the", "hte": "the", "infront": "in front", "cn": "can", "b4": "before", "bc": "because",
+    "cuz": "because", "coz": "because", "nxt": "next", "abt": "about", "tmrw": "tomorrow", "ppl": "people",
+    "pl0x": "please", "plss": "please", "pleasee": "please", "ontop": "on top", "frm": "from", "wth": "with",
+    "betwen": "between", "behing": "behind", "alot": "a lot", "bttm": "bottom", "btm": "bottom",
+    "lft": "left", "rght": "right", "cntr": "centre", "ctr": "centre",
+}
+#: English words with a vocabulary rank above this are rare enough to be a dropped-letter slip.
+RARE_RANK = 7000
+
+_WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?|[A-Za-z]*\d[A-Za-z\d]*")
+
+
+def edit_distance(a: str, b: str, cap: int = 3) -> int:
+    """Damerau-Levenshtein distance (adjacent swaps count one), stopped at ``cap``."""
+    if abs(len(a) - len(b)) >= cap:
+        return cap
+    prev2: list[int] = []
+    prev = list(range(len(b) + 1))
+    for i in range(1, len(a) + 1):
+        cur = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            cost = a[i - 1] != b[j - 1]
+            cur[j] = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost)
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                cur[j] = min(cur[j], prev2[j - 2] + 1)
+        if min(cur) >= cap:
+            return cap
+        prev2, prev = prev, cur
+    return min(prev[-1], cap)
+
+
+@lru_cache(maxsize=1)
+def _english() -> dict[str, int]:
+    """Whole words of the sentence model's WordPiece vocabulary with their rank (about by frequency)."""
+    try:
+        from .embed import weights_path
+
+        lines = (weights_path() / "vocab.txt").read_text(encoding="utf-8").splitlines()
+    except Exception:
+        return {}
+    return {w: k for k, w in enumerate(lines) if w.isalpha() and w.islower()}
+
+
+_SUFFIXES = (("ies", "y"), ("ied", "y"), ("ing", ""), ("ing", "e"), ("ed", ""), ("ed", "e"), ("es", ""), ("s", ""),
+             ("er", ""), ("er", "e"), ("est", ""), ("est", "e"), ("ly", ""), ("'s", ""))
+
+
+def english_rank(word: str) -> int | None:
+    """The word's rank in the English vocabulary (smaller: more common), or None if it is none.
+
+    An inflected form ("crowding", "stacked", "tidier") has the rank of its base word."""
+    eng = _english()
+    if word in eng:
+        return eng[word]
+    for suffix, repl in _SUFFIXES:
+        if len(word) > len(suffix) + 2 and word.endswith(suffix):
+            base = word[: -len(suffix)]
+            for b in (base + repl, base[:-1] if len(base) > 3 and base[-1] == base[-2] else None):
+                if b and b in eng:
+                    return eng[b]
+    return None
+
+
+def _dropped_letter(short: str, long: str) -> bool:
+    return len(long) == len(short) + 1 and any(long[:k] + long[k + 1 :] == short for k in range(len(long)))
+
+
+class Corrector:
+    """Corrections against a fixed vocabulary.
+
+    ``scene``: the scene's own words (names with their plurals, colours);
+    ``lexicon``: the other words a misspelling may stand for (pattern words, directions,
+    command verbs, measure words); ``protect``: words that are never changed and never
+    a correction (fillers, chatter); ``nouns``: the pattern nouns, which with the
+    scene's words are the only targets of a rare real word; ``colours``: colour
+    words, which with the pattern nouns are the only targets of a three-letter
+    non-word ("blu", "lin"; never an object's name: "ish" is not "dish"); ``rank``: the English
+    rank of a word or None (:func:`english_rank` by default).
+    """
+
+    def __init__(self, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
+                 rank: Callable[[str], int | None] = english_rank, protect: Collection[str] = (),
+                 colours: Collection[str] = ()) -> None:
+        self.scene = frozenset(w for w in scene if w.isalpha())
+        self.targets = frozenset(w for w in lexicon if w.isalpha()) - self.scene
+        self.known = self.scene | self.targets | frozenset(protect)
+        self.nouns = frozenset(nouns) | self.scene
+        self.colours = frozenset(colours)
+        self.rank = rank
+
+    def word(self, w: str) -> str:
+        """The correction of one lower-case word (itself where none is sure)."""
+        if w in self.known:
+            return w
+        if w in INFORMAL:
+            return INFORMAL[w]
+        if len(w) < 3:
+            return w
+        r = self.rank(w)
+        if r is not None:
+            if r < RARE_RANK:
+                return w
+            hits = [t for t in self.nouns if _dropped_letter(w, t)]
+            return hits[0] if len(hits) == 1 else w
+        if not w.isalpha():
+            return w
+        if len(w) == 3:
+            hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
+            return hits[0] if len(hits) == 1 else w
+        cap = 2 if len(w) >= 8 else 1
+        best: list[str] = []
+        best_d = cap + 1
+        for t in self.scene | self.targets:
+            if len(t) < 3 or abs(len(t) - len(w)) > cap:
+                continue
+            d = edit_distance(w, t, cap + 1)
+            if d < best_d:
+                best, best_d = [t], d
+            elif d == best_d:
+                best.append(t)
+        if best_d > cap:
+            return w
+        if len(best) > 1:
+            # A letter left out is the commonest slip: "stak" is "stack" before "star".
+            best = [t for t in best if _dropped_letter(w, t)]
+        return best[0] if len(best) == 1 else w
+
+    def text(self, text: str) -> str:
+        """``text`` with each misspelt word replaced (case kept for the first letter), the rest as it was."""
+
+        def one(m: re.Match) -> str:
+            w = m.group(0)
+            fixed = self.word(w.lower())
+            if fixed == w.lower():
+                return w
+            return fixed[0].upper() + fixed[1:] if w[0].isupper() else fixed
+
+        return _WORD.sub(one, text)
+
+
+def correct_text(text: str, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
+                 protect: Collection[str] = (), colours: Collection[str] = ()) -> str:
+    """:meth:`Corrector.text` with a corrector built for this call."""
+    return Corrector(scene, lexicon, nouns, protect=protect, colours=colours).text(text)

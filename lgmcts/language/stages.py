@@ -1,0 +1,338 @@
+"""Where the reading stages meet the offline parser.
+
+Each stage is a pure module with its own tests (:mod:`.spelling`,
+:mod:`.measures`, :mod:`.positions`, :mod:`.places`, :mod:`.context`); this
+module builds what each needs from the scene and the parser's word lists and
+is called from a few points of :mod:`.rules`:
+
+* before anything else reads the text: :func:`spell` (misspellings),
+  :func:`mark_measures` (each quantity with a unit becomes one marker word,
+  so that the clause it belongs to carries it to the parameter reader) and
+  :func:`said_facings` (a facing said by an edge or the viewer becomes its
+  compass direction), :func:`said_places` (places later steps would cut,
+  said plainly);
+* on the text, before grounding: :func:`by_position` (objects picked by where
+  they stand become "object N");
+* on the tokens, before clauses are cut: :func:`without_context`;
+* when a goal is written: :func:`measured_size` (the marker's measure as the
+  goal's ``size``, or a refusal that quotes it).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable, Mapping
+from typing import TYPE_CHECKING, Any
+
+from ..errors import InputError
+from .colour_refs import find_colour_refs, select
+from .context import drop_context
+from .grounding import COLOUR_WORDS, Token, tokenize
+from .measures import Measure, find_measures, size_for
+from .places import POINTING_PARTS, read_facing
+from .positions import find_position_refs, pick
+from .spelling import Corrector
+
+if TYPE_CHECKING:
+    from .grounding import Vocabulary
+
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "spell", "without_context"]
+
+#: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
+MARK = "sizemark"
+_MARK_RE = re.compile(rf"^{MARK}[a-z]$")
+
+
+def is_mark(word: str) -> bool:
+    """Whether a token is a measure's marker."""
+    return bool(_MARK_RE.match(word))
+
+
+def _plural(word: str) -> str:
+    if word.endswith(("s", "x", "z", "ch", "sh")):
+        return word + "es"
+    if word.endswith("y") and len(word) > 1 and word[-2] not in "aeiou":
+        return word[:-1] + "ies"
+    if word.endswith("fe"):
+        return word[:-2] + "ves"
+    return word + "s"
+
+
+def spell(text: str, vocab: Vocabulary, lexicon: Iterable[str], nouns: Iterable[str], protect: Iterable[str]) -> str:
+    """``text`` with misspellings corrected against the scene's words and the parser's lexicon."""
+    scene: set[str] = set()
+    for key in vocab.categories:
+        scene.update(key)
+        scene.add(_plural(key[-1]))
+    scene.update(vocab.color_words)
+    return Corrector(scene, set(lexicon), set(nouns), protect=set(protect),
+                     colours=set(vocab.color_words) | COLOUR_WORDS).text(text)
+
+
+def mark_measures(text: str) -> tuple[str, list[Measure]]:
+    """``text`` with each measure replaced by a marker word, and the measures in order."""
+    found = find_measures(text)
+    out: list[str] = []
+    at = 0
+    for k, m in enumerate(found[:26]):
+        out.append(text[at : m.start])
+        out.append(f"{MARK}{chr(97 + k)}")
+        at = m.end
+    out.append(text[at:])
+    return "".join(out), found[:26]
+
+
+_EDGE_WORDS = frozenset({"edge", "side", "wall", "end", "border", "rim", "back", "front"})
+
+
+def said_facings(text: str) -> str:
+    """``text`` with each facing said by an edge or the viewer ("tines toward the right edge",
+    "turned to face the viewer") said by its compass direction ("facing east"), so that no
+    edge is grounded as an object and every goal kind reads it the same way."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    i = 0
+    while i < len(words):
+        got = read_facing(words, i)
+        if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])):
+            i += 1  # facing the viewer or away: read where it stands by the parameter reader
+            continue
+        lo, hi = toks[i].pos, _end(text, toks[got[1] - 1])
+        out.append(text[at:lo] + "facing " + got[0])
+        at = hi
+        i = got[1]
+    out.append(text[at:])
+    return "".join(out)
+
+
+_PARTWAY = frozenset({"partway", "halfway", "midway"})
+_SIDE_CELLS = {"left": "middleleft", "right": "middleright", "front": "bottomcenter", "near": "bottomcenter",
+               "back": "topcenter", "far": "topcenter", "rear": "topcenter"}
+
+
+def said_places(text: str) -> str:
+    """``text`` with the free places that later steps would cut or widen marked for the place
+    reader (:func:`.places.read_place`): "centred left to right" is the center column, "centred
+    front to back" the middle row, and "halfway back" (also "partway", "midway"; "up", "along",
+    "down") the middle row, which a side said with it narrows to its cell ("halfway back on
+    the right": middle right)."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    i = 0
+    while i < len(words):
+        w = words[i]
+        end, say = i, ""
+        if w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
+                ("left", "to", "right"), ("right", "to", "left")):
+            end, say = i + 4, "in centreband"
+        elif w in ("centred", "centered", "centrally") and words[i + 1 : i + 4] in (
+                ("front", "to", "back"), ("back", "to", "front")):
+            end, say = i + 4, "in middleband"
+        elif (w in _PARTWAY or (w in ("part", "half") and words[i + 1 : i + 2] == ("way",))):
+            k = i + 1 + (w in ("part", "half"))
+            if words[k : k + 1] in (("back",), ("up",), ("along",), ("down",), ("across",)):
+                end, say = k + 1, "in middleband"
+                if words[end : end + 2] == ("the", "table"):
+                    end += 2
+        elif w in ("centre", "center", "middle") and i and words[i - 1] == "the" and words[i + 1 : i + 2] == ("of",):
+            # "the centre of the left side", "the middle of the front edge": the cell halfway along that side
+            k = i + 2 + (words[i + 2 : i + 3] == ("the",))
+            k += words[k : k + 1] == ("table's",)
+            side = words[k] if k < len(words) else ""
+            hand = words[k + 1 : k + 2] == ("hand",)
+            if side in _SIDE_CELLS and words[k + 1 + hand : k + 2 + hand] in (("side",), ("edge",), ("end",), ("half",),
+                                                                             ("wall",)):
+                end = k + 2 + hand
+                if words[end : end + 3] == ("of", "the", "table"):
+                    end += 3
+                i -= 1  # the article goes too
+                say = f"in the {_SIDE_CELLS[side]}cell"
+        if end == i:
+            i += 1
+            continue
+        out.append(text[at : toks[i].pos] + say)
+        at = _end(text, toks[end - 1])
+        i = end
+    out.append(text[at:])
+    return "".join(out)
+
+
+_OPPOSITE = {"left": "to the right of", "right": "to the left of", "front": "behind", "behind": "in front of",
+             "back": "in front of"}
+
+
+def other_side(text: str) -> str:
+    """"the fork left of the plate, the knife on its other side": the side opposite the one said
+    last before it, of the same reference object ("the knife to the right of it"; "on the plate's
+    other side", "on the other side of the plate"). Left as said where no side came before."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for k in range(1, len(words) - 1):
+        if words[k] not in ("other", "opposite") or words[k + 1] != "side":
+            continue
+        lo = k - 1
+        owner = "it"
+        if words[lo] in ("its", "their"):
+            owner = "it" if words[lo] == "its" else "them"
+        elif words[lo].endswith("'s"):
+            j = lo
+            while j > 0 and words[j - 1] not in ("on", "to", "at", ",", "goes", "go", "is", "be", "sits"):
+                j -= 1
+            owner = text[toks[j].pos : toks[lo].pos] + words[lo][:-2]
+            lo = j
+        elif words[lo] == "the":
+            owner = ""
+        else:
+            continue
+        if lo > 0 and words[lo - 1] in ("on", "to", "at"):
+            lo -= 1
+        hi = k + 2
+        if not owner:
+            if words[hi : hi + 1] != ("of",):
+                continue
+            j = hi + 1
+            while j < len(words) and words[j] not in (",", ".", ";", "!", "?", "and"):
+                j += 1
+            owner = text[toks[hi + 1].pos : _end(text, toks[j - 1])]
+            hi = j
+        said = [w for w in words[:lo] if w in _OPPOSITE]
+        if not said or lo < at:
+            continue
+        out.append(text[at : toks[lo].pos] + f"{_OPPOSITE[said[-1]]} {owner}")
+        at = _end(text, toks[hi - 1])
+    out.append(text[at:])
+    return "".join(out)
+
+
+def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects: int, anchored: bool) -> dict:
+    """``params`` with a measure's marker (``params["measure"]``) turned into the goal's size."""
+    if "measure" not in params:
+        return params
+    out = dict(params)
+    m = measures[out.pop("measure")]
+    if anchored:
+        raise InputError(f"'{m.text}': a relation takes no size or distance in numbers")
+    size = size_for(pattern, m, n_objects)
+    if isinstance(out.get("size"), (int, float)) and out["size"] != size:
+        raise InputError(f"'{m.text}': two different sizes for one arrangement ({out['size']}, {size})")
+    # A size word said with a number ("a little rectangle, 18 cm each side") describes it loosely: the number holds.
+    out["size"] = size
+    return out
+
+
+def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
+                pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
+                nouns: frozenset[str] = frozenset()) -> str:
+    """``text`` with each phrase that picks objects by where they stand replaced by their ids.
+
+    ``find(words)`` grounds a noun phrase (the parser's mention finder); ``ids_of(mention)``
+    gives every object it may name; ``pose_of(id)`` the object's table position (None for
+    an object standing on another); ``nouns``: the scene's category words, for "the one" after a
+    noun ("every can except the one nearest the phone"). A phrase whose head or reference object names nothing
+    is left as it is for the parser to refuse; an unclear answer is refused here."""
+    toks: tuple[Token, ...] = tokenize(text)
+    words = tuple(t.text for t in toks)
+    refs = find_position_refs(words)
+    if not refs:
+        return text
+    said_heads: list[tuple[str, ...]] = []
+    out: list[str] = []
+    at = 0
+    for ref in refs:
+        head = ref.head
+        if head in (("one",), ("ones",)):
+            before = [w for w in words[: ref.start] if w in nouns or (w.endswith("s") and w[:-1] in nouns)]
+            head = said_heads[-1] if said_heads else (before[-1],) if before else ()
+        elif head:
+            said_heads.append(head)
+        while head[:1] in (("piece",), ("pieces",), ("item",), ("items",), ("bit",), ("bits",)) and head[1:2] == ("of",):
+            head = head[2:]  # "the leftmost piece of silverware"
+        ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
+        if ids is None or (len(ids) == 1 and ref.count == 1 and ref.of is None):
+            continue  # names nothing, or one object already: "the side of the white bowl nearest me"
+        anchor_xy = None
+        if ref.key.anchor is not None:
+            aid = _ids(ref.key.anchor, find, ids_of)
+            if aid is None or len(aid) != 1:
+                continue
+            anchor_xy = pose_of(aid[0])
+            ids = [i for i in ids if i != aid[0]]
+        cands = {i: xy for i in ids if (xy := pose_of(i)) is not None}
+        lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
+        said = text[lo:hi]
+        got = pick(ref, cands, anchor_xy=anchor_xy, centre=centre, said=said)
+        out.append(text[at:lo])
+        out.append("object " + str(got[0]) if len(got) == 1 else
+                   "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")
+        at = hi
+    out.append(text[at:])
+    return "".join(out)
+
+
+def _end(text: str, tok: Token) -> int:
+    """The character end of a token in ``text`` (tokens are lower-cased copies of the text)."""
+    low = text.lower()
+    k = low.find(tok.text, tok.pos)
+    return (k if k >= 0 else tok.pos) + len(tok.text)
+
+
+def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]
+         ) -> list[int] | None:
+    try:
+        found = [m for m in find(words) if getattr(m, "det", None) != "pronoun"]
+    except InputError:
+        return None
+    if len(found) != 1:
+        return None
+    return list(ids_of(found[0]))
+
+
+def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
+              colour_of: Mapping[int, str]) -> str:
+    """``text`` with each reference through another object's colour ("the cans that share a colour
+    with one of the bowls") replaced by the ids it selects (:mod:`.colour_refs`). A phrase whose head
+    or reference names nothing is left as said; one that selects nothing is refused."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    refs = find_colour_refs(words)
+    out: list[str] = []
+    at = 0
+    for ref in refs:
+        plural = not ref.head or ref.head[-1].endswith("s") or ref.head[-1] in ("stuff", "everything", "anything")
+        if not (ref.negated or ref.quantified) and (plural or _reads_whole(words[ref.start : ref.end], find)):
+            continue  # "the things that are the same colour as the blue bowl": the grounding reads it
+        head = _ids(("the",) + ref.head if ref.head else ("everything",), find, ids_of)
+        other = _ids(ref.ref, find, ids_of)
+        if head is None or other is None:
+            continue
+        lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
+        got = select(head, other, colour_of, ref.negated)
+        if not got:
+            raise InputError(f"'{text[lo:hi]}' selects nothing: no such object has that colour")
+        out.append(text[at:lo])
+        out.append("object " + str(got[0]) if len(got) == 1 else
+                   "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")
+        at = hi
+    out.append(text[at:])
+    return "".join(out)
+
+
+def _reads_whole(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list]) -> bool:
+    """Whether the grounding reads ``words`` as one reference, every word of it."""
+    try:
+        found = find(words)
+    except InputError:
+        return False
+    return len(found) >= 1 and found[0].start == 0 and found[0].end == len(words)
+
+
+def without_context(words: tuple[str, ...], object_word: Callable[[str], bool],
+                    request_word: Callable[[str], bool]) -> tuple[str, ...]:
+    """The tokens without background sentences and time clauses (:func:`.context.drop_context`)."""
+    return drop_context(words, lambda w: object_word(w) or is_mark(w), request_word)

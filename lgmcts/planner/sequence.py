@@ -1,0 +1,272 @@
+"""A fast first attempt for pose goals on discs: order the moves by what blocks what.
+
+When every goal is a ``pose`` goal of one cylinder, every object is a
+cylinder standing on the table, the plan is a matter of order and of
+parking places (the setting of dense disc rearrangement benchmarks such as
+TRLB's). :func:`sequence_plan` builds such a plan directly, without search:
+
+1. every object whose goal disc is free of the other discs where they stand
+   now goes there (an object on its goal never blocks another goal, as goal
+   discs do not overlap, so each such move is final);
+2. when none can go, the goals left form cycles of "my goal is covered by
+   you": the object that alone covers the most of the remaining goals (its
+   move frees them), then the one that covers the most (ties: the lower
+   index), is parked in a *buffer*, a free spot of the table chosen on
+   a grid near its own goal, away from every goal still to be reached when
+   there is such a spot (then it blocks nothing later); repeat from 1.
+
+Discs are tested as circles, vectorised over all objects (the
+polygons stand for the circles; two discs that touch may overlap as polygons
+but not as circles, which is how the validator judges cylinders). Parking
+spots keep the planner's clearance from every other disc and from the
+workspace edge; goal placements need only not overlap (the goal gives no
+choice). The plan is then validated like any found plan (and polished); the
+caller falls back to the tree search when this returns ``None`` or the
+validator refuses the plan. Nothing here draws random numbers: the same
+problem gives the same plan.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..formats import Action
+from ..geometry import wrap_angle
+from ..patterns import CLEARANCE
+from ..patterns.pose import XY_TOL, YAW_TOL
+from ..scene import TABLE
+from .problem import Problem
+
+__all__ = ["eligible", "sequence_plan"]
+
+#: Two discs closer than the sum of their radii by at most this much (m)
+#: touch rather than overlap (their lens is far below the validator's
+#: allowance of 1e-6 m^2).
+TOUCH = 1e-7
+
+
+def eligible(problem: Problem) -> bool:
+    """Whether :func:`sequence_plan` applies: every object a cylinder on the
+    table, every goal a ``pose`` goal of one object, no object in two goals."""
+    sc = problem.scene
+    if sc.n == 0 or not problem.goals:
+        return False
+    if not bool(np.all(sc.discs > 0)) or any(s != TABLE for s in sc.initial.on):
+        return False
+    if any(g.pattern != "pose" or len(g.objects) != 1 or g.anchor is not None for g in problem.goals):
+        return False
+    return all(len(ks) == 1 for ks in problem.member.values()) and len(problem.fixed) == len(problem.member)
+
+
+class _Table:
+    """Disc centres and radii as they stand, with each goal's blockers as a boolean matrix."""
+
+    def __init__(self, problem: Problem) -> None:
+        sc = problem.scene
+        self.r = np.asarray(sc.discs, dtype=float)
+        self.pos = np.array(sc.initial.poses[:, :2], dtype=float)
+        self.movers = np.array(sorted(problem.fixed), dtype=int)
+        self.goal = np.array([problem.fixed[o][:2] for o in self.movers], dtype=float)
+        self.yaw = np.array([float(problem.fixed[o][2]) for o in self.movers])
+        self.row = {int(o): k for k, o in enumerate(self.movers)}
+        # blocked[k, j]: disc j, where it stands, overlaps the goal disc of mover k.
+        d = np.hypot(*(self.goal[:, None, :] - self.pos[None, :, :]).transpose(2, 0, 1))
+        self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
+        self.blocked[np.arange(len(self.movers)), self.movers] = False
+        self.done = np.zeros(len(self.movers), dtype=bool)
+
+    def move(self, j: int, xy: np.ndarray) -> None:
+        self.pos[j] = xy
+        d = np.hypot(*(self.goal - xy).T)
+        col = d < self.r[self.movers] + self.r[j] - TOUCH
+        k = self.row.get(j)
+        if k is not None:
+            col[k] = False
+        self.blocked[:, j] = col
+
+
+class _Spots:
+    """Grid points where a parked disc could stand, kept up to date as discs move.
+
+    Built the first time a disc must be parked. ``count[p]``: how many discs
+    stand too close to point ``p`` for a parked disc (within the sum of the
+    radii, the largest mover's for the parked one, plus the clearance);
+    ``hits[p]``: how many open goals a disc at ``p`` would overlap. Each disc
+    and goal touches only the points within its reach, so a move costs a few
+    dozen points and a query is linear in the grid.
+    """
+
+    def __init__(self, t: _Table, bounds: tuple[float, float, float, float]) -> None:
+        rmax = float(np.max(t.r[t.movers]))
+        self.reach = rmax + CLEARANCE
+        self.rmax = rmax
+        edge = rmax / math.cos(math.pi / 24) + CLEARANCE  # the footprint polygon's reach, and the gap to the edge
+        self.step = float(np.min(t.r[t.movers])) / 2
+        xmin, xmax, ymin, ymax = bounds
+        self.gx = np.arange(xmin + edge, xmax - edge + 1e-12, self.step)
+        self.gy = np.arange(ymin + edge, ymax - edge + 1e-12, self.step)
+        size = len(self.gx) * len(self.gy)
+        self.count = np.bincount(self._stamp(t.pos, t.r + self.reach), minlength=size)
+        open_ = ~t.done
+        self.hits = np.bincount(self._stamp(t.goal[open_], t.r[t.movers[open_]] + rmax - TOUCH), minlength=size)
+        #: Changes not yet applied to the counts: (0 count / 1 hits, centre, radius, sign).
+        self.todo: list[tuple[int, np.ndarray, float, int]] = []
+
+    def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
+        """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
+        xy = np.atleast_2d(xy)
+        rad = np.atleast_1d(rad)
+        if not len(self.gx) or not len(self.gy) or not len(xy):
+            return np.zeros(0, dtype=np.intp)
+        k = math.ceil(2 * float(rad.max()) / self.step) + 2
+        w, h = len(self.gx), len(self.gy)
+        ix = np.floor((xy[:, 0] - rad - self.gx[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
+        iy = np.floor((xy[:, 1] - rad - self.gy[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
+        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
+        dx = np.where(ix == ixc, self.gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
+        dy = np.where(iy == iyc, self.gy[iyc] - xy[:, 1:], np.inf)
+        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
+        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
+
+    def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
+        """Disc ``j`` moved from ``old`` to where it stands now (applied at the next query, all moves at once)."""
+        self.todo.append((0, old, t.r[j] + self.reach, -1))
+        self.todo.append((0, t.pos[j].copy(), t.r[j] + self.reach, 1))
+
+    def closed(self, t: _Table, k: int) -> None:
+        """The goal of mover ``k`` is reached: no spot covers it any more."""
+        self.todo.append((1, t.goal[k], t.r[t.movers[k]] + self.rmax - TOUCH, -1))
+
+    def _flush(self) -> None:
+        for which, arr in ((0, self.count), (1, self.hits)):
+            for sign in (-1, 1):
+                sel = [(xy, rad) for w, xy, rad, sg in self.todo if w == which and sg == sign]
+                if sel:
+                    idx = self._stamp(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
+                    arr += sign * np.bincount(idx, minlength=len(arr))
+        self.todo.clear()
+
+    def spot(self, t: _Table, j: int) -> tuple[np.ndarray, int] | None:
+        """The free point for disc ``j`` that covers the fewest open goals
+        (other than its own), nearest its goal among those; with that count."""
+        if self.todo:
+            self._flush()
+        k = t.row[j]
+        count = self.count.copy()
+        np.subtract.at(count, self._stamp(t.pos[j], t.r[j] + self.reach), 1)
+        free = np.flatnonzero(count == 0)
+        if not len(free):
+            return None
+        hits = self.hits.copy()
+        if not t.done[k]:
+            np.subtract.at(hits, self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH), 1)
+        xy = np.stack([self.gx[free % len(self.gx)], self.gy[free // len(self.gx)]], axis=1)
+        dist = np.hypot(*(xy - t.goal[k]).T)
+        m = int(np.lexsort((dist, hits[free]))[0])
+        return xy[m], int(hits[free[m]])
+
+
+#: How many discs, best score first, are offered a parking spot when the goals left are blocked.
+CANDIDATES = 4
+#: Park only discs on a cycle when there are such (see :func:`_score`); off gives the plain score, for comparison.
+CYCLES = True
+
+
+def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
+    """The disc to park and its spot: of the :data:`CANDIDATES` best scored
+    discs (with goals of their own), the first whose spot covers no open
+    goal, else the one whose move uncovers the most goals; ``None`` when no
+    move uncovers any (parking would go round in circles)."""
+    order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
+    best: tuple[int, int, np.ndarray] | None = None
+    for j in order[:CANDIDATES]:
+        found = spots.spot(t, j)
+        if found is None:
+            continue
+        spot, hits = found
+        gain = int(cover[j]) - hits
+        if hits == 0:
+            return j, spot
+        if gain > 0 and (best is None or gain > best[0]):
+            best = (gain, j, spot)
+    return None if best is None else (best[1], best[2])
+
+
+def _score(t: _Table, b: np.ndarray) -> np.ndarray:
+    """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
+    move frees them) first, then the one that covers the most. Only discs on a cycle of "my goal is covered by
+    you" are candidates when there are such: any other disc reaches its goal once the cycles are broken, so
+    parking it would cost a move for nothing."""
+    n = len(t.r)
+    score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
+    score[t.movers[t.done]] = 0  # a disc on its goal stays
+    if CYCLES:
+        from scipy.sparse import csr_matrix  # only once a cycle must be broken
+        from scipy.sparse.csgraph import connected_components
+
+        rows = np.flatnonzero(~t.done)
+        movers = t.movers[rows]
+        graph = csr_matrix(b[:, movers])  # open goal -> the open movers covering it
+        _, label = connected_components(graph, directed=True, connection="strong")
+        on_cycle = np.bincount(label)[label] > 1
+        if on_cycle.any() and (score[movers[on_cycle]] > 0).any():
+            score[movers[~on_cycle]] = 0
+    return score
+
+
+def _action(oid: int, pose: tuple[float, float, float] | np.ndarray, purpose: str) -> Action:
+    """A table placement; built without the model's checks (the numbers are finite poses on the table, and the
+    validator replays the plan)."""
+    return Action.model_construct(object=oid, to=(float(pose[0]), float(pose[1]), float(pose[2])), on=None,
+                                  purpose=purpose)
+
+
+def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Action] | None:
+    """A plan for an :func:`eligible` problem by goal order and parking, or
+    ``None`` when it gets stuck (no parking spot, or more than ``max_actions``
+    moves, ``3 n`` by default)."""
+    if not eligible(problem):
+        return None
+    sc = problem.scene
+    t = _Table(problem)
+    limit = 3 * sc.n if max_actions is None else max_actions
+    spots: _Spots | None = None
+    # An object that already meets its goal stays where it is, unless it covers another goal.
+    at = np.hypot(*(t.pos[t.movers] - t.goal).T) <= XY_TOL
+    at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
+    at &= ~t.blocked[:, t.movers].any(axis=0)
+    t.done[at] = True
+    actions: list[Action] = []
+    while not t.done.all():
+        if len(actions) >= limit:
+            return None
+        ready = np.flatnonzero(~t.done & ~t.blocked.any(axis=1))
+        if len(ready):
+            for k in ready.tolist():
+                if t.blocked[k].any():  # a goal placed just before may cover it (goals that overlap)
+                    continue
+                o = int(t.movers[k])
+                pose = np.array([t.goal[k, 0], t.goal[k, 1], t.yaw[k]])
+                actions.append(_action(sc.ids[o], pose, "goal"))
+                old = t.pos[o].copy()
+                t.move(o, t.goal[k])
+                t.done[k] = True
+                if spots is not None:
+                    spots.moved(t, o, old)
+                    spots.closed(t, k)
+            continue
+        b = t.blocked[~t.done]
+        score = _score(t, b)
+        if spots is None:
+            spots = _Spots(t, sc.bounds)
+        park = _choose(t, spots, score, b.sum(axis=0))
+        if park is None:
+            return None
+        j, spot = park
+        actions.append(_action(sc.ids[j], (spot[0], spot[1], sc.initial.poses[j, 2]), "relocate"))
+        old = t.pos[j].copy()
+        t.move(j, spot)
+        spots.moved(t, j, old)
+    return actions

@@ -1,0 +1,140 @@
+"""The fast first attempt for pose goals on discs (lgmcts.planner.sequence)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from lgmcts import check, plan
+from lgmcts.casegen import TrlbArrangement, trlb_case
+from lgmcts.planner.problem import Problem
+from lgmcts.planner.search import SearchOptions
+from lgmcts.planner.sequence import eligible, sequence_plan
+from lgmcts.scene import Scene
+
+
+def _case(start, goal, radius: float, width: float = 1000.0, height: float = 1000.0):
+    def arr(pts):
+        return TrlbArrangement("mem", 0.0, radius, width, height, np.asarray(pts, dtype=float))
+    return trlb_case(arr(start), arr(goal))
+
+
+def _problem(c) -> Problem:
+    return Problem.build(Scene.from_spec(c.scene), c.goals)
+
+
+def _scatter(rng: np.random.Generator, n: int, radius: float) -> list[tuple[float, float]] | None:
+    """``n`` non-overlapping disc centres in TRLB's square, by rejection; ``None`` when they do not fit."""
+    pts: list[tuple[float, float]] = []
+    for _ in range(200 * n):
+        p = rng.uniform(radius, 1000 - radius, 2)
+        if all(math.hypot(p[0] - q[0], p[1] - q[1]) >= 2 * radius for q in pts):
+            pts.append((float(p[0]), float(p[1])))
+            if len(pts) == n:
+                return pts
+    return None
+
+
+def test_swap_in_a_row_parks_one_disc_off_every_goal():
+    # Three discs in a row, touching; the goal rotates them: a cycle, broken by one parked disc.
+    r = 100.0
+    row = [(300.0, 500.0), (500.0, 500.0), (700.0, 500.0)]
+    c = _case(row, row[1:] + row[:1], r)
+    pr = _problem(c)
+    assert eligible(pr)
+    actions = sequence_plan(pr)
+    assert actions is not None and len(actions) == 4
+    parked = [a for a in actions if a.purpose == "relocate"]
+    assert len(parked) == 1
+    spot = np.array(parked[0].to[:2])
+    for g in c.goals.goals:
+        assert np.hypot(*(spot - np.array(g.pose[:2]))) >= 2 * r / 1000 - 1e-9  # it covers no goal
+    p = plan(c.scene, c.goals, seed=0)
+    assert p.solved and p.stats.get("sequenced") and len(p.actions) == 4
+    assert check(c.scene, c.goals, p).valid
+
+
+def test_no_room_to_park_falls_back_to_the_search():
+    # Two discs swap in a box that holds just the two: no spot to park, so no plan here, and the
+    # planner's answer is the tree search's (here: no plan either, with its reason).
+    r = 100.0
+    c = _case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], r, width=400.0, height=200.0)
+    pr = _problem(c)
+    assert eligible(pr) and sequence_plan(pr) is None
+    p = plan(c.scene, c.goals, seed=0, max_iter=200)
+    q = plan(c.scene, c.goals, seed=0, max_iter=200, options=SearchOptions(sequence=False))
+    assert not p.solved and "sequenced" not in p.stats
+    assert p.model_dump(exclude={"stats"}) == q.model_dump(exclude={"stats"})
+    assert p.stats["reason"] == q.stats["reason"]
+
+
+def test_not_eligible_leaves_the_search_alone():
+    from lgmcts.casegen import random_case
+
+    c = random_case(3)  # pattern goals and boxes: not this path's setting
+    assert not eligible(Problem.build(Scene.from_spec(c.scene), c.goals))
+    p = plan(c.scene, c.goals, seed=0, max_iter=500)
+    q = plan(c.scene, c.goals, seed=0, max_iter=500, options=SearchOptions(sequence=False))
+    assert "sequenced" not in p.stats
+    assert p.actions == q.actions
+
+
+def test_a_disc_already_on_its_goal_stays():
+    r = 60.0
+    start = [(200.0, 200.0), (500.0, 500.0), (800.0, 800.0)]
+    goal = [(200.0, 200.0), (800.0, 200.0), (500.0, 800.0)]
+    c = _case(start, goal, r)
+    actions = sequence_plan(_problem(c))
+    assert actions is not None and [a.object for a in actions] == [2, 3]
+    assert all(a.purpose == "goal" for a in actions)
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(2, 14), density=st.sampled_from([0.2, 0.3, 0.4]))
+def test_plans_pass_the_validator_and_do_not_depend_on_the_seed(seed, n, density):
+    rng = np.random.default_rng(seed)
+    radius = math.sqrt(density * 1e6 / (math.pi * n))
+    start, goal = _scatter(rng, n, radius), _scatter(rng, n, radius)
+    if start is None or goal is None:
+        return
+    c = _case(start, goal, radius)
+    pr = _problem(c)
+    actions = sequence_plan(pr)
+    if actions is not None:
+        assert sequence_plan(pr) == actions
+        assert sum(a.purpose == "goal" for a in actions) <= n
+        # Every disc that moves ends on its goal; only parked discs move twice.
+        assert len(actions) <= n + sum(a.purpose == "relocate" for a in actions)
+    p = plan(c.scene, c.goals, seed=0, max_iter=300)
+    q = plan(c.scene, c.goals, seed=seed + 1, max_iter=300)
+    if p.stats.get("sequenced"):
+        assert p.solved and check(c.scene, c.goals, p).valid
+        assert q.actions == p.actions
+
+
+def test_only_a_disc_on_a_cycle_is_parked():
+    # A and B each cover the other's goal (a cycle). C's goal is under A, and C covers the goals of D, E and F:
+    # C frees the most goals, but it is on no cycle, so it waits for A to leave; one disc is parked, not two.
+    r = 50.0
+    start = [(200.0, 500.0), (301.0, 500.0), (600.0, 500.0), (150.0, 150.0), (300.0, 150.0), (450.0, 150.0)]
+    goal = [(330.0, 560.0), (170.0, 440.0), (200.0, 590.0), (600.0, 580.0), (530.0, 450.0), (670.0, 450.0)]
+    c = _case(start, goal, r)
+    actions = sequence_plan(_problem(c))
+    assert actions is not None
+    parked = [a.object for a in actions if a.purpose == "relocate"]
+    assert len(actions) == 7 and len(parked) == 1 and parked[0] in (1, 2)
+    p = plan(c.scene, c.goals, seed=0)
+    assert p.solved and p.stats.get("sequenced") and check(c.scene, c.goals, p).valid
+
+
+def test_a_robot_leaves_the_plan_to_the_search():
+    # The fast attempt knows nothing of an arm's reach: with a robot the tree search plans, within reach.
+    r = 30.0
+    row = [(400.0, 500.0), (460.0, 500.0), (520.0, 500.0)]
+    c = _case(row, row[1:] + row[:1], r)
+    p = plan(c.scene, c.goals, seed=0, max_iter=500, robot="ur5e")
+    assert "sequenced" not in p.stats and p.stats["robot"] == "ur5e"
+    assert plan(c.scene, c.goals, seed=0, max_iter=500).stats.get("sequenced")

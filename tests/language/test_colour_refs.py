@@ -1,0 +1,66 @@
+"""References through another object's colour (lgmcts.language.colour_refs), at their own stage."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from lgmcts.language.colour_refs import find_colour_refs, select
+from lgmcts.language.grounding import tokenize
+
+
+def _refs(text: str):
+    ws = tuple(t.text for t in tokenize(text))
+    return [(" ".join(ws[r.start : r.end]), r.head, r.ref, r.negated) for r in find_colour_refs(ws)]
+
+
+def test_a_quantified_reference_is_marked():
+    (one,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match one of the bowls")))
+    (the,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match the red bowl")))
+    assert one.quantified and not the.quantified
+
+
+@pytest.mark.parametrize("text, phrase, head, ref, negated", [
+    ("line up the cups that share a colour with one of the cans", "the cups that share a colour with one of the cans",
+     ("cups",), ("the", "cans"), False),
+    ("the bowl whose colour matches one of the mugs goes left", "the bowl whose colour matches one of the mugs",
+     ("bowl",), ("the", "mugs"), False),
+    ("put the cans that don't share a colour with either cup behind the box",
+     "the cans that don't share a colour with either cup", ("cans",), ("the", "cups"), True),
+    ("stack the bowls that do not match any can's colour", "the bowls that do not match any can's colour",
+     ("bowls",), ("the", "cans"), True),
+    ("the cups that aren't the colour of the box, in a row", "the cups that aren't the colour of the box",
+     ("cups",), ("the", "box"), True),
+    ("the cans that match any of the bowls in colour, in a row", "the cans that match any of the bowls in colour",
+     ("cans",), ("the", "bowls"), False),
+    ("put every bowl that has a can of the same colour in a row", "every bowl that has a can of the same colour",
+     ("bowl",), ("the", "cans"), False),
+    ("whichever cup matches the colour of object 3 goes behind the box",
+     "whichever cup matches the colour of object 3", ("cup",), ("object", "3"), False),
+])
+def test_a_colour_comparison_is_read(text, phrase, head, ref, negated):
+    assert _refs(text) == [(phrase, head, ref, negated)]
+
+
+@pytest.mark.parametrize("text", [
+    "put the red can on the box", "the cans that are red", "objects whose color is equal to the red can",
+    "select objects that have the same color as the red can", "everything else of its colour",
+])
+def test_left_to_the_grounding(text):
+    assert _refs(text) == []
+
+
+def test_select_pools_the_colours_of_the_reference():
+    colour = {1: "red", 2: "blue", 3: "green", 4: "red", 5: "blue"}
+    assert select([1, 2, 3], [4, 5], colour, False) == [1, 2]
+    assert select([1, 2, 3], [4, 5], colour, True) == [3]
+    assert select([1, 4], [4], colour, False) == [1, 4]   # the reference counts when the head names it too
+
+
+@given(st.lists(st.sampled_from(["red", "blue", "green"]), min_size=2, max_size=8))
+def test_select_and_its_negation_split_the_candidates(colours):
+    colour = dict(enumerate(colours))
+    cand, ref = list(colour)[: len(colour) // 2], list(colour)[len(colour) // 2 :]
+    yes, no = select(cand, ref, colour, False), select(cand, ref, colour, True)
+    assert sorted(yes + no) == sorted(cand) and not set(yes) & set(no)

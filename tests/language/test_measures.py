@@ -1,0 +1,87 @@
+"""Measures said in numbers (lgmcts.language.measures), read at their own stage."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from lgmcts.errors import InputError
+from lgmcts.formats import parse_goals
+from lgmcts.language.measures import find_measures, size_for
+
+
+@pytest.mark.parametrize("text, metres, role, said", [
+    ("make a 40 cm line of the cans", 0.4, "plain", "40 cm"),
+    ("a loop of the mugs with a 12 cm radius", 0.12, "radius", "12 cm radius"),
+    ("a loop with radius 8 cm", 0.08, "radius", "radius 8 cm"),
+    ("the bowls in a ring 24 cm across", 0.24, "across", "24 cm across"),
+    ("a circle 50 cm in diameter", 0.5, "across", "50 cm in diameter"),
+    ("a square 15 cm a side", 0.15, "side", "15 cm a side"),
+    ("a square with sides of 22 cm", 0.22, "side", "sides of 22 cm"),
+    ("a 50 by 30 cm rectangle of blocks", 0.5, "long_side", "50 by 30 cm"),
+    ("a rectangle 20 x 35 cm", 0.35, "long_side", "20 x 35 cm"),
+    ("a rectangle with its long side 0.3 m", 0.3, "long_side", "long side 0.3 m"),
+    ("a row 450 mm long", 0.45, "length", "450 mm long"),
+    ("a row a quarter of a metre long", 0.25, "length", "a quarter of a metre long"),
+    ("a line half a metre end to end", 0.5, "length", "half a metre end to end"),
+    ("a line ten inches long", 0.254, "length", "ten inches long"),
+    ("a line of forty-five centimetres", 0.45, "plain", "forty-five centimetres"),
+    ("cans in a row spaced 10 cm apart", 0.1, "spacing", "spaced 10 cm apart"),
+    ("a row with the centres 9 cm apart", 0.09, "spacing", "with the centres 9 cm apart"),
+    ("a circle roughly 0.2 m across", 0.2, "across", "roughly 0.2 m across"),
+    ("a line of 1 ft", 0.305, "plain", "1 ft"),
+])
+def test_a_quantity_is_read_with_its_role_and_span(text, metres, role, said):
+    (m,) = find_measures(text)
+    assert (m.metres, m.role, m.text) == (metres, role, said)
+    assert text[m.start : m.end] == said
+
+
+@pytest.mark.parametrize("text", [
+    "put 3 in a line", "stack the two mugs", "object 7 in a row", "put blocks 4, 5 and 6 in a circle",
+    "a line of the ten blocks", "1. put the mug in front", "in a minute, please", "a metric line",
+])
+def test_numbers_without_a_unit_are_no_measure(text):
+    assert find_measures(text) == []
+
+
+def test_two_measures_in_one_command_are_both_found():
+    got = find_measures("a ring of 10 cm radius and a row 30 cm long")
+    assert [(m.metres, m.role) for m in got] == [(0.1, "radius"), (0.3, "length")]
+
+
+@pytest.mark.parametrize("pattern, text, n, size", [
+    ("circle", "a 15 cm radius", 4, 0.15),
+    ("circle", "36 cm wide", 4, 0.18),
+    ("circle", "a 30 cm circle", 4, 0.15),
+    ("line", "25 cm", 3, 0.25),
+    ("line", "12 cm apart", 3, 0.24),
+    ("line", "12 cm apart", 5, 0.48),
+    ("rectangle", "18 cm each side", 4, 0.18),
+    ("rectangle", "40 by 20 cm", 4, 0.4),
+    ("rectangle", "a third of a metre", 4, 0.333),
+])
+def test_size_follows_the_pattern(pattern, text, n, size):
+    (m,) = find_measures(text)
+    assert size_for(pattern, m, n) == size
+    parse_goals({"goals": [{"pattern": pattern, "objects": list(range(1, n + 1)), "size": size}]})
+
+
+@pytest.mark.parametrize("pattern, text", [
+    ("tower", "30 cm tall"), ("left", "10 cm"), ("behind", "5 cm apart"),
+    ("circle", "20 cm each side"), ("line", "a 10 cm radius"), ("rectangle", "10 cm radius"),
+    ("circle", "10 cm apart"),
+])
+def test_a_measure_with_nothing_to_set_is_refused_quoting_it(pattern, text):
+    (m,) = find_measures(text)
+    with pytest.raises(InputError) as exc:
+        size_for(pattern, m, 3)
+    assert f"'{m.text}'" in str(exc.value)
+
+
+@given(st.integers(min_value=1, max_value=999), st.sampled_from([("cm", 0.01), ("mm", 0.001), ("m", 1.0)]))
+def test_any_whole_number_with_a_unit_is_read_in_metres(n, unit):
+    (m,) = find_measures(f"a line {n} {unit[0]} long")
+    assert m.metres == round(n * unit[1], 3)
+    assert m.role == "length"

@@ -1,0 +1,117 @@
+"""Facings and places said freely (lgmcts.language.places) and context that asks nothing
+(lgmcts.language.context), each read at its own stage."""
+
+from __future__ import annotations
+
+import pytest
+
+from lgmcts.formats import parse_goals
+from lgmcts.language.context import drop_context
+from lgmcts.language.grounding import tokenize
+from lgmcts.language.places import Place, read_facing, read_place
+
+
+def _ws(text: str) -> tuple[str, ...]:
+    return tuple(t.text for t in tokenize(text))
+
+
+def _scan(text: str) -> list[tuple[str, str, str]]:
+    ws = _ws(text)
+    out = []
+    i = 0
+    while i < len(ws):
+        f = read_facing(ws, i)
+        if f is not None:
+            out.append(("facing", f[0], " ".join(ws[i : f[1]])))
+            i = f[1]
+            continue
+        p = read_place(ws, i)
+        if p is not None:
+            out.append(("region", p[0].region, " ".join(ws[i : p[1]])))
+            i = p[1]
+            continue
+        i += 1
+    return out
+
+
+@pytest.mark.parametrize("text, facing, said", [
+    ("the cups in a row facing the far wall", "north", "facing the far wall"),
+    ("a line of mugs aimed at the back edge of the table", "north", "aimed at the back edge of the table"),
+    ("a circle turned towards the front edge", "south", "turned towards the front edge"),
+    ("put them in a row pointing at me", "south", "pointing at me"),
+    ("the bowls stacked, facing the camera", "south", "facing the camera"),
+    ("the letters in a row facing away from the viewer", "north", "facing away from the viewer"),
+    ("a row of forks, handles toward the left edge", "west", "handles toward the left edge"),
+    ("the spoon behind the plate, pointing to the right side", "east", "pointing to the right side"),
+    ("the knife left of the bowl, blade facing the front", "south", "blade facing the front"),
+])
+def test_a_facing_said_by_an_edge_or_the_viewer(text, facing, said):
+    assert _scan(text) == [("facing", facing, said)]
+
+
+@pytest.mark.parametrize("text, region, said", [
+    ("the cans in the far left corner", "top left", "in the far left corner"),
+    ("a circle of cups, smack in the middle", "middle center", "smack in the middle"),
+    ("a ring, dead center of the table", "middle center", "dead center of the table"),
+    ("a line halfway back on the left side", "middle left", "halfway back on the left side"),
+    ("a row at the middle of the right edge", "middle right", "at the middle of the right edge"),
+    ("a row at the centre of the back edge", "top center", "at the centre of the back edge"),
+    ("the bowls in a line, a strip along the back", "top", "a strip along the back"),
+    ("a row in a band across the centre", "middle row", "in a band across the centre"),
+    ("a column in a strip down the middle", "center column", "in a strip down the middle"),
+    ("a line centered left to right", "center column", "centered left to right"),
+    ("the forks in the middle row", "middle row", "in the middle row"),
+    ("the cans in the right column", "right", "in the right column"),
+])
+def test_a_place_said_freely(text, region, said):
+    assert _scan(text) == [("region", region, said)]
+    parse_goals({"goals": [{"pattern": "line", "objects": [1, 2], "region": region}]})
+
+
+def test_a_cell_never_widens_to_a_row_or_column():
+    # Each cell word keeps both bands; only a band word gives a whole row or column.
+    for text in ("halfway back on the right", "the centre of the left side", "the near right corner", "dead centre"):
+        (got,) = _scan(text)
+        assert " " in got[1] and not got[1].endswith(("row", "column")), text
+    assert Place("middle", None).region == "middle row" and Place(None, "center").region == "center column"
+
+
+@pytest.mark.parametrize("text", [
+    "put the mug left of the plate", "the bowl in front of the cup", "the fork facing north",
+    "line up the cans", "the right side of the plate",
+])
+def test_plain_words_are_left_to_the_parameter_reader(text):
+    assert _scan(text) == []
+
+
+_OBJ = frozenset({"mug", "mugs", "plate", "bowl", "bowls", "cans", "red", "blue", "fork"})
+_REQ = frozenset({"put", "stack", "line", "row", "left", "right", "behind", "front", "circle", "move", "top"})
+
+
+def _drop(text: str) -> str:
+    return " ".join(drop_context(_ws(text), _OBJ.__contains__, _REQ.__contains__))
+
+
+@pytest.mark.parametrize("text, left", [
+    ("the cat walked across everything. put the mug left of the plate.", "put the mug left of the plate ."),
+    ("my sister visits on sunday! stack the bowls", "stack the bowls"),
+    ("after breakfast, put the mug left of the plate", "put the mug left of the plate"),
+    ("when the baby is asleep, stack the bowls", "stack the bowls"),
+    ("tomorrow, line up the cans", "line up the cans"),
+    ("line up the cans before the meeting starts", "line up the cans"),
+    ("put the red mug behind the bowl after dinner.", "put the red mug behind the bowl ."),
+    ("guests at 8. before then, put the bowls in a circle", "put the bowls in a circle"),
+])
+def test_context_that_asks_nothing_is_dropped(text, left):
+    assert _drop(text) == left
+
+
+@pytest.mark.parametrize("text", [
+    "after the bowl is on the plate, put the red mug behind it",   # names an object: a real order of steps
+    "after that, put the mug left of the plate",
+    "the blue mug is in my way. move it behind the plate",          # the remark names what 'it' means
+    "we are having friends over tonight.",                          # nothing but context: left to be refused
+    "put the mug left of the plate",
+])
+def test_what_may_matter_is_kept(text):
+    assert _drop(text) == " ".join(_ws(text))
