@@ -54,8 +54,9 @@ demo: install demo-deps
 
 # The example played by a UR5e arm with a suction cup (docs/sim.md): a plan
 # for the arm's reach and a small video of its execution next to the demo
-# pictures (320x240 at 15 frames per simulated second: about 4 s on 2 cores,
-# where 640x480 at 25 takes about 9 s). `make demo` runs these steps too.
+# pictures (320x240 at 15 frames per simulated second: 4.4 s for both steps on
+# 2 cores, where a 640x480 video at 25 alone takes 7-8 s; docs/sim.md).
+# `make demo` runs these steps too.
 DEMO_COMMAND := Move all blocks into a circle; while put the white bottle behind one block
 define demo-arm-steps
 $(PY) -m lgmcts plan examples/tabletop.json "$(DEMO_COMMAND)" --seed 0 --robot ur5e -o out/demo/plan_arm.json
