@@ -199,6 +199,9 @@ class Vocabulary:
     #: (height, volume, width) of each object's shape, by id, for "greater
     #: height than the X" and "smaller than the X".
     measures: tuple[tuple[int, float, float, float], ...] = ()
+    #: Category forms that name a scene kind only through :data:`SYNONYMS`
+    #: ("cup" and "cups" in a scene of mugs and no cup), each with the name it stands for.
+    borrowed: tuple[tuple[tuple[str, ...], str], ...] = ()
 
     @classmethod
     def from_scene(cls, scene: SceneSpec) -> "Vocabulary":
@@ -225,6 +228,7 @@ class Vocabulary:
                 if w[-1] not in ("a", "i", "u", "r", "n", "w", "o"):
                     add((w[-1],), n, False)  # "the yellow T"
         real = set(cats)
+        borrowed: list[tuple[tuple[str, ...], str]] = []
         for canon, syns in SYNONYMS.items():
             if canon not in names:
                 continue
@@ -236,6 +240,7 @@ class Vocabulary:
                     continue
                 add(sw, canon, False)
                 add(sw[:-1] + (_plural(sw[-1]),), canon, True)
+                borrowed.extend(((sw, canon), (sw[:-1] + (_plural(sw[-1]),), canon)))
         colors: dict[tuple[str, ...], str] = {}
         for c in sorted({c for _, _, c in objs if c}):
             w = _words(c)
@@ -263,7 +268,8 @@ class Vocabulary:
         frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
         heads = {k[0] for k in frozen}
         cwords = frozenset(w for _, _, c in objs for w in colour_words(c) if w not in heads)
-        return cls(frozen, colors, objs, cwords, tuple((o.id, *_measure(o.shape)) for o in scene.objects))
+        return cls(frozen, colors, objs, cwords, tuple((o.id, *_measure(o.shape)) for o in scene.objects),
+                   tuple(borrowed))
 
     def longest(self, table: dict, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
         """Longest key of ``table`` starting at ``words[i]``; returns (key, end)."""

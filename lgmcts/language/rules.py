@@ -1663,7 +1663,8 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
-        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words)
+        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
+                                  dict(self.vocab.borrowed))
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
