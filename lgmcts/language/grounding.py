@@ -365,7 +365,10 @@ _SAME_COLOR = tuple(
             "having the same color as", "sharing the color of", "sharing the colour of", "matching the color of",
             "matching the colour of", "that have the same colour as", "that are the same colour as",
             "the same color as", "the same colour as", "same color as", "same colour as", "colored like",
-            "coloured like",
+            "coloured like", "shares the same colour as", "shares the same color as", "share the same colour as",
+            "share the same color as", "sharing the same colour as", "sharing the same color as",
+            "that shares the same colour as", "that shares the same color as", "that share the same colour as",
+            "that share the same color as",
         ],
         key=lambda s: -len(s),
     )
@@ -795,6 +798,8 @@ def _mention_at(
         aq = _attr_qualifier(vocab, words, end, pattern_words) if not nested else None
         if aq is not None:
             f, end = aq
+            if m.det == "other" and f[1] == "eq":
+                f = (f[0], "eqx", f[2])  # "everything else that is the same colour as the X": not the X
             m = replace(m, end=end, text=" ".join(words[i:end]), filters=m.filters + (f,))
             continue
         q = next((s for s in _SAME_COLOR if _starts(words, end, s)), None)
@@ -1074,6 +1079,10 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         # As in the peers' object selectors, the reference object itself is
         # one of "the objects whose color is the same as X".
         out = [i for i in out if any(c == rc for j, _, c in vocab.objects if j == i)]
+        if m.det == "other":
+            # "everything else with the bottle's colour", "the other things of its colour": "else"
+            # and "other" leave the reference object out.
+            out = [i for i in out if i not in ref]
     for f in m.filters:
         out = _apply_filter(vocab, f, out, named)
     for e in m.excluding:
