@@ -1447,45 +1447,10 @@ class _Parser:
             k += 1
         return tuple(out)
 
-    def _by_position(self, text: str) -> str:
-        """"the leftmost can", "the nearest block", "the second bowl from the left": the object
-        where the scene's poses put it, named by its id. Where two candidates stand within
-        2 cm along that direction, the words are left as they are (and refused as ambiguous)."""
-        said: list[str] = []
-
-        def pick(m: re.Match, head: str, axis: int, sign: int, rank: int) -> str:
-            if head in ("one", "ones") and said:
-                head = said[-1]
-            said.append(head)
-            try:
-                found = [x for x in self._find(("the",) + tuple(head.split())) if x.det != "pronoun"]
-                if len(found) != 1:
-                    return m.group(0)
-                ids = list(candidates(self.vocab, replace(found[0], det="all", plural=True)))
-            except InputError:
-                return m.group(0)
-            pos = sorted(((sign * self.spec.object(i).pose[axis], i) for i in ids
-                          if self.spec.object(i).pose is not None and self.spec.object(i).on is None))
-            if len(pos) <= rank or (len(pos) > rank + 1 and pos[rank + 1][0] - pos[rank][0] < 0.02) or (
-                    rank and pos[rank][0] - pos[rank - 1][0] < 0.02):
-                return m.group(0)
-            return f"object {pos[rank][1]}"
-
-        def superlative(m: re.Match) -> str:
-            axis, sign = _SUPERLATIVE[m.group(2).lower().replace("-", "")]
-            return pick(m, m.group(3).lower(), axis, sign, 1 if m.group(1) else 0)
-
-        def from_side(m: re.Match) -> str:
-            axis, sign = {"left": (0, 1), "right": (0, -1), "front": (1, 1), "back": (1, -1)}[m.group(3).lower()]
-            return pick(m, m.group(2).lower(), axis, sign, _ORDINAL[m.group(1).lower()])
-
-        text = _SUPERLATIVE_AT.sub(superlative, text)
-        return _FROM_SIDE_AT.sub(from_side, text)
-
     def _spelled_right(self, text: str) -> str:
         """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
         lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
-                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | set(_SUPERLATIVE)
+                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | _SUPERLATIVE
                    | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
@@ -1669,7 +1634,6 @@ class _Parser:
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
-        text = self._by_position(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
             text = self._spelled(text, letters)
@@ -2511,16 +2475,9 @@ _DIR_WORDS = lexicon.DIRECTIONS
 #: Words of stack roles and orders, which a remark never has.
 _ROLE_WORDS = lexicon.ROLE_WORDS
 
-#: Superlatives of place -> (axis of the pose, sign): the object with the least signed value is meant.
-_SUPERLATIVE = {"leftmost": (0, 1), "rightmost": (0, -1), "frontmost": (1, 1), "nearest": (1, 1), "closest": (1, 1),
-                "backmost": (1, -1), "rearmost": (1, -1), "farthest": (1, -1), "furthest": (1, -1)}
-_ORDINAL = {"first": 0, "second": 1, "third": 2}
-_SUPERLATIVE_AT = re.compile(
-    r"(?i)\bthe (second |2nd )?(left-?most|right-?most|front-?most|back-?most|rear-?most|nearest|closest|farthest|furthest)"
-    r" ((?:[a-z]+ )?[a-z]+?)(?: (?:to|from) (?:me|us|you|the viewer|the camera))?(?=\s*(?:[,.;:!?]|$)|"
-    r" (?:on|onto|in|into|behind|under|underneath|beneath|below|above|and|then|at|with|next|beside|so|left|right|"
-    r"goes|go|is|should|please|over|in front)\b)")
-_FROM_SIDE_AT = re.compile(r"(?i)\bthe (first|second|third) ([a-z]+) from the (left|right|front|back)\b")
+#: Superlatives of a side, words the spelling corrector knows (read by :mod:`.positions`).
+_SUPERLATIVE = frozenset({"leftmost", "rightmost", "frontmost", "nearest", "closest", "backmost", "rearmost", "farthest",
+                          "furthest"})
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"
 #: Words that ask for a whole group or a number of it ("all the blocks", "the six blocks").
