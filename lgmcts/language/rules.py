@@ -822,6 +822,9 @@ class _Parser:
 
     def _detached_exception(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
         """"put the red things in a line except the block": the exception moved next to its set."""
+        trailing = self._trailing_not(words, mentions)
+        if trailing is not None:
+            return trailing
         for k in range(1, len(mentions)):
             m2, m1 = mentions[k], mentions[k - 1]
             seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
@@ -842,6 +845,39 @@ class _Parser:
             rest = words[: m1.end] + block + words[m1.end : lo] + words[m2.end :]
             return tuple(rest)
         return None
+
+    def _trailing_not(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
+        """"put the blocks in a circle, not the purple one": a reference after ", not" at the end of
+        a clause leaves its objects out of the group named before that holds them (read as "except");
+        where the group named right before does not hold them, the words are refused, quoted, never dropped."""
+        if not mentions:
+            return None
+        m2 = mentions[-1]
+        if m2.start < 2 or words[m2.start - 2 : m2.start] != (",", "not") or m2.det == "pronoun":
+            return None
+        if any(w not in (",", ".", "!", "?", "please") for w in words[m2.end :]):
+            return None
+        from .grounding import candidates as _cands
+
+        said = " ".join(words[m2.start - 1 : m2.end])
+        try:
+            out = set(_cands(self.vocab, m2))
+        except InputError:
+            out = set()
+        for m1 in reversed(mentions[:-1]):
+            if not m1.plural:
+                continue
+            try:
+                held = set(_cands(self.vocab, m1))
+            except InputError:
+                continue
+            if out and out <= held:
+                return words[: m1.end] + ("except",) + words[m2.start : m2.end] + words[m1.end : m2.start - 2] \
+                    + words[m2.end :]
+        if not mentions[-2:-1] or not mentions[-2].plural:
+            return None  # "move the spoon, not the fork": a contrast with the one object named before
+        raise InputError(f"'{said}': no group named before it holds what it leaves out; "
+                         f"say what to leave out of which objects (e.g. \"all the blocks except the red one\")")
 
     def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
         """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
