@@ -199,6 +199,9 @@ class Vocabulary:
     #: (height, volume, width) of each object's shape, by id, for "greater
     #: height than the X" and "smaller than the X".
     measures: tuple[tuple[int, float, float, float], ...] = ()
+    #: Category forms that name a scene kind only through :data:`SYNONYMS`
+    #: ("cup" and "cups" in a scene of mugs and no cup), each with the name it stands for.
+    borrowed: tuple[tuple[tuple[str, ...], str], ...] = ()
 
     @classmethod
     def from_scene(cls, scene: SceneSpec) -> "Vocabulary":
@@ -225,6 +228,7 @@ class Vocabulary:
                 if w[-1] not in ("a", "i", "u", "r", "n", "w", "o"):
                     add((w[-1],), n, False)  # "the yellow T"
         real = set(cats)
+        borrowed: list[tuple[tuple[str, ...], str]] = []
         for canon, syns in SYNONYMS.items():
             if canon not in names:
                 continue
@@ -236,6 +240,7 @@ class Vocabulary:
                     continue
                 add(sw, canon, False)
                 add(sw[:-1] + (_plural(sw[-1]),), canon, True)
+                borrowed.extend(((sw, canon), (sw[:-1] + (_plural(sw[-1]),), canon)))
         colors: dict[tuple[str, ...], str] = {}
         for c in sorted({c for _, _, c in objs if c}):
             w = _words(c)
@@ -263,7 +268,8 @@ class Vocabulary:
         frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
         heads = {k[0] for k in frozen}
         cwords = frozenset(w for _, _, c in objs for w in colour_words(c) if w not in heads)
-        return cls(frozen, colors, objs, cwords, tuple((o.id, *_measure(o.shape)) for o in scene.objects))
+        return cls(frozen, colors, objs, cwords, tuple((o.id, *_measure(o.shape)) for o in scene.objects),
+                   tuple(borrowed))
 
     def longest(self, table: dict, words: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int] | None:
         """Longest key of ``table`` starting at ``words[i]``; returns (key, end)."""
@@ -359,7 +365,10 @@ _SAME_COLOR = tuple(
             "having the same color as", "sharing the color of", "sharing the colour of", "matching the color of",
             "matching the colour of", "that have the same colour as", "that are the same colour as",
             "the same color as", "the same colour as", "same color as", "same colour as", "colored like",
-            "coloured like",
+            "coloured like", "shares the same colour as", "shares the same color as", "share the same colour as",
+            "share the same color as", "sharing the same colour as", "sharing the same color as",
+            "that shares the same colour as", "that shares the same color as", "that share the same colour as",
+            "that share the same color as",
         ],
         key=lambda s: -len(s),
     )
@@ -789,6 +798,8 @@ def _mention_at(
         aq = _attr_qualifier(vocab, words, end, pattern_words) if not nested else None
         if aq is not None:
             f, end = aq
+            if m.det == "other" and f[1] == "eq":
+                f = (f[0], "eqx", f[2])  # "everything else that is the same colour as the X": not the X
             m = replace(m, end=end, text=" ".join(words[i:end]), filters=m.filters + (f,))
             continue
         q = next((s for s in _SAME_COLOR if _starts(words, end, s)), None)
@@ -1068,6 +1079,10 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         # As in the peers' object selectors, the reference object itself is
         # one of "the objects whose color is the same as X".
         out = [i for i in out if any(c == rc for j, _, c in vocab.objects if j == i)]
+        if m.det == "other":
+            # "everything else with the bottle's colour", "the other things of its colour": "else"
+            # and "other" leave the reference object out.
+            out = [i for i in out if i not in ref]
     for f in m.filters:
         out = _apply_filter(vocab, f, out, named)
     for e in m.excluding:

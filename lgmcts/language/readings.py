@@ -518,6 +518,9 @@ def _read_continue_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
                     tower.objects.remove(x)
                 # Read from the top down, each next object goes below the others.
                 tower.objects.insert(0, x) if self.state.downward else tower.objects.append(x)
+                # Said by name: a stack described from base to top keeps it ("red at the bottom, then
+                # blue, then green, yellow on top" is four objects, blue among them).
+                tower.said.setdefault(x, "under_it" if self.state.downward else "next")
         if params:
             _add_params(tower, params, text)
         return []

@@ -581,4 +581,11 @@ def _repairs_inside_reference_blue(m: re.Match[str]) -> str:
 
 @replacer("not-the-other-one")
 def _not_the_other_one(m: re.Match[str]) -> str:
-    return m.group(0) if re.search(r"(?i)\bbut\s*,?\s*$", m.string[: m.start()]) else ""
+    """"on the red mug, not the blue one": a contrast with the object named right before, dropped; after
+    anything else ("the blocks in a circle, not the purple one") the words are kept for the parser, which
+    reads them as an exception or refuses them (:meth:`.rules._Parser._trailing_not`)."""
+    before = m.string[: m.start()]
+    single = re.search(r"(?i)\bthe(?: [a-z]+){0,2} ([a-z]+)\s*,?\s*$", before)
+    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or re.search(r"[^s]s$", single.group(1)):
+        return m.group(0)  # after "but", or a plural ("the blocks, not the purple one"): an exception
+    return ""

@@ -822,6 +822,9 @@ class _Parser:
 
     def _detached_exception(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
         """"put the red things in a line except the block": the exception moved next to its set."""
+        trailing = self._trailing_not(words, mentions)
+        if trailing is not None:
+            return trailing
         for k in range(1, len(mentions)):
             m2, m1 = mentions[k], mentions[k - 1]
             seq = next((q for q in self._DETACHED_EXCEPT if words[m2.start - len(q) : m2.start] == q), None)
@@ -842,6 +845,39 @@ class _Parser:
             rest = words[: m1.end] + block + words[m1.end : lo] + words[m2.end :]
             return tuple(rest)
         return None
+
+    def _trailing_not(self, words: tuple[str, ...], mentions: list[Mention]) -> tuple[str, ...] | None:
+        """"put the blocks in a circle, not the purple one": a reference after ", not" at the end of
+        a clause leaves its objects out of the group named before that holds them (read as "except");
+        where the group named right before does not hold them, the words are refused, quoted, never dropped."""
+        if not mentions:
+            return None
+        m2 = mentions[-1]
+        if m2.start < 2 or words[m2.start - 2 : m2.start] != (",", "not") or m2.det == "pronoun":
+            return None
+        if any(w not in (",", ".", "!", "?", "please") for w in words[m2.end :]):
+            return None
+        from .grounding import candidates as _cands
+
+        said = " ".join(words[m2.start - 1 : m2.end])
+        try:
+            out = set(_cands(self.vocab, m2))
+        except InputError:
+            out = set()
+        for m1 in reversed(mentions[:-1]):
+            if not m1.plural:
+                continue
+            try:
+                held = set(_cands(self.vocab, m1))
+            except InputError:
+                continue
+            if out and out <= held:
+                return words[: m1.end] + ("except",) + words[m2.start : m2.end] + words[m1.end : m2.start - 2] \
+                    + words[m2.end :]
+        if not mentions[-2:-1] or not mentions[-2].plural:
+            return None  # "move the spoon, not the fork": a contrast with the one object named before
+        raise InputError(f"'{said}': no group named before it holds what it leaves out; "
+                         f"say what to leave out of which objects (e.g. \"all the blocks except the red one\")")
 
     def _so_that(self, words: tuple[str, ...], k: int, n_skip: int) -> list[_Pending]:
         """"move A so that B ends up REL of A": the goal is stated from the anchor's side."""
@@ -1447,45 +1483,10 @@ class _Parser:
             k += 1
         return tuple(out)
 
-    def _by_position(self, text: str) -> str:
-        """"the leftmost can", "the nearest block", "the second bowl from the left": the object
-        where the scene's poses put it, named by its id. Where two candidates stand within
-        2 cm along that direction, the words are left as they are (and refused as ambiguous)."""
-        said: list[str] = []
-
-        def pick(m: re.Match, head: str, axis: int, sign: int, rank: int) -> str:
-            if head in ("one", "ones") and said:
-                head = said[-1]
-            said.append(head)
-            try:
-                found = [x for x in self._find(("the",) + tuple(head.split())) if x.det != "pronoun"]
-                if len(found) != 1:
-                    return m.group(0)
-                ids = list(candidates(self.vocab, replace(found[0], det="all", plural=True)))
-            except InputError:
-                return m.group(0)
-            pos = sorted(((sign * self.spec.object(i).pose[axis], i) for i in ids
-                          if self.spec.object(i).pose is not None and self.spec.object(i).on is None))
-            if len(pos) <= rank or (len(pos) > rank + 1 and pos[rank + 1][0] - pos[rank][0] < 0.02) or (
-                    rank and pos[rank][0] - pos[rank - 1][0] < 0.02):
-                return m.group(0)
-            return f"object {pos[rank][1]}"
-
-        def superlative(m: re.Match) -> str:
-            axis, sign = _SUPERLATIVE[m.group(2).lower().replace("-", "")]
-            return pick(m, m.group(3).lower(), axis, sign, 1 if m.group(1) else 0)
-
-        def from_side(m: re.Match) -> str:
-            axis, sign = {"left": (0, 1), "right": (0, -1), "front": (1, 1), "back": (1, -1)}[m.group(3).lower()]
-            return pick(m, m.group(2).lower(), axis, sign, _ORDINAL[m.group(1).lower()])
-
-        text = _SUPERLATIVE_AT.sub(superlative, text)
-        return _FROM_SIDE_AT.sub(from_side, text)
-
     def _spelled_right(self, text: str) -> str:
         """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
         lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
-                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | set(_SUPERLATIVE)
+                   | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | _SUPERLATIVE
                    | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
@@ -1663,12 +1664,12 @@ class _Parser:
                              f"say what to arrange")
         if question is not None and not ASKS_TO_ACT.match(bare):
             raise InputError(f"'{text.strip()}' is a question about the scene, not a command; say what to arrange")
-        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words)
+        text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
+                                  dict(self.vocab.borrowed))
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
-        text = self._by_position(text)
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
             text = self._spelled(text, letters)
@@ -2510,16 +2511,9 @@ _DIR_WORDS = lexicon.DIRECTIONS
 #: Words of stack roles and orders, which a remark never has.
 _ROLE_WORDS = lexicon.ROLE_WORDS
 
-#: Superlatives of place -> (axis of the pose, sign): the object with the least signed value is meant.
-_SUPERLATIVE = {"leftmost": (0, 1), "rightmost": (0, -1), "frontmost": (1, 1), "nearest": (1, 1), "closest": (1, 1),
-                "backmost": (1, -1), "rearmost": (1, -1), "farthest": (1, -1), "furthest": (1, -1)}
-_ORDINAL = {"first": 0, "second": 1, "third": 2}
-_SUPERLATIVE_AT = re.compile(
-    r"(?i)\bthe (second |2nd )?(left-?most|right-?most|front-?most|back-?most|rear-?most|nearest|closest|farthest|furthest)"
-    r" ((?:[a-z]+ )?[a-z]+?)(?: (?:to|from) (?:me|us|you|the viewer|the camera))?(?=\s*(?:[,.;:!?]|$)|"
-    r" (?:on|onto|in|into|behind|under|underneath|beneath|below|above|and|then|at|with|next|beside|so|left|right|"
-    r"goes|go|is|should|please|over|in front)\b)")
-_FROM_SIDE_AT = re.compile(r"(?i)\bthe (first|second|third) ([a-z]+) from the (left|right|front|back)\b")
+#: Superlatives of a side, words the spelling corrector knows (read by :mod:`.positions`).
+_SUPERLATIVE = frozenset({"leftmost", "rightmost", "frontmost", "nearest", "closest", "backmost", "rearmost", "farthest",
+                          "furthest"})
 #: Where a stack role phrase stood once it has been read.
 _ROLE_MARK = "|"
 #: Words that ask for a whole group or a number of it ("all the blocks", "the six blocks").

@@ -228,14 +228,20 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
 
 def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
                 pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
-                nouns: frozenset[str] = frozenset()) -> str:
+                nouns: frozenset[str] = frozenset(),
+                borrowed: Mapping[tuple[str, ...], str] | None = None) -> str:
     """``text`` with each phrase that picks objects by where they stand replaced by their ids.
 
     ``find(words)`` grounds a noun phrase (the parser's mention finder); ``ids_of(mention)``
     gives every object it may name; ``pose_of(id)`` the object's table position (None for
     an object standing on another); ``nouns``: the scene's category words, for "the one" after a
     noun ("every can except the one nearest the phone"). A phrase whose head or reference object names nothing
-    is left as it is for the parser to refuse; an unclear answer is refused here."""
+    is left as it is for the parser to refuse; an unclear answer is refused here.
+
+    ``borrowed``: head forms that name a scene kind only through the synonym table, with the
+    name they stand for ("cup" -> "mug" in a scene of mugs and no cup). As in the grounding, such
+    a head may name the one object of that kind; a position phrase never chooses among several
+    of them ("the cup nearest the phone" among two mugs is refused, as "the cup" is)."""
     toks: tuple[Token, ...] = tokenize(text)
     words = tuple(t.text for t in toks)
     refs = find_position_refs(words)
@@ -256,6 +262,11 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
         if ids is None or (len(ids) == 1 and ref.count == 1 and ref.of is None):
             continue  # names nothing, or one object already: "the side of the white bowl nearest me"
+        lent = next(((head[k:], borrowed[head[k:]]) for k in range(len(head)) if borrowed and head[k:] in borrowed), None)
+        if lent is not None:
+            said = text[toks[ref.start].pos:_end(text, toks[ref.end - 1])]
+            raise InputError(f"'{said}': the scene has no {' '.join(lent[0])}, and a position does not choose "
+                             f"among objects named otherwise ({lent[1]}); say which {lent[1]} (e.g. by colour or id)")
         anchor_xy = None
         if ref.key.anchor is not None:
             aid = _ids(ref.key.anchor, find, ids_of)

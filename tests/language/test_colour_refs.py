@@ -64,3 +64,24 @@ def test_select_and_its_negation_split_the_candidates(colours):
     cand, ref = list(colour)[: len(colour) // 2], list(colour)[len(colour) // 2 :]
     yes, no = select(cand, ref, colour, False), select(cand, ref, colour, True)
     assert sorted(yes + no) == sorted(cand) and not set(yes) & set(no)
+
+
+def test_else_leaves_the_reference_object_out():
+    """"whatever else / everything else" of an object's colour: the other objects of that colour,
+    never the reference itself; without "else" the reference is one of them."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "box", "size": [0.05, 0.05, 0.05]},
+         "pose": [-0.3 + 0.12 * k, 0.0, 0.0]}
+        for k, (n, c) in enumerate([("jug", "yellow"), ("tray", "grey"), ("sponge", "yellow"), ("pear", "yellow"),
+                                    ("kettle", "black")])]})
+
+    def objs(text: str) -> list[list[int]]:
+        return [sorted(g.objects) for g in parse(scene, text).goals]
+
+    assert objs("whatever else shares the jug's colour, put it in a line") == [[3, 4]]
+    assert objs("everything else with the same colour as the jug goes left of the tray") == [[3, 4]]
+    assert objs("everything else that is the same colour as the pear goes left of the tray") == [[1, 3]]
+    assert objs("whatever shares the jug's colour goes behind the kettle") == [[1, 3, 4]]

@@ -108,3 +108,30 @@ def test_leftmost_is_the_smallest_x_or_a_refusal(xs):
         assert srt[1] - srt[0] < TOO_CLOSE
         return
     assert cands[got][0] == srt[0] and srt[1] - srt[0] >= TOO_CLOSE
+
+
+def _kitchen(names: list[tuple[str, str, float, float]]):
+    from lgmcts.formats import parse_scene
+
+    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(names)]})
+
+
+def test_a_synonym_head_does_not_choose_among_several_objects():
+    """"cup" names the mugs of a scene without a cup only through the synonym table: like "the
+    cup" alone, "the cup furthest from the kettle" is refused among two mugs (never a guess),
+    while the scene's own noun is read and a lone mug is still named by the synonym."""
+    from lgmcts.language import parse
+
+    two = _kitchen([("mug", "red", -0.3, 0.0), ("mug", "green", 0.3, 0.0), ("kettle", "black", 0.25, 0.1),
+                    ("tray", "white", 0.0, -0.2)])
+    with pytest.raises(InputError, match="no cup"):
+        parse(two, "put the cup furthest from the kettle on the left of the tray")
+    with pytest.raises(InputError):
+        parse(two, "put the cup on the left of the tray")
+    got = parse(two, "put the mug furthest from the kettle on the left of the tray")
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got.goals] == [("left", [1], 4)]
+    one = _kitchen([("mug", "red", -0.3, 0.0), ("kettle", "black", 0.25, 0.1), ("tray", "white", 0.0, -0.2)])
+    got = parse(one, "put the cup on the left of the tray")
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got.goals] == [("left", [1], 3)]

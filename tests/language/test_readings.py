@@ -98,3 +98,44 @@ def test_reading_takes_its_examples(name, ref, seen, matcher):
     except InputError:
         pass
     assert name in seen, f"{case.instruction!r}: {seen}"
+
+
+@pytest.mark.parametrize("text, want", [
+    ("tower: jade at the bottom, then blue, then cream, amber on top", ["jade", "blue", "cream", "amber"]),
+    ("build a stack with the amber cube at the base, then cream, then jade, and the blue one at the top",
+     ["amber", "cream", "jade", "blue"]),
+    ("make a tower, blue as the base, then amber, then jade, then cream", ["blue", "amber", "jade", "cream"]),
+])
+def test_a_stack_said_base_to_top_keeps_every_object_in_order(text, want):
+    """Objects named one by one after the base ("then blue, then cream") are part of the stack,
+    in the order said, also when the last one is given a role ("amber on top")."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    colours = ["jade", "blue", "cream", "amber", "grey"]
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": "cube", "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+         "pose": [-0.3 + 0.12 * k, 0.1, 0.0]} for k, c in enumerate(colours)]})
+    (goal,) = parse(scene, text).goals
+    assert goal.pattern == "tower"
+    assert [colours[i - 1] for i in goal.objects] == want
+
+
+def test_a_trailing_not_is_an_exception_or_a_refusal_never_dropped():
+    """", not the purple one" after a group leaves that object out; after a group that does not hold
+    it the words are refused, quoted; after one object it stays a contrast."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    items = [("cube", "jade"), ("cube", "purple"), ("cube", "cream"), ("tray", "white"), ("jar", "purple"), ("cube", "amber")]
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+         "pose": [-0.35 + 0.13 * k, 0.1, 0.0]} for k, (n, c) in enumerate(items)]})
+    (goal,) = parse(scene, "put the cubes in a circle, not the purple one").goals
+    assert sorted(goal.objects) == [1, 3, 6]
+    (goal,) = parse(scene, "stack the cubes, not the purple one").goals
+    assert sorted(goal.objects) == [1, 3, 6]
+    with pytest.raises(InputError, match="'not the purple jar'"):
+        parse(scene, "put the cubes in a line, not the purple jar")
+    (goal,) = parse(scene, "put the jade cube on the tray, not the purple one").goals
+    assert (goal.pattern, list(goal.objects)) == ("tower", [4, 1])
