@@ -29,6 +29,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from .ir import scan
+
 __all__ = ["ColourRef", "find_colour_refs", "select"]
 
 
@@ -102,17 +104,7 @@ def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int, bool]
 
 def find_colour_refs(words: tuple[str, ...]) -> list[ColourRef]:
     """Every head with a colour comparison to another reference in ``words``, left to right."""
-    ws = tuple(words)
-    out: list[ColourRef] = []
-    i = 0
-    while i < len(ws):
-        got = _at(ws, i)
-        if got is None:
-            i += 1
-            continue
-        out.append(got)
-        i = got.end
-    return out
+    return scan(tuple(words), _at)
 
 
 def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:

@@ -25,7 +25,8 @@ later stages move to.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Literal, Protocol, TypeVar
 
 from ..errors import InputError
 from . import lexicon
@@ -138,3 +139,29 @@ class Reading:
     params: dict[str, str] = field(default_factory=dict)
     measures: tuple[Measure, ...] = ()
     clause: tuple[Token, ...] = ()
+
+
+class _Span(Protocol):
+    @property
+    def end(self) -> int: ...
+
+
+_P = TypeVar("_P", bound=_Span)
+
+
+def scan(words: tuple[str, ...], at: Callable[[tuple[str, ...], int], _P | None]) -> list[_P]:
+    """Every phrase that ``at`` reads in ``words``, left to right, none overlapping.
+
+    ``at(words, i)`` reads the phrase that starts at token ``i`` (or ``None``);
+    the scan goes on after the phrase's ``end``.
+    """
+    out: list[_P] = []
+    i = 0
+    while i < len(words):
+        got = at(words, i)
+        if got is None:
+            i += 1
+            continue
+        out.append(got)
+        i = got.end
+    return out

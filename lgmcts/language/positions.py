@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from ..errors import InputError
+from .ir import scan
 
 __all__ = ["TOO_CLOSE", "Key", "PositionRef", "find_position_refs", "pick"]
 
@@ -182,17 +183,7 @@ def _after_head(ws: tuple[str, ...], i: int) -> tuple[Key, int] | None:
 
 def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
     """Every phrase of ``words`` that picks objects by where they stand, left to right."""
-    ws = tuple(words)
-    out: list[PositionRef] = []
-    i = 0
-    while i < len(ws):
-        got = _ref_at(ws, i)
-        if got is None:
-            i += 1
-            continue
-        out.append(got)
-        i = got.end
-    return out
+    return scan(tuple(words), _ref_at)
 
 
 def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
