@@ -275,17 +275,9 @@ def robot_spec(name: str) -> ArmSpec:
 def add_cup_welds(spec: mujoco.MjSpec, ids: tuple[int, ...] | list[int], timeconst: float) -> None:
     """One inactive weld per object between the suction cup and the object
     (``cup<id>``); the executor sets its relative pose when it switches it on."""
-    for i in ids:
-        spec.add_equality(
-            name=f"cup{i}",
-            type=mujoco.mjtEq.mjEQ_WELD,
-            objtype=mujoco.mjtObj.mjOBJ_BODY,
-            name1=CUP_BODY,
-            name2=f"obj{i}",
-            active=False,
-            data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
-            solref=[timeconst, 1.0],
-        )
+    from .model import add_welds
+
+    add_welds(spec, CUP_BODY, "cup", ids, timeconst)
 
 
 @dataclass(frozen=True, eq=False)

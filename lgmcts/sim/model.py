@@ -36,6 +36,7 @@ __all__ = [
     "VIEW_CAMERA",
     "ModelOptions",
     "SimModel",
+    "add_welds",
     "build_model",
     "look_at",
     "yaw_quat",
@@ -288,18 +289,7 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
     state = sc.initial
     for k in range(sc.n):
         _add_object(spec, sc, k, state.base_z(k), opts)
-    for o in sc.spec.objects:
-        spec.add_equality(
-            name=f"grip{o.id}",
-            type=mujoco.mjtEq.mjEQ_WELD,
-            objtype=mujoco.mjtObj.mjOBJ_BODY,
-            name1=GRIPPER,
-            name2=f"obj{o.id}",
-            active=False,
-            # Relative pose = identity: the object frame follows the gripper frame.
-            data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
-            solref=[opts.weld_timeconst, 1.0],
-        )
+    add_welds(spec, GRIPPER, "grip", [o.id for o in sc.spec.objects], opts.weld_timeconst)
     if robot is not None:
         from .arm import add_arm, add_cup_welds, base_pose, robot_spec
 
@@ -346,3 +336,22 @@ def build_model(scene: SceneSpec | Scene, *, options: ModelOptions | None = None
         geom_who=geom_who,
         arm=arm,
     )
+
+
+def add_welds(spec: mujoco.MjSpec, body: str, prefix: str, ids: list[int] | tuple[int, ...], timeconst: float) -> None:
+    """One inactive weld per object between ``body`` and the object (``<prefix><id>``).
+
+    The relative pose is the identity (the object frame follows ``body``'s);
+    the executor sets the actual one when it switches a weld on.
+    """
+    for i in ids:
+        spec.add_equality(
+            name=f"{prefix}{i}",
+            type=mujoco.mjtEq.mjEQ_WELD,
+            objtype=mujoco.mjtObj.mjOBJ_BODY,
+            name1=body,
+            name2=f"obj{i}",
+            active=False,
+            data=[0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0],
+            solref=[timeconst, 1.0],
+        )
