@@ -28,34 +28,35 @@ from typing import TYPE_CHECKING, Any
 from ..errors import InputError
 from .grounding import Choice, Mention
 from .matcher import FILLERS, _forms, _stem
-from .rules import (
-    _ALLOWED_EXTRA,
+from .assembly import _Pending, _add_params, _with_facing
+from .clauses import (
     _COMMAND_VERBS,
     _DIR_WORDS,
-    _JOIN_OK,
-    _MEASURE_WORDS,
-    _NOT_JOIN,
     _ON_WORDS,
-    _ROLE_MARK,
-    _SELECT_VERBS,
     _VERT_ON,
     _VERT_SKIP,
     _VERT_UNDER,
     _VERT_WORDS,
-    _add_params,
     _is_number,
     _numbers,
     _on_pairs_split,
     _pattern_positions,
-    _Pending,
     _stacking,
     _weak_split,
-    _with_facing,
 )
+from .framing import _ROLE_MARK
+from .passes import _MEASURE_WORDS, _NOT_JOIN, _SELECT_VERBS
+from .selection import _ALLOWED_EXTRA
 from .shapes import SIZES
 
 if TYPE_CHECKING:
     from .rules import _Parser
+
+#: Words that may stand between the object lists of one arrangement.
+_JOIN_OK = frozenset({"and", ",", "&", "plus", "or", "with", "of", "using", "from", "in", "into", "a", "an", "the", "as",
+                      "to", "up", "out", "together", "along", "all", "them", "form", "forming", "shape", "pattern",
+                      "then", "also", "too", "both", "each", "every", "neat", "tidy", "nice", "straight", "single",
+                      "perfect", "well", "please", "made", "make", "making", "by", "for", "is", "are", "be"})
 
 __all__ = ["ADJUSTS", "EARLY", "READINGS", "Frame", "early", "reading"]
 
