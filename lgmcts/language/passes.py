@@ -22,7 +22,8 @@ from .clauses import (
     _is_number,
     _sentences,
 )
-from .grounding import _ATTRS, COLOUR_WORDS, GROUPS, NUMBERS, candidates, find_mentions
+from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, candidates, find_mentions
+from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
