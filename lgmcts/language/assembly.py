@@ -277,6 +277,39 @@ class _Finishing:
                                      f"say what to do with it")
 
     def _finish(self, pending: list[_Pending]) -> GoalSpec:
+        """The goals of the command from its pending goals: towers settled (:meth:`_settle_towers`), the
+        "one X" targets chosen (:meth:`_picked_targets`), each goal written with its anchor and parameters
+        (:meth:`_written_goals`), then towers chained, equal goals and relations merged, and the checks:
+        contradictions, a measure or a named object no goal takes, a cue no goal reads; the goals are
+        checked against the scene."""
+        self._settle_towers(pending)
+        picked = self._picked_targets(pending)
+        goals = self._written_goals(pending, picked)
+        unread_measure = next((m for k, m in enumerate(self._measures) if k not in self._measured), None)
+        if unread_measure is not None:
+            raise InputError(f"'{unread_measure.text}': a size said in numbers that no goal read from the command "
+                             f"takes; say which arrangement it is for")
+        goals = _chain_towers(goals)
+        goals = _same_goals_merged(goals)
+        goals = _diagonals(_merge_relations(goals))
+        self._contradictions(goals)
+        self.goal_dicts = [dict(g) for g in goals]
+        self._unused_object(goals)
+        unread = _unread_cue(self._said, goals, self._cat_words)
+        if unread is not None:
+            raise InputError(f"'{unread}' is not part of any goal read from the command; say that part again on its own")
+        if not _params_accepted():
+            goals = [{k: v for k, v in g.items() if k not in _PARAM_KEYS} for g in goals]
+        spec = parse_goals({"goals": goals})
+        try:
+            spec.check_against(self.spec)
+        except InputError as exc:
+            raise InputError(f"contradiction: {exc}") from None
+        return spec
+
+    def _settle_towers(self, pending: list[_Pending]) -> None:
+        """Refuse a tower of too few objects; keep of a tower described from its bottom to its top the
+        objects said, and drop a "three blocks" choice whose blocks are then named one by one."""
         for p in pending:
             if p.pattern == "tower" and p.anchor is None:
                 n = sum(x.k if isinstance(x, Choice) else 1 for x in p.objects)
@@ -295,6 +328,10 @@ class _Finishing:
                 for c in [x for x in p.objects if isinstance(x, Choice)]:
                     if sum(1 for x in p.objects if isinstance(x, int) and x in c.options) >= c.k:
                         p.objects.remove(c)
+
+    def _picked_targets(self, pending: list[_Pending]) -> dict[int, list[int]]:
+        """The objects each "one X" / "three X" target takes, by the id of its :class:`.grounding.Choice`:
+        objects no goal uses yet first; too few left is refused."""
         picked: dict[int, list[int]] = {}
         used: set[int] = set()
         for p in pending:
@@ -318,6 +355,11 @@ class _Finishing:
                     picked[id(x)] = got
                     used.update(got)
                     fixed.update(got)
+        return picked
+
+    def _written_goals(self, pending: list[_Pending], picked: dict[int, list[int]]) -> list[dict]:
+        """Each pending goal as a goal dict: its objects, its anchor (a "one X" anchor preferring an object of
+        another goal), its pose and its parameters with any measure said; equal goals once."""
         goals: list[dict] = []
         resolved: list[tuple[_Pending, list[int]]] = []
         for p in pending:
@@ -356,27 +398,7 @@ class _Finishing:
                 g.update(params if anchor is None else {k: v for k, v in params.items() if k == "facing"})
             if g not in goals:
                 goals.append(g)
-        unread_measure = next((m for k, m in enumerate(self._measures) if k not in self._measured), None)
-        if unread_measure is not None:
-            raise InputError(f"'{unread_measure.text}': a size said in numbers that no goal read from the command "
-                             f"takes; say which arrangement it is for")
-        goals = _chain_towers(goals)
-        goals = _same_goals_merged(goals)
-        goals = _diagonals(_merge_relations(goals))
-        self._contradictions(goals)
-        self.goal_dicts = [dict(g) for g in goals]
-        self._unused_object(goals)
-        unread = _unread_cue(self._said, goals, self._cat_words)
-        if unread is not None:
-            raise InputError(f"'{unread}' is not part of any goal read from the command; say that part again on its own")
-        if not _params_accepted():
-            goals = [{k: v for k, v in g.items() if k not in _PARAM_KEYS} for g in goals]
-        spec = parse_goals({"goals": goals})
-        try:
-            spec.check_against(self.spec)
-        except InputError as exc:
-            raise InputError(f"contradiction: {exc}") from None
-        return spec
+        return goals
 
     def _contradictions(self, goals: list[dict]) -> None:
         rel = [g for g in goals if g["pattern"] in RELATIONS]

@@ -186,25 +186,60 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
     return scan(tuple(words), _ref_at)
 
 
+def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:
+    """"whatever is closest to the mug", "whichever mug sits furthest right": a reference by position
+    that opens with "whatever" / "whichever"."""
+    head: tuple[str, ...]
+    j = i + 1
+    head_end = j
+    while head_end < len(ws) and ws[head_end] not in _BE and ws[head_end] not in _STOP and head_end - j < 4:
+        head_end += 1
+    head = tuple(ws[j:head_end])
+    k = head_end
+    if k < len(ws) and ws[k] in _BE:
+        k += 1
+    if k < len(ws) and ws[k] in ("the", "most"):
+        k += 1
+    got = _after_head(ws, k)
+    if got is None:
+        return None
+    return PositionRef(i, got[1], head, got[0])
+
+
+def _middle_ref(ws: tuple[str, ...], i: int, j: int) -> PositionRef | None:
+    """"the middle/centre one (of the three bowls)", "the middle bowl of the three": the word at ``j`` is
+    "middle" or "centre"."""
+    head: tuple[str, ...]
+    k = j + 1
+    if ws[k] == "one":
+        head, k = ("one",), k + 1
+    else:
+        end = _np(ws, k, 3)
+        if end == k:
+            return None
+        head, k = tuple(ws[k:end]), end
+    if ws[k : k + 2] == ("of", "the") and k + 2 < len(ws) and ws[k + 2] in _COUNTS:
+        n = _COUNTS[ws[k + 2]]
+        end = _np(ws, k + 3)
+        if end > k + 3:
+            head = tuple(ws[k + 3 : end])
+            k = end
+        else:
+            k += 3
+        k = _skip_reading_order(ws, k)
+        return PositionRef(i, k, head, Key("middle"), of=n)
+    if head != ("one",) and (k >= len(ws) or ws[k] in _STOP) and k < len(ws) and ws[k] not in ("of",):
+        # "the middle bowl" (only with an odd number of them, checked by pick)
+        return PositionRef(i, _skip_reading_order(ws, k), head, Key("middle"))
+    return None
+
+
 def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
+    """The phrase at ``i`` that picks objects by where they stand (:func:`find_position_refs`), or None."""
     w = ws[i]
     head: tuple[str, ...]
     if w in _WHATEVER:
-        # "whatever is closest to the mug", "whichever mug sits furthest right"
-        j = i + 1
-        head_end = j
-        while head_end < len(ws) and ws[head_end] not in _BE and ws[head_end] not in _STOP and head_end - j < 4:
-            head_end += 1
-        head = tuple(ws[j:head_end])
-        k = head_end
-        if k < len(ws) and ws[k] in _BE:
-            k += 1
-        if k < len(ws) and ws[k] in ("the", "most"):
-            k += 1
-        got = _after_head(ws, k)
-        if got is None:
-            return None
-        return PositionRef(i, got[1], head, got[0])
+        return _whatever_ref(ws, i)
     bare = (i == 0 or ws[i - 1] in (",", ".", ";", ":", "!", "?")) and w not in _STOP
     if w not in _ARTICLES and w not in _ORDINALS and not bare:
         return None
@@ -221,28 +256,7 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
         return PositionRef(i, end, head, key, of=n)
     # "the middle/centre one (of the three bowls)", "the middle bowl of the three"
     if ws[j] in ("middle", "centre", "center", "central") and j + 1 < len(ws):
-        k = j + 1
-        if ws[k] == "one":
-            head, k = ("one",), k + 1
-        else:
-            end = _np(ws, k, 3)
-            if end == k:
-                return None
-            head, k = tuple(ws[k:end]), end
-        if ws[k : k + 2] == ("of", "the") and k + 2 < len(ws) and ws[k + 2] in _COUNTS:
-            n = _COUNTS[ws[k + 2]]
-            end = _np(ws, k + 3)
-            if end > k + 3:
-                head = tuple(ws[k + 3 : end])
-                k = end
-            else:
-                k += 3
-            k = _skip_reading_order(ws, k)
-            return PositionRef(i, k, head, Key("middle"), of=n)
-        if head != ("one",) and (k >= len(ws) or ws[k] in _STOP) and k < len(ws) and ws[k] not in ("of",):
-            # "the middle bowl" (only with an odd number of them, checked by pick)
-            return PositionRef(i, _skip_reading_order(ws, k), head, Key("middle"))
-        return None
+        return _middle_ref(ws, i, j)
     count = 1
     if ws[j] in _COUNTS:
         count, j = _COUNTS[ws[j]], j + 1

@@ -1,8 +1,8 @@
-"""The readings of one clause, as registered handlers tried in order (:meth:`.rules._Parser.clause`).
+"""The readings of one clause, as registered handlers tried in order (:meth:`.framing._Framing.clause`).
 
 A clause is read in three parts. The *early* handlers look at its words alone
 (a goal that must not hold, an object relative to itself, "so that"). Then
-:meth:`.rules._Parser._frame` grounds its references and takes its stack roles
+:meth:`.framing._Framing._frame` grounds its references and takes its stack roles
 and its place, size and facing words into a :class:`Frame`. Then the
 *readings* are tried in the order they are registered here: the first that
 answers (a list of pending goals, empty for a clause that only adds to an

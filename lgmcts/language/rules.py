@@ -27,6 +27,15 @@ Pipeline for one command:
 6. **Check** the result: too few objects for a pattern, contradicting
    relations, cycles and other impossible combinations are refused with one
    line, never turned into a silently wrong goal.
+
+This module holds the options, the state of one command and :class:`_Parser`,
+whose :meth:`_Parser.command` runs the steps; the steps live by concern in
+:mod:`.clauses` (step 1), :mod:`.passes` (the text and token passes before
+it), :mod:`.framing` with :mod:`.readings` (one clause read; step 3 and the
+relations of step 4), :mod:`.arrangements` (pattern choice, shape goals, the
+place setting), :mod:`.selection` (references resolved against what the
+command named before) and :mod:`.assembly` (steps 4 to 6). Grounding (step 2)
+is :mod:`.grounding`.
 """
 
 from __future__ import annotations

@@ -19,6 +19,8 @@ Every function works on lower-cased token tuples (:func:`.grounding.tokenize`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from ..errors import InputError
 from . import lexicon
 from .places import POINTING_PARTS, read_facing, read_place
@@ -204,6 +206,99 @@ def _region_run(words: tuple[str, ...], i: int, stack: bool = False):
     return row, col, j
 
 
+def _stack_orders(words: tuple[str, ...], protected: dict[int, int]) -> None:
+    """Protect the words of an order along a stack ("from top to bottom", "bottom up"): no place."""
+    for k in range(len(words)):
+        # "from top to bottom", "bottom up": an order along a stack, not a place.
+        for seq in (("top", "to", "bottom"), ("bottom", "to", "top"), ("bottom", "up"), ("top", "down"),
+                    ("the", "top", "down"), ("from", "the", "top"), ("from", "the", "bottom")):
+            if words[k : k + len(seq)] == seq:
+                protected[k] = max(protected.get(k, k), k + len(seq))
+
+
+def _facing_at(words: tuple[str, ...], i: int, put: Callable[[str, str | int, str], None]) -> int | None:
+    """A facing said at ``i`` ("facing north", "facing me", "pointing away", "tines toward the right edge"),
+    given to ``put``; the index after its words, or None where no facing is said there. A facing towards
+    anything but a direction, an edge or the viewer is refused."""
+    n = len(words)
+    w = words[i]
+    if w in _FACE_VERBS or w in POINTING_PARTS:
+        face = read_facing(words, i)  # by an edge or the viewer: "facing the back wall", "tines toward me"
+        if face is not None:
+            put("facing", face[0], " ".join(words))
+            return face[1]
+    if w in _FACE_VERBS:
+        j = i + 1
+        while j < n and (words[j] in ("to", "the", "toward", "towards", "in", "direction", "of", ",", "like")
+                         or words[j] in _FACE_VERBS):
+            j += 1  # "facing, uh, north": the pause left by a filler
+        if j < n and words[j] in FACINGS:
+            put("facing", FACINGS[words[j]], " ".join(words))
+            i = j + 1
+            if i < n and words[i] == "direction":
+                i += 1
+            return i
+        # The viewer stands at the table's south edge: "facing me" is south,
+        # "pointing away from us" north, "turned left" west.
+        k = j + 1
+        if j < n and words[j] == "away":
+            while k < n and words[k] in ("from", "the"):
+                k += 1
+            if k < n and words[k] in _VIEWER:
+                k += 1
+            put("facing", "north", " ".join(words))
+            return k
+        if j < n and (words[j] in _VIEWER or words[j] in _SIDE_FACINGS):
+            put("facing", "south" if words[j] in _VIEWER else _SIDE_FACINGS[words[j]], " ".join(words))
+            return j + 1
+        raise InputError(
+            f"'{' '.join(words[i:j + 2])}': facing can be north, east, south or west only, not towards an object")
+    return None
+
+
+def _size_at(words: tuple[str, ...], i: int, pattern_nouns, put: Callable[[str, str | int, str], None]) -> int | None:
+    """A size word right before a pattern noun ("a big circle", "a big round shape"), given to ``put``; the
+    index after it, or None where the word sizes no arrangement (the caller reads it on)."""
+    n = len(words)
+    w = words[i]
+    j = i + 1
+    while j < n and (words[j] in ("straight", "neat", "tidy", "nice", "single", "round", "and", ",", "sized",
+                                  "size", "scale", "scaled")
+                     or words[j] in SIZES):
+        j += 1
+    if j < n and (pattern_nouns(words[j]) or (
+            words[j] in ("shape", "formation", "pattern", "arrangement") and pattern_nouns(words[j - 1]))):
+        # "a big circle"; "a big round shape" (the shape named by the word before the generic noun)
+        if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
+            put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
+        return i + 1
+    return None
+
+
+def _merged_place(words: tuple[str, ...], row: str | None, col: str | None, r: str | None,
+                  c: str | None) -> tuple[str | None, str | None]:
+    """The row and column said so far with a place read next (row ``r``, column ``c``): a middle said
+    after a band or a side is the middle of it; two different rows or columns are refused."""
+    if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
+        # "at the back of the table, in the middle": the middle of that band.
+        r, c = None, "center"
+    if row == "middle" and col == "center" and r is None and c in ("left", "right"):
+        # "in the middle of the table, on the right side": halfway along that side.
+        col = None
+    if c == "center" and r in (None, "middle") and col not in (None, "center") and row is None:
+        # "on the left side, in the middle": halfway along that side.
+        r, c = "middle", None
+    if r is not None:
+        if row is not None and row != r:
+            raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
+        row = r
+    if c is not None:
+        if col is not None and col != c:
+            raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
+        col = c
+    return row, col
+
+
 def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int] | None = None,
                 stack: bool = False) -> tuple[dict, tuple[str, ...]]:
     """Pull where / how big / facing out of a clause that names an arrangement.
@@ -222,12 +317,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
     parameter are refused.
     """
     protected = dict(protected or {})
-    for k in range(len(words)):
-        # "from top to bottom", "bottom up": an order along a stack, not a place.
-        for seq in (("top", "to", "bottom"), ("bottom", "to", "top"), ("bottom", "up"), ("top", "down"),
-                    ("the", "top", "down"), ("from", "the", "top"), ("from", "the", "bottom")):
-            if words[k : k + len(seq)] == seq:
-                protected[k] = max(protected.get(k, k), k + len(seq))
+    _stack_orders(words, protected)
     seen_pattern = False
     blocked = False
     band = False
@@ -262,53 +352,14 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             put("measure", ord(w[-1]) - 97, " ".join(words))  # a measure in numbers (.stages.mark_measures)
             i += 1
             continue
-        if w in _FACE_VERBS or w in POINTING_PARTS:
-            face = read_facing(words, i)  # by an edge or the viewer: "facing the back wall", "tines toward me"
-            if face is not None:
-                put("facing", face[0], " ".join(words))
-                i = face[1]
-                continue
-        if w in _FACE_VERBS:
-            j = i + 1
-            while j < n and (words[j] in ("to", "the", "toward", "towards", "in", "direction", "of", ",", "like")
-                             or words[j] in _FACE_VERBS):
-                j += 1  # "facing, uh, north": the pause left by a filler
-            if j < n and words[j] in FACINGS:
-                put("facing", FACINGS[words[j]], " ".join(words))
-                i = j + 1
-                if i < n and words[i] == "direction":
-                    i += 1
-                continue
-            # The viewer stands at the table's south edge: "facing me" is south,
-            # "pointing away from us" north, "turned left" west.
-            k = j + 1
-            if j < n and words[j] == "away":
-                while k < n and words[k] in ("from", "the"):
-                    k += 1
-                if k < n and words[k] in _VIEWER:
-                    k += 1
-                put("facing", "north", " ".join(words))
-                i = k
-                continue
-            if j < n and (words[j] in _VIEWER or words[j] in _SIDE_FACINGS):
-                put("facing", "south" if words[j] in _VIEWER else _SIDE_FACINGS[words[j]], " ".join(words))
-                i = j + 1
-                continue
-            raise InputError(
-                f"'{' '.join(words[i:j + 2])}': facing can be north, east, south or west only, not towards an object")
-        if w in SIZES and i + 1 < n:
-            j = i + 1
-            while j < n and (words[j] in ("straight", "neat", "tidy", "nice", "single", "round", "and", ",", "sized",
-                                          "size", "scale", "scaled")
-                             or words[j] in SIZES):
-                j += 1
-            if j < n and (pattern_nouns(words[j]) or (
-                    words[j] in ("shape", "formation", "pattern", "arrangement") and pattern_nouns(words[j - 1]))):
-                # "a big circle"; "a big round shape" (the shape named by the word before the generic noun)
-                if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
-                    put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
-                i += 1
-                continue
+        got_i = _facing_at(words, i, put)
+        if got_i is not None:
+            i = got_i
+            continue
+        got_i = _size_at(words, i, pattern_nouns, put) if w in SIZES and i + 1 < n else None
+        if got_i is not None:
+            i = got_i
+            continue
         free = read_place(words, i)  # said freely: "dead centre", "partway back on the right", "a strip along the front"
         got = (free[0].row, free[0].col, free[1]) if free is not None else _region_run(words, i, stack)
         if free is not None and not seen_pattern:
@@ -327,23 +378,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         if got is not None:
             r, c, j = got
             band = band or (free is not None and free[0].band)
-            if r is not None and row is not None and row != r and r == "middle" and c in (None, "center") and col is None:
-                # "at the back of the table, in the middle": the middle of that band.
-                r, c = None, "center"
-            if row == "middle" and col == "center" and r is None and c in ("left", "right"):
-                # "in the middle of the table, on the right side": halfway along that side.
-                col = None
-            if c == "center" and r in (None, "middle") and col not in (None, "center") and row is None:
-                # "on the left side, in the middle": halfway along that side.
-                r, c = "middle", None
-            if r is not None:
-                if row is not None and row != r:
-                    raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
-                row = r
-            if c is not None:
-                if col is not None and col != c:
-                    raise InputError(f"'{' '.join(words)}': two different places for one arrangement")
-                col = c
+            row, col = _merged_place(words, row, col, r, c)
             i = j
             continue
         keep.append(w)
