@@ -90,10 +90,6 @@ STOPWORDS: frozenset[str] = frozenset(_W["stopwords"])
 FILLER_WORDS: tuple[str, ...] = tuple(_W["fillers"])
 COMMAND_VERBS: frozenset[str] = frozenset(_W["commands"])
 ROLE_WORDS: frozenset[str] = frozenset(_W["roles"])
-#: Named cue lists (``[cues]``): each a tuple of phrases, a phrase a tuple of lower-case words.
-CUES: dict[str, tuple[tuple[str, ...], ...]] = {
-    name: tuple(tuple(p.split()) for p in phrases) for name, phrases in _DATA["cues"].items()}
-
 _WORD = re.compile(r"\w+")
 
 
@@ -104,6 +100,11 @@ def words(text: str) -> list[str]:
     ['stack', 'them', 'then', 'the', 'cups', 'it', 's', 'done']
     """
     return _WORD.findall(text.lower())
+
+
+#: Named cue lists (``[cues]``): each a tuple of phrases, a phrase a tuple of words as :func:`words` cuts them.
+CUES: dict[str, tuple[tuple[str, ...], ...]] = {
+    name: tuple(tuple(words(p)) for p in phrases) for name, phrases in _DATA["cues"].items()}
 
 
 def says(text: str, *cues: str) -> bool:

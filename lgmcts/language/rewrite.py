@@ -135,8 +135,7 @@ def _restatements(text: str) -> str:
         said = {_SAME_WORD.get(w, w) for w in re.findall(r"[a-z]+", " ".join(kept).lower())}
         words = re.findall(r"[a-z']+", p.lower())
         rest = [w for w in words if w not in _HEDGES]
-        if words and len(words) <= 8 and re.search(r"(?i)\b(?:i think|yeah|yes|i mean|like|i guess|i suppose|probably|"
-                                                    r"that's right|right, yes)\b", p) \
+        if words and len(words) <= 8 and says(p, "hedge") \
                 and all(_SAME_WORD.get(w, w) in said for w in rest):
             continue
         kept.append(p)
@@ -329,17 +328,6 @@ def _corrected_relations(text: str) -> str:
     return _corrected(text, relations_only=True)
 
 
-@step("base-then-it")
-def _base_then_it(text: str) -> str:
-    """"take / use the tiger pan as the base and put the star onto it": the star on the tiger pan."""
-    m = re.search(r"(?i)\b(?:take|use|have|start with|begin with) (the(?: [a-z]+){1,3}?) as the (?:base|bottom|foundation)"
-                  r"(?: layer| level)?\s*,?\s*(?:and |then )*", text)
-    if m is not None and re.search(r"(?i)\b(?:it)\b", text[m.end():]):
-        rest = re.sub(r"(?i)\bit\b", m.group(1), text[m.end():], count=1)
-        text = text[: m.start()] + rest
-    return text
-
-
 @step("not-these-just-the-rest")
 def _not_these_just_the_rest(text: str) -> str:
     """"not the cans, not the bowls, just the rest": everything but them."""
@@ -431,10 +419,12 @@ def _order_from_bottom_list(m: re.Match[str]) -> str:
 def _red_bowl_down_white(m: re.Match[str]) -> str:
     """"red bowl down, white bowl up, blue bowl between": a role said by one word, after an object said by its colour."""
     said = m.group(2)
-    if (re.match(r"(?i)(?:pile|stack|line|set|put|place|move|make|build|pick|lift|hold|turn|fill|heap|them|it)\b", said)
-            or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", said)
-            or re.search(r"(?i)\b(?:pile|stack|line|set|put|place|move|make|build|lift|pick|them|it|those|these|they)\b", said)
-            or not re.search(rf"(?i)\b(?:{MACROS['HUE']}|silver|one)\b", said)):
+    ws = lexicon.words(said)
+    if ((said[:1].isalpha() and ws[:1] in (["hold"], ["turn"], ["fill"], ["heap"]))
+            or any(w.isascii() and w.isalpha() and ((len(w) >= 5 and w.endswith("ed")) or (len(w) >= 6 and w.endswith("ing")))
+                   for w in ws)
+            or says(said, "request")
+            or not any(w in HUES or w in ("silver", "one") for w in ws)):
         return m.group(0)
     return m.group(1) + said + {"down": " at the bottom", "up": " on the top", "between": " in between"}[m.group(3).lower()]
 
@@ -515,6 +505,7 @@ def _not_the_other_one(m: re.Match[str]) -> str:
     reads them as an exception or refuses them (:meth:`.rules._Parser._trailing_not`)."""
     before = m.string[: m.start()]
     single = re.search(r"(?i)\bthe(?: [a-z]+){0,2} ([a-z]+)\s*,?\s*$", before)
-    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or re.search(r"[^s]s$", single.group(1)):
+    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or (len(single.group(1)) >= 2 and single.group(1)[-1] == "s"
+                                                                     and single.group(1)[-2] != "s"):
         return m.group(0)  # after "but", or a plural ("the blocks, not the purple one"): an exception
     return ""
