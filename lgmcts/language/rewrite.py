@@ -51,8 +51,7 @@ _REPAIR_RUN = re.compile(rf"(?i)\s*[,;.?!]\s*((?:(?:{_HEDGE}|{_REPAIR_KEY})\s*[,
 def _repairs(text: str) -> str:
     """Every spoken repair marker, with its hesitations, as ", no wait, "."""
     def one(m: re.Match) -> str:
-        words = re.findall(r"[a-z]+", m.group(1).lower())
-        said = " ".join(words)
+        said = " ".join(lexicon.words(m.group(1)))
         if not re.search(rf"\b{_REPAIR_KEY}\b", said) or not re.fullmatch(
                 rf"(?:(?:{_HEDGE}|{_REPAIR_KEY})\s*)+", said) or said in ("no", "well", "oh", "or"):
             return m.group(0)
@@ -176,7 +175,7 @@ def _corrected(text: str, relations_only: bool = False) -> str:
             rest = re.sub(r"(?i)^((?:to the |on the |to its |on its )?(?:left|right|front|back)(?: side)? of|behind|"
                           r"in front of|on top of|on|onto|under|below|above|beneath) (?:it|them)\b",
                           lambda k: f"{k.group(1)} {np.group(1)}", rest)
-        if re.match(r"(?i)(?:to|on) the ", dropped) and re.match(r"(?i)the (?:left|right|front|back)\b", rest):
+        if dropped[:7].lower() in ("to the ", "on the ") and re.match(r"(?i)the (?:left|right|front|back)\b", rest):
             rest = dropped.split()[0] + " " + rest
         text = text[: m.start()] + rest
 
@@ -328,15 +327,14 @@ def _corrected_relations(text: str) -> str:
     return _corrected(text, relations_only=True)
 
 
-@step("not-these-just-the-rest")
-def _not_these_just_the_rest(text: str) -> str:
+_NOT_THE = re.compile(r"(?i)(?:not|no) (the [a-z ]+?)(?=,|$)")
+
+
+@replacer("not-these-just-the-rest")
+def _not_these_just_the_rest(m: re.Match[str]) -> str:
     """"not the cans, not the bowls, just the rest": everything but them."""
-    m = re.match(r"(?i)^\s*(?:not|no) (the [a-z ]+?)((?:,\s*(?:and )?(?:not|no) the [a-z ]+?)*),\s*(?:just |only )?(?:the rest|"
-                 r"everything else|all the rest|the others)\b", text)
-    if m is not None:
-        more = re.findall(r"(?i)(?:not|no) (the [a-z ]+?)(?=,|$)", m.group(2) + ",")
-        text = "everything except " + " and ".join([m.group(1), *more]) + text[m.end():]
-    return text
+    more = _NOT_THE.findall(m.group(2) + ",")
+    return "everything except " + " and ".join([m.group(1), *more])
 
 
 @step("strip")
@@ -469,8 +467,9 @@ def _highest_topmost_stack_roles(m: re.Match[str]) -> str:
 @replacer("only-spoon-not-fork")
 def _only_spoon_not_fork(m: re.Match[str]) -> str:
     """", not the white one," after a plural ("the bowls, but not the white one,"): an exception; else nothing."""
-    if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$", m.string[: m.start()]) and re.search(
-            r"(?i)\bones?$", m.group(2)):
+    said = m.group(2)
+    if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$", m.string[: m.start()]) \
+            and said[-1:].isalpha() and lexicon.words(said)[-1:] in (["one"], ["ones"]):
         return f" except the {m.group(2)},"
     return ","
 
