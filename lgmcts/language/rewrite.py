@@ -373,6 +373,12 @@ def _bottles_side_by_side(m: re.Match[str]) -> str:
     return f'{m.group(1)} and {m.group(4)} {m.group(2)}{m.group(3)}'
 
 
+@replacer("object-taken-back")
+def _object_taken_back(m: re.Match[str]) -> str:
+    """"the red mug, no wait, the blue one": the object said second, with the noun of the first ("the blue mug")."""
+    return f"{m.group('said')} {m.group('head')}" if m.group("said") else ""
+
+
 @replacer("mean-meaning-namely-red")
 def _mean_meaning_namely_red(k: re.Match[str]) -> str:
     return f'the {k.group(2)} {k.group(1)}'
