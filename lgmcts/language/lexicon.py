@@ -45,6 +45,8 @@ __all__ = [
     "VIEWER_WORDS",
     "alternation",
     "check_shape_nouns",
+    "says",
+    "words",
 ]
 
 FILE = Path(__file__).with_name("data") / "lexicon.toml"
@@ -88,6 +90,38 @@ STOPWORDS: frozenset[str] = frozenset(_W["stopwords"])
 FILLER_WORDS: tuple[str, ...] = tuple(_W["fillers"])
 COMMAND_VERBS: frozenset[str] = frozenset(_W["commands"])
 ROLE_WORDS: frozenset[str] = frozenset(_W["roles"])
+_WORD = re.compile(r"\w+")
+
+
+def words(text: str) -> list[str]:
+    """The lower-case words of ``text``, cut where a regular expression's ``\\b`` cuts ("it's" is "it", "s").
+
+    >>> words("Stack them, then the cups! It's done")
+    ['stack', 'them', 'then', 'the', 'cups', 'it', 's', 'done']
+    """
+    return _WORD.findall(text.lower())
+
+
+#: Named cue lists (``[cues]``): each a tuple of phrases, a phrase a tuple of words as :func:`words` cuts them.
+CUES: dict[str, tuple[tuple[str, ...], ...]] = {
+    name: tuple(tuple(words(p)) for p in phrases) for name, phrases in _DATA["cues"].items()}
+
+
+def says(text: str, *cues: str) -> bool:
+    """Whether ``text`` has, as whole words, a phrase of any of the cue lists named (``[cues]`` of the lexicon).
+
+    >>> says("so the kids can reach the top shelf", "goal")
+    True
+    >>> says("so the kids can reach it", "goal")
+    False
+    """
+    said = words(text)
+    for name in cues:
+        for phrase in CUES[name]:
+            n = len(phrase)
+            if any(tuple(said[i : i + n]) == phrase for i in range(len(said) - n + 1)):
+                return True
+    return False
 
 
 def alternation(words: tuple[str, ...] | list[str] | frozenset[str]) -> str:

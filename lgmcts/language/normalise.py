@@ -21,7 +21,10 @@ Each ``[[rewrite]]`` row of the table has
   runs them all).
 
 Rows apply in the order of the file, each to the output of the one before.
-Nothing here knows the scene.
+The file holds more than one table: ``[[rewrite]]`` rows make :func:`apply`'s
+default chain, ``[[frame]]`` rows strip the words that frame a request as an
+end state or open it in speech (:func:`.rewrite.unframe`); ``apply(text,
+"frame")`` runs one table by name. Nothing here knows the scene.
 """
 
 from __future__ import annotations
@@ -33,7 +36,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-__all__ = ["TABLE", "Rule", "apply", "expand", "replacer", "rules", "step", "trace"]
+__all__ = ["TABLE", "TABLES", "Rule", "apply", "expand", "replacer", "rules", "step", "trace"]
 
 #: The table of rewrites, in order.
 TABLE = Path(__file__).with_name("data") / "rewrites.toml"
@@ -115,7 +118,7 @@ def _table_macros() -> dict[str, str]:
     return dict(_raw().get("macros", {}))
 
 
-def _compile(row: dict, n: int) -> Rule:
+def _compile(row: dict, n: int, macros: dict[str, str]) -> Rule:
     rid = row.get("id")
     if not isinstance(rid, str) or not rid:
         raise ValueError(f"{TABLE.name}: row {n} has no id")
@@ -127,42 +130,50 @@ def _compile(row: dict, n: int) -> Rule:
 
     def rxs(key: str) -> tuple[re.Pattern[str], ...]:
         said = row.get(key, ())
-        return tuple(re.compile(expand(p)) for p in ([said] if isinstance(said, str) else said))
+        return tuple(re.compile(expand(p, macros)) for p in ([said] if isinstance(said, str) else said))
 
     fn = _REPLACERS[row["fn"]] if "fn" in row else None
     st = _STEPS[row["step"]] if "step" in row else None
     examples = tuple((str(a), str(b)) for a, b in row.get("examples", ()))
-    pattern = re.compile(expand(row["pattern"])) if "pattern" in row else None
+    pattern = re.compile(expand(row["pattern"], macros)) if "pattern" in row else None
     return Rule(rid, pattern, row.get("replace"), fn, st, int(row.get("count", 0)), rxs("when"), rxs("unless"),
                 str(row.get("note", "")), examples)
 
 
-@lru_cache(maxsize=1)
-def rules() -> tuple[Rule, ...]:
-    """Every row of the table, compiled, in order (ids checked unique)."""
+#: The tables of the file, by name.
+TABLES = ("rewrite", "frame")
+
+
+@lru_cache(maxsize=len(TABLES))
+def rules(table: str = "rewrite") -> tuple[Rule, ...]:
+    """Every row of the table ``table``, compiled, in order (ids checked unique across all tables)."""
     from . import rewrite  # registers the named steps and replacers
     del rewrite
 
-    out = tuple(_compile(row, n) for n, row in enumerate(_raw()["rewrite"], 1))
+    if table not in TABLES:
+        raise KeyError(f"no rewrite table {table!r} (there are {', '.join(TABLES)})")
+    macros = _table_macros()
+    out = tuple(_compile(row, n, macros) for n, row in enumerate(_raw()[table], 1))
+    others = {r["id"] for t in TABLES if t != table for r in _raw().get(t, ())}
     seen: set[str] = set()
     for r in out:
-        if r.id in seen:
+        if r.id in seen or r.id in others:
             raise ValueError(f"{TABLE.name}: id {r.id!r} appears twice")
         seen.add(r.id)
     return out
 
 
-def apply(text: str) -> str:
-    """``text`` after every row of the table, in order."""
-    for rule in rules():
+def apply(text: str, table: str = "rewrite") -> str:
+    """``text`` after every row of the table ``table``, in order."""
+    for rule in rules(table):
         text = rule(text)
     return text
 
 
-def trace(text: str) -> list[tuple[str, str]]:
+def trace(text: str, table: str = "rewrite") -> list[tuple[str, str]]:
     """The rows that change ``text``, in order, each with the text after it (for debugging a phrasing)."""
     out: list[tuple[str, str]] = []
-    for rule in rules():
+    for rule in rules(table):
         new = rule(text)
         if new != text:
             out.append((rule.id, new))

@@ -20,13 +20,13 @@ tests/language/golden_parse.py``: only the commands meant to change may move.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from .grounding import Choice, Mention
+from .lexicon import says
 from .matcher import FILLERS, _forms, _stem
 from .assembly import _Pending, _add_params, _with_facing
 from .clauses import (
@@ -59,6 +59,9 @@ _JOIN_OK = frozenset({"and", ",", "&", "plus", "or", "with", "of", "using", "fro
                       "perfect", "well", "please", "made", "make", "making", "by", "for", "is", "are", "be"})
 
 __all__ = ["ADJUSTS", "EARLY", "READINGS", "Frame", "early", "reading"]
+
+#: A clause that only says a stack's order.
+_ORDER_HEADERS = frozenset({"bottom to top", "top to bottom", "from bottom to top", "from top to bottom"})
 
 
 @dataclass
@@ -215,7 +218,7 @@ def _read_order_of_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
     """"stack red, blue, green. bottom up.": the order the stack just read was listed in."""
     mentions = f.mentions
     text = f.text
-    if not mentions and re.fullmatch(r"(from )?(bottom to top|top to bottom)", text) \
+    if not mentions and text in _ORDER_HEADERS \
             and self.state.tower is not None and self.state.header is None:
         # "stack red, blue, green. bottom up.": the order the stack was listed in; a list
         # after it ("pile up the cans. from top to bottom: green, blue, ...") goes downward.
@@ -238,7 +241,7 @@ def _read_no_object(self: _Parser, f: Frame) -> list[_Pending] | None:
     phrase_words = f.phrase_words
     words = f.words
     if not mentions:
-        if re.fullmatch(r"(from )?(bottom to top|top to bottom)", text):
+        if text in _ORDER_HEADERS:
             # "from the bottom up: green, red, blue": a stack named by its order.
             self.state.header = ("tower", params, text)
             return []
@@ -308,7 +311,7 @@ def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
         before = [x for x in tower if isinstance(x, int)]
         prev = None
         pairs = list(zip(mentions, roles))
-        if re.search(r"\btop to (the )?bottom\b", text) and not self.state.downward:
+        if says(text, "downward") and not self.state.downward:
             # "black bowl, then white bowl, then the blue block, from the top down, black bowl
             # highest": the list read downward first, then the roles.
             for mm, r in pairs:
@@ -417,7 +420,7 @@ def _read_order_makes_a_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
     text = f.text
     mentions = f.mentions
     meaningful = f.meaningful
-    if re.search(r"\b(top to bottom|bottom to top)\b", text) and len(mentions) >= 2 and not any(
+    if says(text, "order") and len(mentions) >= 2 and not any(
             self._free_word(w) for w in meaningful):
         # "from top to bottom the cans should go white, red, blue, green": a stack by its order.
         phrase_words, meaningful = ["stack"], ["stack"]
@@ -432,8 +435,7 @@ def _read_each_other_line(self: _Parser, f: Frame) -> list[_Pending] | None:
     meaningful = f.meaningful
     phrase_words = f.phrase_words
     joined = " ".join(phrase_words)
-    if re.search(r"\b(behind|in front of|next to|beside|alongside|after|left of|right of) (each other|one another)\b",
-                 joined) and not re.search(r"\b(on top|top of|atop|above|onto)\b", joined):
+    if says(joined, "each_other") and not says(joined, "on_top"):
         # "the cans behind each other", "next to one another": one after the other, a line.
         phrase_words = [w for w in phrase_words if w in _COMMAND_VERBS] + ["in", "a", "line"]
         meaningful = ["line"]
@@ -570,7 +572,7 @@ def _read_phrase_and_choices(self: _Parser, f: Frame) -> list[_Pending] | None:
                            if isinstance(x, int)}
         if before and after and flat(after) and flat(after) < flat(before):
             sels = [[] if g in before else sels[g] for g in range(len(sels))]
-    if re.search(r"\b(another|second|new|separate|different)\b", phrase):
+    if says(phrase, "another"):
         # "another line": a second arrangement of objects no other goal uses.
         sels = [[replace(s, fresh=True) if isinstance(s, Choice) else s for s in g] for g in sels]
     f.rel_pos = rel_pos

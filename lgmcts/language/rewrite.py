@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 
 from . import lexicon
-from .lexicon import HUES, MACROS
+from .lexicon import HUES, MACROS, says
 from .normalise import apply, replacer, step
 
 __all__ = ["rewrite", "unframe", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
@@ -36,28 +36,6 @@ QUESTION = re.compile(r"(?i)^\s*(is|are|was|were|does|do|did|which|what|what's|w
 ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|are you able|do you (mind|think you could)|what about|how about)\b")
 
 _COMPASS = lexicon.COMPASS
-_COMPASS_REL = re.compile(
-    r"(?i)\b(?:to the |on the |at the )?(north|south|east|west)(?:ern)?(?:[- ]?(east|west)(?:ern)?)?"
-    r"(?: side| end)? of\b")
-_NEAR_FAR = (
-    (re.compile(r"(?i)\b(?:on |to )?the far side of\b"), "behind"),
-    (re.compile(r"(?i)\b(?:on |to )?the near side of\b"), "in front of"),
-    (re.compile(r"(?i)\b(?:further|farther) (?:back|away(?: from (?:me|us|you|the viewer|the camera))?) than\b"),
-     "behind"),
-    (re.compile(r"(?i)\b(?:nearer|closer)(?: (?:to )?(?:me|us|you|the viewer|the camera|the front))? than\b"),
-     "in front of"),
-    (re.compile(r"(?i)\b(?:further|farther) (?:forward|to the front) than\b"), "in front of"),
-    (re.compile(r"(?i)\bdiagonally (?=(?:behind|in front|forward|back|ahead|to the|left|right|up|down))"), ""),
-)
-#: "any of the blocks", "either of the mugs": one of them, whichever.
-_ANY_OF = re.compile(r"(?i)\b(?:any|either|any one|whichever) of (?:the|those|these)\b")
-#: "behind the cup and to its right", "... and to the left of it", "... and off to
-#: the right": one diagonal relation to one anchor.
-_AND_ITS_SIDE = re.compile(
-    r"(?i)\b(in front of|behind|to the left of|to the right of|left of|right of) ((?:the |a |one of the )?[^,;.!?]+?)"
-    r"(?: and|,(?= (?:on |to )?(?:its|their) )) "
-    r"(?:off |also |just |slightly |a bit )?(?:to |on )?(?:(?:its|their) (left|right|front|back)(?:[- ]hand)?(?: side)?"
-    r"|the (left|right|front|back)(?: side)? of (?:it|them)\b|the (left|right)\b(?! of)|(behind|in front of) (?:it|them)\b)")
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
 _CORRECTION = re.compile(
     r"(?i)\b(?:(?:to the |on the |in |to its |to their |on its |on their )?(?:left|right|front|behind|back|on top|on|onto|"
@@ -73,8 +51,7 @@ _REPAIR_RUN = re.compile(rf"(?i)\s*[,;.?!]\s*((?:(?:{_HEDGE}|{_REPAIR_KEY})\s*[,
 def _repairs(text: str) -> str:
     """Every spoken repair marker, with its hesitations, as ", no wait, "."""
     def one(m: re.Match) -> str:
-        words = re.findall(r"[a-z]+", m.group(1).lower())
-        said = " ".join(words)
+        said = " ".join(lexicon.words(m.group(1)))
         if not re.search(rf"\b{_REPAIR_KEY}\b", said) or not re.fullmatch(
                 rf"(?:(?:{_HEDGE}|{_REPAIR_KEY})\s*)+", said) or said in ("no", "well", "oh", "or"):
             return m.group(0)
@@ -112,11 +89,6 @@ def _remade(text: str) -> str:
     return text
 
 
-#: Words by which a clause can ask for a goal; a purpose clause has none of them.
-_GOAL_CUE = re.compile(r"(?i)\b(?:left|right|front|behind|back|on|onto|under|underneath|below|above|beneath|over|top|bottom|"
-                       r"base|line|lined|row|circle|ring|loop|tower|stack|stacked|pile|piled|rectangle|square|next|beside|"
-                       r"between|facing|face|ends? up|north|south|east|west|diagonal|diagonally|corner|centre|center|middle|"
-                       r"edge|side|order|first|last)\b")
 _ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move|stack|set|make|arrange|line|build|pile|lay|"
         r"could|can|would|will|get|grab|stick|pop|slide|shift|form|gather|group|bring|leave|keep|have|let|i'd|i want|i need)\b")
 _PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since) "
@@ -162,8 +134,7 @@ def _restatements(text: str) -> str:
         said = {_SAME_WORD.get(w, w) for w in re.findall(r"[a-z]+", " ".join(kept).lower())}
         words = re.findall(r"[a-z']+", p.lower())
         rest = [w for w in words if w not in _HEDGES]
-        if words and len(words) <= 8 and re.search(r"(?i)\b(?:i think|yeah|yes|i mean|like|i guess|i suppose|probably|"
-                                                    r"that's right|right, yes)\b", p) \
+        if words and len(words) <= 8 and says(p, "hedge") \
                 and all(_SAME_WORD.get(w, w) in said for w in rest):
             continue
         kept.append(p)
@@ -176,13 +147,13 @@ def _purposes(text: str) -> str:
     drinks ready, put ...", "I'm going to sort the shopping later, so ...".
     Only a clause with no word that could ask for a goal is dropped ("so that
     the blue mug ends up on its left" is a goal)."""
-    text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else "", text)
-    text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) else m.group(1), text)
+    text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if says(m.group("c"), "goal") else "", text)
+    text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if says(m.group("c"), "goal") else m.group(1), text)
     # Kept where the request after it says "them" / "it": its subject may be what they mean ("the cans are
     # everywhere, so put them in a row").
     return _REASON_BEFORE.sub(
-        lambda m: m.group(0) if _GOAL_CUE.search(m.group("c")) or re.search(
-            r"(?i)\b(?:it|its|them|they|those|these|'em)\b", re.split(r"[.;!?]", m.string[m.end():])[0]) else m.group(1),
+        lambda m: m.group(0) if says(m.group("c"), "goal") or says(
+            re.split(r"[.;!?]", m.string[m.end():])[0], "pronoun") else m.group(1),
         text)
 
 
@@ -204,61 +175,32 @@ def _corrected(text: str, relations_only: bool = False) -> str:
             rest = re.sub(r"(?i)^((?:to the |on the |to its |on its )?(?:left|right|front|back)(?: side)? of|behind|"
                           r"in front of|on top of|on|onto|under|below|above|beneath) (?:it|them)\b",
                           lambda k: f"{k.group(1)} {np.group(1)}", rest)
-        if re.match(r"(?i)(?:to|on) the ", dropped) and re.match(r"(?i)the (?:left|right|front|back)\b", rest):
+        if dropped[:7].lower() in ("to the ", "on the ") and re.match(r"(?i)the (?:left|right|front|back)\b", rest):
             rest = dropped.split()[0] + " " + rest
         text = text[: m.start()] + rest
 
 
-#: A contrast that only confirms the choice: "on the red mug, not the blue one".
-_NOT_THE_OTHER = re.compile(r"(?i)\s*,?\s*\b(?:and )?not (?:on |onto |to |behind |beside )?(?:the|that) [a-z ]{0,20}?one\b")
-
-
-#: Words that frame a request as the state wanted at the end ("the goal is ...",
-#: "when it's done, ...", "picture this: ..."), and spoken openers ("okay so, um").
-_FRAMES = (
-    r"\b(?:so |basically |honestly |mm,? )*the (?:end |final )?goal(?: state)?(?: i'm after| i am after| here)?"
-    r"(?: is| would be)?(?: (?:to have|to get|to see|that|for))?\s*:?\s*",
-    r"\b(?:when|once|after) (?:it's|it is|it has been|everything is|everything's|you're|you are|you've|you have|"
-    r"all is|it's all|it is all|we're|we are)(?: all)? (?:done|finished|complete|completed|over|through)\b,?\s*",
-    r"\bwhen all's said and done\b,?\s*|\bwhen all is said and done\b,?\s*|\bat the end of the day\b,?\s*",
-    r"\bin the end\b,?\s*|\bultimately\b,?\s*|\bthe way i (?:picture|see|imagine) it\b,?\s*",
-    r"\bpicture this\s*:?\s*|^\s*(?:picture|imagine)\b\s*|\bfinal (?:layout|state|arrangement|result|setup|picture)\s*:\s*",
-    r"\bthe end state(?: i'm after| i am after| i want| wanted)?\s*:\s*",
-    r"\bthe (?:end |final |main )?(?:idea|plan|aim|point|target|result)(?: here)? is(?: that| to have| for)?\s+",
-    r"\bwhat i'?m after is\s+|\bwhat i am after is\s+|\bwhat i want is\s+",
-    r"\bwhen i (?:come back|get back|return)(?:,)?\s*",
-    r"^\s*(?:can|could|may|might) (?:we|i) (?:please )?(?:have|get|see)\s+(?=the\b|all\b|every|both\b|any\b)",
-    r"^\s*(?:okay |ok |so |right )*(?:two|three|four|a couple of|a few) (?:things|jobs|tasks)\b[^.:;!?]*[.:;!?]\s*",
-    r"\b(?:tidy[- ]up|clean[- ]up) time\s*[!.]?\s*",
-    r"\b(?:the kids?|my (?:son|daughter|wife|husband|partner|kids?|boss|mum|mom|dad)|grandma|grandpa) "
-    r"(?:wants?|would like|needs?|asked for)\s+",
-)
-_OPENER = re.compile(r"(?i)^\s*(?:(?:so|okay|ok|alright|all right|well|um+|uh+|hmm+|mm+|oh|yeah|yes|hey|real quick|"
-                     r"basically|like)\b[,\s]*|right\b\s*(?:,|so\b)[,\s]*)+")
-
-
 _WISH = re.compile(r"(?i)\bit(?:'d| would) be (?:really |so |very |just )?(?:great|nice|lovely|good|helpful|awesome|ideal|"
                    r"perfect|wonderful|brilliant|cool|fantastic|super)(?: (if|to have|to see|to get))?\s+")
+_WISHED_VERB = re.compile(r"(?i)\s+\b(?:were|was|stood|sat|could be|would be|could go|went)\b")
+
+
+@step("wish")
+def _wish(text: str) -> str:
+    """"It would be great if the cans were in a row": the state wished for, "the cans in a row"."""
+    m = _WISH.search(text)
+    if m is None:
+        return text
+    rest = text[m.end():]
+    if m.group(1) == "if":
+        rest = _WISHED_VERB.sub("", rest, count=1)
+    return text[: m.start()] + rest
 
 
 def unframe(text: str) -> str:
-    """The request without the words that frame it as an end state or open it in speech."""
-    text = _OPENER.sub("", text)
-    # "It would be great if the cans were in a row", "it'd be nice to have the bowls stacked": the state wished for.
-    m = _WISH.search(text)
-    if m is not None:
-        rest = text[m.end():]
-        if m.group(1) == "if":
-            rest = re.sub(r"(?i)\s+\b(?:were|was|stood|sat|could be|would be|could go|went)\b", "", rest, count=1)
-        text = text[: m.start()] + rest
-    for f in _FRAMES:
-        text = re.sub(f"(?i){f}", "", text)
-    text = re.sub(r"(?i)\bthe (?:final|finished|end) (stack|tower|pile|line|row|circle|ring|rectangle|square|arrangement)\b",
-                  r"the \1", text)
-    text = re.sub(r"(?i)\bthe (?:final|finished|end) (?:layout|arrangement|state|result|picture|table) "
-                  r"(?:should|will|must) (?:have|show|be)\s*:?\s*", "", text)
-    text = re.sub(r"(?i)\bthe goal for (the (?:[a-z]+ ){0,2}?[a-z]+) is(?: that)?\b", r"\1:", text)
-    return _OPENER.sub("", text)
+    """The request without the words that frame it as an end state or open it in speech: the rows of the
+    ``[[frame]]`` table of ``data/rewrites.toml``, in order."""
+    return apply(text, "frame")
 
 
 #: Verb stems of "-ing" forms and their base forms.
@@ -276,15 +218,11 @@ _HEIGHTS = re.compile(r"(?i)\b(?:tall|taller|topmost|bottommost|stack(?:ed|ing)?
                       r"at the (?:top|bottom|base)(?! left| right| cent| middle| of the table| edge| side| corner| end| half)|"
                       r"on the bottom|as the base|(?:bottom|top) to (?:top|bottom)|under(?:neath)?|beneath|above|below|"
                       r"highest|lowest|high|vertical)\b")
-#: Words that ask for an arrangement or a relation.
-_ASKS = re.compile(r"(?i)\b(?:in front|behind|left|right|on top|onto|on|under|underneath|below|beneath|above|circle|"
-                   r"ring|loop|row|line|lined|stack|stacked|pile|piled|tower|rectangle|square|facing|pointing)\b")
-
 
 def _like_restated(m: re.Match) -> str:
     """Drop ", like ..." where the words before it already ask for an arrangement;
     else keep what it says ("the cups, like round in a circle")."""
-    if _ASKS.search(m.group(1)):
+    if says(m.group(1), "asks"):
         return m.group(1)
     return m.group(1) + re.sub(r"(?i),\s*(?:so |and )?(?:like|yeah|you know|i mean|basically)\b", ",", m.group(2))
 
@@ -314,8 +252,8 @@ def _size_words(text: str) -> str:
     if len(shapes) != 1:
         return text
     a = shapes[0]
-    if after is not None and after.start() >= a.end() and not re.search(
-            r"(?i)\b(?:no|wait|sorry|actually|i mean|rather)\b", text[a.end() : after.end()]):
+    if after is not None and after.start() >= a.end() and not says(
+            text[a.end() : after.end()], "repair"):
         size = (after.group(1) or after.group(2)).lower()
         text = text[: after.start()] + text[after.end():]
         return text[: a.start()] + (f"{a.group(1)} " if a.group(1) else "") + \
@@ -338,35 +276,26 @@ def rewrite(text: str) -> str:
     return apply(text)
 
 
-def _relation_words(text: str) -> str:
-    """Directions said with compass points, near and far, "diagonally" or a
-    second side given by "its" rewritten as the relation phrases of the
-    pattern keys ("west of" -> "left of", "south-east of" -> "front right
-    of", "further back than" -> "behind", "behind the cup and to its right"
-    -> "behind and to the right of the cup")."""
+@replacer("compass-relation")
+def _compass_relation(m: re.Match[str]) -> str:
+    """"west of" -> "to the left of", "south-east of" -> "front right of"."""
+    a, b = _COMPASS[m.group(1).lower()], m.group(2)
+    if b is None:
+        return {"back": "behind", "front": "in front of", "right": "to the right of", "left": "to the left of"}[a]
+    return f"{a} {_COMPASS[b.lower()]} of"
 
-    def compass(m: re.Match) -> str:
-        a, b = _COMPASS[m.group(1).lower()], m.group(2)
-        if b is None:
-            return {"back": "behind", "front": "in front of", "right": "to the right of", "left": "to the left of"}[a]
-        return f"{a} {_COMPASS[b.lower()]} of"
 
-    text = _ANY_OF.sub("one of the", text)
-    text = _COMPASS_REL.sub(compass, text)
-    for pat, rep in _NEAR_FAR:
-        text = pat.sub(rep, text)
-
-    def side(m: re.Match) -> str:
-        rel, anchor = m.group(1).lower(), m.group(2)
-        s2 = next(g for g in m.groups()[2:] if g).lower()
-        s2 = {"behind": "back", "in front of": "front"}.get(s2, s2)
-        first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
-        if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2 or (
-                first in ("front", "back") and s2 in ("front", "back")):
-            return m.group(0)  # "left of it and also right of it": a contradiction, read (and refused) as said
-        return f"{first} {s2} of {anchor}"
-
-    return _AND_ITS_SIDE.sub(side, text)
+@replacer("and-its-side")
+def _and_its_side(m: re.Match[str]) -> str:
+    """"behind the cup and to its right" -> "back right of the cup"; a contradiction is kept as said."""
+    rel, anchor = m.group(1).lower(), m.group(2)
+    s2 = next(g for g in m.groups()[2:] if g).lower()
+    s2 = {"behind": "back", "in front of": "front"}.get(s2, s2)
+    first = {"in front of": "front", "behind": "back"}.get(rel, rel.replace("to the ", "").replace(" of", ""))
+    if {first, s2} in ({"left", "right"}, {"front", "back"}) or first == s2 or (
+            first in ("front", "back") and s2 in ("front", "back")):
+        return m.group(0)  # "left of it and also right of it": a contradiction, read (and refused) as said
+    return f"{first} {s2} of {anchor}"
 
 
 def _noun_after(m: re.Match) -> str:
@@ -391,7 +320,6 @@ step("remade")(_remade)
 step("repairs")(_repairs)
 step("corrected")(_corrected)
 step("size-words")(_size_words)
-step("relation-words")(_relation_words)
 
 
 @step("corrected-relations")
@@ -399,26 +327,14 @@ def _corrected_relations(text: str) -> str:
     return _corrected(text, relations_only=True)
 
 
-@step("base-then-it")
-def _base_then_it(text: str) -> str:
-    """"take / use the tiger pan as the base and put the star onto it": the star on the tiger pan."""
-    m = re.search(r"(?i)\b(?:take|use|have|start with|begin with) (the(?: [a-z]+){1,3}?) as the (?:base|bottom|foundation)"
-                  r"(?: layer| level)?\s*,?\s*(?:and |then )*", text)
-    if m is not None and re.search(r"(?i)\b(?:it)\b", text[m.end():]):
-        rest = re.sub(r"(?i)\bit\b", m.group(1), text[m.end():], count=1)
-        text = text[: m.start()] + rest
-    return text
+_NOT_THE = re.compile(r"(?i)(?:not|no) (the [a-z ]+?)(?=,|$)")
 
 
-@step("not-these-just-the-rest")
-def _not_these_just_the_rest(text: str) -> str:
+@replacer("not-these-just-the-rest")
+def _not_these_just_the_rest(m: re.Match[str]) -> str:
     """"not the cans, not the bowls, just the rest": everything but them."""
-    m = re.match(r"(?i)^\s*(?:not|no) (the [a-z ]+?)((?:,\s*(?:and )?(?:not|no) the [a-z ]+?)*),\s*(?:just |only )?(?:the rest|"
-                 r"everything else|all the rest|the others)\b", text)
-    if m is not None:
-        more = re.findall(r"(?i)(?:not|no) (the [a-z ]+?)(?=,|$)", m.group(2) + ",")
-        text = "everything except " + " and ".join([m.group(1), *more]) + text[m.end():]
-    return text
+    more = _NOT_THE.findall(m.group(2) + ",")
+    return "everything except " + " and ".join([m.group(1), *more])
 
 
 @step("strip")
@@ -455,6 +371,12 @@ def _linear_formation_circular_arrangement(k: re.Match[str]) -> str:
 @replacer("bottles-side-by-side")
 def _bottles_side_by_side(m: re.Match[str]) -> str:
     return f'{m.group(1)} and {m.group(4)} {m.group(2)}{m.group(3)}'
+
+
+@replacer("object-taken-back")
+def _object_taken_back(m: re.Match[str]) -> str:
+    """"the red mug, no wait, the blue one": the object said second, with the noun of the first ("the blue mug")."""
+    return f"{m.group('said')} {m.group('head')}" if m.group("said") else ""
 
 
 @replacer("mean-meaning-namely-red")
@@ -501,10 +423,12 @@ def _order_from_bottom_list(m: re.Match[str]) -> str:
 def _red_bowl_down_white(m: re.Match[str]) -> str:
     """"red bowl down, white bowl up, blue bowl between": a role said by one word, after an object said by its colour."""
     said = m.group(2)
-    if (re.match(r"(?i)(?:pile|stack|line|set|put|place|move|make|build|pick|lift|hold|turn|fill|heap|them|it)\b", said)
-            or re.search(r"(?i)\b[a-z]{3,}(?:ed|ing)\b", said)
-            or re.search(r"(?i)\b(?:pile|stack|line|set|put|place|move|make|build|lift|pick|them|it|those|these|they)\b", said)
-            or not re.search(rf"(?i)\b(?:{MACROS['HUE']}|silver|one)\b", said)):
+    ws = lexicon.words(said)
+    if ((said[:1].isalpha() and ws[:1] in (["hold"], ["turn"], ["fill"], ["heap"]))
+            or any(w.isascii() and w.isalpha() and ((len(w) >= 5 and w.endswith("ed")) or (len(w) >= 6 and w.endswith("ing")))
+                   for w in ws)
+            or says(said, "request")
+            or not any(w in HUES or w in ("silver", "one") for w in ws)):
         return m.group(0)
     return m.group(1) + said + {"down": " at the bottom", "up": " on the top", "between": " in between"}[m.group(3).lower()]
 
@@ -521,7 +445,7 @@ def _drop_cup_into_bowl(m: re.Match[str]) -> str:
 
 @replacer("blocks-too-but-separately")
 def _blocks_too_but_separately(m: re.Match[str]) -> str:
-    return f'{m.group(1)}. the same for {m.group(2)}' if _ASKS.search(m.group(1)) else m.group(0)
+    return f'{m.group(1)}. the same for {m.group(2)}' if says(m.group(1), "asks") else m.group(0)
 
 
 replacer("ones-noun-said-after")(_noun_after)
@@ -536,8 +460,7 @@ replacer("has-have-should-directly")(_has_rel)
 @replacer("green-bowl-top-blue")
 def _green_bowl_top_blue(m: re.Match[str]) -> str:
     """A support relation after ", with" inside a sentence that speaks of a stack stays part of the stack."""
-    if m.group(2).lower() in ("on top of", "on", "under", "underneath", "below", "beneath") and re.search(
-            r"(?i)\b(?:stack|pile|tower)\b", m.string[: m.start()].split(".")[-1]):
+    if m.group(2).lower() in ("on top of", "on", "under", "underneath", "below", "beneath") and says(m.string[: m.start()].split(".")[-1], "stack"):
         return m.group(0)
     return f", and {m.group(1)} {m.group(2)} "
 
@@ -550,8 +473,9 @@ def _highest_topmost_stack_roles(m: re.Match[str]) -> str:
 @replacer("only-spoon-not-fork")
 def _only_spoon_not_fork(m: re.Match[str]) -> str:
     """", not the white one," after a plural ("the bowls, but not the white one,"): an exception; else nothing."""
-    if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$", m.string[: m.start()]) and re.search(
-            r"(?i)\bones?$", m.group(2)):
+    said = m.group(2)
+    if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$", m.string[: m.start()]) \
+            and said[-1:].isalpha() and lexicon.words(said)[-1:] in (["one"], ["ones"]):
         return f" except the {m.group(2)},"
     return ","
 
@@ -563,7 +487,7 @@ def _circle_them_up_ring(m: re.Match[str]) -> str:
 
 @replacer("after-behind-beside-next")
 def _after_behind_beside_next(m: re.Match[str]) -> str:
-    return '' if re.search('(?i)\\b(row|line|file|queue)\\b', m.string) else 'in a line'
+    return '' if says(m.string, "row") else 'in a line'
 
 
 @replacer("their-new-spot-place")
@@ -574,7 +498,7 @@ def _their_new_spot_place(m: re.Match[str]) -> str:
 @replacer("repairs-inside-reference-blue")
 def _repairs_inside_reference_blue(m: re.Match[str]) -> str:
     """A request taken back ("..., no wait, ..."): dropped where it asked for an arrangement or a place setting."""
-    if _ASKS.search(m.group(2)) or re.search(r"(?i)\b(?:table|dinner|setting|place)\b", m.group(2)):
+    if says(m.group(2), "asks") or says(m.group(2), "setting"):
         return m.group(1)
     return m.group(0)
 
@@ -586,6 +510,7 @@ def _not_the_other_one(m: re.Match[str]) -> str:
     reads them as an exception or refuses them (:meth:`.rules._Parser._trailing_not`)."""
     before = m.string[: m.start()]
     single = re.search(r"(?i)\bthe(?: [a-z]+){0,2} ([a-z]+)\s*,?\s*$", before)
-    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or re.search(r"[^s]s$", single.group(1)):
+    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or (len(single.group(1)) >= 2 and single.group(1)[-1] == "s"
+                                                                     and single.group(1)[-2] != "s"):
         return m.group(0)  # after "but", or a plural ("the blocks, not the purple one"): an exception
     return ""

@@ -260,10 +260,15 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         while head[:1] in (("piece",), ("pieces",), ("item",), ("items",), ("bit",), ("bits",)) and head[1:2] == ("of",):
             head = head[2:]  # "the leftmost piece of silverware"
         ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
-        if ids is None or (len(ids) == 1 and ref.count == 1 and ref.of is None):
-            continue  # names nothing, or one object already: "the side of the white bowl nearest me"
+        if ids is None:
+            continue  # names nothing: left for the parser to refuse
+        single = len(ids) == 1 and ref.count == 1 and ref.of is None
+        if single and ref.key.anchor is None:
+            continue  # one object already: "the side of the white bowl nearest me"
+        # One object and a reference object ("the mug nearest the kettle" with one mug): the phrase is that
+        # object; its reference object is no object of the goal.
         lent = next(((head[k:], borrowed[head[k:]]) for k in range(len(head)) if borrowed and head[k:] in borrowed), None)
-        if lent is not None:
+        if lent is not None and not single:
             said = text[toks[ref.start].pos:_end(text, toks[ref.end - 1])]
             raise InputError(f"'{said}': the scene has no {' '.join(lent[0])}, and a position does not choose "
                              f"among objects named otherwise ({lent[1]}); say which {lent[1]} (e.g. by colour or id)")

@@ -135,3 +135,16 @@ def test_a_synonym_head_does_not_choose_among_several_objects():
     one = _kitchen([("mug", "red", -0.3, 0.0), ("kettle", "black", 0.25, 0.1), ("tray", "white", 0.0, -0.2)])
     got = parse(one, "put the cup on the left of the tray")
     assert [(g.pattern, list(g.objects), g.anchor) for g in got.goals] == [("left", [1], 3)]
+
+
+@pytest.mark.parametrize("said", ["put the cup nearest the kettle on the left of the tray",
+                                  "put the mug nearest the kettle on the left of the tray",
+                                  "put the mug furthest from the kettle on the left of the tray"])
+def test_one_object_and_a_reference_object_is_that_object_alone(said):
+    """With one mug, "the mug nearest the kettle" is the mug: the kettle only says where it stands
+    and is no object of the goal (it used to be added to it)."""
+    from lgmcts.language import parse
+
+    one = _kitchen([("mug", "red", -0.3, 0.0), ("kettle", "black", 0.25, 0.1), ("tray", "white", 0.0, -0.2)])
+    got = parse(one, said)
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got.goals] == [("left", [1], 3)]

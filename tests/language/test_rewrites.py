@@ -8,9 +8,10 @@ import re
 import pytest
 
 from lgmcts.language import normalise
-from lgmcts.language.rewrite import rewrite
+from lgmcts.language.rewrite import rewrite, unframe
 
-RULES = normalise.rules()
+#: Every row of every table of the file.
+RULES = tuple(r for table in normalise.TABLES for r in normalise.rules(table))
 
 
 def test_every_row_has_a_unique_id_and_an_example():
@@ -31,12 +32,20 @@ def test_row_examples(rule):
 def test_rewrite_is_the_table_in_order():
     text = "Stack them so that the blue block is at the top... the white one's the base, right?"
     out = text
-    for r in RULES:
+    for r in normalise.rules():
         out = r(out)
     assert rewrite(text) == out == normalise.apply(text)
     steps = normalise.trace(text)
     assert steps and steps[-1][1] == out
-    assert [i for i, _ in steps] == [r.id for r in RULES if r.id in {i for i, _ in steps}]
+    assert [i for i, _ in steps] == [r.id for r in normalise.rules() if r.id in {i for i, _ in steps}]
+
+
+def test_unframe_is_the_frame_table_in_order():
+    text = "Okay so, when it's all done, it would be great if the cans were in a row"
+    assert unframe(text) == "the cans in a row"
+    assert [i for i, _ in normalise.trace(text, "frame")] == ["opener", "wish", "when-it-is-done"]
+    with pytest.raises(KeyError):
+        normalise.rules("no-such-table")
 
 
 def test_macros_expand_from_the_lexicon_and_unknown_ones_fail():
