@@ -25,9 +25,11 @@ command verbs).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
-__all__ = ["TIME_OPENERS", "drop_context"]
+from . import lexicon
+
+__all__ = ["TIME_OPENERS", "drop_context", "person_remark"]
 
 #: Words that open a time clause.
 TIME_OPENERS = frozenset({"after", "before", "once", "when", "whenever", "while", "until", "till", "by", "tonight",
@@ -122,3 +124,53 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
                 return before + sent[end:]
             break
     return sent
+
+
+_CTX = lexicon.context_words()
+
+
+def _subject_end(body: Sequence[str]) -> int:
+    """How many words of ``body`` make a subject that is a person or a pet ("i'm", "the kids", "my
+    nephew's"), 0 for none."""
+    if body and body[0] in _CTX["person_pronouns"]:
+        return 1
+    if len(body) > 1 and body[0] in _CTX["person_possessives"]:
+        noun = body[1][:-2] if body[1].endswith("'s") else body[1]
+        if noun in _CTX["people"]:
+            return 2
+    return 0
+
+
+def person_remark(body: Sequence[str], object_word: Callable[[str], bool],
+                  request_word: Callable[[str], bool], command_verb: Callable[[str], bool]) -> bool:
+    """Whether ``body`` (the words of a sentence or clause, no punctuation) is a remark about the people or
+    pets of the house that asks for nothing: its subject is one of them ("the kids left them all over the
+    place", "i'm trying to teach the little one colours lol"), and after it there is no word of the scene's
+    objects (``object_word``), no word by which it would ask ("we need", "i'd like", :data:`_CTX` ``asking``)
+    and no word of a goal (``request_word``), where a command verb after such a subject is told, not asked
+    ("trying to get the little one to learn") and a direction word counts only in a place ("to the left",
+    "left of"; "the kids left them" is a verb).
+
+    >>> remark = lambda s: person_remark(s.split(), lambda w: w in {"cans", "red"},
+    ...                                  lambda w: w in {"left", "line", "get", "on"}, lambda w: w == "get")
+    >>> remark("the kids left them all over the place"), remark("i'm trying to get the little one to learn")
+    (True, True)
+    >>> remark("we need them in a line"), remark("the kids left the red cans"), remark("the kids are on the left")
+    (False, False, False)
+    """
+    k = _subject_end(body)
+    if not k:
+        return False
+    rest = list(body[k:])
+    for j, w in enumerate(rest):
+        if w in _CTX["asking"] or object_word(w):
+            return False
+        if w in lexicon.DIRECTIONS:
+            before = rest[j - 1] if j else ""
+            after = rest[j + 1] if j + 1 < len(rest) else ""
+            if before in _CTX["place_before"] or after in _CTX["place_after"]:
+                return False
+            continue
+        if request_word(w) and not command_verb(w):
+            return False
+    return bool(rest)

@@ -45,6 +45,7 @@ __all__ = [
     "VIEWER_WORDS",
     "alternation",
     "check_shape_nouns",
+    "context_words",
     "says",
     "words",
 ]
@@ -105,6 +106,11 @@ def words(text: str) -> list[str]:
 #: Named cue lists (``[cues]``): each a tuple of phrases, a phrase a tuple of words as :func:`words` cuts them.
 CUES: dict[str, tuple[tuple[str, ...], ...]] = {
     name: tuple(tuple(words(p)) for p in phrases) for name, phrases in _DATA["cues"].items()}
+
+
+def context_words() -> dict[str, frozenset[str]]:
+    """The word lists of ``[context]``: the subjects, asking words and place neighbours of a remark."""
+    return {name: frozenset(ws) for name, ws in _DATA["context"].items()}
 
 
 def says(text: str, *cues: str) -> bool:

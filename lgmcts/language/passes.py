@@ -27,6 +27,7 @@ from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
+from .context import person_remark
 from .places import POINTING_PARTS
 from .rewrite import FREE_ORDER
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
@@ -462,11 +463,33 @@ class _TokenPasses:
         sentences = _sentences(words, (".", "!", "?", ";"))
         dropped = 0
         for sent in sentences[:-1]:
+            if self._people_remark(sent[:-1]):
+                dropped += len(sent)  # "i'm trying to teach the little one colours.": about the people
+                continue
             if not self._describes(sent[:-1]):
                 break
             self._remember_subject(sent[:-1])
             dropped += len(sent)
         return words[dropped:]
+
+    def _people_remark(self, words: tuple[str, ...] | list[str]) -> bool:
+        """Whether ``words`` only remark on the people or pets of the house (:func:`.context.person_remark`)."""
+        body = [w for w in words if w not in (",", "'", ".", "!", "?", ";")]
+        while body and body[0] in _LEADING:
+            body = body[1:]
+        return person_remark(body, self._object_word, self._request_word, _command_verb)
+
+    def _without_remark_tail(self, sent: tuple[str, ...]) -> tuple[str, ...]:
+        """``sent`` without a last clause after a comma that only remarks on the people of the house
+        ("put the cans in a line, the kids left them all over the place"), where the words before it ask."""
+        end = len(sent)
+        while end and sent[end - 1] in (".", "!", "?"):
+            end -= 1
+        cut = max((k for k in range(end) if sent[k] == ","), default=-1)
+        if cut <= 0 or not self._people_remark(sent[cut + 1 : end]) or not any(
+                self._request_word(w) for w in sent[:cut]):
+            return sent
+        return sent[:cut] + sent[end:]
 
     def _trailing_remarks(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """Sentences after the request that name no object and only remark on it
@@ -476,7 +499,7 @@ class _TokenPasses:
         word ("At the front.", "Any order.") is kept."""
         sentences = _sentences(words, (".", "!", "?"))
         if len(sentences) < 2:
-            return words
+            return self._without_remark_tail(words)
         out: list[str] = []
         asked = False
         for sent in sentences:
@@ -494,8 +517,10 @@ class _TokenPasses:
                         r"\b(?:go|see|mean|mind|care|know|think|remember|wins?|done|cheers|thanks|thank|please)\b",
                         " ".join(body))):
                 continue
+            if asked and self._people_remark(body):
+                continue  # "The kids made a mess earlier."
             asked = asked or bool(named)
-            out.extend(sent)
+            out.extend(self._without_remark_tail(sent) if named else sent)
         return tuple(out)
 
     def _describes(self, sent: tuple[str, ...]) -> bool:

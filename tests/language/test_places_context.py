@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from lgmcts.formats import parse_goals
-from lgmcts.language.context import drop_context
+from lgmcts.language.context import drop_context, person_remark
 from lgmcts.language.grounding import tokenize
 from lgmcts.language.places import Place, read_facing, read_place
 
@@ -115,3 +115,51 @@ def test_context_that_asks_nothing_is_dropped(text, left):
 ])
 def test_what_may_matter_is_kept(text):
     assert _drop(text) == " ".join(_ws(text))
+
+
+def _remark(text: str) -> bool:
+    return person_remark(text.split(), _OBJ.__contains__, _REQ.__contains__, lambda w: w in ("put", "get", "move"))
+
+
+@pytest.mark.parametrize("text", [
+    "the kids left them all over the place",          # "left" is a verb here
+    "i'm trying to get the little one to learn colours",
+    "my nephew's coming tomorrow",
+    "the dog knocked everything over",
+    "we're having guests tonight",
+])
+def test_a_remark_about_the_people_of_the_house(text):
+    assert _remark(text)
+
+
+@pytest.mark.parametrize("text", [
+    "we need them in a line",                         # asks
+    "i'd like the mug behind the plate",
+    "the kids left the red mug out",                  # names an object: may be what "it" means later
+    "the kids are on the left",                       # a place
+    "the mug is in my way",                           # the subject is an object
+    "i want it to the left of the plate",
+])
+def test_not_a_remark_about_the_people(text):
+    assert not _remark(text)
+
+
+@pytest.mark.parametrize("said, goals", [
+    ("put the three cans in a line, the kids left them all over the place",
+     [{"pattern": "line", "objects": [3, 4, 5]}]),
+    ("i'm trying to get the little one to learn colours lol. put the red can left of the plate",
+     [{"pattern": "left", "objects": [3], "anchor": 1}]),
+    ("Put the red can left of the plate. The dog keeps knocking things over!",
+     [{"pattern": "left", "objects": [3], "anchor": 1}]),
+])
+def test_a_remark_about_the_people_asks_nothing(said, goals):
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
+            [("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+             ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)])]})
+    got = parse(scene, said)
+    assert [g.model_dump(exclude_none=True) for g in got.goals] == goals
