@@ -28,7 +28,8 @@ from ..patterns.base import BasePattern, fit_json, goal_xy
 from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
-from .dense import MAX_DISCS, dense_plan
+from .dense import EXPANSIONS, MAX_DISCS
+from .dense import search as corner_search
 from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
@@ -142,14 +143,16 @@ def _dense_run(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     if res.solved or quick >= opts.max_iter:
         return res, {}
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
-    actions = dense_plan(problem, deadline=deadline)
+    actions, states = corner_search(problem, EXPANSIONS, deadline)
     kept = None if actions is None else _accept(opts)(problem, actions, None)
     if kept is not None:
         return SearchResult(True, tuple(kept), res.iterations, res.nodes, time.perf_counter() - t0, solutions=1,
-                            found=len(actions or ())), {"dense": True}
+                            found=len(actions or ())), {"dense": True, "corner_states": states}
     rest = replace(opts, max_iter=opts.max_iter - res.iterations, time_limit=_left(opts, t0))
     final = mcts(Rearrangement(problem, rest, accept=_accept(rest)), rng, rest)
-    return replace(final, iterations=final.iterations + res.iterations, time_s=time.perf_counter() - t0), {}
+    # What was tried: the stats say how many table states the corner search expanded without a plan.
+    return replace(final, iterations=final.iterations + res.iterations, time_s=time.perf_counter() - t0), \
+        {"corner_states": states}
 
 
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:

@@ -52,7 +52,7 @@ def test_narrow_box_stuck_sequence_is_planned_by_the_corner_search():
     assert actions is not None
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     p = plan(c.scene, c.goals, seed=0)
-    assert p.solved and p.stats.get("dense") and check(c.scene, c.goals, p).valid
+    assert p.solved and p.stats.get("dense") and p.stats["corner_states"] >= 1 and check(c.scene, c.goals, p).valid
     # Off, the tree search plans it as before, without the flag.
     q = plan(c.scene, c.goals, seed=0, max_iter=100, options=SearchOptions(dense=False))
     assert "dense" not in q.stats
@@ -89,6 +89,13 @@ def test_budget_ends_a_search_with_no_plan():
     c = _case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], 100.0, width=400.0, height=200.0)
     actions, expanded = dense.search(_problem(c), 50, None)
     assert actions is None and expanded <= 50
+    # The planner proves it at once (lgmcts.confinement, asked before the corner search) ...
+    p = plan(c.scene, c.goals, seed=0, max_iter=40)
+    assert not p.solved and p.stats.get("infeasible") and "corner_states" not in p.stats
+    # ... and without the proof says what it tried: the corner search's states and the tree search's budget.
+    q = plan(c.scene, c.goals, seed=0, max_iter=40, options=SearchOptions(proof_after=0))
+    assert not q.solved and not q.stats.get("infeasible")
+    assert 1 <= q.stats["corner_states"] <= dense.EXPANSIONS and q.stats["iterations"] == 40
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
