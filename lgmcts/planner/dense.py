@@ -42,18 +42,24 @@ from ..patterns.pose import XY_TOL, YAW_TOL
 from .problem import Problem
 from .sequence import TOUCH, eligible
 
-__all__ = ["MAX_DISCS", "dense_plan"]
+__all__ = ["MAX_DISCS", "budget", "dense_plan"]
 
 #: Most discs on the table for which :func:`dense_plan` is tried.
-MAX_DISCS = 10
+MAX_DISCS = 40
 #: Weight of the goal count against the moves made (greedier above 1).
 WEIGHT = 2.0
 #: States whose centres agree to this many metres are one state.
 GRID = 5e-4
 #: Gap (m) kept between a parked disc and the others.
 GAP = CLEARANCE
-#: States expanded before giving up.
+#: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
+
+
+def budget(n: int) -> int:
+    """States expanded before giving up on ``n`` discs: :data:`EXPANSIONS` up to ten, then fewer in proportion (a
+    state costs about ``n`` times as much), about a second of CPU time in all."""
+    return EXPANSIONS * 10 // max(n, 10)
 
 
 class _Discs:
@@ -102,18 +108,18 @@ class _Discs:
             lo, hi = self.lo[i0], self.hi[i0]
             pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
             tags = [np.full((4, 2), -1)]
-            # Circles with the box's edges.
-            for axis in (0, 1):
-                for edge in (lo[axis], hi[axis]):
-                    off = edge - pos[:, axis]
-                    ok = np.flatnonzero(np.abs(off) <= rad)
-                    h = np.sqrt(np.maximum(rad[ok] ** 2 - off[ok] ** 2, 0.0))
-                    for sgn in (1.0, -1.0):
-                        p = np.empty((len(ok), 2))
-                        p[:, axis] = edge
-                        p[:, 1 - axis] = pos[ok, 1 - axis] + sgn * h
-                        pts.append(p)
-                        tags.append(np.stack([ok, np.full(len(ok), -1)], axis=1))
+            # Circles with the box's sides: x = lo, x = hi, y = lo, y = hi.
+            axis = np.array([0, 0, 1, 1])
+            side = np.array([lo[0], hi[0], lo[1], hi[1]])
+            off = side[:, None] - pos[:, axis].T  # (side, disc)
+            e, j = np.nonzero(np.abs(off) <= rad[None, :])
+            h = np.sqrt(np.maximum(rad[j] ** 2 - off[e, j] ** 2, 0.0))
+            for sgn in (1.0, -1.0):
+                p = np.empty((len(e), 2))
+                p[np.arange(len(e)), axis[e]] = side[e]
+                p[np.arange(len(e)), 1 - axis[e]] = pos[j, 1 - axis[e]] + sgn * h
+                pts.append(p)
+                tags.append(np.stack([j, np.full(len(j), -1)], axis=1))
             # Circles with each other.
             a, b = np.triu_indices(self.n, 1)
             v = pos[b] - pos[a]
@@ -143,14 +149,15 @@ class _Discs:
         return out
 
 
-def dense_plan(problem: Problem, *, max_expansions: int = EXPANSIONS, deadline: float | None = None,
+def dense_plan(problem: Problem, *, max_expansions: int | None = None, deadline: float | None = None,
                max_discs: int = MAX_DISCS) -> list[Action] | None:
     """A plan for an :func:`~lgmcts.planner.sequence.eligible` problem of at most ``max_discs`` discs, by best-first
     search over table states (see the module's notes); ``None`` when none is found within ``max_expansions``
-    expanded states or by ``deadline`` (a :func:`time.perf_counter` time)."""
+    expanded states (:func:`budget` by default) or by ``deadline`` (a :func:`time.perf_counter` time)."""
     if not eligible(problem) or problem.scene.n > max_discs:
         return None
-    return search(problem, max_expansions, deadline)[0]
+    n = problem.scene.n
+    return search(problem, budget(n) if max_expansions is None else max_expansions, deadline)[0]
 
 
 def search(problem: Problem, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
@@ -217,7 +224,8 @@ class _Search:
             rest[:, i] = False
             blocked_rest = np.asarray(rest.any(axis=1))
             if t.has_goal[i] and not done[i]:
-                free = np.hypot(*(np.delete(pos, i, axis=0) - t.goal[i]).T) >= np.delete(t.touch[i], i)
+                free = np.hypot(*(pos - t.goal[i]).T) >= t.touch[i]
+                free[i] = True
                 if free.all():
                     found = self.push(s, g, i, t.goal[i][None, :], True, done, blocked_rest, key)
                     if found is not None:

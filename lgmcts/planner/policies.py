@@ -28,7 +28,7 @@ from ..patterns.base import BasePattern, fit_json, goal_xy
 from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
-from .dense import EXPANSIONS, MAX_DISCS
+from .dense import MAX_DISCS, budget
 from .dense import search as corner_search
 from .domain import Accept, Rearrangement, validated
 from .polish import polished
@@ -143,7 +143,7 @@ def _dense_run(problem: Problem, rng: np.random.Generator, opts: SearchOptions) 
     if res.solved or quick >= opts.max_iter:
         return res, {}
     deadline = None if opts.time_limit is None else t0 + opts.time_limit
-    actions, states = corner_search(problem, EXPANSIONS, deadline)
+    actions, states = corner_search(problem, budget(problem.scene.n), deadline)
     kept = None if actions is None else _accept(opts)(problem, actions, None)
     if kept is not None:
         return SearchResult(True, tuple(kept), res.iterations, res.nodes, time.perf_counter() - t0, solutions=1,
