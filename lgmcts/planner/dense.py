@@ -65,7 +65,7 @@ def budget(n: int) -> int:
 class _Discs:
     """The fixed data of one problem: radii, goals, the boxes the centres stay in."""
 
-    def __init__(self, problem: Problem) -> None:
+    def __init__(self, problem: Problem, reverse: bool = False) -> None:
         sc = problem.scene
         self.n = sc.n
         self.ids = sc.ids
@@ -79,6 +79,13 @@ class _Discs:
             self.has_goal[o] = True
             self.goal[o] = pose[:2]
             self.goal_yaw[o] = float(pose[2])
+        #: How near its goal a disc counts as there: the pose rule's tolerance, or exactly when searching backwards
+        #: (the states found become the plan's, so the last must be the start itself).
+        self.tol = XY_TOL
+        self.reverse = reverse
+        if reverse:
+            self.start, self.goal = self.goal, self.start
+            self.tol = 1e-9
         # Each centre's box at its start yaw (buffers keep it): the footprint polygon stays inside the workspace.
         xmin, xmax, ymin, ymax = sc.bounds
         self.lo = np.empty((self.n, 2))
@@ -161,8 +168,22 @@ def dense_plan(problem: Problem, *, max_expansions: int | None = None, deadline:
 
 
 def search(problem: Problem, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
-    """:func:`dense_plan`'s search on an eligible problem: the plan or ``None``, and the states expanded."""
-    return _Search(_Discs(problem)).run(max_expansions, deadline)
+    """:func:`dense_plan`'s search on an eligible problem: the plan or ``None``, and the states expanded.
+
+    Forwards from the start first; when that finds nothing and the problem can be run backwards (every disc has
+    a goal, at its start yaw), backwards from the goals with the same budget: a move's inverse is a move (the
+    disc goes back where it stood, which was free of the same others), so the states found from the goals to the
+    start, read in reverse, are a plan. Some tables are easier to unpack from one end than the other."""
+    t = _Discs(problem)
+    plan, expanded = _Search(t).run(max_expansions, deadline)
+    if plan is not None or not _reversible(t):
+        return plan, expanded
+    back, more = _Search(_Discs(problem, reverse=True)).run(max_expansions, deadline)
+    return back, expanded + more
+
+
+def _reversible(t: _Discs) -> bool:
+    return bool(t.has_goal.all() and t.yaw_ok.all() and np.all(t.yaw0 == t.goal_yaw))
 
 
 #: One search state: disc centres, whether each disc's yaw is its goal's, the parent state's index, and the move
@@ -181,7 +202,7 @@ class _Search:
 
     def at_goal(self, pos: np.ndarray, yaw_ok: np.ndarray) -> np.ndarray:
         t = self.t
-        return np.asarray(~t.has_goal | ((np.hypot(*(pos - t.goal).T) <= XY_TOL) & yaw_ok))
+        return np.asarray(~t.has_goal | ((np.hypot(*(pos - t.goal).T) <= t.tol) & yaw_ok))
 
     def covered(self, pos: np.ndarray) -> np.ndarray:
         """``cov[k, j]``: disc j, where it stands, covers the goal disc of k."""
@@ -262,7 +283,7 @@ class _Search:
         open_[i] = True  # judged per point below
         blocked = (blocked_rest[None, :] | col) & open_[None, :]
         ok_yaw = True if to_goal else bool(t.yaw_ok[i])
-        meets = ~t.has_goal[i] | ((np.hypot(*(pts - t.goal[i]).T) <= XY_TOL) & ok_yaw)
+        meets = ~t.has_goal[i] | ((np.hypot(*(pts - t.goal[i]).T) <= t.tol) & ok_yaw)
         others_open = float((~done).sum() - (not done[i]))
         yok = self.states[s][1].copy()
         yok[i] = ok_yaw
@@ -280,8 +301,18 @@ class _Search:
 
 
 def _actions(t: _Discs, states: list[_State], s: int) -> list[Action]:
-    """The moves from the first state to state ``s``."""
+    """The moves from the first state to state ``s``; searching backwards, from state ``s`` to the first (then each
+    move takes its disc to where it stood in the state before, the goal where that was the first state's place)."""
     out: list[Action] = []
+    if t.reverse:
+        while states[s][2] >= 0:
+            _, _, parent, i, _ = states[s]
+            xy = states[parent][0][i]
+            home = bool(np.all(xy == t.start[i]))
+            out.append(Action.model_construct(object=t.ids[i], to=(float(xy[0]), float(xy[1]), float(t.yaw0[i])),
+                                              on=None, purpose="goal" if home else "relocate"))
+            s = parent
+        return out
     while states[s][2] >= 0:
         pos, _, parent, i, to_goal = states[s]
         yaw = t.goal_yaw[i] if to_goal else t.yaw0[i]
