@@ -1,10 +1,10 @@
-"""A best-first search for a few tightly packed discs with pose goals.
+"""A best-first search for tightly packed discs with pose goals.
 
 Where :mod:`.sequence` gets stuck (no parking spot uncovers a goal) and the
-table holds only a few discs (at most :data:`MAX_DISCS`), the discs often
-leave no room anywhere but a few pockets between one another and the
-edges, as in TRLB's densest small instances (five to ten discs of 14-20 cm
-radius in a 1 m square). Random samples rarely land in such a pocket; the
+table holds at most :data:`MAX_DISCS` discs, the discs often leave no room
+anywhere but a few pockets between one another and the edges, as in
+TRLB's densest instances (five to ten discs of 14-20 cm radius in a 1 m
+square, or tens of smaller ones at D = 0.6). Random samples rarely land in such a pocket; the
 points that matter are its corners. :func:`dense_plan` therefore searches
 over whole table states, best first, with two kinds of moves per disc:
 
@@ -20,8 +20,9 @@ States are ranked by ``moves + W * (open goals + 1/2 * covered open
 goals)`` with ``W =`` :data:`WEIGHT` (ties: first generated first) and
 merged when every centre agrees to :data:`GRID` m. The search stops at the
 first state where every disc meets its goal, after ``max_expansions``
-states, or at ``deadline``; it uses no random numbers, so the same problem
-gives the same plan. Free-space corners are where a disc packs tightest
+states (:func:`budget`), or at ``deadline``. When it finds nothing it runs
+again backwards, from the goals to the start (:func:`search`). It uses no
+random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
 found, and a disc slid into a corner leaves the most room elsewhere. The
 plan is validated like any found plan by the caller.
