@@ -55,6 +55,9 @@ def test_narrow_box_stuck_sequence_is_planned_by_the_corner_search():
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     p = plan(c.scene, c.goals, seed=0)
     assert p.solved and p.stats.get("dense") and p.stats["corner_states"] >= 1 and check(c.scene, c.goals, p).valid
+    # The same plan again for the same seed (no time limit: nothing depends on the clock).
+    again = plan(c.scene, c.goals, seed=0)
+    assert [a.model_dump() for a in again.actions] == [a.model_dump() for a in p.actions]
     # Off, the tree search plans it as before, without the flag.
     q = plan(c.scene, c.goals, seed=0, max_iter=20, options=SearchOptions(dense=False))
     assert "dense" not in q.stats
