@@ -59,7 +59,7 @@ EXPANSIONS = 1500
 
 def budget(n: int) -> int:
     """States expanded before giving up on ``n`` discs: :data:`EXPANSIONS` up to ten, then fewer in proportion (a
-    state costs about ``n`` times as much), about a second of CPU time in all."""
+    state costs about ``n`` times as much), about a second of CPU time for each direction of :func:`search`."""
     return EXPANSIONS * 10 // max(n, 10)
 
 
