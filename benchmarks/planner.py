@@ -224,7 +224,7 @@ def _trlb_row(d: float, n: int, files: tuple[Path, Path], a: argparse.Namespace,
     else:
         row.update(time_s=time.perf_counter() - t, cpu_s=time.process_time() - tc, actions=len(p.actions),
                    iterations=p.stats["iterations"], reason=p.stats.get("reason", ""),
-                   sequenced=bool(p.stats.get("sequenced")))
+                   sequenced=bool(p.stats.get("sequenced")), dense=bool(p.stats.get("dense")))
         if p.stats.get("infeasible"):
             # The planner's proof that no table-only plan exists (lgmcts.confinement).
             row["refused"] = row["reason"]

@@ -28,6 +28,8 @@ from ..patterns.base import BasePattern, fit_json, goal_xy
 from ..robot import plan_reach_problems, robot_of
 from ..scene import Scene, replay
 from ..validate import goal_satisfied
+from .dense import MAX_DISCS, budget
+from .dense import search as corner_search
 from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
@@ -111,8 +113,55 @@ def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
         {"sequenced": True}
 
 
+def _dense_applies(problem: Problem, opts: SearchOptions) -> bool:
+    return opts.sequence and opts.dense and opts.step.reach is None and eligible(problem) \
+        and problem.scene.n <= MAX_DISCS
+
+
+#: Iterations of the tree search before :mod:`.dense` takes over on a few tightly packed discs.
+DENSE_AFTER = 10
+
+
+def _left(opts: SearchOptions, t0: float) -> float | None:
+    return None if opts.time_limit is None else max(opts.time_limit - (time.perf_counter() - t0), 1e-3)
+
+
+def _dense_run(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
+    """Where the fast attempt got stuck on a few discs (:func:`_dense_applies`): a proof that no plan exists
+    (:mod:`lgmcts.confinement`, unless ``opts.proof_after`` is 0), else :data:`DENSE_AFTER` iterations of the tree
+    search, else the best-first search of :mod:`.dense`, else the tree search with the rest of the budget. Nothing
+    here but the tree search draws random numbers, so the plan is the same for a seed when no time limit cuts it."""
+    t0 = time.perf_counter()
+    tree = Rearrangement(problem, opts, accept=_accept(opts))
+    why = tree.impossible() if opts.proof_after > 0 else None
+    if why is not None:
+        return SearchResult(False, (), 0, 0, time.perf_counter() - t0, reason=why, proved=True), {}
+    # The proof was asked: the tree search does not ask again.
+    opts = replace(opts, proof_after=0)
+    quick = min(DENSE_AFTER, opts.max_iter)
+    res = mcts(tree, rng, replace(opts, max_iter=quick, time_limit=_left(opts, t0)))
+    if res.solved or quick >= opts.max_iter:
+        return res, {}
+    deadline = None if opts.time_limit is None else t0 + opts.time_limit
+    actions, states = corner_search(problem, budget(problem.scene.n), deadline)
+    kept = None if actions is None else _accept(opts)(problem, actions, None)
+    if kept is not None:
+        return SearchResult(True, tuple(kept), res.iterations, res.nodes, time.perf_counter() - t0, solutions=1,
+                            found=len(actions or ())), {"dense": True, "corner_states": states}
+    rest = replace(opts, max_iter=opts.max_iter - res.iterations, time_limit=_left(opts, t0))
+    final = mcts(Rearrangement(problem, rest, accept=_accept(rest)), rng, rest)
+    # What was tried: the stats say how many table states the corner search expanded without a plan.
+    return replace(final, iterations=final.iterations + res.iterations, time_s=time.perf_counter() - t0), \
+        {"corner_states": states}
+
+
 def _run_lgmcts(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:
-    return _sequenced(problem, opts) or (mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {})
+    first = _sequenced(problem, opts)
+    if first is not None:
+        return first
+    if _dense_applies(problem, opts):
+        return _dense_run(problem, rng, opts)
+    return mcts(Rearrangement(problem, opts, accept=_accept(opts)), rng, opts), {}
 
 
 def _run_greedy(problem: Problem, rng: np.random.Generator, opts: SearchOptions) -> Outcome:

@@ -72,6 +72,12 @@ class SearchOptions:
         parking spots where blocked in a cycle); the tree search runs only
         when that plan gets stuck or is refused by the validator, and always
         with a robot (``step.reach``).
+    dense : for ``lgmcts``, where that plan gets stuck on at most
+        :data:`lgmcts.planner.dense.MAX_DISCS` discs, next ask
+        :mod:`lgmcts.confinement` for a proof that no plan exists and then
+        try the best-first search of :mod:`lgmcts.planner.dense` (free-space
+        corners as parking spots) before the tree search; neither draws
+        random numbers.
     """
 
     max_iter: int = 10_000
@@ -88,6 +94,7 @@ class SearchOptions:
     proof_after: int = 20
     proof_after_s: float = 0.25
     sequence: bool = True
+    dense: bool = True
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,144 @@
+"""The best-first search over free-space corners for a few tightly packed discs (lgmcts.planner.dense)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from lgmcts import check, plan
+from lgmcts.casegen import TrlbArrangement, trlb_case
+from lgmcts.confinement import confined
+from lgmcts.formats import PlanSpec
+from lgmcts.planner import dense
+from lgmcts.planner.problem import Problem
+from lgmcts.planner.search import SearchOptions
+from lgmcts.planner.sequence import sequence_plan
+from lgmcts.scene import Scene
+
+
+def _case(start, goal, radius: float, width: float = 1000.0, height: float = 1000.0):
+    def arr(pts):
+        return TrlbArrangement("mem", 0.0, radius, width, height, np.asarray(pts, dtype=float))
+    return trlb_case(arr(start), arr(goal))
+
+
+def _problem(c) -> Problem:
+    return Problem.build(Scene.from_spec(c.scene), c.goals)
+
+
+def _scatter(rng: np.random.Generator, n: int, radius: float, width: float, height: float):
+    pts: list[np.ndarray] = []
+    for _ in range(3000):
+        p = rng.uniform([radius, radius], [width - radius, height - radius])
+        if all(math.hypot(*(p - q)) >= 2 * radius for q in pts):
+            pts.append(p)
+            if len(pts) == n:
+                return np.array(pts)
+    return None
+
+
+# Three discs of 8 cm in a 60 x 30 cm box: the sequence finds no grid spot that uncovers a goal.
+NARROW = (600.0, 300.0, 80.0, [(368, 161), (166, 158), (519, 82)], [(207, 181), (373, 169), (519, 104)])
+
+
+def test_narrow_box_stuck_sequence_is_planned_by_the_corner_search():
+    w, h, r, a, b = NARROW
+    c = _case(a, b, r, w, h)
+    pr = _problem(c)
+    assert sequence_plan(pr) is None
+    actions = dense.dense_plan(pr)
+    assert actions is not None
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    p = plan(c.scene, c.goals, seed=0)
+    assert p.solved and p.stats.get("dense") and p.stats["corner_states"] >= 1 and check(c.scene, c.goals, p).valid
+    # The same plan again for the same seed (no time limit: nothing depends on the clock).
+    again = plan(c.scene, c.goals, seed=0)
+    assert [a.model_dump() for a in again.actions] == [a.model_dump() for a in p.actions]
+    # Off, the tree search plans it as before, without the flag.
+    q = plan(c.scene, c.goals, seed=0, max_iter=20, options=SearchOptions(dense=False))
+    assert "dense" not in q.stats
+
+
+def test_corners_are_free_inside_and_touch_two_constraints():
+    rng = np.random.default_rng(3)
+    c = _case(_scatter(rng, 6, 120.0, 1000.0, 1000.0), _scatter(rng, 6, 120.0, 1000.0, 1000.0), 120.0)
+    t = dense._Discs(_problem(c))
+    pos = t.start
+    for i, pts in enumerate(t.corners(pos)):
+        assert len(pts)
+        others = np.delete(np.arange(t.n), i)
+        dist = np.hypot(pts[:, None, 0] - pos[None, others, 0], pts[:, None, 1] - pos[None, others, 1])
+        slack = dist - t.far[i, others][None, :]
+        assert (slack >= -1e-9).all()
+        assert ((pts >= t.lo[i] - 1e-12) & (pts <= t.hi[i] + 1e-12)).all()
+        # A corner of the free space: two of its constraints (discs or box sides) are tight.
+        edges = np.concatenate([np.abs(pts - t.lo[i]), np.abs(pts - t.hi[i])], axis=1)
+        tight = (np.abs(slack) < 1e-9).sum(axis=1) + (edges < 1e-12).sum(axis=1)
+        assert (tight >= 2).all()
+
+
+def test_goals_already_met_give_the_empty_plan_and_large_tables_are_left_alone():
+    pts = [(200.0, 200.0), (600.0, 600.0)]
+    assert dense.dense_plan(_problem(_case(pts, pts, 100.0))) == []
+    rng = np.random.default_rng(0)
+    many = _scatter(rng, dense.MAX_DISCS + 1, 40.0, 1000.0, 1000.0)
+    assert dense.dense_plan(_problem(_case(many, many[::-1], 40.0))) is None
+
+
+def test_budget_ends_a_search_with_no_plan():
+    # Two discs that fill a box trade places: no plan exists, and the search gives up at its budget.
+    c = _case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], 100.0, width=400.0, height=200.0)
+    actions, expanded = dense.search(_problem(c), 50, None)
+    assert actions is None and expanded <= 50
+    # The planner proves it at once (lgmcts.confinement, asked before the corner search) ...
+    p = plan(c.scene, c.goals, seed=0, max_iter=40)
+    assert not p.solved and p.stats.get("infeasible") and "corner_states" not in p.stats
+    # ... and without the proof says what it tried: the corner search's states and the tree search's budget.
+    q = plan(c.scene, c.goals, seed=0, max_iter=40, options=SearchOptions(proof_after=0))
+    assert not q.solved and not q.stats.get("infeasible")
+    assert 1 <= q.stats["corner_states"] <= dense.budget(2) and q.stats["iterations"] == 40
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(3, 5), st.floats(60.0, 85.0), st.sampled_from([(500.0, 400.0), (600.0, 300.0), (500.0, 500.0)]),
+       st.integers(0, 10_000))
+def test_every_plan_found_is_valid_and_the_same_each_time(n, r, box, seed):
+    w, h = box
+    rng = np.random.default_rng(seed)
+    a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
+    if a is None or b is None:
+        return
+    c = _case(a, b, r, w, h)
+    actions, _ = dense.search(_problem(c), 300, None)
+    if actions is None:
+        return
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    # A plan exists, so the confinement proof must not claim otherwise.
+    assert confined(Scene.from_spec(c.scene), c.goals) is None
+    again, _ = dense.search(_problem(c), 300, None)
+    assert again is not None and [x.model_dump() for x in again] == [x.model_dump() for x in actions]
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(3, 5), st.floats(60.0, 85.0), st.sampled_from([(500.0, 400.0), (600.0, 300.0)]),
+       st.integers(0, 10_000))
+def test_a_backward_search_read_in_reverse_is_a_valid_plan(n, r, box, seed):
+    w, h = box
+    rng = np.random.default_rng(seed)
+    a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
+    if a is None or b is None:
+        return
+    c = _case(a, b, r, w, h)
+    t = dense._Discs(_problem(c), reverse=True)
+    assert dense._reversible(t)
+    actions, _ = dense._Search(t).run(300, None)
+    if actions is None:
+        return
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    # Every goal move of the plan puts its disc exactly on its goal.
+    goal = {g.objects[0]: g.pose[:2] for g in c.goals.goals}
+    assert all(x.to[:2] == pytest.approx(goal[x.object], abs=1e-12) for x in actions if x.purpose == "goal")
