@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from .grounding import Choice, Mention
-from .lexicon import says
+from .lexicon import SHAPE_NOUNS, says
 from .matcher import FILLERS, _forms, _stem
 from .assembly import _Pending, _add_params, _with_facing
 from .clauses import (
@@ -206,11 +206,18 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
         # "fork left of the plate, tines toward the right edge": the facing of the relation just read.
         _add_params(last, params, text)
         return []
-    if not mentions and params and not meaningful and self.state.last_shape is not None:
-        # "..., red on top, in the front right corner": the place of the arrangement just read.
-        _add_params(self.state.last_shape, params, text)
+    shape = self.state.last_shape
+    if not mentions and params and shape is not None and all(_restates(w, shape.pattern) for w in meaningful):
+        # "..., red on top, in the front right corner": the place of the arrangement just read; also where
+        # the clause names that arrangement again ("line up the cans, in a strip along the back").
+        _add_params(shape, params, text)
         return []
     return None
+
+
+def _restates(word: str, pattern: str) -> bool:
+    """Whether ``word`` names the arrangement ``pattern`` again: one of its nouns, or a strip or band for a line."""
+    return word in SHAPE_NOUNS.get(pattern, ()) or (pattern == "line" and word in ("strip", "band"))
 
 
 @reading("order-of-last-stack")

@@ -163,3 +163,21 @@ def test_a_remark_about_the_people_asks_nothing(said, goals):
              ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)])]})
     got = parse(scene, said)
     assert [g.model_dump(exclude_none=True) for g in got.goals] == goals
+
+
+@pytest.mark.parametrize("said, region", [
+    ("line up the red can and the green can, in a strip along the back of the table", "top"),
+    ("put the red can and the green can in a row, a short row, over on the left, near the front", "bottom left"),
+    ("line up the red can and the green can, in a row at the front", "bottom"),
+])
+def test_a_place_in_a_clause_that_names_the_arrangement_again(said, region):
+    """", in a strip along the back": the clause names the line again (a strip, a row) and says where it goes."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
+            [("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])]})
+    (goal,) = parse(scene, said).goals
+    assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
