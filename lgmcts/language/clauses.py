@@ -487,11 +487,12 @@ def _groups(words: tuple[str, ...], mentions: list[Mention]) -> tuple[list[list[
                 groups[-1].append(m)
                 continue
         groups.append([m])
-    gaps, prev = [], 0
+    gaps: list[tuple[int, int]] = []
+    at = 0
     for g in groups:
-        gaps.append((prev, g[0].start))
-        prev = g[-1].end
-    gaps.append((prev, len(words)))
+        gaps.append((at, g[0].start))
+        at = g[-1].end
+    gaps.append((at, len(words)))
     return groups, gaps
 
 

@@ -44,7 +44,7 @@ def _footprint(o) -> str:
 
 def _pose(o) -> tuple[float, float, float]:
     if o.pose is not None:
-        return tuple(o.pose)  # type: ignore[return-value]
+        return tuple(o.pose)
     xs, ys = [p[0] for p in o.shape.points], [p[1] for p in o.shape.points]
     return ((max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2, 0.0)
 

@@ -238,7 +238,8 @@ def _head(vocab: Vocabulary, words: tuple[str, ...], i: int, j: int, det: str, p
     head = ""
     loose = everything == "all"  # "everything red" takes the red swirl heart too
     cols = None if everything else _colors(vocab, words, j)
-    colors, color_order = None, ()
+    colors = None
+    color_order: tuple[str, ...] = ()
     if cols is not None:
         colors, j = cols
         color_order = colors

@@ -122,12 +122,12 @@ def _apply_filter(vocab: Vocabulary, f: tuple, out: list[int], named: frozenset[
         op = "eq"
     k = {"height": 1, "volume": 2, "width": 3}[attr]
     meas = {x[0]: x[k] for x in vocab.measures}
-    rv = meas.get(r, 0.0)
+    ref_v: float = meas.get(r, 0.0)
 
     def rel(v: float) -> str:
-        if abs(v - rv) <= MEASURE_TOL * max(abs(v), abs(rv), 1e-9):
+        if abs(v - ref_v) <= MEASURE_TOL * max(abs(v), abs(ref_v), 1e-9):
             return "eq"
-        return "lt" if v < rv else "gt"
+        return "lt" if v < ref_v else "gt"
 
     keep = {"eq": ("eq",), "ne": ("lt", "gt"), "lt": ("lt",), "gt": ("gt",), "le": ("lt", "eq"), "ge": ("gt", "eq")}[op]
     return [i for i in out if rel(meas.get(i, 0.0)) in keep]

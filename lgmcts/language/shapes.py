@@ -386,7 +386,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
     if row is not None and col is not None:
         params["region"] = f"{row} {col}"
     elif row is not None or col is not None:
-        params["region"] = row or col  # one band of the table: "bottom", "left"
+        params["region"] = str(row or col)  # one band of the table: "bottom", "left"
         if band and params["region"] in ("middle", "center"):
             params["region"] = "middle row" if row else "center column"  # never the centre cell
     return params, tuple(keep)

@@ -22,19 +22,19 @@ class _Body(BaseModel):
 class PlanOptions(_Body):
     """Planner settings; the same meaning as the options of ``lgmcts plan``."""
 
-    method: str = Field("lgmcts", max_length=MAX_TEXT, description="lgmcts, greedy or pmcts.")
-    seed: int = Field(0, description="Random seed; the same seed gives the same plan.")
-    max_iter: int = Field(10_000, description="Iteration budget; the server caps it (see /healthz).")
-    time_limit: float | None = Field(None, description="Planning budget in seconds (wall clock).")
-    anytime: bool = Field(False, description="Keep searching within the budget for a shorter plan.")
+    method: str = Field(default="lgmcts", max_length=MAX_TEXT, description="lgmcts, greedy or pmcts.")
+    seed: int = Field(default=0, description="Random seed; the same seed gives the same plan.")
+    max_iter: int = Field(default=10_000, description="Iteration budget; the server caps it (see /healthz).")
+    time_limit: float | None = Field(default=None, description="Planning budget in seconds (wall clock).")
+    anytime: bool = Field(default=False, description="Keep searching within the budget for a shorter plan.")
     robot: str | None = Field(
-        None,
+        default=None,
         max_length=MAX_TEXT,
         description="Plan for this arm (ur5e): every pick and place within its top-down reach; "
         "null: no robot, the plan is the same as without the field.",
     )
     timeout: float | None = Field(
-        None, description="Wall-clock limit of this request in seconds; at most the server's timeout."
+        default=None, description="Wall-clock limit of this request in seconds; at most the server's timeout."
     )
 
 
@@ -67,7 +67,7 @@ class PlanRequest(_Body):
     llm_base_url: str | None = Field(
         None, max_length=MAX_TEXT, description="As for /parse: refused unless the server allows it."
     )
-    options: PlanOptions = Field(default_factory=PlanOptions)
+    options: PlanOptions = Field(default_factory=lambda: PlanOptions())
 
 
 class CheckRequest(_Body):
