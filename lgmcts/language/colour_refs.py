@@ -59,7 +59,10 @@ _STOP = frozenset({",", ".", ";", ":", "!", "?", "and", "then", "on", "onto", "i
                    "at", "with", "next", "beside", "so", "goes", "go", "is", "are", "should", "must", "put", "move",
                    "place", "stack", "make", "left", "right", "front", "that", "which", "who", "whose", "out",
                    "up", "as", "for", "of", "in", "from", "colour", "color", "it", "them", "please", "together",
-                   "where", "near", "above", "below", "over", "beneath", "underneath", "has", "have", "line"})
+                   "where", "near", "above", "below", "over", "beneath", "underneath", "has", "have", "line",
+                   # a place said after the reference ("... one of the bowls, along the back of the table")
+                   "along", "across", "by", "around", "toward", "towards", "alongside", "back", "rear", "middle",
+                   "centre", "center", "corner", "edge", "side"})
 
 
 def _np(ws: tuple[str, ...], i: int, limit: int = 5) -> int:

@@ -85,3 +85,18 @@ def test_else_leaves_the_reference_object_out():
     assert objs("everything else with the same colour as the jug goes left of the tray") == [[3, 4]]
     assert objs("everything else that is the same colour as the pear goes left of the tray") == [[1, 3]]
     assert objs("whatever shares the jug's colour goes behind the kettle") == [[1, 3, 4]]
+
+
+@pytest.mark.parametrize("text, phrase", [
+    ("line up the cans that share a colour with one of the bowls along the back of the table",
+     "the cans that share a colour with one of the bowls"),
+    ("put the mugs that match the red bowl by the front edge", "the mugs that match the red bowl"),
+    ("stack the cans that are the same colour as the plate in the corner",
+     "the cans that are the same colour as the plate"),
+])
+def test_a_place_after_the_reference_is_not_part_of_it(text, phrase):
+    """The reference object's noun phrase ends where a place begins, which is left for the place reader
+    (it used to take "along the back" with it and leave "of the table", and the place was lost)."""
+    ws = tuple(t.text for t in tokenize(text))
+    (r,) = find_colour_refs(ws)
+    assert ws[r.start : r.end] == tuple(t.text for t in tokenize(phrase))
