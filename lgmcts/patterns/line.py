@@ -138,6 +138,7 @@ class Line(BasePattern):
         "in a straight row",
         "strip",
         "straight strip",
+        "band",
     )
     description = "the objects' centres lie on one straight line"
     min_objects = 2

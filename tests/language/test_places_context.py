@@ -181,3 +181,18 @@ def test_a_place_in_a_clause_that_names_the_arrangement_again(said, region):
             [("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])]})
     (goal,) = parse(scene, said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
+
+
+@pytest.mark.parametrize("said, region", [("put the red can and the green can in a band across the middle", "middle row"),
+                                          ("put the red can and the green can in a strip along the front", "bottom")])
+def test_a_band_or_strip_is_a_line_in_that_band(said, region):
+    """"in a band across the middle" names the line and its band at once (a band is one of the line's keys)."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
+            [("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])]})
+    (goal,) = parse(scene, said).goals
+    assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
