@@ -143,10 +143,12 @@ class _Selecting:
             return [x for x in last if isinstance(x, int)]
         self.state.mass = bool(re.search(r"\b(stuff|everything|anything|cutlery|silverware|flatware|crockery|"
                                          r"tableware|dishware)\b", m.text))
-        if m.det == "other" and m.names is None and not m.plural and self.state.choices:
-            # "one mug ... the other one": the one of two that the first did not take.
+        if m.det == "other" and not m.plural and self.state.choices:
+            # "one mug ... the other one", "one of the mugs ... the remaining mug": the one of two that
+            # the first did not take (a noun must name the same two objects).
             prev = self.state.choices[-1]
-            if prev.k == 1 and len(prev.options) == 2:
+            if prev.k == 1 and len(prev.options) == 2 and (m.names is None or set(
+                    candidates(self.vocab, m, named=frozenset(self.state.named))) == set(prev.options)):
                 return Choice(prev.options, 1, m.text, fresh=True)
         try:
             sel = select(self.vocab, m, named=frozenset(self.state.named))

@@ -148,3 +148,21 @@ def test_one_object_and_a_reference_object_is_that_object_alone(said):
     one = _kitchen([("mug", "red", -0.3, 0.0), ("kettle", "black", 0.25, 0.1), ("tray", "white", 0.0, -0.2)])
     got = parse(one, said)
     assert [(g.pattern, list(g.objects), g.anchor) for g in got.goals] == [("left", [1], 3)]
+
+
+@pytest.mark.parametrize("said", [
+    "move one of the mugs behind the tray and the remaining mug in front of the kettle",
+    "move one of the mugs behind the tray and the other mug in front of the kettle",
+    "put one mug behind the tray and the other one in front of the kettle",
+])
+def test_the_other_of_two_is_the_one_the_first_did_not_take(said):
+    """"one of the mugs ... the remaining mug": with two mugs, the second reference is the other one
+    (it was refused as ambiguous when it said its noun)."""
+    from lgmcts.language import parse
+
+    two = _kitchen([("mug", "red", -0.3, 0.0), ("mug", "green", 0.3, 0.0), ("kettle", "black", 0.25, 0.1),
+                    ("tray", "white", 0.0, -0.2)])
+    got = parse(two, said)
+    (a, b) = got.goals
+    assert (a.pattern, a.anchor, b.pattern, b.anchor) == ("behind", 4, "front", 3)
+    assert sorted([*a.objects, *b.objects]) == [1, 2]
