@@ -16,12 +16,18 @@ from .grounding import COLOUR_WORDS, Choice
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .passes import _GENERIC_KEY_WORDS
 from .shapes import take_params
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .host import ParserHost
+else:
+    ParserHost = object
 
 
 _EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", "things", "stuff"})
 
 
-class _Arrangements:
+class _Arrangements(ParserHost):
     """Pattern choice, shape goals and the place setting."""
 
     def _word_kinds(self) -> tuple[frozenset[str], frozenset[str]]:
@@ -152,7 +158,8 @@ class _Arrangements:
         if info.ordered and getattr(self, "_order_by", None) and all(isinstance(x, int) for x in objs):
             # "largest at the bottom": by volume, largest first (or smallest first).
             vol = {x[0]: x[2] for x in self.vocab.measures}
-            objs = sorted(objs, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))
+            ints = [x for x in objs if isinstance(x, int)]  # all of them (checked above)
+            objs = [*sorted(ints, key=lambda x: (-vol.get(x, 0.0) if self._order_by == "desc" else vol.get(x, 0.0), x))]
             self._order_by = None
         if roles and pattern == "tower" and self._below_first:
             below = [x for x in self.state.last if x not in objs]
@@ -162,7 +169,7 @@ class _Arrangements:
         if roles:
             # Stack roles: bottom first, then "goes on it"/"next" in order, the
             # middle, the objects without a role, the top last.
-            rank = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
+            rank: dict[str | None, float] = {"bottom": 0, "next": 1, "middle": 2, None: 3, "top": 4}
             given = set(roles.values())
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
@@ -274,7 +281,7 @@ class _Arrangements:
                 k_side = rest.index(w)
                 before = [m for m in self._find(rest[:k_side]) if m.names is not None]
                 after = [m for m in self._find(rest[k_side:]) if m.names is not None]
-                if before and after and set(before[-1].names) <= plates and not set(after[0].names) <= plates:
+                if before and after and set(before[-1].names or ()) <= plates and not set(after[0].names or ()) <= plates:
                     side = "left" if sd == "right" else "right"
         params, rest2 = take_params(rest, lambda w: True) if any(
             w in rest for w in ("small", "medium", "large", "big", "facing", "top", "bottom", "middle", "center")) else ({}, rest)

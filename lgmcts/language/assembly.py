@@ -15,6 +15,12 @@ from .clauses import _DIR_WORDS
 from .grounding import Choice, candidates, describe
 from .lexicon import MACROS
 from .shapes import merged_region
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .host import ParserHost
+else:
+    ParserHost = object
 
 
 @dataclass
@@ -87,12 +93,12 @@ def _chain_towers(goals: list[dict]) -> list[dict]:
                     break
             if merged:
                 break
-    towers = [g["objects"] for g in goals if g["pattern"] == "tower"]
+    stacks: list[list[int]] = [g["objects"] for g in goals if g["pattern"] == "tower"]
 
     def inside(small: list[int]) -> bool:
         n = len(small)
         return any(big is not small and len(big) > n and any(big[i : i + n] == small for i in range(len(big) - n + 1))
-                   for big in towers)
+                   for big in stacks)
 
     return [g for g in goals if g["pattern"] != "tower" or not inside(g["objects"])]
 
@@ -246,7 +252,7 @@ def _unread_cue(text: str, goals: list[dict], nouns: frozenset[str] = frozenset(
     return None
 
 
-class _Finishing:
+class _Finishing(ParserHost):
     """Turning the pending goals of a command into checked goals."""
 
     def _unused_object(self, goals: list[dict]) -> None:

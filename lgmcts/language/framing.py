@@ -6,7 +6,7 @@ exceptions said apart from their set and "so that" (:class:`_Framing`, mixed int
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from . import stages
 from ..errors import InputError
@@ -18,7 +18,13 @@ from .selection import _COMPASS_LEFT, _FACING_CUES
 from .shapes import SIZES, stack_roles, take_params
 
 if TYPE_CHECKING:
+    from .host import ParserHost
+else:
+    ParserHost = object
+
+if TYPE_CHECKING:
     from .readings import Frame
+    from .rules import _Parser
 
 
 _INVERSE = {"left": "right", "right": "left", "front": "behind", "behind": "front", "left_front": "right_behind",
@@ -34,7 +40,7 @@ _OBJECT_SIZE_WORDS = frozenset({"big", "bigger", "large", "larger", "small", "sm
 _ROLE_MARK = "|"
 
 
-class _Framing:
+class _Framing(ParserHost):
     """Reading one clause: frame, readings, relations."""
 
     def _roles(self, words: tuple[str, ...], mentions: list[Mention]):
@@ -195,14 +201,15 @@ class _Framing:
         if not words:
             return []
         f = Frame(words, " ".join(words))
+        parser = cast("_Parser", self)  # the assembled parser, which this part is a part of
         for name, handler in EARLY:
-            got = handler(self, f)
+            got = handler(parser, f)
             if got is not None:
                 self.fired.append(name)
                 return got
         f = self._frame(f.words, f.text)
         for name, handler in READINGS:
-            got = handler(self, f)
+            got = handler(parser, f)
             if got is not None:
                 self.fired.append(name)
                 return got

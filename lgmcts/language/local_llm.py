@@ -126,7 +126,7 @@ class LocalServer:
         try:
             self.proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, env=env)
         finally:
-            if self.log:
+            if not isinstance(out, int):
                 out.close()
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
@@ -174,6 +174,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"serving {MODEL_ALIAS} at {srv.base_url} (Ctrl-C stops)", file=sys.stderr)
             for k, v in srv.env().items():
                 print(f"export {k}={v}", file=sys.stderr)
+            assert srv.proc is not None  # started
             try:
                 srv.proc.wait()
             except KeyboardInterrupt:

@@ -22,7 +22,7 @@ from .clauses import (
     _is_number,
     _sentences,
 )
-from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, candidates, find_mentions
+from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Mention, candidates, find_mentions
 from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
@@ -32,6 +32,12 @@ from .places import POINTING_PARTS
 from .rewrite import FREE_ORDER
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, take_params
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .host import ParserHost
+else:
+    ParserHost = object
 
 
 #: Where an object said without its article may start: a sentence's start or a command verb.
@@ -102,7 +108,7 @@ _SUPERLATIVE = frozenset({"leftmost", "rightmost", "frontmost", "nearest", "clos
                           "furthest"})
 
 
-class _TokenPasses:
+class _TokenPasses(ParserHost):
     """Text and token passes run by :meth:`.rules._Parser.command` before and around clause splitting."""
 
     def _category_ids(self, text: str) -> str:
@@ -338,7 +344,7 @@ class _TokenPasses:
         references ("the bottles are a mess", "I find it easier to reach")."""
         lead = next((w for w in clause if w not in _LEADING and w not in STOPWORDS), "")
         try:
-            named = [m for m in self._find(clause) if m.det != "pronoun"]
+            named: list[Mention | None] = [m for m in self._find(clause) if m.det != "pronoun"]
         except InputError:
             named = [None]
         counted = {k for m in named if m is not None for k in range(m.start, m.end)}  # "the three cans"
@@ -506,8 +512,9 @@ class _TokenPasses:
             body = [w for w in sent if w not in (",", ".", "!", "?", "'")]
             while body and body[0] in _LEADING:
                 body = body[1:]
+            named: list[Mention | None]
             try:
-                named = self._find(tuple(body)) if body else []
+                named = list(self._find(tuple(body))) if body else []
             except InputError:
                 named = [None]
             if asked and body and not named and not _command_verb(body[0]) and not any(

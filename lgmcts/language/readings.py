@@ -316,7 +316,7 @@ def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
         # "...; the red one goes in between": a role for an object of the tower just built.
         tower = self.state.tower.objects
         before = [x for x in tower if isinstance(x, int)]
-        prev = None
+        prev: int | Choice | None = None
         pairs = list(zip(mentions, roles))
         if says(text, "downward") and not self.state.downward:
             # "black bowl, then white bowl, then the blue block, from the top down, black bowl
@@ -330,7 +330,7 @@ def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
             pairs = [(mm, r) for mm, r in pairs if r is not None]
         for mm, role in pairs:
             got = self._select(mm)
-            xs = got if isinstance(got, list) else [got]
+            xs: list[int | Choice] = [*got] if isinstance(got, list) else [got]
             # "..., then green, red at the bottom": a role after a list is the last one's.
             listed = len(xs) > 1 and role in ("bottom", "top", "under_it") and any(
                 w in ("and", ",") for w in mm.text.split())
@@ -340,7 +340,7 @@ def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
                     tower.remove(x)
                 # "white at the bottom, then green": one without a role goes right above the one before.
                 after = tower.index(prev) + 1 if prev in tower else len(tower)
-                at = {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
+                at = after if r is None else {"bottom": 0, "top": len(tower), "middle": (len(tower) + 1) // 2}.get(r, after)
                 if r == "under_it":
                     # "purple on top, orange under it": right below the one before ("orange on top.
                     # green underneath it": the last one given a place, where none was given here).
@@ -383,6 +383,7 @@ def _read_next_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
             and (roles is None or not any(roles))
             and all(x in objs for mm in mentions
                     for x in (lambda g: g if isinstance(g, list) else [g])(self._select(mm)))):
+        assert self.state.tower is not None  # ref is one of its objects
         for mm in mentions:
             got = self._select(mm)
             for x in got if isinstance(got, list) else [got]:

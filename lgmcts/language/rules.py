@@ -102,9 +102,9 @@ class _State:
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
     #: The object a stack role just placed in that tower: "then green" goes right above it.
-    tower_prev: int | None = None
+    tower_prev: "int | Choice | None" = None
     #: The object a role just put at the top of that tower: "then yellow" goes right below it.
-    tower_down: int | None = None
+    tower_down: "int | Choice | None" = None
     #: That tower's order was said by "A on B" / "A under B": a role may not reverse it.
     tower_fixed: bool = False
     #: The last reference selected was a mass ("all the red stuff"): "it" is all of it.
@@ -278,6 +278,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
                 # setting up to the first break after it, the rest a clause of its own.
                 at = next(c for c in clauses if self._dinner_at(c) is not None)
                 k = self._dinner_at(at)
+                assert k is not None  # the clause was chosen for it
                 cut = next((j for j in range(k + 1, len(at)) if at[j] in (",", "and", "plus", "with", "but")), None)
                 if cut is not None:
                     head, tail = at[:cut], at[cut:]

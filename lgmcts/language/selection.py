@@ -15,6 +15,12 @@ from .grounding import COLOUR_WORDS, Choice, GROUPS, Mention, NUMBERS, candidate
 from .matcher import FILLERS, STOPWORDS, _stem
 from .places import BAND_MARKS
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .host import ParserHost
+else:
+    ParserHost = object
 
 
 _DET_WORDS = frozenset({"the", "all", "every", "each", "both", "these", "those", "my"})
@@ -57,7 +63,7 @@ _ASIDE_KEEP = frozenset({"order", "first", "then", "last", "next", "top", "botto
                          "underneath", "atop", "upon"})
 
 
-class _Selecting:
+class _Selecting(ParserHost):
     """Resolving references against the scene and what the command named before."""
 
     def _select_group(self, group: list[Mention]) -> list:
@@ -190,9 +196,9 @@ class _Selecting:
                     end += 1
                 if w in COLOUR_WORDS:
                     # "all purple bowls" with no purple object: show the whole phrase.
-                    nxt = next((mm for mm in mentions if mm.start == end), None)
-                    if nxt is not None:
-                        end = nxt.end
+                    said_next = next((mm for mm in mentions if mm.start == end), None)
+                    if said_next is not None:
+                        end = said_next.end
                     raise InputError(f"nothing in the scene matches '{' '.join(words[j:end])}' (no {w} object)")
                 raise InputError(f"'{' '.join(words[j:end])}' names nothing in the scene")
 
