@@ -117,6 +117,15 @@ def test_what_may_matter_is_kept(text):
     assert _drop(text) == " ".join(_ws(text))
 
 
+def _table(objects: list[tuple[str, str, float, float]]):
+    """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
+    from lgmcts.formats import parse_scene
+
+    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
+
+
 def _remark(text: str) -> bool:
     return person_remark(text.split(), _OBJ.__contains__, _REQ.__contains__, lambda w: w in ("put", "get", "move"))
 
@@ -153,15 +162,10 @@ def test_not_a_remark_about_the_people(text):
      [{"pattern": "left", "objects": [3], "anchor": 1}]),
 ])
 def test_a_remark_about_the_people_asks_nothing(said, goals):
-    from lgmcts.formats import parse_scene
     from lgmcts.language import parse
 
-    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
-            [("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
-             ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)])]})
-    got = parse(scene, said)
+    got = parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+                        ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]), said)
     assert [g.model_dump(exclude_none=True) for g in got.goals] == goals
 
 
@@ -172,14 +176,10 @@ def test_a_remark_about_the_people_asks_nothing(said, goals):
 ])
 def test_a_place_in_a_clause_that_names_the_arrangement_again(said, region):
     """", in a strip along the back": the clause names the line again (a strip, a row) and says where it goes."""
-    from lgmcts.formats import parse_scene
     from lgmcts.language import parse
 
-    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
-            [("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])]})
-    (goal,) = parse(scene, said).goals
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
 
 
@@ -187,12 +187,8 @@ def test_a_place_in_a_clause_that_names_the_arrangement_again(said, region):
                                           ("put the red can and the green can in a strip along the front", "bottom")])
 def test_a_band_or_strip_is_a_line_in_that_band(said, region):
     """"in a band across the middle" names the line and its band at once (a band is one of the line's keys)."""
-    from lgmcts.formats import parse_scene
     from lgmcts.language import parse
 
-    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(
-            [("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])]})
-    (goal,) = parse(scene, said).goals
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
