@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from itertools import combinations_with_replacement
+from typing import Any
 
 import numpy as np
 import shapely
@@ -213,7 +214,7 @@ def _pick(rng: np.random.Generator, pool: list[str] | tuple[str, ...]) -> str:
 
 def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one linear recipe
     # 1. Roles and the attributes each goal reserves.
-    goals: list[dict] = []  # {"kind", "mode", "n", "name"/"color", members (role keys)}
+    goals: list[dict[str, Any]] = []  # {"kind", "mode", "n", "name"/"color", members (role keys)}
     reserved_names: dict[str, int] = {}  # name -> goal index that owns it
     reserved_colors: dict[str, int] = {}  # colour -> goal index that owns it
     for g, k in enumerate(kinds):
@@ -225,7 +226,7 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
         mode = _pick(
             rng, ("all_name", "all_color", "same_color", "list") if n <= 4 else ("all_name", "all_color", "same_color")
         )
-        spec = {"kind": k, "mode": mode, "n": n}
+        spec: dict[str, Any] = {"kind": k, "mode": mode, "n": n}
         if mode == "all_name":
             free = [c for c in _PLURAL_KINDS if c not in reserved_names]
             spec["name"] = _pick(rng, free)
@@ -288,11 +289,11 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             continue
         objs.append(make(None))
         target = len(objs) - 1
-        pool = placed_before + [
+        anchor_pool = placed_before + [
             i for s in goals if s["kind"] == "spatial" and "target" in s for i in (s["target"], s["anchor"])
         ]
-        if pool and rng.random() < 0.6:
-            anchor = int(pool[int(rng.integers(len(pool)))])
+        if anchor_pool and rng.random() < 0.6:
+            anchor = int(anchor_pool[int(rng.integers(len(anchor_pool)))])
         else:
             objs.append(make(None))
             anchor = len(objs) - 1
@@ -305,8 +306,8 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
 
     # 2. Ids in random order, then the references.
     perm = rng.permutation(n)
-    for k, o in enumerate(objs):
-        o["id"] = int(perm[k]) + 1
+    for j, o in enumerate(objs):
+        o["id"] = int(perm[j]) + 1
     ids = [o["id"] for o in objs]
     specs_by_id = sorted(objs, key=lambda o: o["id"])
 
@@ -453,10 +454,10 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
             continue
         if start.random(i, rng) is None:
             return None
-    poses = dict(start.poses)
+    start_poses = dict(start.poses)
     on = dict.fromkeys(range(n), TABLE)
     for t, b in tops:
-        poses[t] = np.array([poses[b][0], poses[b][1], rng.uniform(-math.pi, math.pi)])
+        start_poses[t] = np.array([start_poses[b][0], start_poses[b][1], rng.uniform(-math.pi, math.pi)])
         on[t] = b
     start_objs = []
     for i in sorted(range(n), key=lambda i: ids[i]):
@@ -467,7 +468,7 @@ def _attempt(kinds: list[str], rng: np.random.Generator):  # noqa: C901 - one li
                 "name": o["name"],
                 "color": o["color"],
                 "shape": o["shape"],
-                "pose": [round(float(v), 5) for v in poses[i]],
+                "pose": [round(float(v), 5) for v in start_poses[i]],
                 "on": None if on[i] == TABLE else ids[on[i]],
             }
         )

@@ -206,7 +206,7 @@ def _draw_table(ax: Any, scene: Scene, *, scale_bar: bool = True, viewer: bool =
         # Axis arrows: which way +x and +y point.
         ax_x, ax_y = xmax - m * 1.4, ymin - m * 0.55
         a = m * 0.55
-        kw = {"arrowstyle": "-|>", "color": "#444444", "lw": 1.0, "mutation_scale": 8}
+        kw: dict[str, Any] = {"arrowstyle": "-|>", "color": "#444444", "lw": 1.0, "mutation_scale": 8}
         from matplotlib.patches import FancyArrowPatch
 
         ax.add_patch(FancyArrowPatch((ax_x, ax_y), (ax_x + a, ax_y), zorder=5, **kw))
@@ -803,7 +803,7 @@ def render_state(ctx: _Ctx, step: int, *, goals_drawn: str = "met") -> np.ndarra
         title = f"Step {step} of {n} · {_PURPOSE_WORD[a.purpose]}: {ctx.scene.label(ctx.scene.index[a.object])}"
     # Earlier moves as faint arrows, the current one bold with its old pose dashed.
     if 0 < step and goals_drawn != "all":
-        moves = []
+        moves: list[tuple[Sequence[float], Sequence[float], Any]] = []
         for j in range(step - 1):
             a = ctx.plan.actions[j]
             moves.append((ctx.states[j].poses[ctx.scene.index[a.object]], a.to, "#8d8d8d"))
@@ -838,7 +838,7 @@ def render_before_after(ctx: _Ctx) -> np.ndarray:
     for ax, _state, name in ((a0, ctx.states[0], "before"), (a1, final, f"after {n} action{'s' if n != 1 else ''}")):
         _draw_table(ax, ctx.scene)
         ax.set_title(name, fontsize=10, fontweight="bold", loc="center", pad=3)
-    moves = [
+    moves: list[tuple[Sequence[float], Sequence[float], Any]] = [
         (ctx.states[j].poses[ctx.scene.index[a.object]], a.to, PURPOSE_COLORS[a.purpose])
         for j, a in enumerate(ctx.plan.actions)
     ]
@@ -970,7 +970,8 @@ def render_heatmaps(ctx: _Ctx, step: int) -> np.ndarray:
     cb.ax.tick_params(labelsize=7)
     cb.set_label("density (0 black … 1 white)", fontsize=7)
     verb = _PURPOSE_WORD[a.purpose]
-    member = [describe_goal(g) for g in ctx.goals.goals if ctx.scene.ids[k] in g.objects]
+    goals = ctx.goals.goals if ctx.goals is not None else []
+    member = [describe_goal(g) for g in goals if ctx.scene.ids[k] in g.objects]
     why = ("; goal: " + ", ".join(member)) if member and a.purpose == "goal" else ""
     fig.text(
         0.01,
@@ -1062,8 +1063,8 @@ def _gif(frames: list[np.ndarray], path: Path, opts: FigureOptions) -> Path:
         im = Image.fromarray(f)
         scale = opts.gif_width_px / im.width
         if scale < 1:
-            im = im.resize((opts.gif_width_px, max(1, round(im.height * scale))), Image.LANCZOS)
-        ims.append(im.convert("P", palette=Image.ADAPTIVE, colors=255))
+            im = im.resize((opts.gif_width_px, max(1, round(im.height * scale))), Image.Resampling.LANCZOS)
+        ims.append(im.convert("P", palette=Image.Palette.ADAPTIVE, colors=255))
     durations = [int(opts.frame_s * 1000)] * len(ims)
     durations[-1] = int(opts.last_frame_s * 1000)
     # disposal=1 and optimize=False keep one GIF frame per plan state (Pillow
