@@ -6,28 +6,17 @@ import math
 
 import numpy as np
 import pytest
+from disc_cases import disc_case, disc_problem
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lgmcts import check, plan
-from lgmcts.casegen import TrlbArrangement, trlb_case
 from lgmcts.confinement import confined
 from lgmcts.formats import PlanSpec
 from lgmcts.planner import dense
-from lgmcts.planner.problem import Problem
 from lgmcts.planner.search import SearchOptions
 from lgmcts.planner.sequence import sequence_plan
 from lgmcts.scene import Scene
-
-
-def _case(start, goal, radius: float, width: float = 1000.0, height: float = 1000.0):
-    def arr(pts):
-        return TrlbArrangement("mem", 0.0, radius, width, height, np.asarray(pts, dtype=float))
-    return trlb_case(arr(start), arr(goal))
-
-
-def _problem(c) -> Problem:
-    return Problem.build(Scene.from_spec(c.scene), c.goals)
 
 
 def _scatter(rng: np.random.Generator, n: int, radius: float, width: float, height: float):
@@ -47,8 +36,8 @@ NARROW = (600.0, 300.0, 80.0, [(368, 161), (166, 158), (519, 82)], [(207, 181), 
 
 def test_narrow_box_stuck_sequence_is_planned_by_the_corner_search():
     w, h, r, a, b = NARROW
-    c = _case(a, b, r, w, h)
-    pr = _problem(c)
+    c = disc_case(a, b, r, w, h)
+    pr = disc_problem(c)
     assert sequence_plan(pr) is None
     actions = dense.dense_plan(pr)
     assert actions is not None
@@ -65,8 +54,8 @@ def test_narrow_box_stuck_sequence_is_planned_by_the_corner_search():
 
 def test_corners_are_free_inside_and_touch_two_constraints():
     rng = np.random.default_rng(3)
-    c = _case(_scatter(rng, 6, 120.0, 1000.0, 1000.0), _scatter(rng, 6, 120.0, 1000.0, 1000.0), 120.0)
-    t = dense._Discs(_problem(c))
+    c = disc_case(_scatter(rng, 6, 120.0, 1000.0, 1000.0), _scatter(rng, 6, 120.0, 1000.0, 1000.0), 120.0)
+    t = dense._Discs(disc_problem(c))
     pos = t.start
     for i, pts in enumerate(t.corners(pos)):
         assert len(pts)
@@ -83,16 +72,16 @@ def test_corners_are_free_inside_and_touch_two_constraints():
 
 def test_goals_already_met_give_the_empty_plan_and_large_tables_are_left_alone():
     pts = [(200.0, 200.0), (600.0, 600.0)]
-    assert dense.dense_plan(_problem(_case(pts, pts, 100.0))) == []
+    assert dense.dense_plan(disc_problem(disc_case(pts, pts, 100.0))) == []
     rng = np.random.default_rng(0)
     many = _scatter(rng, dense.MAX_DISCS + 1, 40.0, 1000.0, 1000.0)
-    assert dense.dense_plan(_problem(_case(many, many[::-1], 40.0))) is None
+    assert dense.dense_plan(disc_problem(disc_case(many, many[::-1], 40.0))) is None
 
 
 def test_budget_ends_a_search_with_no_plan():
     # Two discs that fill a box trade places: no plan exists, and the search gives up at its budget.
-    c = _case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], 100.0, width=400.0, height=200.0)
-    actions, expanded = dense.search(_problem(c), 50, None)
+    c = disc_case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], 100.0, width=400.0, height=200.0)
+    actions, expanded = dense.search(disc_problem(c), 50, None)
     assert actions is None and expanded <= 50
     # The planner proves it at once (lgmcts.confinement, asked before the corner search) ...
     p = plan(c.scene, c.goals, seed=0, max_iter=40)
@@ -112,14 +101,14 @@ def test_every_plan_found_is_valid_and_the_same_each_time(n, r, box, seed):
     a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
     if a is None or b is None:
         return
-    c = _case(a, b, r, w, h)
-    actions, _ = dense.search(_problem(c), 300, None)
+    c = disc_case(a, b, r, w, h)
+    actions, _ = dense.search(disc_problem(c), 300, None)
     if actions is None:
         return
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     # A plan exists, so the confinement proof must not claim otherwise.
     assert confined(Scene.from_spec(c.scene), c.goals) is None
-    again, _ = dense.search(_problem(c), 300, None)
+    again, _ = dense.search(disc_problem(c), 300, None)
     assert again is not None and [x.model_dump() for x in again] == [x.model_dump() for x in actions]
 
 
@@ -132,8 +121,8 @@ def test_a_backward_search_read_in_reverse_is_a_valid_plan(n, r, box, seed):
     a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
     if a is None or b is None:
         return
-    c = _case(a, b, r, w, h)
-    t = dense._Discs(_problem(c), reverse=True)
+    c = disc_case(a, b, r, w, h)
+    t = dense._Discs(disc_problem(c), reverse=True)
     assert dense._reversible(t)
     actions, _ = dense._Search(t).run(300, None)
     if actions is None:

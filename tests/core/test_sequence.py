@@ -5,25 +5,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from disc_cases import disc_case, disc_problem
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lgmcts import check, plan
-from lgmcts.casegen import TrlbArrangement, trlb_case
 from lgmcts.planner.problem import Problem
 from lgmcts.planner.search import SearchOptions
 from lgmcts.planner.sequence import eligible, sequence_plan
 from lgmcts.scene import Scene
-
-
-def _case(start, goal, radius: float, width: float = 1000.0, height: float = 1000.0):
-    def arr(pts):
-        return TrlbArrangement("mem", 0.0, radius, width, height, np.asarray(pts, dtype=float))
-    return trlb_case(arr(start), arr(goal))
-
-
-def _problem(c) -> Problem:
-    return Problem.build(Scene.from_spec(c.scene), c.goals)
 
 
 def _scatter(rng: np.random.Generator, n: int, radius: float) -> list[tuple[float, float]] | None:
@@ -42,8 +32,8 @@ def test_swap_in_a_row_parks_one_disc_off_every_goal():
     # Three discs in a row, touching; the goal rotates them: a cycle, broken by one parked disc.
     r = 100.0
     row = [(300.0, 500.0), (500.0, 500.0), (700.0, 500.0)]
-    c = _case(row, row[1:] + row[:1], r)
-    pr = _problem(c)
+    c = disc_case(row, row[1:] + row[:1], r)
+    pr = disc_problem(c)
     assert eligible(pr)
     actions = sequence_plan(pr)
     assert actions is not None and len(actions) == 4
@@ -61,8 +51,8 @@ def test_no_room_to_park_falls_back_to_the_search():
     # Two discs swap in a box that holds just the two: no spot to park, so no plan here, and the
     # planner's answer is the tree search's (here: no plan either, with its reason).
     r = 100.0
-    c = _case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], r, width=400.0, height=200.0)
-    pr = _problem(c)
+    c = disc_case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], r, width=400.0, height=200.0)
+    pr = disc_problem(c)
     assert eligible(pr) and sequence_plan(pr) is None
     p = plan(c.scene, c.goals, seed=0, max_iter=200)
     q = plan(c.scene, c.goals, seed=0, max_iter=200, options=SearchOptions(sequence=False))
@@ -86,8 +76,8 @@ def test_a_disc_already_on_its_goal_stays():
     r = 60.0
     start = [(200.0, 200.0), (500.0, 500.0), (800.0, 800.0)]
     goal = [(200.0, 200.0), (800.0, 200.0), (500.0, 800.0)]
-    c = _case(start, goal, r)
-    actions = sequence_plan(_problem(c))
+    c = disc_case(start, goal, r)
+    actions = sequence_plan(disc_problem(c))
     assert actions is not None and [a.object for a in actions] == [2, 3]
     assert all(a.purpose == "goal" for a in actions)
 
@@ -100,8 +90,8 @@ def test_plans_pass_the_validator_and_do_not_depend_on_the_seed(seed, n, density
     start, goal = _scatter(rng, n, radius), _scatter(rng, n, radius)
     if start is None or goal is None:
         return
-    c = _case(start, goal, radius)
-    pr = _problem(c)
+    c = disc_case(start, goal, radius)
+    pr = disc_problem(c)
     actions = sequence_plan(pr)
     if actions is not None:
         assert sequence_plan(pr) == actions
@@ -121,8 +111,8 @@ def test_only_a_disc_on_a_cycle_is_parked():
     r = 50.0
     start = [(200.0, 500.0), (301.0, 500.0), (600.0, 500.0), (150.0, 150.0), (300.0, 150.0), (450.0, 150.0)]
     goal = [(330.0, 560.0), (170.0, 440.0), (200.0, 590.0), (600.0, 580.0), (530.0, 450.0), (670.0, 450.0)]
-    c = _case(start, goal, r)
-    actions = sequence_plan(_problem(c))
+    c = disc_case(start, goal, r)
+    actions = sequence_plan(disc_problem(c))
     assert actions is not None
     parked = [a.object for a in actions if a.purpose == "relocate"]
     assert len(actions) == 7 and len(parked) == 1 and parked[0] in (1, 2)
@@ -134,7 +124,7 @@ def test_a_robot_leaves_the_plan_to_the_search():
     # The fast attempt knows nothing of an arm's reach: with a robot the tree search plans, within reach.
     r = 30.0
     row = [(400.0, 500.0), (460.0, 500.0), (520.0, 500.0)]
-    c = _case(row, row[1:] + row[:1], r)
+    c = disc_case(row, row[1:] + row[:1], r)
     p = plan(c.scene, c.goals, seed=0, max_iter=500, robot="ur5e")
     assert "sequenced" not in p.stats and p.stats["robot"] == "ur5e"
     assert plan(c.scene, c.goals, seed=0, max_iter=500).stats.get("sequenced")
