@@ -92,16 +92,21 @@ def test_budget_ends_a_search_with_no_plan():
     assert 1 <= q.stats["corner_states"] <= dense.budget(2) and q.stats["iterations"] == 40
 
 
+def _random_case(n: int, r: float, box: tuple[float, float], seed: int):
+    """Two random packings of ``n`` discs in ``box`` as start and goal, or None where one does not fit."""
+    w, h = box
+    rng = np.random.default_rng(seed)
+    a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
+    return None if a is None or b is None else disc_case(a, b, r, w, h)
+
+
 @settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.integers(3, 5), st.floats(60.0, 85.0), st.sampled_from([(500.0, 400.0), (600.0, 300.0), (500.0, 500.0)]),
        st.integers(0, 10_000))
 def test_every_plan_found_is_valid_and_the_same_each_time(n, r, box, seed):
-    w, h = box
-    rng = np.random.default_rng(seed)
-    a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
-    if a is None or b is None:
+    c = _random_case(n, r, box, seed)
+    if c is None:
         return
-    c = disc_case(a, b, r, w, h)
     actions, _ = dense.search(disc_problem(c), 300, None)
     if actions is None:
         return
@@ -116,12 +121,9 @@ def test_every_plan_found_is_valid_and_the_same_each_time(n, r, box, seed):
 @given(st.integers(3, 5), st.floats(60.0, 85.0), st.sampled_from([(500.0, 400.0), (600.0, 300.0)]),
        st.integers(0, 10_000))
 def test_a_backward_search_read_in_reverse_is_a_valid_plan(n, r, box, seed):
-    w, h = box
-    rng = np.random.default_rng(seed)
-    a, b = _scatter(rng, n, r, w, h), _scatter(rng, n, r, w, h)
-    if a is None or b is None:
+    c = _random_case(n, r, box, seed)
+    if c is None:
         return
-    c = disc_case(a, b, r, w, h)
     t = dense._Discs(disc_problem(c), reverse=True)
     assert dense._reversible(t)
     actions, _ = dense._Search(t).run(300, None)
