@@ -45,6 +45,11 @@ def case_files() -> list[Path]:
     return files
 
 
+#: Held-out halves not measured yet: left out of the golden, so that neither a check nor a rewrite of the
+#: file shows what the parser gives on them before their one measurement (then the entry is removed).
+UNSEEN: dict[str, str] = {"tests/language/fresh8_cases.jsonl": "test"}
+
+
 _QUOTED = re.compile(r"'[^']*'|\"[^\"]*\"")
 _NUMBER = re.compile(r"\d+(?:\.\d+)?")
 
@@ -89,6 +94,8 @@ def compute(progress: bool = False) -> dict[str, dict[str, tuple[str, dict[str, 
         rel = path.relative_to(ROOT).as_posix()
         rows: dict[str, tuple[str, dict[str, Any] | None, str | None]] = {}
         for case in load_cases(path):
+            if UNSEEN.get(rel) is not None and case.split == UNSEEN[rel]:
+                continue
             if case.id in rows:
                 raise SystemExit(f"{rel}: case id {case.id!r} appears twice")
             goals, err = run_parser(parse, case.scene, case.instruction)
