@@ -151,7 +151,8 @@ def main() -> None:
     for c in tally.values():
         total += c
     n = sum(total.values())
-    print(f"{'all':9s} {'':5s} {n:6d} {total['read']:6d} {total['refused']:8d} {total['dropped']:8d} {total['wrong']:6d}")
+    t = total
+    print(f"{'all':9s} {'':5s} {n:6d} {t['read']:6d} {t['refused']:8d} {t['dropped']:8d} {t['wrong']:6d}")
     for line in shown:
         print(line)
 

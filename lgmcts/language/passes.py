@@ -28,6 +28,7 @@ from .lexicon import HUES as _HUES
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
+from .lexicon import context_words
 from .places import POINTING_PARTS
 from .rewrite import FREE_ORDER
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
@@ -47,6 +48,11 @@ _ARTICLE_AT = re.compile(rf"(?i)((?:^|[.;!?:]|\b(?:{'|'.join(sorted(_COMMAND_VER
 
 #: Verbs of a selection clause: it names objects for the next clause ("select
 #: objects that are red. circle"; "take the red mug and put it ...").
+#: The word lists of a remark and an aside (``[context]`` of the lexicon).
+_CTX = context_words()
+#: Determiners and possessives before the noun of an aside ("by the window", "in my kitchen").
+_ASIDE_DETS = frozenset({"the", "a", "an", "my", "your", "our", "his", "her", "their", "that", "this", "these", "those",
+                         "some", "any", "one"})
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch",
                            "see", "spot", "notice", "locate", "look"})
 
@@ -382,8 +388,12 @@ class _TokenPasses(ParserHost):
             else:
                 parts[-1].append(w)
         if len(parts) == 1 and not any(self._content_word(w) for w in parts[0]):
+            self._unread_aside(parts[0])
             return ()
         kept = [p for p in parts if any(self._content_word(w) for w in p) and not (len(parts) > 1 and self._free_order(tuple(p)))]
+        for p in parts:
+            if not any(self._content_word(w) for w in p):
+                self._unread_aside(p)
         if len(kept) > 1:
             # ", just a straight row is fine", ", single file": a part naming again, with no object,
             # the arrangement another part already names.
@@ -399,6 +409,31 @@ class _TokenPasses(ParserHost):
         for p in kept:
             out.extend(([","] if out else []) + p)
         return tuple(out)
+
+    def _unread_aside(self, part: list[str]) -> None:
+        """Refuse an aside that says where or how with a noun the parser cannot read ("by the window", "in a
+        zigzag", "next to the fridge"): dropping it would leave out what was said. A preposition of
+        ``[context] place_prepositions`` followed by a noun phrase whose noun is neither a word the parser reads
+        nor one of ``aside_nouns`` ("by the way", "in a minute")."""
+        for k, w in enumerate(part):
+            if w not in _CTX["place_prepositions"]:
+                continue
+            j = k + 1
+            if j < len(part) and part[j] in ("to", "of") and w in ("next", "near", "inside", "opposite"):
+                j += 1  # "next to the fridge", "inside of the drawer"
+            while j < len(part) and part[j] in _ASIDE_DETS:
+                j += 1
+            if j == k + 1 or j >= len(part) or part[j - 1] in ("to", "of"):
+                continue  # a determiner must follow: "by hand", "in time" are idioms
+            end = j
+            while end < len(part) and part[end].isalpha() and part[end] not in STOPWORDS and end - j < 3:
+                end += 1
+            noun = part[end - 1] if end > j else ""
+            if not noun or noun in _CTX["aside_nouns"] or _stem(noun) in _CTX["aside_nouns"]:
+                continue
+            raise InputError(f"'{' '.join(part[k:end])}' is not read: it names nothing in the scene and no place or "
+                             f"arrangement the parser knows; say it with the table's sides and corners or an object "
+                             f"on it, or leave it out")
 
     def _same_as_before(self, clause: tuple[str, ...], last: tuple[str, ...]) -> tuple[str, ...]:
         """"do the same with the yellow letter and the yellow block", "same for the

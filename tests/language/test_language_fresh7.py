@@ -121,3 +121,31 @@ def test_a_measure_is_never_dropped(matcher):
     for text in ("the cans in a row 25 cm long", "a 25 cm row of the cans", "the cans in a line, about 25 cm"):
         (goal,) = _goals("home", text, matcher)
         assert goal["size"] == 0.25, text
+
+
+@pytest.mark.parametrize("text, quoted", [
+    ("line up the three cans, by the window", "'by the window'"),         # a place at something not on the table
+    ("put the bowls in a circle, in a zigzag", "'in a zigzag'"),           # an arrangement no pattern has
+    ("line up the cans, beside the window, thanks", "'beside the window'"),
+    ("stack the mugs, under the lamp", "lamp"),
+])
+def test_an_aside_that_says_where_is_never_dropped(text, quoted, matcher):
+    # An aside said apart by commas is dropped only where it asks nothing; one that says where or how with a
+    # noun the parser cannot read is refused, quoted.
+    with pytest.raises(InputError) as exc:
+        _goals("home", text, matcher)
+    assert quoted in str(exc.value)
+
+
+@pytest.mark.parametrize("text", [
+    "line up the three cans, by the way", "line up the three cans, in a minute", "line up the three cans, thanks",
+    "line up the three cans, if you don't mind",
+])
+def test_an_aside_that_asks_nothing_is_dropped(text, matcher):
+    assert _goals("home", text, matcher) == [{"pattern": "line", "objects": [12, 13, 14]}]
+
+
+def test_a_place_after_a_reason_is_read(matcher):
+    # The reason ends at the comma before a place: "..., since I count them, in the back left corner".
+    assert _goals("home", "line up the cans, since I need to count them, in the back left corner", matcher) == [
+        {"pattern": "line", "objects": [12, 13, 14], "region": "top left"}]
