@@ -66,6 +66,7 @@ _AFTER: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
 _BEFORE: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
     (("radius",), "radius"), (("radius", "of"), "radius"), (("a", "radius", "of"), "radius"),
     (("radius", "is"), "radius"), (("radius", ":"), "radius"), (("radius", "="), "radius"),
+    (("r", "="), "radius"), (("r", ":"), "radius"), (("d", "="), "across"), (("diameter", "="), "across"),
     (("diameter",), "across"), (("diameter", "of"), "across"), (("a", "diameter", "of"), "across"),
     (("across",), "across"), (("width", "of"), "across"), (("a", "width", "of"), "across"),
     (("long", "side"), "long_side"), (("long", "side", "of"), "long_side"), (("longer", "side"), "long_side"),

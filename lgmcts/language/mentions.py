@@ -74,7 +74,7 @@ _EXCEPT = tuple(
     tuple(s.split())
     for s in sorted(
         ["except for", "except", "but not", "other than", "excluding", "apart from", "but", "save for", "without", "minus",
-         "leaving out", "not counting", "with the exception of", "aside from", "barring"],
+         "leaving out", "not counting", "with the exception of", "aside from", "barring", "bar", "but for"],
         key=lambda s: -len(s),
     )
 )

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 from ..errors import InputError
@@ -181,9 +181,47 @@ def _after_head(ws: tuple[str, ...], i: int) -> tuple[Key, int] | None:
     return None
 
 
+#: Comparatives read as the superlative over exactly two candidates ("whichever mug is further to the left",
+#: "the one farther from me", "the cup nearer to me").
+_COMPARATIVES = {"further": "furthest", "farther": "farthest", "nearer": "nearest", "closer": "closest"}
+#: Verbs after which "the cup closer to the plate" asks to move the cup, not to pick it.
+_PLACING = frozenset({"put", "move", "place", "set", "push", "pull", "bring", "shift", "slide", "get", "nudge",
+                      "pop", "stick", "drag", "take"})
+
+
+def _said_apart(ws: tuple[str, ...], k: int) -> bool:
+    """Whether the comparative at ``k`` is read otherwise: "the farther of the two" (read as it stands) or
+    "nearer the viewer than the red can" (a relation between two objects, not a reference)."""
+    if ws[k + 1 : k + 2] == ("of",):
+        return True
+    for w in ws[k + 1 :]:
+        if w == "than":
+            return True
+        if w in (",", ".", ";", ":", "!", "?", "and", "then"):
+            return False
+    return False
+
+
 def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
-    """Every phrase of ``words`` that picks objects by where they stand, left to right."""
-    return scan(tuple(words), _ref_at)
+    """Every phrase of ``words`` that picks objects by where they stand, left to right.
+
+    A comparative is read as its superlative over two candidates (the phrase then speaks of two, as "the
+    farther of the two" does), except right after a verb of placing, where it says where to move."""
+    ws = tuple(words)
+    compared = {k for k, w in enumerate(ws) if w in _COMPARATIVES and not _said_apart(ws, k)}
+    if not compared:
+        return scan(ws, _ref_at)
+    mapped = tuple(_COMPARATIVES.get(w, w) for w in ws)
+    out: list[PositionRef] = []
+    for ref in scan(mapped, _ref_at):
+        said = [k for k in compared if ref.start <= k < ref.end]
+        if not said:
+            out.append(ref)
+        elif ref.start > 0 and ws[ref.start - 1] in _PLACING and ref.count == 1:
+            continue  # "move the cup closer to the plate": a placing, left for the parser
+        else:
+            out.append(ref if ref.of is not None else replace(ref, of=2))
+    return out
 
 
 def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:

@@ -64,6 +64,16 @@ def _cmp_at(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
     return None
 
 
+#: Words of a match that may leave the attribute unsaid (then colour): "matching the green bowl".
+_MATCH_WORDS = frozenset({"matching", "matches", "match"})
+
+
+def _colour_match(words: tuple[str, ...], k: int) -> bool:
+    """Whether ``words[k]`` is a match word followed right away by a reference ("matching the green bowl")."""
+    return (k + 1 < len(words) and words[k] in _MATCH_WORDS
+            and words[k + 1] in ("the", "a", "an", "any", "one", "either", "each", "some"))
+
+
 def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_words: frozenset[str],
                     reference: Callable[..., Mention | None]):
     """An attribute clause after a noun: ``((attribute, op, reference), end)`` or None. ``reference`` reads
@@ -89,7 +99,7 @@ def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_w
         if got is None:
             return None
         implied = words[j] in _IMPLIED and words[got[1] - 1] == "than"
-        if not implied and (got[1] >= n or words[got[1]] not in _ATTRS):
+        if not implied and (got[1] >= n or words[got[1]] not in _ATTRS) and not _colour_match(words, j):
             return None
     k = j
     if k < n and words[k] in ("the", "a", "an"):
@@ -113,6 +123,10 @@ def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_w
             elif words[k2 - 1] in _IMPLIED or (k2 >= 2 and words[k2 - 2] in _IMPLIED):
                 imp = words[k2 - 1] if words[k2 - 1] in _IMPLIED else words[k2 - 2]
                 op, attr, k = op0, _IMPLIED[imp], k2
+    if op is None and _colour_match(words, k):
+        # "the can matching the green bowl", "the bowl that matches one of the mugs (in colour)": objects told
+        # apart by colour only, so a match with no attribute said is a match of colour.
+        op, attr, k = "eq", "color", k + 1
     if op is not None and attr is not None:
         # StructFormer's "objects that have the same color as the X" / "equal
         # height as the X" leave the X out (it is the anchor of the query);
@@ -125,7 +139,10 @@ def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_w
         ref = reference(vocab, words, k, pattern_words, nested=True)
         if ref is None:
             raise InputError(f"'{' '.join(words[i:k + 2])}': the reference object names nothing in the scene")
-        return (attr, op, ref), ref.end
+        end = ref.end
+        if attr == "color" and words[end : end + 2] in (("in", "colour"), ("in", "color")):
+            end += 2
+        return (attr, op, ref), end
     # [is|are] [not] VALUE: a colour or a category ("that are red", "that are mug").
     if words[j - 1] in ("is", "are") or (j < n and words[j] in ("is", "are")):
         k = j + (1 if j < n and words[j] in ("is", "are") else 0)

@@ -226,6 +226,9 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
     return out
 
 
+_HYPHEN_MOST = re.compile(r"(?i)\b(left|right|front|back|rear|hind|fore)\s*-\s*most\b")
+
+
 def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
                 pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
                 nouns: frozenset[str] = frozenset(),
@@ -242,6 +245,7 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
     name they stand for ("cup" -> "mug" in a scene of mugs and no cup). As in the grounding, such
     a head may name the one object of that kind; a position phrase never chooses among several
     of them ("the cup nearest the phone" among two mugs is refused, as "the cup" is)."""
+    text = _HYPHEN_MOST.sub(r"\1most", text)  # "front-most", "right - most": one word
     toks: tuple[Token, ...] = tokenize(text)
     words = tuple(t.text for t in toks)
     refs = find_position_refs(words)

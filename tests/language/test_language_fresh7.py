@@ -149,3 +149,34 @@ def test_a_place_after_a_reason_is_read(matcher):
     # The reason ends at the comma before a place: "..., since I count them, in the back left corner".
     assert _goals("home", "line up the cans, since I need to count them, in the back left corner", matcher) == [
         {"pattern": "line", "objects": [12, 13, 14], "region": "top left"}]
+
+
+@pytest.mark.parametrize("scene, text, expect", [
+    # a comparative over two candidates is their superlative; after a verb of placing it says where to move
+    ("home", "whichever mug is further to the left goes behind the plate",
+     [{"pattern": "behind", "objects": [1], "anchor": 8}]),
+    ("home", "the bottle nearer to me goes left of the plate", [{"pattern": "left", "objects": [6], "anchor": 8}]),
+    ("home", "the mug farther from me goes on the plate", [{"pattern": "tower", "objects": [8, 1]}]),
+    # "front-most" said with a hyphen is one word
+    ("blocks", "the two front-most blocks go left of the black bowl",
+     [{"pattern": "left", "objects": [4, 5], "anchor": 8}]),
+    # a match with no attribute said is a match of colour
+    ("home", "the can matching the green bowl goes in front of the white bowl",
+     [{"pattern": "front", "objects": [14], "anchor": 3}]),
+    ("blocks", "rectangle of the red, blue, green and yellow blocks, pointed at the right edge of the table",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "facing": "east"}]),
+    ("toys", "all the letters bar the T in a line", [{"pattern": "line", "objects": [1, 2, 4]}]),
+    ("home", "the cans on a circle, r = 12 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.12}]),
+    ("home", "the cans in a circle, d = 30 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.15}]),
+])
+def test_comparatives_and_matches(scene, text, expect, matcher):
+    assert _goals(scene, text, matcher) == expect
+
+
+@pytest.mark.parametrize("scene, text, says", [
+    ("home", "the bowl nearer to me goes behind the plate", "speaks of 2"),   # three bowls: no comparative
+])
+def test_a_comparative_over_more_than_two_is_refused(scene, text, says, matcher):
+    with pytest.raises(InputError) as exc:
+        _goals(scene, text, matcher)
+    assert says in str(exc.value)
