@@ -44,6 +44,7 @@ class ParserHost:
     _named_in: list[tuple[tuple[str, ...], list[Mention]]]
     _said: str
     _measures: list
+    _poses: list
     _measured: set[int]
     _last_read: _Pending | None
 

@@ -44,6 +44,7 @@ from .clauses import (
     _stacking,
     _weak_split,
 )
+from . import poses
 from .framing import _ROLE_MARK
 from .passes import _MEASURE_WORDS, _NOT_JOIN, _SELECT_VERBS
 from .selection import _ALLOWED_EXTRA
@@ -124,6 +125,26 @@ def reading(name: str, adjusts: bool = False) -> Callable[[Handler], Handler]:
 
 
 # ------------------------------------------------------------------ on the words
+
+
+@early("pose")
+def _read_pose(self: _Parser, f: Frame) -> list[_Pending] | None:
+    """"the mug to x = 0.10 m, y = -0.05 m, yaw 0 rad", "the cup at (10 cm, -5 cm)": one object to a pose said in
+    numbers (:mod:`.poses`); a yaw not said is the object's own."""
+    marks = [w for w in f.words if poses.is_mark(w)]
+    if not marks:
+        return None
+    if len(marks) > 1:
+        raise InputError(f"'{f.text}': two poses in one clause; give each object its own")
+    said = self._poses[ord(marks[0][-1]) - ord("a")]
+    mentions = self._find(tuple(w for w in f.words if not poses.is_mark(w)))
+    sel = self._select(mentions[0]) if len(mentions) == 1 else None
+    if not isinstance(sel, list) or len(sel) != 1:
+        raise InputError(f"'{f.text}': a pose said in numbers is for one object; name that object")
+    oid = sel[0]
+    own = self.spec.object(oid).pose
+    yaw = said.yaw if said.yaw is not None else (float(own[2]) if own is not None else 0.0)
+    return [_Pending("pose", [oid], None, (said.x, said.y, yaw), f.text)]
 
 
 @early("not-a-goal")

@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import stages
+from . import poses, stages
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
 from .assembly import _Pending
@@ -158,6 +158,8 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         self._said = ""
         #: The measures said in numbers (.stages.mark_measures) and those a goal took.
         self._measures: list = []
+        #: The poses said in numbers (.poses.mark_poses).
+        self._poses: list[poses.SaidPose] = []
         self._measured: set[int] = set()
         #: The last goal read from a clause (a later clause with only a facing may be its).
         self._last_read: _Pending | None = None
@@ -186,6 +188,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = self._spelled_right(text)
+        text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
         text = stages.other_side(stages.said_places(stages.said_facings(text)))
         text = unframe(text)

@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import replace
 import re
 
-from . import lexicon, stages
+from . import lexicon, poses, stages
 from ..errors import InputError
 from .clauses import _COMMAND_VERBS, _DIR_WORDS, _is_number
 from .grounding import COLOUR_WORDS, Choice, GROUPS, Mention, NUMBERS, candidates, find_mentions, select
@@ -245,7 +245,7 @@ class _Selecting(ParserHost):
         """Whether ``w`` may carry part of a goal: an object, colour or id word, a
         pattern or direction word, a place, size or order word, a number."""
         st = _stem(w)
-        if _is_number(w) or w.startswith("#") or stages.is_mark(w) or w in BAND_MARKS:
+        if _is_number(w) or w.startswith("#") or stages.is_mark(w) or poses.is_mark(w) or w in BAND_MARKS:
             return True
         if w in self.vocab.color_words or w in COLOUR_WORDS or w in self._cat_words or st in self._cat_words:
             return True

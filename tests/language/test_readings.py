@@ -18,6 +18,7 @@ ROOT = Path(__file__).resolve().parents[2]
 #: For each reading, labelled commands ("case file:case id", from dev splits only) it takes part in: an early
 #: handler or a reading answers them (or refuses them), an adjustment changes their frame.
 EXAMPLES: dict[str, tuple[str, ...]] = {
+    "pose": ("tests/language/fresh8_cases.jsonl:fresh8a-measure-005",),
     "not-a-goal": ("tests/language/fresh_cases.jsonl:freshH-refusal-002",),
     "itself": ("data/parse_cases.jsonl:refusal-028",),
     "so-that": ("data/paraphrase_cases.jsonl:reference-inverted-002",),

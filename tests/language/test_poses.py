@@ -1,0 +1,64 @@
+"""Poses said in numbers (lgmcts.language.poses), at their stage and through the whole parser."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+from hypothesis import given, strategies as st
+
+from lgmcts.errors import InputError
+from lgmcts.formats import parse_scene
+from lgmcts.language.poses import find_poses, mark_poses
+from lgmcts.language.rules import goal_dicts
+
+FILE = Path(__file__).with_name("fresh_cases.jsonl")
+SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in map(json.loads, FILE.read_text().splitlines())
+          if "scene_id" in r}
+
+
+@pytest.mark.parametrize("text, x, y, yaw", [
+    ("the mug to x = 0.10 m, y = -0.05 m, yaw 0 rad", 0.10, -0.05, 0.0),
+    ("x=10cm, y=-5cm", 0.10, -0.05, None),
+    ("x: 100 mm and y: 250 mm, yaw 90 deg", 0.10, 0.25, math.pi / 2),
+    ("to x 0.2 y 0.1, rotated by pi/2", 0.2, 0.1, math.pi / 2),
+    ("the cup at (10 cm, -5 cm)", 0.10, -0.05, None),
+    ("put it at (0.1, 0.2, 3pi/4)", 0.1, 0.2, 3 * math.pi / 4),
+    ("x = 12, y = 3 cm", 0.12, 0.03, None),          # a unit said once holds for both
+])
+def test_find_poses(text, x, y, yaw):
+    (p,) = find_poses(text)
+    assert p.x == pytest.approx(x) and p.y == pytest.approx(y)
+    assert (p.yaw is None) if yaw is None else p.yaw == pytest.approx(yaw)
+
+
+@pytest.mark.parametrize("text", ["a 25 cm row", "the cans (all three of them) in a row", "stack 3 cups",
+                                  "put the box at the back"])
+def test_no_pose_is_found_where_none_is_said(text):
+    assert find_poses(text) == []
+    assert mark_poses(text) == (text, [])
+
+
+@given(st.floats(-0.5, 0.5, allow_nan=False).map(lambda v: round(v, 3)),
+       st.floats(-0.5, 0.5, allow_nan=False).map(lambda v: round(v, 3)))
+def test_metres_and_centimetres_read_alike(x, y):
+    a = find_poses(f"x = {x} m, y = {y} m")[0]
+    b = find_poses(f"x = {round(x * 100, 1)} cm, y = {round(y * 100, 1)} cm")[0]
+    assert (a.x, a.y) == pytest.approx((x, y)) and (b.x, b.y) == pytest.approx((x, y))
+
+
+def test_a_pose_goal_through_the_parser(matcher):
+    assert goal_dicts(SCENES["home"], "put the red mug at (10 cm, -5 cm) and stack the cans", matcher=matcher) == [
+        {"pattern": "pose", "objects": [1], "pose": [0.1, -0.05, 0.0]},
+        {"pattern": "tower", "objects": [12, 13, 14]}]
+    (g,) = goal_dicts(SCENES["home"], "move the plate to x=0.2, y=0.1, yaw 90 deg", matcher=matcher)
+    assert g["pose"] == pytest.approx([0.2, 0.1, math.pi / 2])
+
+
+@pytest.mark.parametrize("text", ["the cans to x = 0.1, y = 0",        # a pose is for one object
+                                  "the mug to x = 0.1, y = 0"])         # two mugs: which one?
+def test_a_pose_for_no_single_object_is_refused(text, matcher):
+    with pytest.raises(InputError):
+        goal_dicts(SCENES["home"], text, matcher=matcher)
