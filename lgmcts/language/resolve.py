@@ -105,6 +105,12 @@ def _apply_filter(vocab: Vocabulary, f: tuple, out: list[int], named: frozenset[
         if not refs:
             raise InputError(f"nothing in the scene matches '{ref.text}'")
         values = {o[col] for o in vocab.objects if o[0] in refs}
+        if len(values) != 1 and ref.text.split()[:1] in (["any"], ["one"], ["either"], ["some"], ["a"], ["an"]):
+            # "the blocks sharing a colour with any of the letters", "... with a bowl": any one of their values.
+            same = {o[0] for o in vocab.objects if o[col] in values}
+            if op == "eqx":
+                return [i for i in out if i in same and i not in refs]
+            return [i for i in out if (i in same) == (op == "eq")]
         if len(values) != 1:
             raise InputError(f"'{ref.text}' is ambiguous: it matches objects {describe(vocab, refs)} "
                              f"of different {'colours' if attr == 'color' else 'kinds'}")

@@ -166,6 +166,10 @@ def test_a_place_after_a_reason_is_read(matcher):
     ("blocks", "rectangle of the red, blue, green and yellow blocks, pointed at the right edge of the table",
      [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "facing": "east"}]),
     ("toys", "all the letters bar the T in a line", [{"pattern": "line", "objects": [1, 2, 4]}]),
+    # a colour shared with any one of several objects ("any of the letters", "a bowl")
+    ("toys", "arrange the blocks sharing a colour with any of the letters in a circle",
+     [{"pattern": "circle", "objects": [5, 6, 7, 8]}]),
+    ("pantry", "line up the cans that match one of the bowls in colour", [{"pattern": "line", "objects": [1, 2, 3]}]),
     ("home", "the cans on a circle, r = 12 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.12}]),
     ("home", "the cans in a circle, d = 30 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.15}]),
 ])
