@@ -20,7 +20,10 @@ purpose, since a wrong correction is a wrong goal:
   exactly one of the scene's names or colours or a pattern noun is that word
   ("blu" blue, "hart" heart when the scene has a heart, "lin" line);
   a common word is never corrected; a three-letter word only ever becomes a
-  colour or a pattern noun.
+  colour or a pattern noun;
+* a word that is no English word and is exactly one of the scene's words, colours or
+  pattern nouns with some of its vowels left out is that word ("orng" orange, "prpl"
+  purple, "bwl" bowl); a plural said with a final z is the plural ("bowlz").
 
 Words of one or two letters and numbers are left alone.
 """
@@ -39,7 +42,8 @@ INFORMAL: dict[str, str] = {
     "cuz": "because", "coz": "because", "nxt": "next", "abt": "about", "tmrw": "tomorrow", "ppl": "people",
     "pl0x": "please", "plss": "please", "pleasee": "please", "ontop": "on top", "frm": "from", "wth": "with",
     "betwen": "between", "behing": "behind", "alot": "a lot", "bttm": "bottom", "btm": "bottom",
-    "lft": "left", "rght": "right", "cntr": "centre", "ctr": "centre",
+    "lft": "left", "rght": "right", "cntr": "centre", "ctr": "centre", "rite": "right", "cud": "could",
+    "wud": "would", "shud": "should", "thx": "thanks", "thnx": "thanks", "bhind": "behind", "frnt": "front",
 }
 #: English words with a vocabulary rank above this are rare enough to be a dropped-letter slip.
 RARE_RANK = 7000
@@ -98,6 +102,19 @@ def english_rank(word: str) -> int | None:
     return None
 
 
+def _vowels_dropped(short: str, long: str) -> bool:
+    """Whether ``short`` is ``long`` with some of its vowels left out, its first letter kept ("orng", "prpl")."""
+    if len(short) < 3 or len(short) >= len(long) or short[0] != long[0]:
+        return False
+    k = 0
+    for ch in long:
+        if k < len(short) and ch == short[k]:
+            k += 1
+        elif ch not in "aeiou":
+            return False
+    return k == len(short)
+
+
 def _dropped_letter(short: str, long: str) -> bool:
     return len(long) == len(short) + 1 and any(long[:k] + long[k + 1 :] == short for k in range(len(long)))
 
@@ -141,6 +158,11 @@ class Corrector:
             return hits[0] if len(hits) == 1 else w
         if not w.isalpha():
             return w
+        if w.endswith("z") and w[:-1] + "s" in self.scene:
+            return w[:-1] + "s"  # "bowlz", "cupz": a plural said with a z
+        skeleton = [t for t in self.scene | self.colours | self.nouns if _vowels_dropped(w, t)]
+        if len(skeleton) == 1:
+            return skeleton[0]  # "orng", "prpl", "grn": a scene word or colour with its vowels left out
         if len(w) == 3:
             hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
             return hits[0] if len(hits) == 1 else w

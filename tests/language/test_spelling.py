@@ -34,6 +34,10 @@ def _fix(text: str) -> str:
     ("Plaet on the left", "Plate on the left"),
     ("the blu mug on the box", "the blue mug on the box"),             # a rare word, a letter short of a colour
     ("a 10 cm raduis", "a 10 cm radius"),
+    ("the orng mug behnd the box", "the orange mug behind the box"),   # vowels left out of a colour
+    ("a prpl star", "a purple star"),
+    ("stak the 3 bowlz", "stack the 3 bowls"),                        # a plural said with a z
+    ("cud u put the fork rite of the box", "could u put the fork right of the box"),  # informal spellings
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -49,6 +53,7 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "after lunch, the mug behind the plate",
     "a 10 cm radios",                     # an English word, however unlikely here
     "put the mugs in the middle-ish",     # a three-letter word never becomes an object's name ('dish')
+    "the bx next to the mug",             # two letters: left alone
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
