@@ -27,6 +27,9 @@ from dataclasses import dataclass
 
 from . import lexicon
 
+#: The words for the table ("of the table", "of the workspace").
+_TABLE = lexicon.TABLE_WORDS
+
 __all__ = ["BAND_MARKS", "FACE_VERBS", "POINTING_PARTS", "Place", "read_facing", "read_place"]
 
 #: The lexicon's facing verbs and their other forms.
@@ -74,8 +77,8 @@ def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
         return "south", j + 1
     if j + 1 < n and words[j] in _EDGES and words[j + 1] in _SIDE_NOUNS:
         k = j + 2
-        if k + 1 < n and words[k] == "of" and words[k + 1] in ("the", "table"):
-            k += 2 + (words[k + 1] == "the" and k + 2 < n and words[k + 2] == "table")
+        if k + 1 < n and words[k] == "of" and (words[k + 1] == "the" or words[k + 1] in _TABLE):
+            k += 2 + (words[k + 1] == "the" and k + 2 < n and words[k + 2] in _TABLE)
         return _EDGES[words[j]], k
     if j < n and words[j] in ("back", "front") and j > i + 1 and words[j - 1] == "the":
         return _EDGES[words[j]], j + 1  # "facing the back", "pointing to the front"
@@ -136,7 +139,7 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
             k += 1
         if k < n and words[k] in _CENTRE:
             k += 1
-            if k + 2 < n and words[k] == "of" and words[k + 1] == "the" and words[k + 2] == "table":
+            if k + 2 < n and words[k] == "of" and words[k + 1] == "the" and words[k + 2] in _TABLE:
                 k += 3
             return Place("middle", "center"), k
         return None
@@ -218,8 +221,8 @@ def _side_after(words: tuple[str, ...], k: int) -> tuple[str, int] | None:
 
 
 def _of_table(words: tuple[str, ...], k: int) -> int:
-    if words[k : k + 3] == ("of", "the", "table"):
+    if words[k : k + 2] == ("of", "the") and words[k + 2 : k + 3] and words[k + 2] in _TABLE:
         return k + 3
-    if words[k : k + 2] == ("of", "table"):
+    if words[k : k + 1] == ("of",) and words[k + 1 : k + 2] and words[k + 1] in _TABLE:
         return k + 2
     return k

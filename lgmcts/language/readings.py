@@ -228,12 +228,24 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
         _add_params(last, params, text)
         return []
     shape = self.state.last_shape
+    if (len(mentions) == 1 and mentions[0].text in ("it", "them") and params and shape is not None
+            and len(shape.objects) > 1 and set(self.state.last) == set(shape.objects)
+            and all(_restates(w, shape.pattern) or w in _MOVE_VERBS
+                    or (w in _COMMAND_VERBS and not any(w in nouns for nouns in SHAPE_NOUNS.values()))
+                    for w in meaningful)):
+        # "make a square of the bowls and the box. centre it on the table": "it" is the arrangement just read.
+        _add_params(shape, params, text)
+        return []
     if not mentions and params and shape is not None and all(_restates(w, shape.pattern) for w in meaningful):
         # "..., red on top, in the front right corner": the place of the arrangement just read; also where
         # the clause names that arrangement again ("line up the cans, in a strip along the back").
         _add_params(shape, params, text)
         return []
     return None
+
+
+#: Verbs that move an arrangement already said to a place ("centre it on the table", "shift them to the back").
+_MOVE_VERBS = frozenset({"centre", "center", "shift", "move", "slide", "push", "bring", "keep", "have", "want", "leave"})
 
 
 def _restates(word: str, pattern: str) -> bool:

@@ -29,6 +29,7 @@ from .colour_refs import find_colour_refs, select
 from .context import drop_context
 from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import Measure, find_measures, size_for
+from .lexicon import TABLE_WORDS
 from .places import POINTING_PARTS, read_facing
 from .positions import find_position_refs, pick
 from .spelling import Corrector
@@ -136,7 +137,7 @@ def said_places(text: str) -> str:
             k = i + 1 + (w in ("part", "half"))
             if words[k : k + 1] in (("back",), ("up",), ("along",), ("down",), ("across",)):
                 end, say = k + 1, "in middleband"
-                if words[end : end + 2] == ("the", "table"):
+                if words[end : end + 1] == ("the",) and words[end + 1 : end + 2] and words[end + 1] in TABLE_WORDS:
                     end += 2
         elif w in ("centre", "center", "middle") and i and words[i - 1] == "the" and words[i + 1 : i + 2] == ("of",):
             # "the centre of the left side", "the middle of the front edge": the cell halfway along that side
@@ -147,7 +148,7 @@ def said_places(text: str) -> str:
             if side in _SIDE_CELLS and words[k + 1 + hand : k + 2 + hand] in (("side",), ("edge",), ("end",), ("half",),
                                                                              ("wall",)):
                 end = k + 2 + hand
-                if words[end : end + 3] == ("of", "the", "table"):
+                if words[end : end + 2] == ("of", "the") and words[end + 2 : end + 3] and words[end + 2] in TABLE_WORDS:
                     end += 3
                 i -= 1  # the article goes too
                 say = f"in the {_SIDE_CELLS[side]}cell"

@@ -170,6 +170,11 @@ def test_a_place_after_a_reason_is_read(matcher):
     ("toys", "arrange the blocks sharing a colour with any of the letters in a circle",
      [{"pattern": "circle", "objects": [5, 6, 7, 8]}]),
     ("pantry", "line up the cans that match one of the bowls in colour", [{"pattern": "line", "objects": [1, 2, 3]}]),
+    # "it" after an arrangement, in a clause that only places it, is that arrangement
+    ("pantry", "make a square of the three bowls and the box. centre it on the table",
+     [{"pattern": "rectangle", "objects": [5, 6, 7, 10], "region": "middle center"}]),
+    ("blocks", "all six blocks in a big rectangle, and it should be facing east",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4, 5, 6], "size": "large", "facing": "east"}]),
     ("home", "the cans on a circle, r = 12 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.12}]),
     ("home", "the cans in a circle, d = 30 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.15}]),
 ])
