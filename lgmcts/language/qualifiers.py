@@ -123,7 +123,8 @@ def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_w
             elif words[k2 - 1] in _IMPLIED or (k2 >= 2 and words[k2 - 2] in _IMPLIED):
                 imp = words[k2 - 1] if words[k2 - 1] in _IMPLIED else words[k2 - 2]
                 op, attr, k = op0, _IMPLIED[imp], k2
-    if op is None and _colour_match(words, k):
+    implied_match = op is None and _colour_match(words, k)
+    if implied_match:
         # "the can matching the green bowl", "the bowl that matches one of the mugs (in colour)": objects told
         # apart by colour only, so a match with no attribute said is a match of colour.
         op, attr, k = "eq", "color", k + 1
@@ -142,6 +143,13 @@ def _attr_qualifier(vocab: Vocabulary, words: tuple[str, ...], i: int, pattern_w
         end = ref.end
         if attr == "color" and words[end : end + 2] in (("in", "colour"), ("in", "color")):
             end += 2
+        if (implied_match and end + 1 < n and words[end] in ("and", "or") and words[end + 1] in ("the", "a", "an")
+                and reference(vocab, words, end + 1, pattern_words, nested=True) is not None):
+            # "the letters matching the red block and the green block": a second object to match, or a second
+            # object to arrange? Either reading is a guess.
+            raise InputError(f"'{' '.join(words[i:end + 4])}': cannot tell whether what follows '{words[end]}' is "
+                             f"matched too or arranged too; say 'matching either of them' or name "
+                             f"the objects")
         return (attr, op, ref), end
     # [is|are] [not] VALUE: a colour or a category ("that are red", "that are mug").
     if words[j - 1] in ("is", "are") or (j < n and words[j] in ("is", "are")):
