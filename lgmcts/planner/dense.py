@@ -265,8 +265,8 @@ class _Search:
         while self.heap:
             if self.expanded >= max_expansions or (deadline is not None and time.perf_counter() > deadline):
                 break
-            _, g, s = heapq.heappop(self.heap)
-            g = abs(g)
+            _, depth, s = heapq.heappop(self.heap)
+            g = abs(depth)  # stored negated when deepest first
             self.expanded += 1
             last = self.expand(s, g)
             if last is not None:
@@ -278,8 +278,8 @@ class _Search:
         goal, if any.
 
         The moves, in order: for each disc, straight to its goal when no other disc covers the goal disc, then to
-        each corner of its free space. Each new state is ranked by moves plus :data:`WEIGHT` times (open goals +
-        half the open goals covered); all moves of the state are judged at once."""
+        each corner of its free space. Each new state is ranked by moves plus the search's weight times (open
+        goals + half the open goals covered); all moves of the state are judged at once."""
         t = self.t
         pos, yok = self.states[s][0], self.states[s][1]
         done = self.at_goal(pos, yok)

@@ -90,6 +90,8 @@ def test_budget_ends_a_search_with_no_plan():
     q = plan(c.scene, c.goals, seed=0, max_iter=40, options=SearchOptions(proof_after=0))
     assert not q.solved and not q.stats.get("infeasible")
     assert 1 <= q.stats["corner_states"] <= dense.budget(2) and q.stats["iterations"] == 40
+    # The one-line reason says so too.
+    assert f"and {q.stats['corner_states']} table states of the corner search;" in q.stats["reason"]
 
 
 def _random_case(n: int, r: float, box: tuple[float, float], seed: int):
