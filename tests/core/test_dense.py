@@ -176,8 +176,10 @@ def _packed(seed: int, n: int, density: float):
     r = 1000.0 * math.sqrt(density / (math.pi * n))
     lo, hi = np.array([r, r]), np.array([1000.0 - r, 1000.0 - r])
     rng = np.random.default_rng(seed)
-    out = []
-    while len(out) < 2:
+    out: list[np.ndarray] = []
+    for _ in range(50):
+        if len(out) == 2:
+            break
         p = rng.uniform(lo, hi, size=(n, 2))
         for _ in range(1000):
             d = p[:, None, :] - p[None, :, :]
@@ -187,6 +189,7 @@ def _packed(seed: int, n: int, density: float):
                 break
             over = np.maximum(2 * r + 2.0 - dist, 0.0)
             p = np.clip(p + 0.3 * (d / dist[..., None] * over[..., None]).sum(axis=1), lo, hi)
+    assert len(out) == 2, "no packing found"
     return disc_case(out[0], out[1], r)
 
 
