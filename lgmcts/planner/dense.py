@@ -17,11 +17,13 @@ over whole table states, best first, with two kinds of moves per disc:
   centre must stay in), where these are free.
 
 States are ranked by ``moves + W * (open goals + 1/2 * covered open
-goals)`` with ``W =`` :data:`WEIGHT` (ties: first generated first) and
-merged when every centre agrees to :data:`GRID` m. The search stops at the
-first state where every disc meets its goal, after ``max_expansions``
-states (:func:`budget`), or at ``deadline``. When it finds nothing it runs
-again backwards, from the goals to the start (:func:`search`). It uses no
+goals)`` with ``W =`` :data:`WEIGHT` (ties: the shallowest, then the first
+generated) and merged when every centre agrees to :data:`GRID` m. The
+search stops at the first state where every disc meets its goal, after
+``max_expansions`` states (:func:`budget`), or at ``deadline``. When it
+finds nothing it runs again backwards, from the goals to the start, and
+then the searches of :data:`MORE`, with other weights and tie orders, take
+turns (:func:`search`). It uses no
 random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
 found, and a disc slid into a corner leaves the most room elsewhere. The
@@ -55,6 +57,13 @@ GRID = 5e-4
 GAP = CLEARANCE
 #: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
+#: Further searches, taking turns when the first two find nothing: (weight, backwards, deepest first) each.
+MORE: tuple[tuple[float, bool, bool], ...] = ((2.0, False, True), (3.0, False, False), (3.0, True, False),
+                                              (4.0, True, False))
+#: Budget of each search of :data:`MORE`, in multiples of the first ones'.
+MORE_FACTOR = 5
+#: States a search of :data:`MORE` expands in one turn.
+SLICE = 250
 
 
 def budget(n: int) -> int:
@@ -102,6 +111,7 @@ class _Discs:
         self.touch = rr - TOUCH
         self.yaw_ok = np.abs(wrap_angle(self.yaw0 - self.goal_yaw)) <= YAW_TOL
 
+        self.pairs = np.triu_indices(self.n, 1)
         # Discs alike in radius and box share their candidate corners.
         self.groups: dict[tuple[float, ...], list[int]] = {}
         for i in range(self.n):
@@ -129,7 +139,7 @@ class _Discs:
                 pts.append(p)
                 tags.append(np.stack([j, np.full(len(j), -1)], axis=1))
             # Circles with each other.
-            a, b = np.triu_indices(self.n, 1)
+            a, b = self.pairs
             v = pos[b] - pos[a]
             dd = np.hypot(v[:, 0], v[:, 1])
             ra, rb = rad[a], rad[b]
@@ -174,13 +184,34 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     Forwards from the start first; when that finds nothing and the problem can be run backwards (every disc has
     a goal, at its start yaw), backwards from the goals with the same budget: a move's inverse is a move (the
     disc goes back where it stood, which was free of the same others), so the states found from the goals to the
-    start, read in reverse, are a plan. Some tables are easier to unpack from one end than the other."""
+    start, read in reverse, are a plan. Some tables are easier to unpack from one end than the other. When both
+    find nothing, the searches of :data:`MORE` (other weights, directions and orders among equal ranks) take
+    turns of :data:`SLICE` states each, up to :data:`MORE_FACTOR` times ``max_expansions`` states each, or until
+    ``deadline``: which of them finds a plan, and after how many states, varies from table to table, and taking
+    turns finds the first plan at most ``len(MORE)`` times later than the luckiest search alone would."""
     t = _Discs(problem)
     plan, expanded = _Search(t).run(max_expansions, deadline)
-    if plan is not None or not _reversible(t):
+    if plan is not None:
         return plan, expanded
-    back, more = _Search(_Discs(problem, reverse=True)).run(max_expansions, deadline)
-    return back, expanded + more
+    back = _Discs(problem, reverse=True) if _reversible(t) else None
+    if back is not None:
+        plan, more = _Search(back).run(max_expansions, deadline)
+        expanded += more
+        if plan is not None:
+            return plan, expanded
+    cap = MORE_FACTOR * max_expansions
+    runs = [_Search(t if back is None or not reverse else back, weight, deep) for weight, reverse, deep in MORE
+            if back is not None or not reverse]
+    while runs and (deadline is None or time.perf_counter() <= deadline):
+        for run in list(runs):
+            before = run.expanded
+            plan, _ = run.run(min(before + SLICE, cap), deadline)
+            expanded += run.expanded - before
+            if plan is not None:
+                return plan, expanded
+            if run.expanded >= cap or not run.heap:
+                runs.remove(run)
+    return None, expanded
 
 
 def _reversible(t: _Discs) -> bool:
@@ -195,11 +226,23 @@ _State = tuple[np.ndarray, np.ndarray, int, int, bool]
 class _Search:
     """Best-first search state: the states generated, the open list, the merged keys."""
 
-    def __init__(self, t: _Discs) -> None:
+    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False) -> None:
         self.t = t
+        #: The weight of the goals in a state's rank; among states of equal rank, the deepest first when ``deep``
+        #: (else the shallowest), then the first generated.
+        self.weight = weight
+        self.deep = deep
         self.states: list[_State] = [(t.start.copy(), t.yaw_ok.copy(), -1, -1, False)]
+        #: Open states: (rank, depth or minus depth when ``deep``, index).
         self.heap: list[tuple[float, int, int]] = []
         self.seen = {np.round(t.start / GRID).astype(np.int64).tobytes()}
+        #: States expanded so far; whether the goals hold at the start.
+        self.expanded = 0
+        done0 = self.at_goal(t.start, t.yaw_ok)
+        self.solved_at_start = bool(done0.all())
+        if not self.solved_at_start:
+            blocked0 = self.covered(t.start).any(axis=1)
+            self.heap.append((weight * float((~done0).sum() + 0.5 * (blocked0 & ~done0).sum()), 0, 0))
 
     def at_goal(self, pos: np.ndarray, yaw_ok: np.ndarray) -> np.ndarray:
         t = self.t
@@ -214,90 +257,91 @@ class _Search:
         return cov
 
     def run(self, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
-        pos0, yaw0 = self.states[0][0], self.states[0][1]
-        done0 = self.at_goal(pos0, yaw0)
-        if done0.all():
+        """Expand states until a plan is found, ``max_expansions`` states in all have been expanded, the open list
+        is empty or ``deadline`` passes; the plan or ``None``, and the states expanded in all. A search that found
+        nothing can be run on with a larger ``max_expansions``."""
+        if self.solved_at_start:
             return [], 0
-        blocked0 = self.covered(pos0).any(axis=1)
-        self.heap.append((WEIGHT * float((~done0).sum() + 0.5 * (blocked0 & ~done0).sum()), 0, 0))
-        expanded = 0
         while self.heap:
-            if expanded >= max_expansions or (deadline is not None and time.perf_counter() > deadline):
+            if self.expanded >= max_expansions or (deadline is not None and time.perf_counter() > deadline):
                 break
-            _, g, s = heapq.heappop(self.heap)
-            expanded += 1
+            _, depth, s = heapq.heappop(self.heap)
+            g = abs(depth)  # stored negated when deepest first
+            self.expanded += 1
             last = self.expand(s, g)
             if last is not None:
-                return _actions(self.t, self.states, last), expanded
-        return None, expanded
+                return _actions(self.t, self.states, last), self.expanded
+        return None, self.expanded
 
     def expand(self, s: int, g: int) -> int | None:
         """Push every new state one move from state ``s`` (``g`` moves deep); the index of one that meets every
-        goal, if any."""
+        goal, if any.
+
+        The moves, in order: for each disc, straight to its goal when no other disc covers the goal disc, then to
+        each corner of its free space. Each new state is ranked by moves plus the search's weight times (open
+        goals + half the open goals covered); all moves of the state are judged at once."""
         t = self.t
         pos, yok = self.states[s][0], self.states[s][1]
         done = self.at_goal(pos, yok)
         cov = self.covered(pos)
-        key = np.round(pos / GRID).astype(np.int64)
         corners = t.corners(pos)
+        # Goal moves: disc i's goal disc clear of every other disc.
+        clear = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1]) >= t.touch
+        clear[np.arange(t.n), np.arange(t.n)] = True
+        to_goal = t.has_goal & ~done & clear.all(axis=1)
+        pts: list[np.ndarray] = []
         for i in range(t.n):
-            # Moves of disc i: to its goal when free, and to each corner of its free space.
-            rest = cov.copy()
-            rest[:, i] = False
-            blocked_rest = np.asarray(rest.any(axis=1))
-            if t.has_goal[i] and not done[i]:
-                free = np.hypot(*(pos - t.goal[i]).T) >= t.touch[i]
-                free[i] = True
-                if free.all():
-                    found = self.push(s, g, i, t.goal[i][None, :], True, done, blocked_rest, key)
-                    if found is not None:
-                        return found
-            found = self.push(s, g, i, corners[i], False, done, blocked_rest, key)
-            if found is not None:
-                return found
-        return None
-
-    def push(self, s: int, g: int, i: int, pts: np.ndarray, to_goal: bool, done: np.ndarray,
-             blocked_rest: np.ndarray, key: np.ndarray) -> int | None:
-        """Push the states with disc ``i`` of state ``s`` moved to each of ``pts`` (not seen before); the index of
-        one that meets every goal, if any. Ranked by moves plus :data:`WEIGHT` times (open goals + half the open
-        goals covered)."""
-        t = self.t
-        if not len(pts):
+            if to_goal[i]:
+                pts.append(t.goal[i:i + 1])
+            pts.append(corners[i])
+        counts = np.array([len(c) for c in corners]) + to_goal
+        if not counts.any():
             return None
-        keys = np.repeat(key[None], len(pts), axis=0)
-        keys[:, i] = np.round(pts / GRID).astype(np.int64)
+        mi = np.repeat(np.arange(t.n), counts)
+        mp = np.concatenate(pts)
+        mg = np.zeros(len(mi), dtype=bool)
+        mg[(np.cumsum(counts) - counts)[to_goal]] = True
+        # Only moves to states not seen before (to GRID), in the order above.
+        key = np.round(pos / GRID).astype(np.int64)
+        keys = np.repeat(key[None], len(mi), axis=0)
+        keys[np.arange(len(mi)), mi] = np.round(mp / GRID).astype(np.int64)
         fresh = []
-        for m, row in enumerate(keys):
-            b = row.tobytes()
-            if b not in self.seen:
-                self.seen.add(b)
+        seen = self.seen
+        for m, b in enumerate(map(bytes, keys)):
+            if b not in seen:
+                seen.add(b)
                 fresh.append(m)
         if not fresh:
             return None
-        # Goals disc i would cover from each point, and whether the point meets its own goal.
-        col = np.hypot(t.goal[None, :, 0] - pts[:, None, 0], t.goal[None, :, 1] - pts[:, None, 1]) \
-            < t.touch[None, :, i]
-        col[:, i] = False
+        f = np.asarray(fresh)
+        mi, mp, mg = mi[f], mp[f], mg[f]
+        # Open goals covered by the others than the moved disc, and by the moved disc from its new place.
+        count = cov.sum(axis=1)
+        blocked_rest = (count[None, :] - cov.T[mi]) > 0
+        col = np.hypot(t.goal[None, :, 0] - mp[:, None, 0], t.goal[None, :, 1] - mp[:, None, 1]) < t.touch[:, mi].T
+        col[np.arange(len(mi)), mi] = False
         col[:, ~t.has_goal] = False
-        open_ = ~done
-        open_[i] = True  # judged per point below
-        blocked = (blocked_rest[None, :] | col) & open_[None, :]
-        ok_yaw = True if to_goal else bool(t.yaw_ok[i])
-        meets = ~t.has_goal[i] | ((np.hypot(*(pts - t.goal[i]).T) <= t.tol) & ok_yaw)
-        others_open = float((~done).sum() - (not done[i]))
-        yok = self.states[s][1].copy()
-        yok[i] = ok_yaw
-        pos = self.states[s][0]
-        for m in fresh:
-            npos = pos.copy()
-            npos[i] = pts[m]
-            self.states.append((npos, yok, s, i, to_goal))
-            now = bool(meets[m])
-            if now and others_open == 0:
+        open_ = np.repeat((~done)[None], len(mi), axis=0)
+        open_[np.arange(len(mi)), mi] = True
+        blocked = (blocked_rest | col) & open_
+        ok_yaw = mg | t.yaw_ok[mi]
+        meets = ~t.has_goal[mi] | ((np.hypot(*(mp - t.goal[mi]).T) <= t.tol) & ok_yaw)
+        others_open = float((~done).sum()) - ~done[mi]
+        h = others_open + ~meets + 0.5 * (blocked.sum(axis=1) - (meets & blocked[np.arange(len(mi)), mi]))
+        rank = (g + 1) + self.weight * h
+        # The new states, in one block each for the centres and the yaw flags.
+        rows = np.arange(len(mi))
+        npos = np.repeat(pos[None], len(mi), axis=0)
+        npos[rows, mi] = mp
+        nyok = np.repeat(yok[None], len(mi), axis=0)
+        nyok[rows, mi] = ok_yaw
+        last = (meets & (others_open == 0)).tolist()
+        depth = -(g + 1) if self.deep else g + 1
+        for m, (i, home, r, end) in enumerate(zip(mi.tolist(), mg.tolist(), rank.tolist(), last)):
+            self.states.append((npos[m], nyok[m], s, i, home))
+            if end:
                 return len(self.states) - 1
-            h = others_open + (not now) + 0.5 * (float(blocked[m].sum()) - (now and bool(blocked[m, i])))
-            heapq.heappush(self.heap, (g + 1 + WEIGHT * h, g + 1, len(self.states) - 1))
+            heapq.heappush(self.heap, (r, depth, len(self.states) - 1))
         return None
 
 

@@ -283,9 +283,11 @@ def plan(
             # What was tried, in the same line: the budget spent and how far the best partial plan got.
             final = replay(sc, list(res.actions))[-1]
             met = sum(goal_satisfied(g, sc, final.poses, final.on) is None for g in gspec.goals)
-            stats["reason"] = (f"{res.reason} after {res.iterations} iterations and {res.nodes} search nodes; the best "
-                               f"partial plan ({len(res.actions)} actions) meets {met} of {len(gspec.goals)} goals; "
-                               "no proof was found that no plan exists")
+            corner = extra.get("corner_states")
+            tried = f", and {corner} table states of the corner search" if corner else ""
+            stats["reason"] = (f"{res.reason} after {res.iterations} iterations and {res.nodes} search nodes{tried}; "
+                               f"the best partial plan ({len(res.actions)} actions) meets {met} of {len(gspec.goals)} "
+                               "goals; no proof was found that no plan exists")
     stats.update(extra)
     return PlanSpec(solved=res.solved, actions=list(res.actions), goals=gspec, stats=stats,
                     fits=final_fits(sc, gspec, res.actions))

@@ -90,6 +90,8 @@ def test_budget_ends_a_search_with_no_plan():
     q = plan(c.scene, c.goals, seed=0, max_iter=40, options=SearchOptions(proof_after=0))
     assert not q.solved and not q.stats.get("infeasible")
     assert 1 <= q.stats["corner_states"] <= dense.budget(2) and q.stats["iterations"] == 40
+    # The one-line reason says so too.
+    assert f"and {q.stats['corner_states']} table states of the corner search;" in q.stats["reason"]
 
 
 def _random_case(n: int, r: float, box: tuple[float, float], seed: int):
@@ -133,3 +135,77 @@ def test_a_backward_search_read_in_reverse_is_a_valid_plan(n, r, box, seed):
     # Every goal move of the plan puts its disc exactly on its goal.
     goal = {g.objects[0]: g.pose[:2] for g in c.goals.goals}
     assert all(x.to[:2] == pytest.approx(goal[x.object], abs=1e-12) for x in actions if x.purpose == "goal")
+
+
+def test_further_searches_take_turns_where_the_first_two_find_nothing():
+    # Four discs in a 50 x 40 cm box: neither the first search nor the backward one finds a plan in 10 states.
+    c = _random_case(4, 80.0, (500.0, 400.0), 2)
+    pr = disc_problem(c)
+    assert dense._Search(dense._Discs(pr)).run(10, None)[0] is None
+    assert dense._Search(dense._Discs(pr, reverse=True)).run(10, None)[0] is None
+    # One of the further searches does, within their budget; the plan is valid and the same each time.
+    actions, expanded = dense.search(pr, 10, None)
+    assert actions is not None and 20 < expanded <= (2 + dense.MORE_FACTOR * len(dense.MORE)) * 10
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    assert confined(Scene.from_spec(c.scene), c.goals) is None
+    again, _ = dense.search(pr, 10, None)
+    assert again is not None and [x.model_dump() for x in again] == [x.model_dump() for x in actions]
+
+
+def test_a_search_run_on_in_turns_finds_what_one_run_finds():
+    # Expanding in slices (as the further searches take turns) gives the states of one run with the whole budget.
+    c = _random_case(4, 80.0, (500.0, 400.0), 10)
+    t = dense._Discs(disc_problem(c))
+    whole = dense._Search(t, 3.0, True)
+    one, n_one = whole.run(400, None)
+    sliced = dense._Search(t, 3.0, True)
+    res: tuple = (None, 0)
+    for cap in range(7, 400 + 7, 7):
+        res = sliced.run(min(cap, 400), None)
+        if res[0] is not None:
+            break
+    assert res[1] == n_one and len(sliced.states) == len(whole.states)
+    assert (res[0] is None) == (one is None)
+    if one is not None:
+        assert [x.model_dump() for x in res[0]] == [x.model_dump() for x in one]
+
+
+def _packed(seed: int, n: int, density: float):
+    """Start and goal: two packings of ``n`` discs covering ``density`` of a 1 m square (TRLB's units), each found by
+    pushing overlapping discs of random start points apart."""
+    r = 1000.0 * math.sqrt(density / (math.pi * n))
+    lo, hi = np.array([r, r]), np.array([1000.0 - r, 1000.0 - r])
+    rng = np.random.default_rng(seed)
+    out: list[np.ndarray] = []
+    for _ in range(50):
+        if len(out) == 2:
+            break
+        p = rng.uniform(lo, hi, size=(n, 2))
+        for _ in range(1000):
+            d = p[:, None, :] - p[None, :, :]
+            dist = np.hypot(d[..., 0], d[..., 1]) + np.eye(n) * 1e9
+            if (dist >= 2 * r + 1.0).all():
+                out.append(p)
+                break
+            over = np.maximum(2 * r + 2.0 - dist, 0.0)
+            p = np.clip(p + 0.3 * (d / dist[..., None] * over[..., None]).sum(axis=1), lo, hi)
+    assert len(out) == 2, "no packing found"
+    return disc_case(out[0], out[1], r)
+
+
+@pytest.mark.parametrize("seed,density", [(2, 0.57), (5, 0.60), (8, 0.55), (11, 0.58)])
+def test_the_confinement_proof_refuses_no_dense_square_the_corner_search_plans(seed, density):
+    # Seven discs at 55-60 % of a 1 m square (TRLB's D = 0.6, n = 7 is 60 %): the corner search plans each (most
+    # only with the further searches), the plan is valid, and the proof does not call the case impossible.
+    c = _packed(seed, 7, density)
+    actions, _ = dense.search(disc_problem(c), 150, None)
+    assert actions is not None
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    assert confined(Scene.from_spec(c.scene), c.goals) is None
+
+
+def test_where_the_proof_refuses_the_corner_search_finds_nothing():
+    # Five discs at 59 % of the square: proved impossible, and no search finds a plan either.
+    c = _packed(12, 5, 0.59)
+    assert confined(Scene.from_spec(c.scene), c.goals) is not None
+    assert dense.search(disc_problem(c), 30, None)[0] is None
