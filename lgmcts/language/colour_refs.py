@@ -85,6 +85,8 @@ def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int, bool]
     """"one of the bowls", "either mug", "any can's colour", "the phone": the reference's words and end."""
     j = _seq(ws, i, _ANY)
     quant = j > i
+    if not quant and i < len(ws) and ws[i] in ("a", "an"):
+        quant, j = True, i + 1  # "the colour of a bowl": of some bowl
     if quant and j < len(ws) and ws[j] not in ("the", "a", "an", "these", "those") and ws[j - 1] == "of":
         return None
     end = _np(ws, j)

@@ -100,3 +100,9 @@ def test_a_place_after_the_reference_is_not_part_of_it(text, phrase):
     ws = tuple(t.text for t in tokenize(text))
     (r,) = find_colour_refs(ws)
     assert ws[r.start : r.end] == tuple(t.text for t in tokenize(phrase))
+
+
+def test_a_reference_said_with_a_or_an_is_any_of_them():
+    # "the cans that match the colour of a bowl": the colour of some bowl, as "one of the bowls".
+    (ref,) = find_colour_refs(tuple("the cans that match the colour of a bowl".split()))
+    assert ref.quantified and ref.ref[-1] in ("bowl", "bowls")

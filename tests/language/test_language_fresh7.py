@@ -175,6 +175,11 @@ def test_a_place_after_a_reason_is_read(matcher):
      [{"pattern": "rectangle", "objects": [5, 6, 7, 10], "region": "middle center"}]),
     ("blocks", "all six blocks in a big rectangle, and it should be facing east",
      [{"pattern": "rectangle", "objects": [1, 2, 3, 4, 5, 6], "size": "large", "facing": "east"}]),
+    # a sentence that only names objects through a colour, then a request about "them"/"those"
+    ("pantry", "The cans that share a colour with any of the bowls. Make a circle out of them.",
+     [{"pattern": "circle", "objects": [1, 2, 3]}]),
+    ("pantry", "The cans that match the colour of a bowl - put those in a row.",
+     [{"pattern": "line", "objects": [1, 2, 3]}]),
     ("home", "the cans on a circle, r = 12 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.12}]),
     ("home", "the cans in a circle, d = 30 cm", [{"pattern": "circle", "objects": [12, 13, 14], "size": 0.15}]),
 ])
