@@ -236,6 +236,9 @@ def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:
     k = head_end
     if k < len(ws) and ws[k] in _BE:
         k += 1
+    if head and ws[k : k + 3] in (("in", "the", "middle"), ("in", "the", "centre"), ("in", "the", "center")):
+        # "whichever utensil is in the middle (going left to right)": the middle one of them by x
+        return PositionRef(i, _skip_reading_order(ws, k + 3), head, Key("middle"))
     if k < len(ws) and ws[k] in ("the", "most"):
         k += 1
     got = _after_head(ws, k)
@@ -344,6 +347,9 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
             end = j + 1
         else:
             return None
+    cut = next((x for x in range(j + 1, end) if ws[x] in _ORDINALS and ws[x + 1 : x + 2] == ("from",)), None)
+    if cut is not None:
+        end = cut  # "the can second from the left": the head ends at the ordinal
     head = tuple(ws[j:end])
     if end < len(ws) and ws[end] in ("one", "ones") and head and head[-1] not in ("one", "ones"):
         return None
@@ -355,6 +361,12 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
         return None  # "the mug is nearest the plate": a statement, not a reference
     if k < len(ws) and ws[k] == "the" and k + 1 < len(ws) and (ws[k + 1] in _NEAR or ws[k + 1] in _FAR):
         k += 1
+    k2 = k + (k < len(ws) and ws[k] == "the")
+    if k2 + 1 < len(ws) and ws[k2] in _ORDINALS and _ORDINALS[ws[k2]] >= 0 and ws[k2 + 1] == "from":
+        # "the can second from the left", "the cup that is third from the right": the ordinal after the head
+        side = _side_key(ws, k2 + 2)
+        if side is not None and side[0].kind in ("x", "y"):
+            return PositionRef(i, side[1], head, side[0], 1, _ORDINALS[ws[k2]])
     got = _after_head(ws, k)
     if got is None or got[0].kind in ("middle",):
         return None

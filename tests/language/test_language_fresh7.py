@@ -175,6 +175,10 @@ def test_a_place_after_a_reason_is_read(matcher):
      [{"pattern": "rectangle", "objects": [5, 6, 7, 10], "region": "middle center"}]),
     ("blocks", "all six blocks in a big rectangle, and it should be facing east",
      [{"pattern": "rectangle", "objects": [1, 2, 3, 4, 5, 6], "size": "large", "facing": "east"}]),
+    # an ordinal after the head, the middle one after "whichever"
+    ("pantry", "the can second from the left goes in front of the white bowl",
+     [{"pattern": "front", "objects": [3], "anchor": 5}]),
+    ("home", "whichever can is in the middle goes behind the plate", [{"pattern": "behind", "objects": [14], "anchor": 8}]),
     # a sentence that only names objects through a colour, then a request about "them"/"those"
     ("pantry", "The cans that share a colour with any of the bowls. Make a circle out of them.",
      [{"pattern": "circle", "objects": [1, 2, 3]}]),
