@@ -13,7 +13,11 @@ TRLB's). :func:`sequence_plan` builds such a plan directly, without search:
    move frees them), then the one that covers the most (ties: the lower
    index), is parked in a *buffer*, a free spot of the table chosen on
    a grid near its own goal, away from every goal still to be reached when
-   there is such a spot (then it blocks nothing later); repeat from 1.
+   there is such a spot (then it blocks nothing later); where the grid has
+   none, a disc is *nudged*: slid to a nearby corner of its free space (or
+   the nearest place off a goal it alone covers) that uncovers the most
+   goals, so that on a packed table a goal comes free without a distant
+   buffer; repeat from 1.
 
 Discs are tested as circles, vectorised over all objects (the
 polygons stand for the circles; two discs that touch may overlap as polygons
@@ -76,6 +80,20 @@ class _Table:
         self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
+        self.scene = sc
+        self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
+        inside the workspace)."""
+        if j not in self._boxes:
+            sc = self.scene
+            c, s = math.cos(float(sc.initial.poses[j, 2])), math.sin(float(sc.initial.poses[j, 2]))
+            v = np.asarray(sc.local[j], dtype=float) @ np.array([[c, s], [-s, c]])
+            xmin, xmax, ymin, ymax = sc.bounds
+            self._boxes[j] = (np.array([xmin - v[:, 0].min(), ymin - v[:, 1].min()]),
+                              np.array([xmax - v[:, 0].max(), ymax - v[:, 1].max()]))
+        return self._boxes[j]
 
     def move(self, j: int, xy: np.ndarray) -> None:
         self.pos[j] = xy
@@ -168,17 +186,100 @@ class _Spots:
         return xy[m], int(hits[free[m]])
 
 
-#: How many discs, best score first, are offered a parking spot when the goals left are blocked.
+#: How many discs, best score first, are offered a parking spot on the grid when the goals left are blocked.
 CANDIDATES = 4
 #: Park only discs on a cycle when there are such (see :func:`_score`); off gives the plain score, for comparison.
 CYCLES = True
+#: How far (in its own radii) a nudged disc may go from where it stands (see :func:`_nudge`).
+NUDGE_REACH = 6.0
+
+
+def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+    """A nearby place for disc ``j`` on a table too packed for the grid: ``(centre, hits, gain)`` or ``None``.
+
+    Candidates lie within :data:`NUDGE_REACH` radii of where ``j`` stands: the corners of its free space (where
+    it touches two other discs with the clearance, or one and a side of its box, or two sides; the same corners
+    as :mod:`.dense`'s), the points where it touches a disc and just clears an open goal disc, and for each goal
+    in ``freed`` (the open goals only ``j`` covers, rows of ``t``) the nearest point that clears it. Of the free
+    ones (the clearance from every other disc, inside the box), the one that uncovers the most of ``freed``
+    (``gain``), then covers the fewest open goals (``hits``, its own goal aside), then lies nearest its goal; it
+    must uncover a goal or cover fewer than the ``cover`` open goals ``j`` covers now, so every nudge makes
+    progress (a goal comes free, or fewer (goal, disc) covers remain)."""
+    rj = float(t.r[j])
+    c = t.pos[j]
+    reach = NUDGE_REACH * rj
+    lo, hi = t.box(j)
+    # Discs whose clearance circle (radius r_i + r_j + clearance about them) meets the reach.
+    near = np.flatnonzero(np.hypot(*(t.pos - c).T) < reach + rj + t.r + CLEARANCE)
+    near = near[near != j]
+    ocen, orad = t.pos[near], t.r[near] + rj + CLEARANCE
+    own = t.row.get(j)
+    rows = np.flatnonzero(~t.done)
+    if own is not None:
+        rows = rows[rows != own]
+    rows = rows[np.hypot(*(t.goal[rows] - c).T) < reach + t.r[t.movers[rows]] + rj]
+    gcen, grad = t.goal[rows], t.r[t.movers[rows]] + rj
+    cen = np.concatenate([ocen, gcen])
+    rad = np.concatenate([orad, grad + 1e-9])  # just off a goal disc: touching, not covering
+    pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
+    for k in freed.tolist():
+        v = c - t.goal[k]
+        dv = math.hypot(float(v[0]), float(v[1]))
+        if dv > 1e-12:
+            pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
+    for ax, side in ((0, lo[0]), (0, hi[0]), (1, lo[1]), (1, hi[1])):
+        off = side - cen[:, ax]
+        m = np.abs(off) <= rad
+        h = np.sqrt(np.maximum(rad[m] ** 2 - off[m] ** 2, 0.0))
+        for sgn in (1.0, -1.0):
+            q = np.empty((int(m.sum()), 2))
+            q[:, ax] = side
+            q[:, 1 - ax] = cen[m, 1 - ax] + sgn * h
+            pts.append(q)
+    # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
+    a, b = np.triu_indices(len(cen), 1)
+    keep = a < len(ocen)
+    a, b = a[keep], b[keep]
+    v = cen[b] - cen[a]
+    dd = np.hypot(v[:, 0], v[:, 1])
+    ra, rb = rad[a], rad[b]
+    ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
+    if ok.any():
+        a, v, dd, ra, rb = a[ok], v[ok], dd[ok], ra[ok], rb[ok]
+        x = (dd * dd + ra * ra - rb * rb) / (2 * dd)
+        h = np.sqrt(np.maximum(ra * ra - x * x, 0.0))
+        u = v / dd[:, None]
+        nrm = np.stack([-u[:, 1], u[:, 0]], axis=1) * h[:, None]
+        base = cen[a] + u * x[:, None]
+        pts += [base + nrm, base - nrm]
+    p = np.concatenate(pts)
+    p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
+    p = p[np.hypot(*(p - c).T) <= reach]
+    if len(ocen) and len(p):
+        # Rounding lets a point on a disc's circle count as on it, not inside.
+        inside = np.hypot(p[:, None, 0] - ocen[None, :, 0], p[:, None, 1] - ocen[None, :, 1]) < orad * (1 - 1e-12)
+        p = p[~inside.any(axis=1)]
+    if not len(p):
+        return None
+    cov = np.hypot(p[:, None, 0] - gcen[None, :, 0], p[:, None, 1] - gcen[None, :, 1]) < grad - TOUCH
+    gain = len(freed) - cov[:, np.isin(rows, freed)].sum(axis=1)
+    hits = cov.sum(axis=1)
+    good = (gain > 0) | (hits < cover)
+    if not good.any():
+        return None
+    p, gain, hits = p[good], gain[good], hits[good]
+    dist = np.hypot(*(p - (t.goal[own] if own is not None else c)).T)
+    m = int(np.lexsort((dist, hits, -gain))[0])
+    return p[m], int(hits[m]), int(gain[m])
 
 
 def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
-    """The disc to park and its spot: of the :data:`CANDIDATES` best scored
-    discs (with goals of their own), the first whose spot covers no open
-    goal, else the one whose move uncovers the most goals; ``None`` when no
-    move uncovers any (parking would go round in circles)."""
+    """The disc to park and its spot; ``None`` when no move makes progress (parking would go round in circles).
+
+    In this order: of the :data:`CANDIDATES` best scored discs (with goals of their own), the first whose grid
+    spot covers no open goal; else the best :func:`_nudge` of any candidate (most goals uncovered, then fewest
+    covers left; candidates in score order, stopping once none further can do better); else the grid spot whose
+    move uncovers the most goals."""
     order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
     best: tuple[int, int, np.ndarray] | None = None
     for j in order[:CANDIDATES]:
@@ -191,6 +292,23 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
             return j, spot
         if gain > 0 and (best is None or gain > best[0]):
             best = (gain, j, spot)
+    rows = np.flatnonzero(~t.done)
+    b = t.blocked[rows]
+    sole = b.sum(axis=1) == 1
+    nudge: tuple[tuple[int, int], int, np.ndarray] | None = None
+    for j in order:
+        freed = rows[sole & b[:, j]]
+        # The best a move of j can do: uncover every goal it alone covers, and cover none.
+        if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
+            break
+        found_n = _nudge(t, j, freed, int(cover[j]))
+        if found_n is None:
+            continue
+        key = (found_n[2], int(cover[j]) - found_n[1])
+        if nudge is None or key > nudge[0]:
+            nudge = (key, j, found_n[0])
+    if nudge is not None:
+        return nudge[1], nudge[2]
     return None if best is None else (best[1], best[2])
 
 
