@@ -312,6 +312,62 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     return None if best is None else (best[1], best[2])
 
 
+def on_cycles(adj: np.ndarray) -> np.ndarray:
+    """Per node of the directed graph ``adj`` (``adj[u, v]``: an edge u -> v; no self-loops), whether it lies on
+    a cycle: its strongly connected component has more than one node (Tarjan's algorithm, iterative).
+
+    The graphs here have a few edges per node; a loop over the edges costs less than building a sparse matrix
+    for a library call."""
+    m = len(adj)
+    src, dst = np.nonzero(adj)
+    succ: list[list[int]] = [[] for _ in range(m)]
+    for u, v in zip(src.tolist(), dst.tolist()):
+        succ[u].append(v)
+    index = [-1] * m
+    low = [0] * m
+    on_stack = [False] * m
+    stack: list[int] = []
+    out = np.zeros(m, dtype=bool)
+    counter = 0
+    for root in range(m):
+        if index[root] >= 0:
+            continue
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack[root] = True
+        work = [(root, 0)]
+        while work:
+            u, k = work[-1]
+            if k < len(succ[u]):
+                work[-1] = (u, k + 1)
+                v = succ[u][k]
+                if index[v] < 0:
+                    index[v] = low[v] = counter
+                    counter += 1
+                    stack.append(v)
+                    on_stack[v] = True
+                    work.append((v, 0))
+                elif on_stack[v]:
+                    low[u] = min(low[u], index[v])
+                continue
+            work.pop()
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[u])
+            if low[u] == index[u]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on_stack[w] = False
+                    comp.append(w)
+                    if w == u:
+                        break
+                if len(comp) > 1:
+                    out[comp] = True
+    return out
+
+
 def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
     move frees them) first, then the one that covers the most. Only discs on a cycle of "my goal is covered by
@@ -321,14 +377,9 @@ def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
     score[t.movers[t.done]] = 0  # a disc on its goal stays
     if CYCLES:
-        from scipy.sparse import csr_matrix  # only once a cycle must be broken
-        from scipy.sparse.csgraph import connected_components
-
         rows = np.flatnonzero(~t.done)
         movers = t.movers[rows]
-        graph = csr_matrix(b[:, movers])  # open goal -> the open movers covering it
-        _, label = connected_components(graph, directed=True, connection="strong")
-        on_cycle = np.bincount(label)[label] > 1
+        on_cycle = on_cycles(b[:, movers])  # open goal -> the open movers covering it
         if on_cycle.any() and (score[movers[on_cycle]] > 0).any():
             score[movers[~on_cycle]] = 0
     return score

@@ -182,3 +182,16 @@ def test_nudged_plans_are_valid_and_keep_the_clearance(seed, n, density):
     assert _parked_clear_of_the_others(c, actions)
     # Every disc ends on its goal; a parked disc moves again, so the plan has n + (parked) actions at most.
     assert len(actions) <= n + sum(a.purpose == "relocate" for a in actions)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 12).flatmap(lambda m: st.lists(st.lists(st.booleans(), min_size=m, max_size=m),
+                                                       min_size=m, max_size=m)))
+def test_on_cycles_finds_the_nodes_that_reach_themselves(rows):
+    adj = np.array(rows, dtype=bool)
+    np.fill_diagonal(adj, False)
+    # Reference: the transitive closure by repeated relaxation; a node is on a cycle when it reaches itself.
+    reach = adj.copy()
+    for k in range(len(adj)):
+        reach |= reach[:, k:k + 1] & reach[k:k + 1, :]
+    assert np.array_equal(seq.on_cycles(adj), np.diag(reach))
