@@ -32,6 +32,7 @@ problem gives the same plan.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -194,6 +195,18 @@ CYCLES = True
 NUDGE_REACH = 6.0
 
 
+_AXIS = np.array([0, 0, 1, 1])
+_SIGN = np.array([1.0, -1.0])[None, :, None]
+
+
+@functools.lru_cache(maxsize=256)
+def _pairs(m: int, first: int) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs ``a < b`` of ``m`` circles whose first member is one of the ``first`` first circles."""
+    a, b = np.triu_indices(m, 1)
+    keep = a < first
+    return a[keep], b[keep]
+
+
 def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
     """A nearby place for disc ``j`` on a table too packed for the grid: ``(centre, hits, gain)`` or ``None``.
 
@@ -227,19 +240,17 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
         dv = math.hypot(float(v[0]), float(v[1]))
         if dv > 1e-12:
             pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
-    for ax, side in ((0, lo[0]), (0, hi[0]), (1, lo[1]), (1, hi[1])):
-        off = side - cen[:, ax]
-        m = np.abs(off) <= rad
-        h = np.sqrt(np.maximum(rad[m] ** 2 - off[m] ** 2, 0.0))
-        for sgn in (1.0, -1.0):
-            q = np.empty((int(m.sum()), 2))
-            q[:, ax] = side
-            q[:, 1 - ax] = cen[m, 1 - ax] + sgn * h
-            pts.append(q)
+    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi (each side: the + then the - crossing).
+    sides = np.array([lo[0], hi[0], lo[1], hi[1]])
+    off = sides[:, None] - cen[:, _AXIS].T  # (side, circle)
+    h = np.sqrt(np.maximum(rad ** 2 - off ** 2, 0.0))
+    q = np.empty((4, 2, len(cen), 2))
+    for ax in (0, 1):
+        q[:, :, :, ax] = np.where(_AXIS[:, None, None] == ax, sides[:, None, None],
+                                  cen[None, None, :, ax] + _SIGN * h[:, None, :])
+    pts.append(q[np.broadcast_to((np.abs(off) <= rad)[:, None, :], (4, 2, len(cen)))])
     # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
-    a, b = np.triu_indices(len(cen), 1)
-    keep = a < len(ocen)
-    a, b = a[keep], b[keep]
+    a, b = _pairs(len(cen), len(ocen))
     v = cen[b] - cen[a]
     dd = np.hypot(v[:, 0], v[:, 1])
     ra, rb = rad[a], rad[b]
@@ -255,14 +266,16 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     p = np.concatenate(pts)
     p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
     p = p[np.hypot(*(p - c).T) <= reach]
-    if len(ocen) and len(p):
-        # Rounding lets a point on a disc's circle count as on it, not inside.
-        inside = np.hypot(p[:, None, 0] - ocen[None, :, 0], p[:, None, 1] - ocen[None, :, 1]) < orad * (1 - 1e-12)
-        p = p[~inside.any(axis=1)]
-    if not len(p):
+    d = np.hypot(p[:, None, 0] - cen[None, :, 0], p[:, None, 1] - cen[None, :, 1])
+    # Rounding lets a point on a disc's circle count as on it, not inside.
+    free = ~(d[:, :len(ocen)] < orad * (1 - 1e-12)).any(axis=1)
+    if not free.any():
         return None
-    cov = np.hypot(p[:, None, 0] - gcen[None, :, 0], p[:, None, 1] - gcen[None, :, 1]) < grad - TOUCH
-    gain = len(freed) - cov[:, np.isin(rows, freed)].sum(axis=1)
+    p = p[free]
+    cov = d[free, len(ocen):] < grad - TOUCH
+    mark = np.zeros(len(t.movers), dtype=bool)
+    mark[freed] = True
+    gain = len(freed) - cov[:, mark[rows]].sum(axis=1)
     hits = cov.sum(axis=1)
     good = (gain > 0) | (hits < cover)
     if not good.any():
