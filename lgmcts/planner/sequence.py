@@ -42,9 +42,10 @@ from ..geometry import wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from ..scene import TABLE
+from ..tolerances import TOL
 from .problem import Problem
 
-__all__ = ["eligible", "sequence_plan"]
+__all__ = ["eligible", "polish_may_help", "sequence_plan"]
 
 #: Two discs closer than the sum of their radii by at most this much (m)
 #: touch rather than overlap (their lens is far below the validator's
@@ -452,3 +453,50 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
         t.move(j, spot)
         spots.moved(t, j, old)
     return actions
+
+
+def polish_may_help(problem: Problem, actions: list[Action]) -> bool:
+    """Whether polishing (:mod:`.polish`) might shorten a plan of :func:`sequence_plan`; ``False`` only when it
+    surely cannot, so the plan is validated without it.
+
+    Polishing tries, for each disc that moves twice (parked at action ``i``, to its goal at action ``j``), to
+    send it straight to its goal at ``i`` (merge) or to leave it where it stood until ``j`` (drop), replaying
+    the plan between the two with the search's rules: a placement keeps the clearance from every other disc,
+    or for a goal placement at most touches it. Both surely fail when, in the disc's place, a placement of
+    that stretch (or, for the merge, a disc standing on its goal at ``i``) overlaps it, as circles, by more than
+    a margin. A disc moved three times or more, a parked disc whose spot is within the pose goals' acceptance
+    tolerance (and a millimetre) of its goal, or a first move that is not a parking leaves the answer to
+    polishing."""
+    sc = problem.scene
+    r = np.asarray(sc.discs, dtype=float)
+    obj = [sc.index[a.object] for a in actions]
+    moves: dict[int, list[int]] = {}
+    for k, o in enumerate(obj):
+        moves.setdefault(o, []).append(k)
+    twice = {o: ks for o, ks in moves.items() if len(ks) > 1}
+    if any(len(ks) > 2 for ks in twice.values()):
+        return True
+    if not twice:
+        return False
+    to = np.array([a.to[:2] for a in actions], dtype=float)
+    reloc = np.array([a.purpose == "relocate" for a in actions])
+    # How close a placed disc may come to another before the replay surely refuses it (a margin below the rule).
+    gap = np.where(reloc, 0.98 * CLEARANCE, -1e-6)
+    pos = np.array(sc.initial.poses[:, :2], dtype=float)
+    before: list[np.ndarray] = []
+    for k, o in enumerate(obj):
+        before.append(pos.copy())
+        pos[o] = to[k]
+    idx = np.asarray(obj)
+    for o, (i, j) in twice.items():
+        if not reloc[i] or actions[j].purpose != "goal" or math.hypot(*(to[i] - to[j])) <= TOL + 1e-3:
+            return True
+        mid = np.arange(i + 1, j)
+        lim = r[idx[mid]] + r[o] + gap[mid]
+        drop_fails = bool((np.hypot(*(to[mid] - before[i][o]).T) < lim).any())
+        others = np.arange(sc.n) != o
+        on_goal = bool((np.hypot(*(before[i][others] - to[j]).T) < r[others] + r[o] - 1e-6).any())
+        merge_fails = on_goal or bool((np.hypot(*(to[mid] - to[j]).T) < lim).any())
+        if not (drop_fails and merge_fails):
+            return True
+    return False

@@ -195,3 +195,19 @@ def test_on_cycles_finds_the_nodes_that_reach_themselves(rows):
     for k in range(len(adj)):
         reach |= reach[:, k:k + 1] & reach[k:k + 1, :]
     assert np.array_equal(seq.on_cycles(adj), np.diag(reach))
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(4, 14), density=st.sampled_from([0.3, 0.4, 0.45]))
+def test_a_plan_polishing_cannot_shorten_is_left_as_it_is(seed, n, density):
+    # polish_may_help says False only where polishing would return the plan unchanged (then it is not run).
+    from lgmcts.planner.polish import polished
+
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = disc_problem(c)
+    actions = sequence_plan(pr)
+    if actions is None or seq.polish_may_help(pr, actions):
+        return
+    assert polished(pr, actions) == actions
