@@ -133,6 +133,8 @@ class _Spots:
         self.hits = np.bincount(self._stamp(t.goal[open_], t.r[t.movers[open_]] + rmax - TOUCH), minlength=size)
         #: Changes not yet applied to the counts: (0 count / 1 hits, centre, radius, sign).
         self.todo: list[tuple[int, np.ndarray, float, int]] = []
+        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
+        self._goal_stamp: dict[int, np.ndarray] = {}
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -174,18 +176,24 @@ class _Spots:
         if self.todo:
             self._flush()
         k = t.row[j]
-        count = self.count.copy()
-        np.subtract.at(count, self._stamp(t.pos[j], t.r[j] + self.reach), 1)
-        free = np.flatnonzero(count == 0)
+        # Disc j counts once at each point of its own stamp: there, only j crowds the point when the count is 1.
+        mask = self.count == 0
+        own = self._stamp(t.pos[j], t.r[j] + self.reach)
+        mask[own] = self.count[own] == 1
+        free = np.flatnonzero(mask)
         if not len(free):
             return None
-        hits = self.hits.copy()
+        hits = self.hits[free]
         if not t.done[k]:
-            np.subtract.at(hits, self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH), 1)
+            if j not in self._goal_stamp:
+                mine = np.zeros(len(self.count), dtype=bool)
+                mine[self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH)] = True
+                self._goal_stamp[j] = mine
+            hits = hits - self._goal_stamp[j][free]
         xy = np.stack([self.gx[free % len(self.gx)], self.gy[free // len(self.gx)]], axis=1)
         dist = np.hypot(*(xy - t.goal[k]).T)
-        m = int(np.lexsort((dist, hits[free]))[0])
-        return xy[m], int(hits[free[m]])
+        m = int(np.lexsort((dist, hits))[0])
+        return xy[m], int(hits[m])
 
 
 #: How many discs, best score first, are offered a parking spot on the grid when the goals left are blocked.
