@@ -83,6 +83,10 @@ class _Table:
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
         self.scene = sc
+        #: Where discs left and arrived, in order (a cached nudge stays valid while none of these is near).
+        self.changes: list[np.ndarray] = []
+        #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
+        self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
         self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
     def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
@@ -98,6 +102,7 @@ class _Table:
         return self._boxes[j]
 
     def move(self, j: int, xy: np.ndarray) -> None:
+        self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
         self.pos[j] = xy
         d = np.hypot(*(self.goal - xy).T)
         col = d < self.r[self.movers] + self.r[j] - TOUCH
@@ -295,6 +300,25 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     return p[m], int(hits[m]), int(gain[m])
 
 
+def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+    """:func:`_nudge`, answered from the last one for ``j`` when nothing it depends on changed: ``j`` stands where
+    it stood, covers the same goals, and no disc left or arrived within the reach of its discs and goals (its
+    nudge looks only there; a goal closes only when a disc arrives on it)."""
+    key = tuple(freed.tolist())
+    seen = t.nudges.get(j)
+    if seen is not None and seen[2] == key and seen[3] == cover and np.array_equal(seen[1], t.pos[j]):
+        fresh = t.changes[seen[0]:]
+        if not fresh:
+            return seen[4]
+        rmax = float(np.max(t.r))
+        near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
+        if not (np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any():
+            return seen[4]
+    found = _nudge(t, j, freed, cover)
+    t.nudges[j] = (len(t.changes), t.pos[j].copy(), key, cover, found)
+    return found
+
+
 def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
     """The disc to park and its spot; ``None`` when no move makes progress (parking would go round in circles).
 
@@ -323,7 +347,7 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
         # The best a move of j can do: uncover every goal it alone covers, and cover none.
         if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
             break
-        found_n = _nudge(t, j, freed, int(cover[j]))
+        found_n = _cached_nudge(t, j, freed, int(cover[j]))
         if found_n is None:
             continue
         key = (found_n[2], int(cover[j]) - found_n[1])

@@ -211,3 +211,19 @@ def test_a_plan_polishing_cannot_shorten_is_left_as_it_is(seed, n, density):
     if actions is None or seq.polish_may_help(pr, actions):
         return
     assert polished(pr, actions) == actions
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 16), density=st.sampled_from([0.4, 0.45]))
+def test_a_remembered_nudge_gives_the_same_plan_as_a_fresh_one(seed, n, density):
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = disc_problem(c)
+    cached = sequence_plan(pr)
+    fresh = seq._cached_nudge
+    try:
+        seq._cached_nudge = lambda t, j, freed, cover: seq._nudge(t, j, freed, cover)
+        assert sequence_plan(pr) == cached
+    finally:
+        seq._cached_nudge = fresh
