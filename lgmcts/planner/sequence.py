@@ -280,13 +280,14 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     p = np.concatenate(pts)
     p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
     p = p[np.hypot(*(p - c).T) <= reach]
-    d = np.hypot(p[:, None, 0] - cen[None, :, 0], p[:, None, 1] - cen[None, :, 1])
-    # Rounding lets a point on a disc's circle count as on it, not inside.
-    free = ~(d[:, :len(ocen)] < orad * (1 - 1e-12)).any(axis=1)
+    # Squared distances (the margins below are far above their rounding). Rounding lets a point on a disc's circle
+    # count as on it, not inside.
+    free = ~((p[:, None, 0] - ocen[None, :, 0]) ** 2 + (p[:, None, 1] - ocen[None, :, 1]) ** 2
+             < (orad * (1 - 1e-12)) ** 2).any(axis=1)
     if not free.any():
         return None
     p = p[free]
-    cov = d[free, len(ocen):] < grad - TOUCH
+    cov = (p[:, None, 0] - gcen[None, :, 0]) ** 2 + (p[:, None, 1] - gcen[None, :, 1]) ** 2 < (grad - TOUCH) ** 2
     mark = np.zeros(len(t.movers), dtype=bool)
     mark[freed] = True
     gain = len(freed) - cov[:, mark[rows]].sum(axis=1)
