@@ -492,24 +492,23 @@ def polish_may_help(problem: Problem, actions: list[Action]) -> bool:
     """Whether polishing (:mod:`.polish`) might shorten a plan of :func:`sequence_plan`; ``False`` only when it
     surely cannot, so the plan is validated without it.
 
-    Polishing tries, for each disc that moves twice (parked at action ``i``, to its goal at action ``j``), to
-    send it straight to its goal at ``i`` (merge) or to leave it where it stood until ``j`` (drop), replaying
-    the plan between the two with the search's rules: a placement keeps the clearance from every other disc,
-    or for a goal placement at most touches it. Both surely fail when, in the disc's place, a placement of
-    that stretch (or, for the merge, a disc standing on its goal at ``i``) overlaps it, as circles, by more than
-    a margin. A disc moved three times or more, a parked disc whose spot is within the pose goals' acceptance
-    tolerance (and a millimetre) of its goal, or a first move that is not a parking leaves the answer to
-    polishing."""
+    For a disc that moves more than once (parked, perhaps parked again, then to its goal), polishing tries at
+    each of its moves but the last to send it straight to its goal there, dropping its later moves (merge), and
+    to leave it where it stood until its next move (drop), and to drop its last move; it replays the plan from
+    there with the search's rules: a placement keeps the clearance from every other disc, or for a goal
+    placement at most touches it. A merge surely fails when a disc stands on the goal at that move, or a
+    placement before the last move overlaps the goal; a drop when a placement before the disc's next move
+    overlaps where it stood (as circles, by more than a margin); dropping the last move when the disc's place
+    before it is farther from its goal than the pose goals' acceptance tolerance (and a millimetre). Any other
+    kind of move (a first move that is not a parking) leaves the answer to polishing."""
     sc = problem.scene
     r = np.asarray(sc.discs, dtype=float)
     obj = [sc.index[a.object] for a in actions]
     moves: dict[int, list[int]] = {}
     for k, o in enumerate(obj):
         moves.setdefault(o, []).append(k)
-    twice = {o: ks for o, ks in moves.items() if len(ks) > 1}
-    if any(len(ks) > 2 for ks in twice.values()):
-        return True
-    if not twice:
+    again = {o: ks for o, ks in moves.items() if len(ks) > 1}
+    if not again:
         return False
     to = np.array([a.to[:2] for a in actions], dtype=float)
     reloc = np.array([a.purpose == "relocate" for a in actions])
@@ -521,15 +520,25 @@ def polish_may_help(problem: Problem, actions: list[Action]) -> bool:
         before.append(pos.copy())
         pos[o] = to[k]
     idx = np.asarray(obj)
-    for o, (i, j) in twice.items():
-        if not reloc[i] or actions[j].purpose != "goal" or math.hypot(*(to[i] - to[j])) <= TOL + 1e-3:
+
+    def overlaps(steps: np.ndarray, o: int, xy: np.ndarray) -> bool:
+        """Whether a placement of ``steps`` surely overlaps disc ``o`` standing at ``xy``."""
+        lim = r[idx[steps]] + r[o] + gap[steps]
+        return bool((np.hypot(*(to[steps] - xy).T) < lim).any())
+
+    for o, ks in again.items():
+        last = ks[-1]
+        if not reloc[ks[:-1]].all() or actions[last].purpose != "goal" \
+                or math.hypot(*(to[ks[-2]] - to[last])) <= TOL + 1e-3:
             return True
-        mid = np.arange(i + 1, j)
-        lim = r[idx[mid]] + r[o] + gap[mid]
-        drop_fails = bool((np.hypot(*(to[mid] - before[i][o]).T) < lim).any())
+        goal = to[last]
         others = np.arange(sc.n) != o
-        on_goal = bool((np.hypot(*(before[i][others] - to[j]).T) < r[others] + r[o] - 1e-6).any())
-        merge_fails = on_goal or bool((np.hypot(*(to[mid] - to[j]).T) < lim).any())
-        if not (drop_fails and merge_fails):
-            return True
+        for m, i in enumerate(ks[:-1]):
+            drop_fails = overlaps(np.arange(i + 1, ks[m + 1]), o, before[i][o])
+            rest = np.arange(i + 1, last)
+            rest = rest[idx[rest] != o]
+            merge_fails = bool((np.hypot(*(before[i][others] - goal).T) < r[others] + r[o] - 1e-6).any()) \
+                or overlaps(rest, o, goal)
+            if not (drop_fails and merge_fails):
+                return True
     return False
