@@ -34,7 +34,7 @@ from .domain import Accept, Rearrangement, validated
 from .polish import polished
 from .problem import Problem
 from .search import SearchOptions, SearchResult, greedy, mcts
-from .sequence import eligible, sequence_plan
+from .sequence import eligible, polish_may_help, sequence_plan
 
 __all__ = ["METHODS", "goal_poses", "plan"]
 
@@ -104,9 +104,10 @@ def _sequenced(problem: Problem, opts: SearchOptions) -> Outcome | None:
     actions = sequence_plan(problem)
     if actions is None:
         return None
-    # A plan without a parked disc moves each disc once, straight to its goal: polishing has nothing to drop.
+    # A plan without a parked disc moves each disc once, straight to its goal: polishing has nothing to drop; nor
+    # where every parked disc, left in place or sent straight to its goal, would surely overlap another.
     parked = any(a.purpose == "relocate" for a in actions)
-    kept = (_accept(opts) if parked else validated)(problem, actions, None)
+    kept = (_accept(opts) if parked and polish_may_help(problem, actions) else validated)(problem, actions, None)
     if kept is None:
         return None
     return SearchResult(True, tuple(kept), 0, 0, time.perf_counter() - t0, solutions=1, found=len(actions)), \

@@ -97,31 +97,67 @@ def _clear_windows(free: np.ndarray, gx: np.ndarray, gy: np.ndarray, cx: np.ndar
     """Clear, in ``free`` ``(len(gy), len(gx))``, the points within the reach
     of each object (centres ``cx, cy``, squared reaches ``reach2``).
 
-    Each object rules out only points in the window one grid step wider than
-    its reach; the windows of equal shape are tested together, in chunks of
-    about 250,000 points, with the arithmetic of the dense test (so the same
-    points are kept).
+    Each object rules out, on each grid row its reach crosses, one run of
+    points: the run is first estimated from the circle's half-chord, then
+    its two ends are settled by the arithmetic of the dense test (a point
+    is ruled out when ``dy^2 + dx^2 <= reach^2``, which holds on a run of
+    consecutive points of a row), so the same points are kept. The runs are
+    marked in a difference array and summed along each row: the work grows
+    with the rows crossed, not with the points covered. Objects are taken
+    in chunks of about 250,000 (object, row) pairs.
     """
+    w = len(gx)
+    if not w or not len(gy):
+        return
     half = np.sqrt(reach2) + step
-    x0, x1 = np.searchsorted(gx, cx - half), np.searchsorted(gx, cx + half, side="right")
     y0, y1 = np.searchsorted(gy, cy - half), np.searchsorted(gy, cy + half, side="right")
-    wx, wy = x1 - x0, y1 - y0
-    live = np.flatnonzero((wx > 0) & (wy > 0))
+    live = np.flatnonzero((y1 > y0) & (cx + half >= gx[0]) & (cx - half <= gx[-1]))
     if not len(live):
         return
-    shapes, group = np.unique(np.stack([wx[live], wy[live]], axis=1), axis=0, return_inverse=True)
-    group = group.ravel()
-    for g, (w, h) in enumerate(shapes.tolist()):
-        members = live[group == g]
-        per = max(1, 250_000 // (w * h))
-        for c in range(0, len(members), per):
-            m = members[c:c + per]
-            ix = x0[m, None] + np.arange(w)
-            iy = y0[m, None] + np.arange(h)
-            dx2 = (gx[ix] - cx[m, None]) ** 2
-            dy2 = (gy[iy] - cy[m, None]) ** 2
-            k, a, b = np.nonzero((dy2[:, :, None] + dx2[:, None, :]) <= reach2[m, None, None])
-            free[iy[k, a], ix[k, b]] = False
+    marks = np.zeros(len(gy) * (w + 1), dtype=np.int64)
+    hmax = int((y1 - y0)[live].max())
+    per = max(1, 250_000 // hmax)
+    for c in range(0, len(live), per):
+        m = live[c:c + per]
+        rows = y0[m, None] + np.arange(hmax)
+        valid = rows < y1[m, None]
+        obj = np.broadcast_to(m[:, None], rows.shape)[valid]
+        row = rows[valid]
+        dy2 = (gy[row] - cy[obj]) ** 2
+        room = reach2[obj] - dy2
+        ok = room >= 0
+        obj, row, dy2 = obj[ok], row[ok], dy2[ok]
+        half_chord = np.sqrt(room[ok])
+        ox, r2 = cx[obj], reach2[obj]
+        a = np.searchsorted(gx, ox - half_chord)
+        b = np.searchsorted(gx, ox + half_chord, side="right")
+
+        def hit(i: np.ndarray, ox: np.ndarray = ox, dy2: np.ndarray = dy2, r2: np.ndarray = r2) -> np.ndarray:
+            inside = (i >= 0) & (i < w)
+            ic = np.clip(i, 0, w - 1)
+            return inside & (dy2 + (gx[ic] - ox) ** 2 <= r2)
+
+        # Settle the ends: a is the first point ruled out, b one past the last (a == b: none on this row).
+        while True:
+            grow = hit(a - 1)
+            a = a - grow
+            shrink = (a < b) & ~hit(a)
+            a = a + shrink
+            if not (grow.any() or shrink.any()):
+                break
+        while True:
+            grow = hit(b)
+            b = b + grow
+            shrink = (b > a) & ~hit(b - 1)
+            b = b - shrink
+            if not (grow.any() or shrink.any()):
+                break
+        run = a < b
+        base = row[run] * (w + 1)
+        marks += np.bincount(base + a[run], minlength=len(marks))
+        marks -= np.bincount(base + b[run], minlength=len(marks))
+    covered = np.cumsum(marks.reshape(len(gy), w + 1), axis=1)[:, :w]
+    free &= covered == 0
 
 
 def region_scores(regions: np.ndarray, theirs: np.ndarray, xy: np.ndarray, r: float) -> np.ndarray:

@@ -13,7 +13,11 @@ TRLB's). :func:`sequence_plan` builds such a plan directly, without search:
    move frees them), then the one that covers the most (ties: the lower
    index), is parked in a *buffer*, a free spot of the table chosen on
    a grid near its own goal, away from every goal still to be reached when
-   there is such a spot (then it blocks nothing later); repeat from 1.
+   there is such a spot (then it blocks nothing later); where the grid has
+   none, a disc is *nudged*: slid to a nearby corner of its free space (or
+   the nearest place off a goal it alone covers) that uncovers the most
+   goals, so that on a packed table a goal comes free without a distant
+   buffer; repeat from 1.
 
 Discs are tested as circles, vectorised over all objects (the
 polygons stand for the circles; two discs that touch may overlap as polygons
@@ -28,6 +32,7 @@ problem gives the same plan.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -37,9 +42,10 @@ from ..geometry import wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from ..scene import TABLE
+from ..tolerances import TOL
 from .problem import Problem
 
-__all__ = ["eligible", "sequence_plan"]
+__all__ = ["eligible", "polish_may_help", "sequence_plan"]
 
 #: Two discs closer than the sum of their radii by at most this much (m)
 #: touch rather than overlap (their lens is far below the validator's
@@ -76,8 +82,27 @@ class _Table:
         self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
+        self.scene = sc
+        #: Where discs left and arrived, in order (a cached nudge stays valid while none of these is near).
+        self.changes: list[np.ndarray] = []
+        #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
+        self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
+        self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
+        inside the workspace)."""
+        if j not in self._boxes:
+            sc = self.scene
+            c, s = math.cos(float(sc.initial.poses[j, 2])), math.sin(float(sc.initial.poses[j, 2]))
+            v = np.asarray(sc.local[j], dtype=float) @ np.array([[c, s], [-s, c]])
+            xmin, xmax, ymin, ymax = sc.bounds
+            self._boxes[j] = (np.array([xmin - v[:, 0].min(), ymin - v[:, 1].min()]),
+                              np.array([xmax - v[:, 0].max(), ymax - v[:, 1].max()]))
+        return self._boxes[j]
 
     def move(self, j: int, xy: np.ndarray) -> None:
+        self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
         self.pos[j] = xy
         d = np.hypot(*(self.goal - xy).T)
         col = d < self.r[self.movers] + self.r[j] - TOUCH
@@ -113,6 +138,8 @@ class _Spots:
         self.hits = np.bincount(self._stamp(t.goal[open_], t.r[t.movers[open_]] + rmax - TOUCH), minlength=size)
         #: Changes not yet applied to the counts: (0 count / 1 hits, centre, radius, sign).
         self.todo: list[tuple[int, np.ndarray, float, int]] = []
+        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
+        self._goal_stamp: dict[int, np.ndarray] = {}
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -154,31 +181,152 @@ class _Spots:
         if self.todo:
             self._flush()
         k = t.row[j]
-        count = self.count.copy()
-        np.subtract.at(count, self._stamp(t.pos[j], t.r[j] + self.reach), 1)
-        free = np.flatnonzero(count == 0)
+        # Disc j counts once at each point of its own stamp: there, only j crowds the point when the count is 1.
+        mask = self.count == 0
+        own = self._stamp(t.pos[j], t.r[j] + self.reach)
+        mask[own] = self.count[own] == 1
+        free = np.flatnonzero(mask)
         if not len(free):
             return None
-        hits = self.hits.copy()
+        hits = self.hits[free]
         if not t.done[k]:
-            np.subtract.at(hits, self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH), 1)
+            if j not in self._goal_stamp:
+                mine = np.zeros(len(self.count), dtype=bool)
+                mine[self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH)] = True
+                self._goal_stamp[j] = mine
+            hits = hits - self._goal_stamp[j][free]
         xy = np.stack([self.gx[free % len(self.gx)], self.gy[free // len(self.gx)]], axis=1)
         dist = np.hypot(*(xy - t.goal[k]).T)
-        m = int(np.lexsort((dist, hits[free]))[0])
-        return xy[m], int(hits[free[m]])
+        m = int(np.lexsort((dist, hits))[0])
+        return xy[m], int(hits[m])
 
 
-#: How many discs, best score first, are offered a parking spot when the goals left are blocked.
+#: How many discs, best score first, are offered a parking spot on the grid when the goals left are blocked.
 CANDIDATES = 4
 #: Park only discs on a cycle when there are such (see :func:`_score`); off gives the plain score, for comparison.
 CYCLES = True
+#: How far (in its own radii) a nudged disc may go from where it stands (see :func:`_nudge`).
+NUDGE_REACH = 6.0
+
+
+_AXIS = np.array([0, 0, 1, 1])
+_SIGN = np.array([1.0, -1.0])[None, :, None]
+
+
+@functools.lru_cache(maxsize=256)
+def _pairs(m: int, first: int) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs ``a < b`` of ``m`` circles whose first member is one of the ``first`` first circles."""
+    a, b = np.triu_indices(m, 1)
+    keep = a < first
+    return a[keep], b[keep]
+
+
+def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+    """A nearby place for disc ``j`` on a table too packed for the grid: ``(centre, hits, gain)`` or ``None``.
+
+    Candidates lie within :data:`NUDGE_REACH` radii of where ``j`` stands: the corners of its free space (where
+    it touches two other discs with the clearance, or one and a side of its box, or two sides; the same corners
+    as :mod:`.dense`'s), the points where it touches a disc and just clears an open goal disc, and for each goal
+    in ``freed`` (the open goals only ``j`` covers, rows of ``t``) the nearest point that clears it. Of the free
+    ones (the clearance from every other disc, inside the box), the one that uncovers the most of ``freed``
+    (``gain``), then covers the fewest open goals (``hits``, its own goal aside), then lies nearest its goal; it
+    must uncover a goal or cover fewer than the ``cover`` open goals ``j`` covers now, so every nudge makes
+    progress (a goal comes free, or fewer (goal, disc) covers remain)."""
+    rj = float(t.r[j])
+    c = t.pos[j]
+    reach = NUDGE_REACH * rj
+    lo, hi = t.box(j)
+    # Discs whose clearance circle (radius r_i + r_j + clearance about them) meets the reach.
+    near = np.flatnonzero(np.hypot(*(t.pos - c).T) < reach + rj + t.r + CLEARANCE)
+    near = near[near != j]
+    ocen, orad = t.pos[near], t.r[near] + rj + CLEARANCE
+    own = t.row.get(j)
+    rows = np.flatnonzero(~t.done)
+    if own is not None:
+        rows = rows[rows != own]
+    rows = rows[np.hypot(*(t.goal[rows] - c).T) < reach + t.r[t.movers[rows]] + rj]
+    gcen, grad = t.goal[rows], t.r[t.movers[rows]] + rj
+    cen = np.concatenate([ocen, gcen])
+    rad = np.concatenate([orad, grad + 1e-9])  # just off a goal disc: touching, not covering
+    pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
+    for k in freed.tolist():
+        v = c - t.goal[k]
+        dv = math.hypot(float(v[0]), float(v[1]))
+        if dv > 1e-12:
+            pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
+    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi (each side: the + then the - crossing).
+    sides = np.array([lo[0], hi[0], lo[1], hi[1]])
+    off = sides[:, None] - cen[:, _AXIS].T  # (side, circle)
+    h = np.sqrt(np.maximum(rad ** 2 - off ** 2, 0.0))
+    q = np.empty((4, 2, len(cen), 2))
+    for ax in (0, 1):
+        q[:, :, :, ax] = np.where(_AXIS[:, None, None] == ax, sides[:, None, None],
+                                  cen[None, None, :, ax] + _SIGN * h[:, None, :])
+    pts.append(q[np.broadcast_to((np.abs(off) <= rad)[:, None, :], (4, 2, len(cen)))])
+    # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
+    a, b = _pairs(len(cen), len(ocen))
+    v = cen[b] - cen[a]
+    dd = np.hypot(v[:, 0], v[:, 1])
+    ra, rb = rad[a], rad[b]
+    ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
+    if ok.any():
+        a, v, dd, ra, rb = a[ok], v[ok], dd[ok], ra[ok], rb[ok]
+        x = (dd * dd + ra * ra - rb * rb) / (2 * dd)
+        h = np.sqrt(np.maximum(ra * ra - x * x, 0.0))
+        u = v / dd[:, None]
+        nrm = np.stack([-u[:, 1], u[:, 0]], axis=1) * h[:, None]
+        base = cen[a] + u * x[:, None]
+        pts += [base + nrm, base - nrm]
+    p = np.concatenate(pts)
+    p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
+    p = p[np.hypot(*(p - c).T) <= reach]
+    # Squared distances (the margins below are far above their rounding). Rounding lets a point on a disc's circle
+    # count as on it, not inside.
+    free = ~((p[:, None, 0] - ocen[None, :, 0]) ** 2 + (p[:, None, 1] - ocen[None, :, 1]) ** 2
+             < (orad * (1 - 1e-12)) ** 2).any(axis=1)
+    if not free.any():
+        return None
+    p = p[free]
+    cov = (p[:, None, 0] - gcen[None, :, 0]) ** 2 + (p[:, None, 1] - gcen[None, :, 1]) ** 2 < (grad - TOUCH) ** 2
+    mark = np.zeros(len(t.movers), dtype=bool)
+    mark[freed] = True
+    gain = len(freed) - cov[:, mark[rows]].sum(axis=1)
+    hits = cov.sum(axis=1)
+    good = (gain > 0) | (hits < cover)
+    if not good.any():
+        return None
+    p, gain, hits = p[good], gain[good], hits[good]
+    dist = np.hypot(*(p - (t.goal[own] if own is not None else c)).T)
+    m = int(np.lexsort((dist, hits, -gain))[0])
+    return p[m], int(hits[m]), int(gain[m])
+
+
+def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+    """:func:`_nudge`, answered from the last one for ``j`` when nothing it depends on changed: ``j`` stands where
+    it stood, covers the same goals, and no disc left or arrived within the reach of its discs and goals (its
+    nudge looks only there; a goal closes only when a disc arrives on it)."""
+    key = tuple(freed.tolist())
+    seen = t.nudges.get(j)
+    if seen is not None and seen[2] == key and seen[3] == cover and np.array_equal(seen[1], t.pos[j]):
+        fresh = t.changes[seen[0]:]
+        if not fresh:
+            return seen[4]
+        rmax = float(np.max(t.r))
+        near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
+        if not (np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any():
+            return seen[4]
+    found = _nudge(t, j, freed, cover)
+    t.nudges[j] = (len(t.changes), t.pos[j].copy(), key, cover, found)
+    return found
 
 
 def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
-    """The disc to park and its spot: of the :data:`CANDIDATES` best scored
-    discs (with goals of their own), the first whose spot covers no open
-    goal, else the one whose move uncovers the most goals; ``None`` when no
-    move uncovers any (parking would go round in circles)."""
+    """The disc to park and its spot; ``None`` when no move makes progress (parking would go round in circles).
+
+    In this order: of the :data:`CANDIDATES` best scored discs (with goals of their own), the first whose grid
+    spot covers no open goal; else the best :func:`_nudge` of any candidate (most goals uncovered, then fewest
+    covers left; candidates in score order, stopping once none further can do better); else the grid spot whose
+    move uncovers the most goals."""
     order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
     best: tuple[int, int, np.ndarray] | None = None
     for j in order[:CANDIDATES]:
@@ -191,7 +339,80 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
             return j, spot
         if gain > 0 and (best is None or gain > best[0]):
             best = (gain, j, spot)
+    rows = np.flatnonzero(~t.done)
+    b = t.blocked[rows]
+    sole = b.sum(axis=1) == 1
+    nudge: tuple[tuple[int, int], int, np.ndarray] | None = None
+    for j in order:
+        freed = rows[sole & b[:, j]]
+        # The best a move of j can do: uncover every goal it alone covers, and cover none.
+        if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
+            break
+        found_n = _cached_nudge(t, j, freed, int(cover[j]))
+        if found_n is None:
+            continue
+        key = (found_n[2], int(cover[j]) - found_n[1])
+        if nudge is None or key > nudge[0]:
+            nudge = (key, j, found_n[0])
+    if nudge is not None:
+        return nudge[1], nudge[2]
     return None if best is None else (best[1], best[2])
+
+
+def on_cycles(adj: np.ndarray) -> np.ndarray:
+    """Per node of the directed graph ``adj`` (``adj[u, v]``: an edge u -> v; no self-loops), whether it lies on
+    a cycle: its strongly connected component has more than one node (Tarjan's algorithm, iterative).
+
+    The graphs here have a few edges per node; a loop over the edges costs less than building a sparse matrix
+    for a library call."""
+    m = len(adj)
+    src, dst = np.nonzero(adj)
+    succ: list[list[int]] = [[] for _ in range(m)]
+    for u, v in zip(src.tolist(), dst.tolist()):
+        succ[u].append(v)
+    index = [-1] * m
+    low = [0] * m
+    on_stack = [False] * m
+    stack: list[int] = []
+    out = np.zeros(m, dtype=bool)
+    counter = 0
+    for root in range(m):
+        if index[root] >= 0:
+            continue
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack[root] = True
+        work = [(root, 0)]
+        while work:
+            u, k = work[-1]
+            if k < len(succ[u]):
+                work[-1] = (u, k + 1)
+                v = succ[u][k]
+                if index[v] < 0:
+                    index[v] = low[v] = counter
+                    counter += 1
+                    stack.append(v)
+                    on_stack[v] = True
+                    work.append((v, 0))
+                elif on_stack[v]:
+                    low[u] = min(low[u], index[v])
+                continue
+            work.pop()
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[u])
+            if low[u] == index[u]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on_stack[w] = False
+                    comp.append(w)
+                    if w == u:
+                        break
+                if len(comp) > 1:
+                    out[comp] = True
+    return out
 
 
 def _score(t: _Table, b: np.ndarray) -> np.ndarray:
@@ -203,14 +424,9 @@ def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
     score[t.movers[t.done]] = 0  # a disc on its goal stays
     if CYCLES:
-        from scipy.sparse import csr_matrix  # only once a cycle must be broken
-        from scipy.sparse.csgraph import connected_components
-
         rows = np.flatnonzero(~t.done)
         movers = t.movers[rows]
-        graph = csr_matrix(b[:, movers])  # open goal -> the open movers covering it
-        _, label = connected_components(graph, directed=True, connection="strong")
-        on_cycle = np.bincount(label)[label] > 1
+        on_cycle = on_cycles(b[:, movers])  # open goal -> the open movers covering it
         if on_cycle.any() and (score[movers[on_cycle]] > 0).any():
             score[movers[~on_cycle]] = 0
     return score
@@ -270,3 +486,59 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
         t.move(j, spot)
         spots.moved(t, j, old)
     return actions
+
+
+def polish_may_help(problem: Problem, actions: list[Action]) -> bool:
+    """Whether polishing (:mod:`.polish`) might shorten a plan of :func:`sequence_plan`; ``False`` only when it
+    surely cannot, so the plan is validated without it.
+
+    For a disc that moves more than once (parked, perhaps parked again, then to its goal), polishing tries at
+    each of its moves but the last to send it straight to its goal there, dropping its later moves (merge), and
+    to leave it where it stood until its next move (drop), and to drop its last move; it replays the plan from
+    there with the search's rules: a placement keeps the clearance from every other disc, or for a goal
+    placement at most touches it. A merge surely fails when a disc stands on the goal at that move, or a
+    placement before the last move overlaps the goal; a drop when a placement before the disc's next move
+    overlaps where it stood (as circles, by more than a margin); dropping the last move when the disc's place
+    before it is farther from its goal than the pose goals' acceptance tolerance (and a millimetre). Any other
+    kind of move (a first move that is not a parking) leaves the answer to polishing."""
+    sc = problem.scene
+    r = np.asarray(sc.discs, dtype=float)
+    obj = [sc.index[a.object] for a in actions]
+    moves: dict[int, list[int]] = {}
+    for k, o in enumerate(obj):
+        moves.setdefault(o, []).append(k)
+    again = {o: ks for o, ks in moves.items() if len(ks) > 1}
+    if not again:
+        return False
+    to = np.array([a.to[:2] for a in actions], dtype=float)
+    reloc = np.array([a.purpose == "relocate" for a in actions])
+    # How close a placed disc may come to another before the replay surely refuses it (a margin below the rule).
+    gap = np.where(reloc, 0.98 * CLEARANCE, -1e-6)
+    pos = np.array(sc.initial.poses[:, :2], dtype=float)
+    before: list[np.ndarray] = []
+    for k, o in enumerate(obj):
+        before.append(pos.copy())
+        pos[o] = to[k]
+    idx = np.asarray(obj)
+
+    def overlaps(steps: np.ndarray, o: int, xy: np.ndarray) -> bool:
+        """Whether a placement of ``steps`` surely overlaps disc ``o`` standing at ``xy``."""
+        lim = r[idx[steps]] + r[o] + gap[steps]
+        return bool((np.hypot(*(to[steps] - xy).T) < lim).any())
+
+    for o, ks in again.items():
+        last = ks[-1]
+        if not reloc[ks[:-1]].all() or actions[last].purpose != "goal" \
+                or math.hypot(*(to[ks[-2]] - to[last])) <= TOL + 1e-3:
+            return True
+        goal = to[last]
+        others = np.arange(sc.n) != o
+        for m, i in enumerate(ks[:-1]):
+            drop_fails = overlaps(np.arange(i + 1, ks[m + 1]), o, before[i][o])
+            rest = np.arange(i + 1, last)
+            rest = rest[idx[rest] != o]
+            merge_fails = bool((np.hypot(*(before[i][others] - goal).T) < r[others] + r[o] - 1e-6).any()) \
+                or overlaps(rest, o, goal)
+            if not (drop_fails and merge_fails):
+                return True
+    return False

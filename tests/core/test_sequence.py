@@ -9,7 +9,9 @@ from disc_cases import disc_case, disc_problem
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lgmcts import check, plan
+import lgmcts.planner.sequence as seq
+from lgmcts import PlanSpec, check, plan
+from lgmcts.patterns import CLEARANCE
 from lgmcts.planner.problem import Problem
 from lgmcts.planner.search import SearchOptions
 from lgmcts.planner.sequence import eligible, sequence_plan
@@ -128,3 +130,100 @@ def test_a_robot_leaves_the_plan_to_the_search():
     p = plan(c.scene, c.goals, seed=0, max_iter=500, robot="ur5e")
     assert "sequenced" not in p.stats and p.stats["robot"] == "ur5e"
     assert plan(c.scene, c.goals, seed=0, max_iter=500).stats.get("sequenced")
+
+
+def _dense_case(seed: int, n: int, density: float):
+    rng = np.random.default_rng(seed)
+    radius = math.sqrt(density * 1e6 / (math.pi * n))
+    start, goal = _scatter(rng, n, radius), _scatter(rng, n, radius)
+    return None if start is None or goal is None else disc_case(start, goal, radius)
+
+
+def _parked_clear_of_the_others(c, actions) -> bool:
+    """Whether every parked disc stands, where it is parked, at least the clearance away from every other disc."""
+    sc = Scene.from_spec(c.scene)
+    pos = np.array(sc.initial.poses[:, :2])
+    for a in actions:
+        i = sc.index[a.object]
+        pos[i] = a.to[:2]
+        if a.purpose == "relocate":
+            gap = np.hypot(*(pos - pos[i]).T) - sc.discs - sc.discs[i]
+            gap[i] = np.inf
+            if gap.min() < CLEARANCE - 1e-9:
+                return False
+    return True
+
+
+def test_a_nudge_plans_where_no_grid_spot_uncovers_a_goal(monkeypatch):
+    # Six discs at 40 % density: once the goals that are free are reached, every grid spot for the blocking discs
+    # covers as many goals as they do; a short slide of one disc frees a goal, and the rest follows.
+    c = _dense_case(11, 6, 0.4)
+    assert c is not None
+    pr = disc_problem(c)
+    actions = sequence_plan(pr)
+    assert actions is not None and sequence_plan(pr) == actions
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    assert _parked_clear_of_the_others(c, actions)
+    # Without the nudge (no reach), the attempt is stuck on the same table.
+    monkeypatch.setattr(seq, "NUDGE_REACH", 0.0)
+    assert sequence_plan(pr) is None
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(4, 12), density=st.sampled_from([0.35, 0.4, 0.45]))
+def test_nudged_plans_are_valid_and_keep_the_clearance(seed, n, density):
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    actions = sequence_plan(disc_problem(c))
+    if actions is None:
+        return
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    assert _parked_clear_of_the_others(c, actions)
+    # Every disc ends on its goal; a parked disc moves again, so the plan has n + (parked) actions at most.
+    assert len(actions) <= n + sum(a.purpose == "relocate" for a in actions)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 12).flatmap(lambda m: st.lists(st.lists(st.booleans(), min_size=m, max_size=m),
+                                                       min_size=m, max_size=m)))
+def test_on_cycles_finds_the_nodes_that_reach_themselves(rows):
+    adj = np.array(rows, dtype=bool)
+    np.fill_diagonal(adj, False)
+    # Reference: the transitive closure by repeated relaxation; a node is on a cycle when it reaches itself.
+    reach = adj.copy()
+    for k in range(len(adj)):
+        reach |= reach[:, k:k + 1] & reach[k:k + 1, :]
+    assert np.array_equal(seq.on_cycles(adj), np.diag(reach))
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(4, 14), density=st.sampled_from([0.3, 0.4, 0.45]))
+def test_a_plan_polishing_cannot_shorten_is_left_as_it_is(seed, n, density):
+    # polish_may_help says False only where polishing would return the plan unchanged (then it is not run).
+    from lgmcts.planner.polish import polished
+
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = disc_problem(c)
+    actions = sequence_plan(pr)
+    if actions is None or seq.polish_may_help(pr, actions):
+        return
+    assert polished(pr, actions) == actions
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 16), density=st.sampled_from([0.4, 0.45]))
+def test_a_remembered_nudge_gives_the_same_plan_as_a_fresh_one(seed, n, density):
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = disc_problem(c)
+    cached = sequence_plan(pr)
+    fresh = seq._cached_nudge
+    try:
+        seq._cached_nudge = lambda t, j, freed, cover: seq._nudge(t, j, freed, cover)
+        assert sequence_plan(pr) == cached
+    finally:
+        seq._cached_nudge = fresh
