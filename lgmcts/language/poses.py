@@ -19,7 +19,6 @@ __all__ = ["MARK", "SaidPose", "find_poses", "is_mark", "mark_poses"]
 
 #: Marker words standing for the poses of a command ("posemarka", "posemarkb" ...).
 MARK = "posemark"
-_MARK_RE = re.compile(rf"^{MARK}[a-z]$")
 
 _NUM = r"[-+−]?(?:\d+(?:\.\d+)?|\.\d+)"
 _UNIT = r"(?:mm|cm|m|millimet(?:re|er)s?|centimet(?:re|er)s?|met(?:re|er)s?)\b"
@@ -27,13 +26,13 @@ _ANGLE = rf"(?:(?:{_NUM})?\s*\*?\s*pi(?:\s*/\s*\d+)?|{_NUM})"
 _ANGLE_UNIT = r"(?:rad(?:ians?)?\b|deg(?:rees?)?\b|°)"
 _YAW = (rf"(?:\s*(?:,|and|with)?\s*(?:yaw|theta|heading|rotation|angle|rotated|turned)\s*(?:of|by|to)?\s*[=:]?\s*"
         rf"(?P<yaw>{_ANGLE})\s*(?P<yu>{_ANGLE_UNIT})?)?")
-_XY = re.compile(
+#: "x = 0.1 m, y = -5 cm (, yaw 90 deg)" or "at (10 cm, -5 cm(, pi/2))": the second form's groups end in "p".
+_POSE = re.compile(
     rf"(?i)\bx\s*[=:]?\s*(?P<x>{_NUM})\s*(?P<xu>{_UNIT})?\s*(?:,|and)?\s*\by\s*[=:]?\s*(?P<y>{_NUM})\s*(?P<yu_>{_UNIT})?"
-    + _YAW)
-_PAIR = re.compile(
-    rf"(?i)(?<=\b(?:at|to)\s)\s*\(\s*(?P<x>{_NUM})\s*(?P<xu>{_UNIT})?\s*,\s*(?P<y>{_NUM})\s*(?P<yu_>{_UNIT})?"
-    rf"(?:\s*,\s*(?P<yaw>{_ANGLE})\s*(?P<yu>{_ANGLE_UNIT})?)?\s*\)" + _YAW.replace("?P<yaw>", "?P<yaw2>")
-    .replace("?P<yu>", "?P<yu2>"))
+    + _YAW
+    + rf"|(?<=\b(?:at|to)\s)\s*\(\s*(?P<xp>{_NUM})\s*(?P<xup>{_UNIT})?\s*,\s*(?P<yp>{_NUM})\s*(?P<yu_p>{_UNIT})?"
+    rf"(?:\s*,\s*(?P<yawp>{_ANGLE})\s*(?P<yup>{_ANGLE_UNIT})?)?\s*\)"
+    + _YAW.replace("?P<yaw>", "?P<yaw2>").replace("?P<yu>", "?P<yu2>"))
 _SCALE = {"mm": 0.001, "cm": 0.01, "m": 1.0}
 
 
@@ -50,7 +49,7 @@ class SaidPose:
 
 def is_mark(word: str) -> bool:
     """Whether a token is a pose's marker."""
-    return bool(_MARK_RE.match(word))
+    return len(word) == len(MARK) + 1 and word.startswith(MARK) and "a" <= word[-1] <= "z"
 
 
 def _scale(unit: str | None) -> float | None:
@@ -81,13 +80,14 @@ def _angle(s: str, unit: str | None) -> float:
 
 
 def _pose(m: re.Match) -> SaidPose:
-    xs, ys = _scale(m.group("xu")), _scale(m.group("yu_"))
-    xs, ys = xs or ys or 1.0, ys or xs or 1.0
     g = m.groupdict()
-    yaw_s = g.get("yaw") or g.get("yaw2")
-    yaw_u = g.get("yu") or g.get("yu2")
+    p = "" if g["x"] is not None else "p"
+    xs, ys = _scale(g["xu" + p]), _scale(g["yu_" + p])
+    xs, ys = xs or ys or 1.0, ys or xs or 1.0
+    yaw_s = g.get("yaw" + p) or g.get("yaw2")
+    yaw_u = g.get("yu" + p) or g.get("yu2")
     yaw = _angle(yaw_s, yaw_u) if yaw_s else None
-    return SaidPose(m.start(), m.end(), _number(m.group("x")) * xs, _number(m.group("y")) * ys, yaw)
+    return SaidPose(m.start(), m.end(), _number(g["x" + p]) * xs, _number(g["y" + p]) * ys, yaw)
 
 
 def find_poses(text: str) -> list[SaidPose]:
@@ -99,8 +99,7 @@ def find_poses(text: str) -> list[SaidPose]:
     >>> find_poses("the cup at (10 cm, -5 cm)")[0].y
     -0.05
     """
-    found = [_pose(m) for m in _XY.finditer(text)] + [_pose(m) for m in _PAIR.finditer(text)]
-    return sorted(found, key=lambda p: p.start)
+    return [_pose(m) for m in _POSE.finditer(text)]
 
 
 def mark_poses(text: str) -> tuple[str, list[SaidPose]]:

@@ -41,12 +41,11 @@ __all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "meas
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
-_MARK_RE = re.compile(rf"^{MARK}[a-z]$")
 
 
 def is_mark(word: str) -> bool:
     """Whether a token is a measure's marker."""
-    return bool(_MARK_RE.match(word))
+    return len(word) == len(MARK) + 1 and word.startswith(MARK) and "a" <= word[-1] <= "z"
 
 
 def _plural(word: str) -> str:
@@ -227,7 +226,9 @@ def measured_size(pattern: str, params: dict, measures: list[Measure], n_objects
     return out
 
 
-_HYPHEN_MOST = re.compile(r"(?i)\b(left|right|front|back|rear|hind|fore)\s*-\s*most\b")
+#: Sides said with "-most" after a hyphen ("front-most", "right - most"), which read as one word.
+_HYPHEN_MOST = tuple((f"{side}{dash}most", f"{side}most") for w in ("left", "right", "front", "back", "rear", "hind")
+                     for side in (w, w.capitalize(), w.upper()) for dash in ("-", " - ", " -", "- "))
 
 
 def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
@@ -246,7 +247,8 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
     name they stand for ("cup" -> "mug" in a scene of mugs and no cup). As in the grounding, such
     a head may name the one object of that kind; a position phrase never chooses among several
     of them ("the cup nearest the phone" among two mugs is refused, as "the cup" is)."""
-    text = _HYPHEN_MOST.sub(r"\1most", text)  # "front-most", "right - most": one word
+    for said, word in _HYPHEN_MOST:  # "front-most", "right - most": one word
+        text = text.replace(said, word)
     toks: tuple[Token, ...] = tokenize(text)
     words = tuple(t.text for t in toks)
     refs = find_position_refs(words)
