@@ -197,10 +197,37 @@ def _quantity(ws: list[str], i: int) -> tuple[tuple[float, ...], int] | None:
     return (v * u[0],), k
 
 
+#: "from the first (piece) to the last (one)": the first and last object of a row, whatever noun is said.
+_FIRST_TO_LAST = (("from",), ("the", "very"), ("first", "1st", "leftmost", "one"), ("to",), ("the", "very"),
+                  ("last", "rightmost", "other"))
+
+
+def _first_to_last(ws: list[str], j: int) -> int | None:
+    """The end of "from the first (noun) to the last (noun)" said at ``j`` (a line's length), or None."""
+    k = j
+    for step, words in enumerate(_FIRST_TO_LAST):
+        optional = words[0] in ("the",)
+        while k < len(ws) and optional and ws[k] in words:
+            k += 1
+        if optional:
+            continue
+        if k >= len(ws) or ws[k] not in words:
+            return None
+        k += 1
+        if step == 2 and k < len(ws) and ws[k] not in ("to",):
+            k += 1  # a noun after "first": "from the first piece to the last"
+    if k < len(ws) and ws[k].isalpha() and ws[k] not in ("and", "then", "in", "on", "at", "facing"):
+        k += 1  # a noun after "last": "... to the last can"
+    return k
+
+
 def _role_after(ws: list[str], j: int) -> tuple[Role, int] | None:
     for seq, role in _AFTER:
         if tuple(ws[j : j + len(seq)]) == seq:
             return role, j + len(seq)
+    end = _first_to_last(ws, j)
+    if end is not None:
+        return "length", end
     return None
 
 

@@ -13,6 +13,9 @@ from lgmcts.language.measures import find_measures, size_for
 
 @pytest.mark.parametrize("text, metres, role, said", [
     ("make a 40 cm line of the cans", 0.4, "plain", "40 cm"),
+    ("silverware in a row; 20 cm from the first piece to the last.", 0.2, "length",
+     "20 cm from the first piece to the last"),
+    ("the cans in a row, 30 cm from first to last", 0.3, "length", "30 cm from first to last"),
     ("a loop of the mugs with a 12 cm radius", 0.12, "radius", "12 cm radius"),
     ("a loop with radius 8 cm", 0.08, "radius", "radius 8 cm"),
     ("the bowls in a ring 24 cm across", 0.24, "across", "24 cm across"),
