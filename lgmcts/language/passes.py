@@ -24,11 +24,10 @@ from .clauses import (
 )
 from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Mention, candidates, find_mentions
 from .qualifiers import _ATTRS
-from .lexicon import HUES as _HUES
+from .lexicon import HUES as _HUES, context_words
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
-from .lexicon import context_words
 from .places import POINTING_PARTS
 from .rewrite import FREE_ORDER
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
@@ -46,13 +45,13 @@ _ARTICLE_AT = re.compile(rf"(?i)((?:^|[.;!?:]|\b(?:{'|'.join(sorted(_COMMAND_VER
                          rf"(?=(?:\s+[a-z]+)?)")
 
 
-#: Verbs of a selection clause: it names objects for the next clause ("select
-#: objects that are red. circle"; "take the red mug and put it ...").
 #: The word lists of a remark and an aside (``[context]`` of the lexicon).
 _CTX = context_words()
 #: Determiners and possessives before the noun of an aside ("by the window", "in my kitchen").
 _ASIDE_DETS = frozenset({"the", "a", "an", "my", "your", "our", "his", "her", "their", "that", "this", "these", "those",
                          "some", "any", "one"})
+#: Verbs of a selection clause: it names objects for the next clause ("select
+#: objects that are red. circle"; "take the red mug and put it ...").
 _SELECT_VERBS = frozenset({"select", "pick", "choose", "take", "grab", "get", "find", "use", "consider", "fetch",
                            "see", "spot", "notice", "locate", "look"})
 
