@@ -217,7 +217,7 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
         said = [k for k in compared if ref.start <= k < ref.end]
         if not said:
             out.append(ref)
-        elif ref.start > 0 and ws[ref.start - 1] in _PLACING and ref.count == 1:
+        elif ((ref.start > 0 and ws[ref.start - 1] in _PLACING) or ws[ref.start] in _PLACING) and ref.count == 1:
             continue  # "move the cup closer to the plate": a placing, left for the parser
         else:
             out.append(ref if ref.of is not None else replace(ref, of=2))

@@ -11,6 +11,7 @@ import pytest
 
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_scene
+from lgmcts.language.positions import find_position_refs
 from lgmcts.language.rules import goal_dicts
 
 FILE = Path(__file__).with_name("fresh_cases.jsonl")
@@ -198,3 +199,9 @@ def test_a_comparative_over_more_than_two_is_refused(scene, text, says, matcher)
     with pytest.raises(InputError) as exc:
         _goals(scene, text, matcher)
     assert says in str(exc.value)
+
+
+@pytest.mark.parametrize("text", ["move the red mug closer to the plate", "bring the red mug nearer to the plate"])
+def test_a_comparative_after_a_verb_of_placing_picks_no_object(text):
+    # "bring the red mug nearer to the plate" says where to move the red mug, it does not pick one of two mugs.
+    assert find_position_refs(tuple(text.split())) == []
