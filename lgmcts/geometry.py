@@ -244,6 +244,24 @@ def overlapping(
     return out
 
 
+def circle_crossings(cen: np.ndarray, rad: np.ndarray, a: np.ndarray, b: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Where circles ``a[k]`` and ``b[k]`` (centres ``cen``, radii ``rad``) cross: ``(plus, minus, a, b)``, the two
+    crossing points of each pair that crosses (one to each side of the line from ``a`` to ``b``) and those pairs.
+    Pairs that are concentric, apart or nested have no crossing and are left out."""
+    v = cen[b] - cen[a]
+    dd = np.hypot(v[:, 0], v[:, 1])
+    ra, rb = rad[a], rad[b]
+    ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
+    a, b, v, dd, ra, rb = a[ok], b[ok], v[ok], dd[ok], ra[ok], rb[ok]
+    x = (dd * dd + ra * ra - rb * rb) / (2 * dd)
+    h = np.sqrt(np.maximum(ra * ra - x * x, 0.0))
+    u = v / dd[:, None]
+    nrm = np.stack([-u[:, 1], u[:, 0]], axis=1) * h[:, None]
+    base = cen[a] + u * x[:, None]
+    return base + nrm, base - nrm, a, b
+
+
 def lens_area(r1: float, r2: float, d: float) -> float:
     """Area (m²) shared by two circles of radii ``r1``, ``r2`` whose centres are ``d`` apart.
 

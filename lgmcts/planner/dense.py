@@ -39,7 +39,7 @@ import time
 import numpy as np
 
 from ..formats import Action
-from ..geometry import wrap_angle
+from ..geometry import circle_crossings, wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from .problem import Problem
@@ -139,20 +139,9 @@ class _Discs:
                 pts.append(p)
                 tags.append(np.stack([j, np.full(len(j), -1)], axis=1))
             # Circles with each other.
-            a, b = self.pairs
-            v = pos[b] - pos[a]
-            dd = np.hypot(v[:, 0], v[:, 1])
-            ra, rb = rad[a], rad[b]
-            ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
-            if ok.any():
-                a, b, v, dd, ra, rb = a[ok], b[ok], v[ok], dd[ok], ra[ok], rb[ok]
-                x = (dd * dd + ra * ra - rb * rb) / (2 * dd)
-                h = np.sqrt(np.maximum(ra * ra - x * x, 0.0))
-                u = v / dd[:, None]
-                nrm = np.stack([-u[:, 1], u[:, 0]], axis=1) * h[:, None]
-                base = pos[a] + u * x[:, None]
-                pts += [base + nrm, base - nrm]
-                tags += [np.stack([a, b], axis=1)] * 2
+            plus, minus, a, b = circle_crossings(pos, rad, *self.pairs)
+            pts += [plus, minus]
+            tags += [np.stack([a, b], axis=1)] * 2
             p = np.concatenate(pts)
             tag = np.concatenate(tags)
             inside = (p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)

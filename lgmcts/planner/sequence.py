@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from ..formats import Action
-from ..geometry import wrap_angle
+from ..geometry import circle_crossings, wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from ..scene import TABLE
@@ -264,19 +264,8 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
                                   cen[None, None, :, ax] + _SIGN * h[:, None, :])
     pts.append(q[np.broadcast_to((np.abs(off) <= rad)[:, None, :], (4, 2, len(cen)))])
     # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
-    a, b = _pairs(len(cen), len(ocen))
-    v = cen[b] - cen[a]
-    dd = np.hypot(v[:, 0], v[:, 1])
-    ra, rb = rad[a], rad[b]
-    ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
-    if ok.any():
-        a, v, dd, ra, rb = a[ok], v[ok], dd[ok], ra[ok], rb[ok]
-        x = (dd * dd + ra * ra - rb * rb) / (2 * dd)
-        h = np.sqrt(np.maximum(ra * ra - x * x, 0.0))
-        u = v / dd[:, None]
-        nrm = np.stack([-u[:, 1], u[:, 0]], axis=1) * h[:, None]
-        base = cen[a] + u * x[:, None]
-        pts += [base + nrm, base - nrm]
+    plus, minus, _, _ = circle_crossings(cen, rad, *_pairs(len(cen), len(ocen)))
+    pts += [plus, minus]
     p = np.concatenate(pts)
     p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
     p = p[np.hypot(*(p - c).T) <= reach]
