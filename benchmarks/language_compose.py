@@ -116,7 +116,7 @@ def main() -> None:
     ap.add_argument("--show", type=int, default=0, help="list this many dropped or wrong answers (dev only)")
     args = ap.parse_args()
     from lgmcts.errors import InputError
-    from lgmcts.language.evaluate import to_dict
+    from lgmcts.language.evaluate import goals_match, to_dict
     from lgmcts.language.matcher import default_matcher
     from lgmcts.language.rules import parse_rules
 
@@ -127,8 +127,6 @@ def main() -> None:
             return to_dict(parse_rules(case.scene, text, matcher=matcher))
         except InputError:
             return None
-
-    from lgmcts.language.evaluate import goals_match
 
     bases = [c for c in base_cases(args.per_pattern) if (g := parse(c, c.instruction)) and goals_match(c.expect, g)]
     tally: dict[tuple[str, str], Counter] = defaultdict(Counter)
