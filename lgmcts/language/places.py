@@ -82,6 +82,9 @@ def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
         return _EDGES[words[j]], k
     if j < n and words[j] in ("back", "front") and j > i + 1 and words[j - 1] == "the":
         return _EDGES[words[j]], j + 1  # "facing the back", "pointing to the front"
+    if j < n and words[j] in ("left", "right") and j > i + 1 and words[j - 1] == "the" \
+            and words[j + 1 : j + 2] != ("of",):
+        return _EDGES[words[j]], j + 1  # "facing to the left", "turned toward the right" (not "... of the bowl")
     return None
 
 
@@ -109,6 +112,7 @@ class Place:
 #: Marker words for the middle row, the center column and each cell (written by .stages.said_places, so that
 #: no later rewrite widens them): "middleband", "centreband", "middleleftcell" ...
 BAND_MARKS = {"middleband": Place("middle", None, True), "centreband": Place(None, "center", True),
+              "leftband": Place(None, "left", True), "rightband": Place(None, "right", True),
               **{f"{r}{c}cell": Place(r, c) for r in ("top", "middle", "bottom") for c in ("left", "center", "right")}}
 _ROWS = {"back": "top", "far": "top", "rear": "top", "top": "top", "upper": "top", "front": "bottom",
          "near": "bottom", "bottom": "bottom", "lower": "bottom", "middle": "middle", "centre": "middle",

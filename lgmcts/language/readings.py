@@ -555,8 +555,11 @@ def _read_continue_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
     if not meaningful and self.state.tower is not None and len(groups) == 1:
         # "stack A as the base, then B, then C": each next clause goes on top.
         tower = self.state.tower
+        before = [x for x in tower.objects if isinstance(x, int)]
+        named: list[int] = []
         for mm in groups[0]:
             got = self._select(mm)
+            named += [x for x in (got if isinstance(got, list) else [got]) if isinstance(x, int)]
             for x in got if isinstance(got, list) else [got]:
                 if x in tower.objects:
                     tower.objects.remove(x)
@@ -565,6 +568,10 @@ def _read_continue_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
                 # Said by name: a stack described from base to top keeps it ("red at the bottom, then
                 # blue, then green, yellow on top" is four objects, blue among them).
                 tower.said.setdefault(x, "under_it" if self.state.downward else "next")
+        if len(named) >= 2 and len(before) > len(named) and set(named) <= set(before) and not set(tower.said) - set(named):
+            # "stack the blocks, from top to bottom: red, yellow, blue, green" with six blocks: the stack is
+            # the objects the order names, read as said; the others are not filled in
+            tower.objects[:] = [x for x in tower.objects if not isinstance(x, int) or x in named]
         if params:
             _add_params(tower, params, text)
         return []

@@ -43,13 +43,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import poses, stages
+from . import lexicon, poses, stages
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
 from .assembly import _Pending
 from .clauses import _bare_letter, _merged_moves, _predicate_split, split_clauses
 from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, tokenize
 from .lexicon import HUES
+
 from .matcher import FILLERS, PatternMatcher, STOPWORDS, _stem
 from .passes import _SAME
 from .rewrite import ASKS_TO_ACT, QUESTION, rewrite, unframe
@@ -61,6 +62,15 @@ from .passes import _TokenPasses
 from .selection import _Selecting
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
+
+#: Words that may follow a way to stand an object ("upside down, then ...", "on its side behind the plate").
+_AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "next", "beside", "at", "to", "please",
+                         "too", "as", "so", "with", "near", "by", "left", "right", "front", "facing", "all", "but",
+                         "if", "or", "like", "for", "now", "again", "instead", "under", "over", "above", "below"})
+#: Words after "closer to" that make it a direction, not a nearness to an object ("closer to the front edge").
+_EDGE_NOUNS = frozenset({"front", "back", "rear", "edge", "side", "wall", "left", "right", "centre", "center",
+                         "middle", "corner", "table"})
+
 
 
 @dataclass(frozen=True)
@@ -188,6 +198,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = self._spelled_right(text)
+        self._tilt(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
         text = stages.other_side(stages.said_places(stages.said_facings(text)))
@@ -215,6 +226,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
                                   dict(self.vocab.borrowed))
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
+        self._nearness(text)
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
@@ -229,6 +241,36 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
             # the article: after a list word, or before one or the end).
             text = re.sub(r"\b([A-Z])\b(?!')", lambda m: _bare_letter(m, letters), text)
         return text
+
+    @staticmethod
+    def _tilt(text: str) -> None:
+        """Refuse a way to stand an object that no goal holds ("the cans in a row, upside down"); said before
+        a noun it is a name, not a way to stand ("upside-down challenge!")."""
+        toks = [t.text for t in tokenize(text) if t.text != "-"]
+        for phrase in lexicon.CUES["tilt"]:
+            n = len(phrase)
+            for i in range(len(toks) - n + 1):
+                if tuple(toks[i : i + n]) == phrase and (
+                        i + n == len(toks) or not toks[i + n][0].isalpha() or toks[i + n] in _AFTER_TILT):
+                    raise InputError(f"'{' '.join(phrase)}': a goal keeps every object upright and sets only which "
+                                     f"way it faces on the table; say the command without it")
+
+    def _nearness(self, text: str) -> None:
+        """Refuse "closer to the plate" left over once references by position are read: how near one object
+        stands to another is part of no goal, and reading it as a side (in front of) would be a wrong goal.
+        Closer to the viewer or an edge is a direction and is left to the readers."""
+        said = lexicon.words(text)
+        for i, w in enumerate(said):
+            if w not in ("closer", "nearer") or said[i + 1 : i + 2] != ["to"]:
+                continue
+            rest = said[i + 2 : i + 6]
+            if any(x in lexicon.VIEWER_WORDS or x in _EDGE_NOUNS for x in rest):
+                continue
+            noun = next((x for x in rest if x in self._cat_words or _stem(x) in self._cat_words), None)
+            if noun is not None:
+                phrase = " ".join(said[i : i + 2 + rest.index(noun) + 1])
+                raise InputError(f"'{phrase}': how near one object stands to another is not part of any goal; "
+                                 f"say which side of it (left of, in front of, ...)")
 
     def _command_words(self, text: str) -> tuple[str, ...]:
         """The words of the text with the token passes applied (spoken lists, parentheses, context and remark

@@ -96,7 +96,8 @@ def said_facings(text: str) -> str:
     i = 0
     while i < len(words):
         got = read_facing(words, i)
-        if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])):
+        if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])
+                               or words[got[1] - 2 : got[1]] in (("the", "left"), ("the", "right"))):
             i += 1  # facing the viewer or away: read where it stands by the parameter reader
             continue
         lo, hi = toks[i].pos, _end(text, toks[got[1] - 1])
@@ -108,6 +109,9 @@ def said_facings(text: str) -> str:
 
 
 _PARTWAY = frozenset({"partway", "halfway", "midway"})
+#: Column words and the mark of their whole column ("the centre column", "the left-hand column").
+_COLUMN_MARKS = {"centre": "centreband", "center": "centreband", "middle": "centreband", "central": "centreband",
+                 "left": "leftband", "right": "rightband"}
 _SIDE_CELLS = {"left": "middleleft", "right": "middleright", "front": "bottomcenter", "near": "bottomcenter",
                "back": "topcenter", "far": "topcenter", "rear": "topcenter"}
 
@@ -138,6 +142,17 @@ def said_places(text: str) -> str:
                 end, say = k + 1, "in middleband"
                 if words[end : end + 1] == ("the",) and words[end + 1 : end + 2] and words[end + 1] in TABLE_WORDS:
                     end += 2
+        elif w in _COLUMN_MARKS and (words[i + 1 : i + 2] == ("column",) or words[i + 1 : i + 3] == ("hand", "column")):
+            # "the centre column", "down the right-hand column of the workspace": the whole column, never its
+            # middle cell and never a line (the rewrite that makes any other "column" a line comes later)
+            end = i + 2 + (words[i + 1] == "hand")
+            if words[end : end + 2] == ("of", "the") and words[end + 2 : end + 3] and words[end + 2] in TABLE_WORDS:
+                end += 3
+            if i and words[i - 1] == "the":
+                i -= 1
+                say = f"the {_COLUMN_MARKS[w]}"
+            else:
+                say = f"in the {_COLUMN_MARKS[w]}"
         elif w in ("centre", "center", "middle") and i and words[i - 1] == "the" and words[i + 1 : i + 2] == ("of",):
             # "the centre of the left side", "the middle of the front edge": the cell halfway along that side
             k = i + 2 + (words[i + 2 : i + 3] == ("the",))

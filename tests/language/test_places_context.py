@@ -192,3 +192,72 @@ def test_a_band_or_strip_is_a_line_in_that_band(said, region):
     (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
                     said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
+
+
+@pytest.mark.parametrize("said, region", [
+    ("put the red can and the green can in a row in the centre column", "center column"),
+    ("put the red can and the green can in a row, middle column", "center column"),
+    ("put the red can and the green can in a line down the right-hand column of the workspace", "right"),
+    ("line up the red can and the green can in the left hand column of the table", "left"),
+])
+def test_a_column_is_the_whole_column(said, region):
+    """"the centre column" is the column, never its middle cell (a narrower place than said is a wrong goal),
+    and "the right-hand column of the workspace" is a place, not a second line."""
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
+
+
+@pytest.mark.parametrize("said, facing", [
+    ("put the red can and the green can in a row, facing to the left", "west"),
+    ("put the red can and the green can in a row, all turned toward the right", "east"),
+])
+def test_facing_to_a_side(said, facing):
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, goal.facing) == ("line", facing)
+
+
+def test_to_the_left_of_an_object_is_not_a_facing():
+    assert _scan("the mug facing to the left of the plate") == []
+
+
+@pytest.mark.parametrize("said, quoted", [
+    ("put the red can and the green can in a row, upside down", "'upside down'"),
+    ("put the red can on the plate on its side", "'on its side'"),
+    ("put the red can behind the plate, tipped over please", "'tipped over'"),
+])
+def test_a_way_to_stand_that_no_goal_holds_is_refused(said, quoted):
+    """A goal keeps objects upright: "upside down" is refused, quoted, never dropped."""
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    with pytest.raises(InputError, match=quoted):
+        parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]), said)
+
+
+def test_upside_down_before_a_noun_is_a_name_not_a_way_to_stand():
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])
+    with pytest.raises(InputError, match="upright"):
+        parse(scene, "Upside-down, stack the cans.")
+    try:
+        parse(scene, "Upside-down challenge! Stack the cans so the green one is lowest.")
+    except InputError as e:
+        assert "upright" not in str(e)
+
+
+@pytest.mark.parametrize("said", ["move the red can closer to the plate", "bring the red can a bit nearer to the plate"])
+def test_nearness_to_an_object_is_refused(said):
+    """How near one object stands to another is part of no goal; reading it as a side would be a wrong goal."""
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    with pytest.raises(InputError, match="how near"):
+        parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]), said)

@@ -122,6 +122,26 @@ def test_a_stack_said_base_to_top_keeps_every_object_in_order(text, want):
     assert [colours[i - 1] for i in goal.objects] == want
 
 
+@pytest.mark.parametrize("text, want", [
+    ("stack the cubes, from top to bottom: amber, jade, blue", ["blue", "jade", "amber"]),
+    ("make a tower of the cubes; top to bottom: cream, blue", ["blue", "cream"]),
+    ("stack the cubes, from the bottom up: grey, jade, amber", ["grey", "jade", "amber"]),
+])
+def test_an_order_that_names_some_of_a_group_is_read_as_said(text, want):
+    """"stack the cubes, top to bottom: amber, jade, blue" with five cubes is the three the order names:
+    the two it leaves out are not filled in on top (their place would be a guess)."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    colours = ["jade", "blue", "cream", "amber", "grey"]
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": "cube", "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+         "pose": [-0.3 + 0.12 * k, 0.1, 0.0]} for k, c in enumerate(colours)]})
+    (goal,) = parse(scene, text).goals
+    assert goal.pattern == "tower"
+    assert [colours[i - 1] for i in goal.objects] == want
+
+
 def test_a_trailing_not_is_an_exception_or_a_refusal_never_dropped():
     """", not the purple one" after a group leaves that object out; after a group that does not hold
     it the words are refused, quoted; after one object it stays a contrast."""
