@@ -134,7 +134,10 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
         while nxt_k < len(words) - 1 and words[nxt_k] in ("finally", "lastly", "then", "next", "also", "additionally"):
             nxt_k += 1  # ", and finally put the star below the pan"
         if (w in (",", "and", "plus") and nxt_k < len(words) and (_command_verb(words[nxt_k]) or any(
-                words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START)) and parts[-1]
+                words[i + 1 : i + 1 + len(x)] == x for x in _SAME_START) or (
+                # "... in a line and have them facing me", "and turn it to face the wall"
+                words[nxt_k] in _VERBS_OF_PRONOUN and words[nxt_k + 1 : nxt_k + 2] in (("them",), ("it",))))
+                and parts[-1]
                 and not _fronted(parts[-1])):
             # "stack the blocks and put the bowls in a line": two commands.
             parts.append([])
@@ -152,6 +155,9 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             out.append(tuple(p))
     return out
 
+
+#: Verbs that start a clause of their own when a pronoun follows ("and have them facing me").
+_VERBS_OF_PRONOUN = frozenset({"have", "turn", "keep", "rotate", "spin", "orient", "point", "angle", "leave"})
 
 #: Words that give an arrangement or a relation after the objects ("the bowl on the plate").
 _GOAL_WORDS = frozenset({"on", "onto", "under", "underneath", "below", "beneath", "above", "behind", "front", "left",

@@ -315,7 +315,14 @@ class _TokenPasses(ParserHost):
             return [clause]
         if not ms or ms[0].start != 0 or ms[0].det == "pronoun":
             return [clause]
-        j = start + ms[0].end
+        end = ms[0].end
+        for m in ms[1:]:
+            # "the purple block and the green one stack them ...": a topic of several references
+            if m.start == end + 1 and clause[start + end] == "and" and m.det != "pronoun":
+                end = m.end
+            else:
+                break
+        j = start + end
         while j < len(clause) and clause[j] in (",", "and", "so", "then"):
             j += 1
         while j < len(clause) and clause[j] in ("just", "please", "now", "then", "can", "could", "you"):
@@ -325,12 +332,12 @@ class _TokenPasses(ParserHost):
                 rest[0].isalpha() and rest[0] not in STOPWORDS and rest[0] not in _GOAL_WORDS
                 and rest[0] not in _NOT_JOIN and rest[1:2] in (("it",), ("them",))))
                 and any(w in ("it", "them", "they") for w in rest[:6])):
-            return [clause[start : start + ms[0].end], rest]
-        if (clause[start + ms[0].end : start + ms[0].end + 1] == (",",) and rest
+            return [clause[start : start + end], rest]
+        if (end == ms[0].end and clause[start + end : start + end + 1] == (",",) and rest
                 and any(w in ("it", "them", "they", "those", "these") for w in rest)):
             # "the tiger pan, the star must be sitting on top of it", "the plate, you
             # are putting the spoon next to it": a topic, then a sentence about it.
-            return [clause[start : start + ms[0].end], rest]
+            return [clause[start : start + end], rest]
         return [clause]
 
     def _remember(self, clause: tuple[str, ...]) -> None:
@@ -389,6 +396,13 @@ class _TokenPasses(ParserHost):
         if len(parts) == 1 and not any(self._content_word(w) for w in parts[0]):
             self._unread_aside(parts[0])
             return ()
+        for k in range(len(parts) - 1):
+            later = [w for q in parts[k + 1 :] for w in q]
+            if (parts[k] and any(w in ("them", "they", "it", "those") for w in later)
+                    and self._remark(tuple(parts[k]))):
+                # "ok so the letters are a mess, throw them in a circle": a remark, then the request by a pronoun
+                self._remember(tuple(parts[k]))
+                parts[k] = []
         kept = [p for p in parts if any(self._content_word(w) for w in p) and not (len(parts) > 1 and self._free_order(tuple(p)))]
         for p in parts:
             if not any(self._content_word(w) for w in p):

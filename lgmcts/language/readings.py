@@ -228,6 +228,7 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
         _add_params(last, params, text)
         return []
     shape = self.state.last_shape
+    meaningful = [w for w in meaningful if w not in _HEDGE_WORDS]  # "..., middle right i guess"
     if (len(mentions) == 1 and mentions[0].text in ("it", "them") and params and shape is not None
             and len(shape.objects) > 1 and set(self.state.last) == set(shape.objects)
             and all(_restates(w, shape.pattern) or w in _MOVE_VERBS
@@ -244,6 +245,8 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
     return None
 
 
+#: Words of a hedge, which ask for nothing ("middle right i guess").
+_HEDGE_WORDS = frozenset({"guess", "think", "suppose", "reckon", "probably", "maybe", "perhaps", "yeah", "mean"})
 #: Verbs that move an arrangement already said to a place ("centre it on the table", "shift them to the back").
 _MOVE_VERBS = frozenset({"centre", "center", "shift", "move", "slide", "push", "bring", "keep", "have", "want", "leave"})
 

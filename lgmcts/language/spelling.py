@@ -34,7 +34,7 @@ import re
 from collections.abc import Callable, Collection
 from functools import lru_cache
 
-__all__ = ["INFORMAL", "RARE_RANK", "Corrector", "correct_text", "edit_distance", "english_rank"]
+__all__ = ["INFORMAL", "RARE_RANK", "SOUNDS_LIKE", "Corrector", "correct_text", "edit_distance", "english_rank"]
 
 #: Informal spellings with one reading, whole words only.
 INFORMAL: dict[str, str] = {
@@ -44,7 +44,22 @@ INFORMAL: dict[str, str] = {
     "betwen": "between", "behing": "behind", "alot": "a lot", "bttm": "bottom", "btm": "bottom",
     "lft": "left", "rght": "right", "cntr": "centre", "ctr": "centre", "rite": "right", "cud": "could",
     "wud": "would", "shud": "should", "thx": "thanks", "thnx": "thanks", "bhind": "behind", "frnt": "front",
+    # contractions typed (or transcribed) without their apostrophe, and "em" for "them"
+    "doesnt": "doesn't", "dont": "don't", "thats": "that's", "itd": "it'd", "itll": "it'll", "shes": "she's",
+    "im": "i'm", "ive": "i've", "youre": "you're", "theyre": "they're", "isnt": "isn't", "wont": "won't",
+    "whats": "what's", "theres": "there's", "wouldnt": "wouldn't", "couldnt": "couldn't", "shouldnt": "shouldn't",
+    "didnt": "didn't", "arent": "aren't", "hasnt": "hasn't", "havent": "haven't", "em": "them", "ya": "you",
 }
+#: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
+#: "plate" on a table with a plate).
+SOUNDS_LIKE: dict[str, str] = {
+    "plait": "plate", "plaits": "plates", "bowel": "bowl", "bowels": "bowls", "nife": "knife", "nives": "knives",
+    "mugg": "mug", "kup": "cup", "cerial": "cereal", "bottel": "bottle", "phon": "phone",
+}
+#: Homophones read by the next word: "read" is "red" and "too"/"for" are "two"/"four" before a thing of
+#: the scene ("the read bowl", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".
+_BEFORE_A_THING = {"read": "red", "too": "two", "for": "four", "won": "one"}
+_SIDE_SOUNDS = {"write": "right", "rite": "right", "wright": "right"}
 #: English words with a vocabulary rank above this are rare enough to be a dropped-letter slip.
 RARE_RANK = 7000
 
@@ -146,6 +161,8 @@ class Corrector:
         """The correction of one lower-case word (itself where none is sure)."""
         if w in self.known:
             return w
+        if w in SOUNDS_LIKE and SOUNDS_LIKE[w] in self.scene:
+            return SOUNDS_LIKE[w]
         if w in INFORMAL:
             return INFORMAL[w]
         if len(w) < 3:
@@ -187,14 +204,37 @@ class Corrector:
     def text(self, text: str) -> str:
         """``text`` with each misspelt word replaced (case kept for the first letter), the rest as it was."""
 
-        def one(m: re.Match) -> str:
+        found = list(_WORD.finditer(text))
+        said = [m.group(0).lower() for m in found]
+        out: list[str] = []
+        at = 0
+        for k, m in enumerate(found):
             w = m.group(0)
-            fixed = self.word(w.lower())
-            if fixed == w.lower():
-                return w
-            return fixed[0].upper() + fixed[1:] if w[0].isupper() else fixed
+            if m.start() and text[m.start() - 1] in "'\u2019":
+                continue  # "'em", "'round": said with its apostrophe, read as it is
+            fixed = self._in_context(said, k) or self.word(w.lower())
+            if fixed != w.lower():
+                out.append(text[at : m.start()] + (fixed[0].upper() + fixed[1:] if w[0].isupper() else fixed))
+                at = m.end()
+        out.append(text[at:])
+        return "".join(out)
 
-        return _WORD.sub(one, text)
+    def _in_context(self, said: list[str], k: int) -> str | None:
+        """A homophone read by its neighbours (:data:`_BEFORE_A_THING`, :data:`_SIDE_SOUNDS`), or None."""
+        w = said[k]
+        nxt = said[k + 1] if k + 1 < len(said) else ""
+        nxt = self.word(nxt) if nxt and nxt not in self.known else nxt
+        if w in _BEFORE_A_THING:
+            want = _BEFORE_A_THING[w]
+            if want == "red" and "red" in self.scene and (nxt in self.scene - self.colours or nxt in ("one", "ones")):
+                return want
+            if want in ("two", "four") and nxt.endswith("s") and nxt in self.scene - self.colours:
+                return want
+            if want == "one" and nxt in ("of", "more"):
+                return want
+        if w in _SIDE_SOUNDS and (nxt == "of" or (k and said[k - 1] in ("the", "to"))):
+            return _SIDE_SOUNDS[w]
+        return None
 
 
 def correct_text(text: str, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),

@@ -85,6 +85,11 @@ def mark_measures(text: str) -> tuple[str, list[Measure]]:
 _EDGE_WORDS = frozenset({"edge", "side", "wall", "end", "border", "rim", "back", "front"})
 
 
+#: Words before the verb "face" that make it a facing of objects named before ("turn them to face me",
+#: "so they face the viewer").
+_BEFORE_FACE = frozenset({"to", "they", "it", "all", "both", "each", "so", "will", "should", "must", "them"})
+
+
 def said_facings(text: str) -> str:
     """``text`` with each facing said by an edge or the viewer ("tines toward the right edge",
     "turned to face the viewer") said by its compass direction ("facing east"), so that no
@@ -97,10 +102,18 @@ def said_facings(text: str) -> str:
     while i < len(words):
         got = read_facing(words, i)
         if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])
-                               or words[got[1] - 2 : got[1]] in (("the", "left"), ("the", "right"))):
+                               or words[got[1] - 2 : got[1]] in (("the", "left"), ("the", "right"))
+                               or (words[i] in ("face", "faces") and i and words[i - 1] in _BEFORE_FACE)):
             i += 1  # facing the viewer or away: read where it stands by the parameter reader
             continue
-        lo, hi = toks[i].pos, _end(text, toks[got[1] - 1])
+        start = i
+        if words[i] in ("face", "faces"):
+            # "turn them to face me", "rotate them so (that) they face me": the whole purpose is the facing
+            for lead in (("so", "that", "they"), ("so", "that", "it"), ("so", "they"), ("so", "it"), ("to",)):
+                if words[max(0, i - len(lead)) : i] == lead:
+                    start = i - len(lead)
+                    break
+        lo, hi = toks[start].pos, _end(text, toks[got[1] - 1])
         out.append(text[at:lo] + "facing " + got[0])
         at = hi
         i = got[1]

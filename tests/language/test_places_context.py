@@ -261,3 +261,32 @@ def test_nearness_to_an_object_is_refused(said):
 
     with pytest.raises(InputError, match="how near"):
         parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]), said)
+
+
+@pytest.mark.parametrize("said, facing", [
+    ("put the red can and the green can in a line and have them facing me", "south"),
+    ("put the red can and the green can in a line. turn them to face me.", "south"),
+    ("put the red can and the green can in a line. rotate them so they face north.", "north"),
+    ("put the red can and the green can in a line, and have it facing north, middle right i guess", "north"),
+])
+def test_a_facing_said_of_the_arrangement_just_read(said, facing):
+    """"... and have them facing me", "turn them to face me": the facing of the line just read, never dropped."""
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", [2, 3], facing)
+
+
+@pytest.mark.parametrize("said", [
+    "the red can and the green can stack them with the green one at the bottom",
+    "ok so the cans are a mess, stack them with the green one at the bottom",
+])
+def test_a_topic_then_a_request_by_a_pronoun(said):
+    """Several references said first and a request about them ("the red can and the green can stack them"),
+    or a remark about them before a comma ("the cans are a mess, stack them"): "them" are those objects."""
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, list(goal.objects)) == ("tower", [3, 2])

@@ -38,6 +38,12 @@ def _fix(text: str) -> str:
     ("a prpl star", "a purple star"),
     ("stak the 3 bowlz", "stack the 3 bowls"),                        # a plural said with a z
     ("cud u put the fork rite of the box", "could u put the fork right of the box"),  # informal spellings
+    ("put the mug thats red behind the box, doesnt matter how", "put the mug that's red behind the box, doesn't matter how"),
+    ("stack em", "stack them"),                                        # contractions without their apostrophe
+    ("the mug left of the plait", "the mug left of the plate"),       # sounds like a name the scene has
+    ("put the read mug write of the box", "put the red mug right of the box"),  # homophones read by their neighbours
+    ("put too mugs on the plate", "put two mugs on the plate"),
+    ("put for cans in a row", "put four cans in a row"),
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -54,6 +60,11 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "a 10 cm radios",                     # an English word, however unlikely here
     "put the mugs in the middle-ish",     # a three-letter word never becomes an object's name ('dish')
     "the bx next to the mug",             # two letters: left alone
+    "stack 'em up",                       # said with its apostrophe
+    "read the letters, then put the mug on the box",  # "read" before no object is the verb
+    "the tower should read orange, purple, yellow",    # ... and before a colour too
+    "put the mug on the box for me",      # "for" before no plural of the scene
+    "put the nife behind the box",        # a sound-alike of a name the scene lacks (no knife here)
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
