@@ -107,7 +107,20 @@ class Measure:
 
 def _tokens(text: str) -> list[tuple[str, int, int]]:
     low = text.lower().replace("\u2019", "'").replace("\u201d", '"').replace("\u2033", '"')
-    return [(m.group(0), m.start(), m.end()) for m in _TOKEN.finditer(low)]
+    toks = [(m.group(0), m.start(), m.end()) for m in _TOKEN.finditer(low)]
+    out: list[tuple[str, int, int]] = []
+    k = 0
+    while k < len(toks):
+        w, lo, hi = toks[k]
+        if (w.isdigit() and k + 3 < len(toks) and toks[k + 1][0] == "," and toks[k + 1][1] == hi
+                and toks[k + 2][0].isdigit() and toks[k + 2][1] == hi + 1 and toks[k + 3][0] in UNITS):
+            # a decimal comma: "0,3 m", "12,5 cm" (digits on both sides, no space, a unit after)
+            out.append((f"{w}.{toks[k + 2][0]}", lo, toks[k + 2][2]))
+            k += 3
+            continue
+        out.append(toks[k])
+        k += 1
+    return out
 
 
 def _number(ws: list[str], i: int) -> tuple[float, int] | None:
@@ -117,6 +130,20 @@ def _number(ws: list[str], i: int) -> tuple[float, int] | None:
     w = ws[i]
     if re.fullmatch(r"\d+(?:\.\d+)?|\.\d+", w):
         return float(w), i + 1
+    if w in ("point", "nought", "oh", "zero") or (w in _NUMBER_WORDS and ws[i + 1 : i + 2] == ["point"]):
+        # a decimal said aloud: "point three", "nought point two five", "one point five"
+        whole = 0.0 if w in ("point", "nought", "oh", "zero") else float(_NUMBER_WORDS[w])
+        j = i if w == "point" else i + 1
+        if ws[j : j + 1] == ["point"]:
+            digits = ""
+            k = j + 1
+            while k < len(ws) and ws[k] in _NUMBER_WORDS and _NUMBER_WORDS[ws[k]] < 10:
+                digits += str(_NUMBER_WORDS[ws[k]])
+                k += 1
+            if digits:
+                return whole + float("0." + digits), k
+        if w in ("point", "nought", "oh"):
+            return None
     if w in _NUMBER_WORDS:
         v = float(_NUMBER_WORDS[w])
         j = i + 1

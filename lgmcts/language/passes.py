@@ -166,6 +166,21 @@ class _TokenPasses(ParserHost):
                     and colour(out[k + 2]) and any(out[j] == "not" for j in range(max(0, k - 4), k)):
                 out[k : k + 2] = ["or"]
             k += 1
+        k = 0
+        while k < len(out):
+            # "blocks red blue green yellow -> line": a plural noun, then its colours (two or more)
+            j = k + 1
+            while j < len(out) and (colour(out[j]) or (out[j] in (",", "and") and j + 1 < len(out)
+                                                         and colour(out[j + 1]))):
+                j += 1
+            hues = [w for w in out[k + 1 : j] if colour(w)]
+            if (len(hues) >= 2 and out[k].endswith("s") and out[k] in self._cat_words
+                    and not (k and colour(out[k - 1])) and (j == len(out) or not self._object_word(out[j]))):
+                listed = [x for h in hues[:-1] for x in (h, ",")][:-1] + ["and", hues[-1]]
+                out[k:j] = [*listed, out[k]]
+                k += len(listed) + 1
+                continue
+            k += 1
         res: list[str] = []
         k = 0
         while k < len(out):

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 import re
 
 from . import lexicon, poses, stages
+from .positions import TOO_CLOSE
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
 from .assembly import _Pending
@@ -71,6 +72,23 @@ _AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "n
 _EDGE_NOUNS = frozenset({"front", "back", "rear", "edge", "side", "wall", "left", "right", "centre", "center",
                          "middle", "corner", "table"})
 
+
+
+def _stack_axis(said: list[str]) -> tuple[int, float] | None:
+    """The order of a stack said by places on the table ("ordered front to back", "sorted from left to right"):
+    (pose index, sign) with the first place at the bottom, or None."""
+    ends = {"front": (1, 1.0), "back": (1, -1.0), "left": (0, 1.0), "right": (0, -1.0)}
+    for k, w in enumerate(said):
+        if w not in ("ordered", "sorted", "order"):
+            continue
+        j = k + 1
+        while j < len(said) and said[j] in ("from", "the"):
+            j += 1
+        if said[j : j + 1] and said[j] in ends and said[j + 1 : j + 2] == ["to"]:
+            end = said[j + 3] if said[j + 2 : j + 3] == ["the"] else said[j + 2] if j + 2 < len(said) else ""
+            if end in ends and ends[end][0] == ends[said[j]][0] and end != said[j]:
+                return ends[said[j]]
+    return None
 
 
 @dataclass(frozen=True)
@@ -204,6 +222,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         text = stages.other_side(stages.said_places(stages.said_facings(text)))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
+        self._stack_axis = _stack_axis(lexicon.words(text))
         # The order along a line ("from left to right") is not part of any goal.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
@@ -364,6 +383,25 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
                 if len(pending) > before:
                     last = clause
 
+    def _stack_by_axis(self, tower: _Pending) -> None:
+        """A stack "ordered front to back" (left to right ...): its objects from the bottom up in that order of
+        their places on the table now; a role said that the order breaks is a contradiction."""
+        assert self._stack_axis is not None
+        axis, sign = self._stack_axis
+        ids = [x for x in tower.objects if isinstance(x, int)]
+        where = {x: (self.spec.object(x).pose or (0.0, 0.0, 0.0))[axis] * sign for x in ids}
+        ranked = sorted(ids, key=lambda x: (where[x], x))
+        close = next(((a, b) for a, b in zip(ranked, ranked[1:]) if where[b] - where[a] < TOO_CLOSE), None)
+        if close is not None:
+            raise InputError(f"the order said is unclear: objects {close[0]} and {close[1]} stand within "
+                             f"{TOO_CLOSE * 100:.0f} cm of each other along it; name the objects from the bottom up")
+        for x, role in tower.said.items():
+            if (role == "bottom" and ranked[0] != x) or (role == "top" and ranked[-1] != x):
+                raise InputError(f"contradiction: the order said puts object {x} at the "
+                                 f"{'bottom' if ranked.index(x) == 0 else 'top' if ranked[-1] == x else 'middle'}, "
+                                 f"not at the {role}")
+        tower.objects[:] = ranked
+
     def _whole_command_checks(self, setting: list[_Pending], pending: list[_Pending], order_by: re.Match | None) -> None:
         """What holds for the command as a whole: the side of a place setting said again is dropped, a tower
         header takes its steps' goals, and a header with no objects, a stacking order by an attribute and
@@ -384,6 +422,9 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
             self.state.header = None
         if self.state.header is not None:
             raise InputError(f"'{self.state.header[2]}' names no object in the scene")
+        towers = [p for p in pending if p.pattern == "tower"]
+        if self._stack_axis is not None and len(towers) == 1 and all(isinstance(x, int) for x in towers[0].objects):
+            self._stack_by_axis(towers[0])
         if order_by is not None and any(p.pattern == "tower" for p in pending):
             raise InputError(f"'{order_by.group(0)}': a stacking order by size, colour or sorting is not read; "
                              f"name the objects from the bottom up")

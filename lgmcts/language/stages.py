@@ -215,7 +215,9 @@ def other_side(text: str) -> str:
             owner = text[toks[j].pos : toks[lo].pos] + words[lo][:-2]
             lo = j
         elif words[lo] == "the":
-            owner = ""
+            owner = "" if words[k + 2 : k + 3] == ("of",) else "it"  # "on the other side": of the same object
+        elif words[lo] in ("on", "to", "at"):
+            owner, lo = "it", lo + 1  # "orange block on other side", said without an article
         else:
             continue
         if lo > 0 and words[lo - 1] in ("on", "to", "at"):

@@ -34,6 +34,10 @@ from lgmcts.language.measures import find_measures, size_for
     ("a row with the centres 9 cm apart", 0.09, "spacing", "with the centres 9 cm apart"),
     ("a circle roughly 0.2 m across", 0.2, "across", "roughly 0.2 m across"),
     ("a line of 1 ft", 0.305, "plain", "1 ft"),
+    ("a line point three metres long", 0.3, "length", "point three metres long"),      # decimals said aloud
+    ("a ring, radius nought point one five m", 0.15, "radius", "radius nought point one five m"),
+    ("a line one point two metres long", 1.2, "length", "one point two metres long"),
+    ("a rectangle 0,3 m by 0,2 m", 0.3, "long_side", "0,3 m by 0,2 m"),                # a decimal comma
 ])
 def test_a_quantity_is_read_with_its_role_and_span(text, metres, role, said):
     (m,) = find_measures(text)

@@ -290,3 +290,36 @@ def test_a_topic_then_a_request_by_a_pronoun(said):
     (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
                     said).goals
     assert (goal.pattern, list(goal.objects)) == ("tower", [3, 2])
+
+
+@pytest.mark.parametrize("said, goals", [
+    ("put green can on top red can", [("tower", [2, 3], None)]),                 # "on top" said without "of"
+    ("cans red green -> line", [("line", [2, 3], None)]),                        # a noun, then its colours
+    ("red can left of plate, green can on other side", [("left", [2], 1), ("right", [3], 1)]),
+    ("put the red can left of the plate and the green can on the other side", [("left", [2], 1), ("right", [3], 1)]),
+])
+def test_telegraphic_commands(said, goals):
+    from lgmcts.language import parse
+
+    got = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                        ("can", "blue", 0.3, -0.2)]), said).goals
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got] == goals
+
+
+def test_a_stack_ordered_by_places_on_the_table():
+    """"ordered front to back": the front-most at the bottom; a role that the order breaks, and places
+    too close to tell apart, are refused."""
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("can", "blue", 0.3, -0.2)])
+    (goal,) = parse(scene, "stack the cans ordered front to back").goals
+    assert list(goal.objects) == [4, 3, 2]
+    (goal,) = parse(scene, "stack the cans, sorted from right to left").goals
+    assert list(goal.objects) == [4, 2, 3]
+    with pytest.raises(InputError, match="contradiction"):
+        parse(scene, "stack the cans ordered front to back, the red one at the bottom")
+    close = _table([("can", "red", -0.2, 0.1), ("can", "green", -0.3, 0.11), ("can", "blue", 0.3, -0.2)])
+    with pytest.raises(InputError, match="unclear"):
+        parse(close, "stack the cans ordered from back to front")
