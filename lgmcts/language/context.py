@@ -13,6 +13,17 @@ asks for no goal and names nothing a goal could use:
   "..., before the guests arrive"), under the same condition after its
   opening word, so that "after the bowl is on the plate, ..." (it names an
   object) is kept and read;
+* **chatter said in the same breath** as the request, without a full stop:
+  what comes before a request opener ("my sister's coming over at like
+  seven and she's super picky so um could you put ...", the lexicon's
+  ``request_openers``), a cut word ("..., whatever, um the letters should
+  ...", ``chatter_cuts``) or a colon ("before the inspector comes
+  tomorrow: ..."); a time clause said without a comma before the first
+  object ("by the time she's here the four letters should ..."); and talk
+  of the time or the people of the house before the first object ("it's
+  almost noon and lunch is at one the cans ..."), each only where it names
+  no object and asks for nothing (a direction only counts in a place, and
+  "coming over", "at seven", "7 o'clock" are chatter);
 * nothing of a sentence that names an object: what a remark names may be
   what a later "it" means, and such sentences are left to the parser.
 
@@ -47,6 +58,7 @@ _TIME_WORDS = frozenset({"lunch", "dinner", "breakfast", "tea", "supper", "brunc
 _SOLO_TIME = frozenset({"tonight", "tomorrow", "later", "today", "afterwards", "soon", "sometime", "eventually"})
 _KEEP_AFTER = frozenset({"that", "this", "it", "them", "which", "those", "these", "all", "the"})
 _ENDS = (".", "!", "?", ";")
+_CTX = lexicon.context_words()
 
 
 def _sentences(words: tuple[str, ...]) -> list[tuple[str, ...]]:
@@ -62,7 +74,7 @@ def _sentences(words: tuple[str, ...]) -> list[tuple[str, ...]]:
 
 
 _MEALS = frozenset({"dinner", "lunch", "breakfast", "tea", "supper", "brunch", "meal", "dinnertime", "lunchtime"})
-_CLOCK = frozenset({"min", "mins", "minute", "minutes", "hour", "hours", "hr", "hrs", "o'clock", "soon", "tonight",
+_CLOCK = frozenset({"min", "mins", "minute", "minutes", "hour", "hours", "hr", "hrs", "o'clock", "clock", "soon", "tonight",
                     "tomorrow", "later", "noon", "pm", "am"})
 
 
@@ -70,7 +82,23 @@ def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_wor
     """Whether ``part`` names no object and no word of a request; a meal said with a time ("dinner's
     in 20 minutes") is no request for a place setting."""
     timed = any(w in _CLOCK for w in part)
-    return not any(object_word(w) or (request_word(w) and not (timed and w in _MEALS)) for w in part)
+    clock = _clock_words(part)
+    return not any((object_word(w) or (request_word(w) and not (timed and w in _MEALS))) and j not in clock
+                   for j, w in enumerate(part))
+
+
+def _clock_words(part: Sequence[str]) -> set[int]:
+    """The places of the words of each time of day in ``part`` ("7 o clock": all three)."""
+    out: set[int] = set()
+    for j in range(len(part)):
+        if _clock_time(part, j):
+            out.update((j, j + 1) if part[j + 1] != "o" else (j, j + 1, j + 2))
+    return out
+
+
+def _clock_time(part: Sequence[str], j: int) -> bool:
+    """Whether the number at ``j`` is a time of day ("7 o'clock", "7 o clock", "7 pm"), not an object's id."""
+    return part[j].isdigit() and j + 1 < len(part) and part[j + 1] in _CLOCK | {"o"}
 
 
 def _time_clause(part: tuple[str, ...]) -> bool:
@@ -90,6 +118,7 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     sentences = _sentences(words)
     kept: list[tuple[str, ...]] = []
     for sent in sentences:
+        sent = _without_chatter(sent, object_word, request_word)
         body = tuple(w for w in sent if w not in _ENDS)
         if body and _idle(body, object_word, request_word):
             continue  # a background sentence
@@ -97,6 +126,94 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
     return tuple(w for s in kept for w in s)
+
+
+def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
+                  request_word: Callable[[str], bool]) -> bool:
+    """Whether ``part`` names no object and asks for no goal: a direction counts only in a place ("to the
+    left", "left of"; "my daughter just left" is a verb), a verb or particle of chatter not at all
+    ("coming over", "knocked everything over", "at seven")."""
+    clock = _clock_words(part)
+    timed = any(w in _CLOCK for w in part)  # "lunch is at one, it's almost noon": a meal said with a time
+    for j, w in enumerate(part):
+        if j in clock:
+            continue
+        if object_word(w) and w not in ("everything", "anything"):
+            return False
+        if w in lexicon.DIRECTIONS:
+            before = part[j - 1] if j else ""
+            after = part[j + 1] if j + 1 < len(part) else ""
+            if before in _CTX["place_before"] or after in _CTX["place_after"]:
+                return False
+            continue
+        if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and timed):
+            return False
+    return True
+
+
+#: Words of a request that chatter uses too ("coming over", "at like seven", "knocked everything over").
+_CHATTER_PARTICLES = frozenset({"over", "on", "at", "in", "up", "off", "out", "down", "back", "get", "gets", "go",
+                                "goes", "everything", "anything", "first", "last", "next", "end"})
+#: Words of a time of day or a day, by which chatter before a request is told apart ("it's almost noon and ...").
+_DAY_WORDS = frozenset({"morning", "evening", "afternoon", "night", "tonight", "tomorrow", "today", "weekend",
+                        "noon", "midnight", "lunchtime", "dinnertime"})
+_OPENERS = tuple(sorted((tuple(p.split()) for p in _CTX["request_openers"]), key=len, reverse=True))
+_CHATTER_CUTS = frozenset(_CTX["chatter_cuts"])
+_LEAD = frozenset({"okay", "ok", "so", "um", "uh", "umm", "uhh", "er", "erm", "well", "and", "like", "yeah", ",", ":"})
+
+
+def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
+                     request_word: Callable[[str], bool]) -> tuple[str, ...]:
+    """A sentence without the chatter said before its request in the same breath: what comes before a
+    request opener ("... so um could you put"), a cut word ("..., whatever, um the letters should"), a
+    colon ("before the inspector comes tomorrow: ...") or, for a time clause said without a comma, the
+    first object ("by the time she's here the four letters should ..."), when it names no object and
+    asks for nothing (:func:`_asks_nothing`), and what follows names an object or asks."""
+    n = len(sent)
+    for k in range(1, n):
+        opener = next((o for o in _OPENERS if sent[k : k + len(o)] == o), None)
+        cut = opener is not None or sent[k] in _CHATTER_CUTS or sent[k] == ":"
+        if not cut:
+            continue
+        head = [w for w in sent[:k] if w not in _LEAD]
+        tail = sent[k:] if opener is not None else sent[k + 1 :]
+        if head and _asks_nothing(head, object_word, request_word) and any(
+                object_word(w) or request_word(w) for w in tail):
+            while tail and tail[0] in _LEAD:
+                tail = tail[1:]
+            return tail
+        if any(object_word(w) for w in sent[:k]):
+            break
+    first = next((k for k, w in enumerate(sent) if object_word(w)), None)
+    if first and "," not in sent[:first]:
+        # "its almost noon and lunch is at one the cans all stacked up" (the wish's frame read before): chatter
+        # about the time or the people of the house, then the request from its first object on
+        start = _phrase_start(sent, first, object_word)
+        lead_cut = [w for w in sent[:start] if w not in _LEAD]
+        told = any(w in _DAY_WORDS or w in _CLOCK or w in _MEALS or w in _CTX["people"] for w in lead_cut)
+        if len(lead_cut) >= 3 and told and ("and" in sent[:start] or "so" in sent[:start]) and _asks_nothing(
+                lead_cut, object_word, request_word):
+            return sent[start:]
+    if sent and sent[0] in TIME_OPENERS:
+        first = next((k for k, w in enumerate(sent) if object_word(w)), None)
+        if first and "," not in sent[:first]:
+            start = _phrase_start(sent, first, object_word)
+            when = sent[:start]
+            if len(when) > 1 and _time_clause(when) and _asks_nothing(when[1:], object_word, request_word):
+                return sent[start:]
+    return sent
+
+
+_NUMBER_WORDS = frozenset({"two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"})
+
+
+def _phrase_start(sent: tuple[str, ...], first: int, object_word: Callable[[str], bool]) -> int:
+    """Where the noun phrase of the object word at ``first`` starts ("the four letters": at "the")."""
+    start = first
+    while start and (sent[start - 1] in ("the", "a", "an", "all", "both") or sent[start - 1].isdigit()
+                     or sent[start - 1] in _NUMBER_WORDS or object_word(sent[start - 1])):
+        start -= 1
+    return start
 
 
 def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
@@ -126,7 +243,6 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
     return sent
 
 
-_CTX = lexicon.context_words()
 
 
 def _subject_end(body: Sequence[str]) -> int:

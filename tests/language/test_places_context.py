@@ -323,3 +323,36 @@ def test_a_stack_ordered_by_places_on_the_table():
     close = _table([("can", "red", -0.2, 0.1), ("can", "green", -0.3, 0.11), ("can", "blue", 0.3, -0.2)])
     with pytest.raises(InputError, match="unclear"):
         parse(close, "stack the cans ordered from back to front")
+
+
+@pytest.mark.parametrize("said", [
+    "okay so my sisters coming over at like seven and shes super picky so um could you put the red can left of the plate",
+    "the dog knocked everything over this morning whatever um put the red can left of the plate",
+    "guests come 7 o clock. red can go left of plate please",
+    "before the inspector comes tomorrow: the red can to the left of the plate",
+    "my sons doing a project for school and he wants the red can left of the plate",
+])
+def test_chatter_in_the_same_breath_asks_nothing(said):
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, list(goal.objects), goal.anchor) == ("left", [2], 1)
+
+
+@pytest.mark.parametrize("said", [
+    "to the back, could you put the red can",
+    "at the back so could you put the red can and the green can in a line",
+    "on the left and could you put the red can and the green can in a line",
+])
+def test_a_place_before_a_request_opener_is_not_chatter(said):
+    """A place said before "could you" is never dropped as chatter: read, or refused, never lost."""
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])
+    try:
+        goals = parse(scene, said).goals
+    except InputError:
+        return
+    assert all(g.region is not None or g.anchor is not None for g in goals)
