@@ -13,9 +13,13 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
-__all__ = ["MARK", "SaidPose", "find_poses", "is_mark", "mark_poses"]
+from . import lexicon
+
+from .measures import _number as _number_at, _tokens, _unit
+
+__all__ = ["MARK", "SaidPose", "find_offsets", "find_poses", "is_mark", "mark_poses"]
 
 #: Marker words standing for the poses of a command ("posemarka", "posemarkb" ...).
 MARK = "posemark"
@@ -38,13 +42,18 @@ _SCALE = {"mm": 0.001, "cm": 0.01, "m": 1.0}
 
 @dataclass(frozen=True)
 class SaidPose:
-    """One pose said in numbers: its character span, x and y in metres, yaw in radians (None: not said)."""
+    """One pose said in numbers: its character span, x and y in metres, yaw in radians (None: not said), and
+    the frame of x and y: ``"table"`` (the table frame), ``"offset"`` (from where the object stands now:
+    "slide the bowl 10 cm further back") or ``"centre"`` (from the workspace's centre: "10 cm right of the
+    table centre")."""
 
     start: int
     end: int
     x: float
     y: float
     yaw: float | None
+    frame: str = "table"
+    square: bool = False
 
 
 def is_mark(word: str) -> bool:
@@ -102,9 +111,140 @@ def find_poses(text: str) -> list[SaidPose]:
     return [_pose(m) for m in _POSE.finditer(text)]
 
 
+#: Verbs that move an object by a distance ("slide the bowl 10 cm further back").
+_MOVES = frozenset({"move", "slide", "shift", "nudge", "push", "pull", "scoot", "budge", "bring", "drag", "take"})
+#: Directions of a move, as unit steps in the table frame (+x right, +y away from the viewer).
+_STEPS = {"left": (-1.0, 0.0), "right": (1.0, 0.0), "back": (0.0, 1.0), "rightward": (1.0, 0.0),
+          "leftward": (-1.0, 0.0), "rightwards": (1.0, 0.0), "leftwards": (-1.0, 0.0)}
+_TOWARD_FRONT = frozenset({"me", "us", "you", "viewer", "front", "near"})
+_FILL = ("further", "farther", "more", "over", "to", "the", "toward", "towards", "in", "a", "bit", "its", "direction")
+_CENTRE_WORDS = frozenset({"centre", "center", "middle"})
+_HERE = (("from", "where", "it", "sits", "now"), ("from", "where", "it", "is", "now"), ("from", "where", "it", "is"),
+         ("from", "where", "it", "sits"), ("from", "its", "current", "spot"), ("from", "its", "current", "place"),
+         ("from", "its", "current", "position"), ("from", "where", "it", "stands"), ("from", "here"))
+
+
+def _step(ws: list[str], i: int) -> tuple[float, float, int, bool] | None:
+    """A distance and its direction at ``i`` ("10 cm further back", "8 cm to the left", "5 cm toward me", "10 cm
+    right of the table centre"): (dx, dy, end, from the centre), or None (also for a distance from an object:
+    "10 cm left of the plate" is not a move)."""
+    got = _number_at(ws, i)
+    if got is None:
+        return None
+    value, j = got
+    unit = _unit(ws, j)
+    if unit is None:
+        return None
+    metres, k = value * unit[0], unit[1]
+    start_k = k
+    while k < len(ws) and ws[k] in _FILL:
+        k += 1
+    if k >= len(ws):
+        return None
+    w = ws[k]
+    toward = any(x in ("toward", "towards") for x in ws[start_k:k])
+    if w in _STEPS and (w != "back" or "front" not in ws[start_k:k]):
+        dx, dy = _STEPS[w]
+    elif toward and w in _TOWARD_FRONT:
+        dx, dy = 0.0, -1.0
+    elif w == "away" and ws[k + 1 : k + 3] in (["from", "me"], ["from", "you"], ["from", "us"]):
+        dx, dy, k = 0.0, 1.0, k + 2
+    else:
+        return None
+    k += 1
+    if k < len(ws) and ws[k] in ("edge", "side", "wall"):
+        return None  # "5 cm toward the back edge": a place by the table's edge, not a move
+    centre = False
+    if k < len(ws) and ws[k] == "of":
+        rest = ws[k + 1 : k + 6]
+        if rest[:1] == ["the"]:
+            rest = rest[1:]
+        if rest[:2] in (["table", "centre"], ["table", "center"], ["table's", "centre"], ["table's", "center"]):
+            centre, k = True, k + 1 + (ws[k + 1] == "the") + 2
+        elif rest[:1] and rest[0] in _CENTRE_WORDS:
+            centre, k = True, k + 1 + (ws[k + 1] == "the") + 1
+            if ws[k : k + 2] == ["of", "the"] and k + 2 < len(ws) and ws[k + 2] in ("table", "workspace"):
+                k += 3
+        else:
+            return None  # "10 cm left of the plate": a distance from an object
+    return dx * metres, dy * metres, k, centre
+
+
+def find_offsets(text: str) -> list[SaidPose]:
+    """Every move said as a distance in ``text``, left to right: after a verb of moving in the same
+    sentence, from where the object stands ("slide the black bowl 10 cm further back", "move the star 8 cm
+    to the left"); anywhere, from the table's centre ("the phone 10 cm right of the table centre and 5 cm
+    toward the back"). Two distances joined by "and" make one move.
+
+    >>> p = find_offsets("slide the bowl 10 cm further back from where it sits now")[0]
+    >>> (p.frame, round(p.x, 3), round(p.y, 3))
+    ('offset', 0.0, 0.1)
+    >>> p = find_offsets("put the phone 10 cm right of the table centre and 5 cm toward the back")[0]
+    >>> (p.frame, round(p.x, 3), round(p.y, 3))
+    ('centre', 0.1, 0.05)
+    >>> find_offsets("put the mug 10 cm left of the plate")
+    []
+    """
+    toks = _tokens(text)
+    ws = [t[0] for t in toks]
+    out: list[SaidPose] = []
+    moved = False
+    i = 0
+    while i < len(ws):
+        if ws[i] in (".", ";", "!", "?"):
+            moved = False
+        elif ws[i] in _MOVES:
+            moved = True
+        got = _step(ws, i)
+        if got is None:
+            i += 1
+            continue
+        dx, dy, k, centre = got
+        if ws[k : k + 1] == ["and"]:
+            more = _step(ws, k + 1)
+            if more is not None and (more[0] == 0.0) != (dx == 0.0):
+                dx, dy, k, centre = dx + more[0], dy + more[1], more[2], centre or more[3]
+        here = next((h for h in _HERE if tuple(ws[k : k + len(h)]) == h), None)
+        if here is not None:
+            k += len(here)
+        if centre or moved:
+            out.append(SaidPose(toks[i][1], toks[k - 1][2], dx, dy, None, "centre" if centre else "offset"))
+        i = k
+    return out
+
+
+def _without_heading_words(text: str, found: list[SaidPose]) -> tuple[str, bool]:
+    """``text`` with the words that say the posed objects keep their heading ("no rotation", "keep its angle as
+    is") or end square to the table blanked (kept the same length, so that the poses' spans hold), and whether
+    the latter was said."""
+    toks = _tokens(text)
+    ws = [t[0] for t in toks]
+    cut: list[tuple[int, int]] = []
+    square = False
+    for name in ("same_heading", "square_heading"):
+        for phrase in lexicon.CUES[name]:
+            n = len(phrase)
+            for i in range(len(ws) - n + 1):
+                if tuple(ws[i : i + n]) == phrase and not any(a < toks[i][2] and toks[i][1] < b for a, b in cut):
+                    cut.append((toks[i][1], toks[i + n - 1][2]))
+                    square = square or name == "square_heading"
+    for a, b in cut:
+        if not any(p.start < b and a < p.end for p in found):
+            text = text[:a] + " " * (b - a) + text[b:]
+    return text, square
+
+
 def mark_poses(text: str) -> tuple[str, list[SaidPose]]:
-    """``text`` with each pose said in numbers replaced by a marker word, and the poses in order."""
-    found = find_poses(text)[:26]
+    """``text`` with each pose said in numbers (:func:`find_poses`) or as a move (:func:`find_offsets`) replaced
+    by a marker word, and the poses in order."""
+    said = find_poses(text)
+    taken = [(p.start, p.end) for p in said]
+    said += [p for p in find_offsets(text) if not any(a < p.end and p.start < b for a, b in taken)]
+    found = sorted(said, key=lambda p: p.start)[:26]
+    if found:
+        text, square = _without_heading_words(text, found)
+        if square:
+            found = [replace(p, square=True) for p in found]
     out: list[str] = []
     at = 0
     for k, p in enumerate(found):

@@ -245,6 +245,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
                                   dict(self.vocab.borrowed))
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
+        text = stages.same_again(text, self._find, self._every_match)
         self._nearness(text)
         text = rewrite(self._articles(text))
         self._said = text

@@ -37,7 +37,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "same_again", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -344,6 +344,34 @@ def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of
     if len(found) != 1:
         return None
     return list(ids_of(found[0]))
+
+
+def same_again(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with "that same block" ("the same bowl", "this same cup") replaced by the one object of that
+    kind named before it ("put it behind the green block; the yellow piece goes in front of that same
+    block": object 8). Left as said where the words before name no single object of that kind, or where
+    "same" compares ("the same colour as")."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for k in range(1, len(words) - 1):
+        if words[k] != "same" or words[k - 1] not in ("that", "the", "this") or k < 2:
+            continue
+        kind = _ids(("the", words[k + 1]), find, ids_of) if words[k + 2 : k + 3] != ("as",) else None
+        if not kind:
+            continue
+        try:
+            before = [m for m in find(words[: k - 1]) if getattr(m, "det", None) != "pronoun"]
+        except InputError:
+            continue
+        named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) for i in ids}
+        if len(named) != 1:
+            continue  # none, or two plates named before: which one is "that same plate" is not guessed
+        out.append(text[at : toks[k - 1].pos] + f"object {named.pop()}")
+        at = _end(text, toks[k + 1])
+    out.append(text[at:])
+    return "".join(out)
 
 
 def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],

@@ -356,3 +356,16 @@ def test_a_place_before_a_request_opener_is_not_chatter(said):
     except InputError:
         return
     assert all(g.region is not None or g.anchor is not None for g in goals)
+
+
+def test_that_same_object_is_the_one_of_that_kind_named_last():
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("plate", "blue", 0.3, 0.2), ("can", "blue", 0.2, -0.2)])
+    got = parse(scene, "put the red can behind the blue plate; the green can goes in front of that same plate").goals
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got] == [("behind", [2], 4), ("front", [3], 4)]
+    with pytest.raises(InputError, match="ambiguous"):  # two plates named before: "that same plate" is not guessed
+        parse(scene, "put the red can behind the blue plate and the green can left of the white plate; the blue "
+                     "can in front of that same plate")

@@ -62,3 +62,38 @@ def test_a_pose_goal_through_the_parser(matcher):
 def test_a_pose_for_no_single_object_is_refused(text, matcher):
     with pytest.raises(InputError):
         goal_dicts(SCENES["home"], text, matcher=matcher)
+
+
+def _at(scene: str, oid: int) -> tuple[float, float, float]:
+    pose = SCENES[scene].object(oid).pose
+    assert pose is not None
+    return float(pose[0]), float(pose[1]), float(pose[2])
+
+
+@pytest.mark.parametrize("text, dx, dy", [
+    ("slide the red mug 10 cm further back from where it sits now, don't turn it", 0.0, 0.1),
+    ("move the red mug 8 cm to the left, keep its angle as is", -0.08, 0.0),
+    ("nudge the red mug 5 cm toward me and 3 cm to the right", 0.03, -0.05),
+    ("shift the red mug forty millimetres to the right", 0.04, 0.0),
+])
+def test_a_move_by_a_distance_is_a_pose_from_where_the_object_stands(text, dx, dy, matcher):
+    x, y, yaw = _at("home", 1)
+    (g,) = goal_dicts(SCENES["home"], text, matcher=matcher)
+    assert g["pattern"] == "pose" and g["objects"] == [1]
+    assert g["pose"] == pytest.approx([x + dx, y + dy, yaw], abs=1e-6)
+
+
+def test_a_place_from_the_table_centre_and_two_poses_in_one_clause(matcher):
+    (g,) = goal_dicts(SCENES["home"], "put the red mug 10 cm right of the table centre and 5 cm toward the back, "
+                                      "square to the table with no rotation", matcher=matcher)
+    assert g["pose"] == pytest.approx([0.1, 0.05, 0.0])
+    got = goal_dicts(SCENES["home"], "put the red mug at x = 15 cm, y = -5 cm, and the plate at (-20 cm, 10 cm). "
+                                     "No rotation on either of them.", matcher=matcher)
+    assert [(g["objects"], g["pose"]) for g in got] == [([1], [0.15, -0.05, 0.0]), ([8], [-0.2, 0.1, 0.0])]
+
+
+@pytest.mark.parametrize("text", ["put the red mug 10 cm left of the plate",   # a distance from an object
+                                  "the red mug 10 cm to the left"])             # no verb of moving, no centre
+def test_a_distance_that_is_no_move_is_no_pose(text):
+    assert all(p.frame == "table" for p in mark_poses(text)[1])
+    assert mark_poses(text)[1] == []
