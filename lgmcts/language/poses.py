@@ -55,6 +55,22 @@ class SaidPose:
     frame: str = "table"
     square: bool = False
 
+    def resolved(self, own: tuple[float, ...] | None, centre: tuple[float, float]) -> tuple[float, float, float]:
+        """The pose in the table frame for an object now at ``own`` (x, y, yaw; None: not on the table), the
+        workspace's centre at ``centre``: a yaw not said is the object's own (the nearest quarter turn to it
+        when said square to the table). ValueError for a move of an object with no place."""
+        yaw = self.yaw if self.yaw is not None else (float(own[2]) if own is not None else 0.0)
+        if self.square and self.yaw is None:
+            yaw = round(yaw / (math.pi / 2)) * (math.pi / 2)
+        x, y = self.x, self.y
+        if self.frame == "offset":
+            if own is None:
+                raise ValueError("has no place on the table to move it from")
+            x, y = float(own[0]) + x, float(own[1]) + y
+        elif self.frame == "centre":
+            x, y = centre[0] + x, centre[1] + y
+        return round(x, 6), round(y, 6), yaw
+
 
 def is_mark(word: str) -> bool:
     """Whether a token is a pose's marker."""

@@ -20,7 +20,6 @@ tests/language/golden_parse.py``: only the commands meant to change may move.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
@@ -45,7 +44,7 @@ from .clauses import (
     _stacking,
     _weak_split,
 )
-from . import poses
+from .pose_reading import read_pose
 from .framing import _ROLE_MARK
 from .passes import _MEASURE_WORDS, _NOT_JOIN, _SELECT_VERBS
 from .selection import _ALLOWED_EXTRA
@@ -128,48 +127,7 @@ def reading(name: str, adjusts: bool = False) -> Callable[[Handler], Handler]:
 # ------------------------------------------------------------------ on the words
 
 
-@early("pose")
-def _read_pose(self: _Parser, f: Frame) -> list[_Pending] | None:
-    """"the mug to x = 0.10 m, y = -0.05 m, yaw 0 rad", "the cup at (10 cm, -5 cm)": one object to a pose said in
-    numbers (:mod:`.poses`); a yaw not said is the object's own."""
-    marks = [k for k, w in enumerate(f.words) if poses.is_mark(w)]
-    if not marks:
-        return None
-    if len(marks) > 1:
-        # "the bowl at x = 15 cm, y = -5 cm, and the plate at (-20 cm, 10 cm)": each pose with the object
-        # named just before it
-        if self._find(f.words[marks[-1] + 1 :]):
-            raise InputError(f"'{f.text}': two poses in one clause; give each object its own")
-        out: list[_Pending] = []
-        lo = 0
-        for k in marks:
-            out += _pose_goal(self, f.words[lo:k], f.words[k], f.text)
-            lo = k + 1
-        return out
-    return _pose_goal(self, tuple(w for w in f.words if not poses.is_mark(w)), f.words[marks[0]], f.text)
-
-
-def _pose_goal(self: _Parser, words: tuple[str, ...], mark: str, text: str) -> list[_Pending]:
-    """The pose goal of the one object ``words`` name, at the pose of ``mark``."""
-    said = self._poses[ord(mark[-1]) - ord("a")]
-    mentions = self._find(words)
-    sel = self._select(mentions[0]) if len(mentions) == 1 else None
-    if not isinstance(sel, list) or len(sel) != 1:
-        raise InputError(f"'{text}': a pose said in numbers is for one object; name that object")
-    oid = sel[0]
-    own = self.spec.object(oid).pose
-    yaw = said.yaw if said.yaw is not None else (float(own[2]) if own is not None else 0.0)
-    if said.square and said.yaw is None:
-        yaw = round(yaw / (math.pi / 2)) * (math.pi / 2)  # "square to the table": the nearest quarter turn
-    x, y = said.x, said.y
-    if said.frame == "offset":
-        if own is None:
-            raise InputError(f"'{text}': object {oid} has no place on the table to move it from")
-        x, y = float(own[0]) + x, float(own[1]) + y
-    elif said.frame == "centre":
-        ws = self.spec.workspace
-        x, y = (ws.x[0] + ws.x[1]) / 2 + x, (ws.y[0] + ws.y[1]) / 2 + y
-    return [_Pending("pose", [oid], None, (round(x, 6), round(y, 6), yaw), text)]
+early("pose")(read_pose)  # a pose said in numbers (.pose_reading)
 
 
 @early("not-a-goal")
