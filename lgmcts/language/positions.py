@@ -98,7 +98,7 @@ _STOP = frozenset({
     "should", "must", "needs", "put", "move", "place", "set", "stack", "make", "left", "right", "front", "near",
     "nearest", "closest", "furthest", "farthest", "from", "please", "it", "them", "one", "that", "which", "who",
     "ends", "end", "stays", "has", "have", "will", "would", "up", "out", "as", "for", "of", "except", "but",
-    "going", "counting", "gets", "get", "be",
+    "going", "counting", "gets", "get", "be", "most", "all",
 })
 _ARTICLES = frozenset({"the", "a", "an"})
 _WHATEVER = frozenset({"whatever", "whichever", "whoever"})
@@ -178,6 +178,17 @@ def _after_head(ws: tuple[str, ...], i: int) -> tuple[Key, int] | None:
         return Key("x", 1 if ws[i + 3] == "left" else -1), i + 4  # "the cup on the far left"
     if w in _NEAR or w in _FAR:
         return _near_far(ws, i + 1, w in _NEAR, anchor_ok=True)
+    if w == "most" and i + 1 < len(ws):
+        return _near_far(ws, i + 1, False, anchor_ok=False)  # "the utensil most right", "most to the left"
+    if ws[i : i + 3] == ("all", "the", "way"):
+        # "the utensil all the way on the left", "the cup all the way to the back": the furthest that way
+        k = i + 3 + (i + 3 < len(ws) and ws[i + 3] == "over")
+        if k < len(ws) and ws[k] in ("on", "at", "to"):
+            k += 1
+            if k < len(ws) and ws[k] == "the" and k + 1 < len(ws) and ws[k + 1] in _FORWARD:
+                return _FORWARD[ws[k + 1]], k + 2
+        elif k < len(ws) and ws[k] in _FORWARD and ws[k] not in ("left", "right"):
+            return _FORWARD[ws[k]], k + 1  # "all the way back"
     return None
 
 

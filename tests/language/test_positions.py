@@ -46,6 +46,10 @@ def _refs(text: str):
     ("the cup on the far right goes behind the box", "the cup on the far right", ("cup",), Key("x", -1), 1, 0, None),
     ("the can closest to the middle of the table", "the can closest to the middle of the table", ("can",),
      Key("near"), 1, 0, None),
+    ("the utensil all the way on the left goes in front", "the utensil all the way on the left", ("utensil",),
+     Key("x", 1), 1, 0, None),
+    ("utensil most right, put on plate", "utensil most right", ("utensil",), Key("x", -1), 1, 0, None),
+    ("the cup most to the back goes left of the box", "the cup most to the back", ("cup",), Key("y", -1), 1, 0, None),
 ])
 def test_a_position_phrase_is_read(text, phrase, head, key, count, rank, of):
     (got,) = _refs(text)
