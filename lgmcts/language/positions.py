@@ -326,6 +326,9 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
             head, end = ("one",), end + 1
         if not head:
             head = ("ones",) if count > 1 else ()
+        if len(head) == 1 and head[0] in _FORWARD and sup not in _MOST and ws[end : end + 1] in (("one",), ("ones",)):
+            # "the farther back one", "the nearer front one": the direction is the key, "one" the head
+            return PositionRef(i, end + 1, ("one",), _FORWARD[head[0]], count, rank)
         if sup in _MOST:
             key = _MOST[sup]
         else:

@@ -285,10 +285,20 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
     if not refs:
         return text
     said_heads: list[tuple[str, ...]] = []
+    picked: list[int] = []
     out: list[str] = []
     at = 0
     for ref in refs:
         head = ref.head
+        if head in (("one",), ("ones",)) and ref.of is not None and ref.of == len(picked):
+            # "the two leftmost cans in a stack, the one nearer the front at the bottom": of those two
+            cands_of = {i: xy for i in picked if (xy := pose_of(i)) is not None}
+            lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
+            got = pick(ref, cands_of, anchor_xy=None, centre=centre, said=text[lo:hi])
+            out.append(text[at:lo] + ("object " + str(got[0]) if len(got) == 1 else
+                                      "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}"))
+            at = hi
+            continue
         if head in (("one",), ("ones",)):
             before = [w for w in words[: ref.start] if w in nouns or (w.endswith("s") and w[:-1] in nouns)]
             head = said_heads[-1] if said_heads else (before[-1],) if before else ()
@@ -320,6 +330,7 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
         said = text[lo:hi]
         got = pick(ref, cands, anchor_xy=anchor_xy, centre=centre, said=said)
+        picked = list(got)
         out.append(text[at:lo])
         out.append("object " + str(got[0]) if len(got) == 1 else
                    "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")

@@ -170,3 +170,20 @@ def test_the_other_of_two_is_the_one_the_first_did_not_take(said):
     (a, b) = got.goals
     assert (a.pattern, a.anchor, b.pattern, b.anchor) == ("behind", 4, "front", 3)
     assert sorted([*a.objects, *b.objects]) == [1, 2]
+
+
+@pytest.mark.parametrize("said, tower", [
+    ("the two leftmost cans go in a stack with the one nearer the front at the bottom", [3, 1]),
+    ("the two leftmost cans into a stack, the farther-back one on the bottom", [1, 3]),
+])
+def test_a_comparative_one_of_the_two_just_picked(said, tower):
+    """"the two leftmost cans ..., the one nearer the front at the bottom": "one" of those two, not of every can."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    cans = [("red", -0.3, 0.1), ("blue", 0.3, 0.0), ("green", -0.25, -0.1), ("white", 0.1, 0.2)]
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": "can", "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.1},
+         "pose": [x, y, 0.0]} for k, (c, x, y) in enumerate(cans)]})
+    (goal,) = parse(scene, said).goals
+    assert (goal.pattern, list(goal.objects)) == ("tower", tower)
