@@ -143,6 +143,9 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
             i += 1
             continue
+        if (_command_verb(w) and words[i + 1 : i + 2] in (("it",), ("them",)) and parts[-1]
+                and parts[-1][0] in _TAKING and len(parts[-1]) > 1):
+            parts.append([])  # "take the red block put it on the yellow one": said without "and"
         parts[-1].append(w)
         i += 1
     out = []
@@ -156,6 +159,8 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
     return out
 
 
+#: Verbs of taking an object up, after which a command on "it" starts a clause of its own.
+_TAKING = frozenset({"take", "grab", "pick", "get", "lift", "fetch"})
 #: Verbs that start a clause of their own when a pronoun follows ("and have them facing me").
 _VERBS_OF_PRONOUN = frozenset({"have", "turn", "keep", "rotate", "spin", "orient", "point", "angle", "leave"})
 

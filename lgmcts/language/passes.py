@@ -173,8 +173,13 @@ class _TokenPasses(ParserHost):
             while j < len(out) and (colour(out[j]) or (out[j] in (",", "and") and j + 1 < len(out)
                                                          and colour(out[j + 1]))):
                 j += 1
+            if (out[k].endswith("s") and _stem(out[k]) in self._cat_words and k + 2 < len(out) and _is_number(out[k + 1])
+                    and out[k + 2] == "," and not (k and (_is_number(out[k - 1]) or out[k - 1] == "object"))):
+                out[k], out[k + 1] = out[k + 1], out[k]  # "bowls 3, line": three bowls, said noun first
+                k += 2
+                continue
             hues = [w for w in out[k + 1 : j] if colour(w)]
-            if (len(hues) >= 2 and out[k].endswith("s") and out[k] in self._cat_words
+            if (len(hues) >= 2 and out[k].endswith("s") and _stem(out[k]) in self._cat_words
                     and not (k and colour(out[k - 1])) and (j == len(out) or not self._object_word(out[j]))):
                 listed = [x for h in hues[:-1] for x in (h, ",")][:-1] + ["and", hues[-1]]
                 out[k:j] = [*listed, out[k]]

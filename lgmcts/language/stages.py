@@ -178,6 +178,8 @@ def said_places(text: str) -> str:
                 if words[end : end + 2] == ("of", "the") and words[end + 2 : end + 3] and words[end + 2] in TABLE_WORDS:
                     end += 3
                 i -= 1  # the article goes too
+                if i >= 2 and words[i - 1] == "in" and words[i - 2] in ("right", "smack", "dead", "bang", "slap"):
+                    i -= 2  # "right in the middle of the back edge": the intensifier and "in" too
                 say = f"in the {_SIDE_CELLS[side]}cell"
         if end == i:
             i += 1

@@ -369,3 +369,18 @@ def test_that_same_object_is_the_one_of_that_kind_named_last():
     with pytest.raises(InputError, match="ambiguous"):  # two plates named before: "that same plate" is not guessed
         parse(scene, "put the red can behind the blue plate and the green can left of the white plate; the blue "
                      "can in front of that same plate")
+
+
+@pytest.mark.parametrize("said, goal", [
+    ("take the red can put it on the plate", ("tower", [1, 5], None)),              # no "and" after taking it
+    ("put the red can and the green can in a line right in the middle of the back edge", ("line", [5, 6], "top center")),
+    ("cans 3, line, back left corner", ("line", [5, 6, 7], "top left")),   # the count after the noun (no can is 3)
+])
+def test_more_telegraphic_and_run_on_commands(said, goal):
+    from lgmcts.language import parse
+
+    got = parse(_table([("plate", "white", 0.0, 0.0), ("mug", "red", 0.2, 0.2), ("mug", "blue", 0.3, 0.2),
+                        ("bowl", "white", -0.3, 0.2), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                        ("can", "blue", 0.3, -0.2)]), said).goals
+    assert [(g.pattern, sorted(g.objects) if g.pattern != "tower" else list(g.objects), g.region) for g in got] \
+        == [goal]
