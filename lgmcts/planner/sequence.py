@@ -226,6 +226,8 @@ class _Spots:
         self.todo: list[tuple[int, np.ndarray, float, int]] = []
         #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
         self._goal_stamp: dict[int, np.ndarray] = {}
+        #: Per disc, the grid points it crowds where it stands (as in ``count``), with that place.
+        self._own_stamp: dict[int, tuple[tuple[float, float], np.ndarray]] = {}
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -269,7 +271,11 @@ class _Spots:
         k = t.row[j]
         # Disc j counts once at each point of its own stamp: there, only j crowds the point when the count is 1.
         mask = self.count == 0
-        own = self._stamp(t.pos[j], t.r[j] + self.reach)
+        at = (float(t.pos[j, 0]), float(t.pos[j, 1]))
+        kept = self._own_stamp.get(j)
+        if kept is None or kept[0] != at:
+            kept = self._own_stamp[j] = (at, self._stamp(t.pos[j], t.r[j] + self.reach))
+        own = kept[1]
         mask[own] = self.count[own] == 1
         free = np.flatnonzero(mask)
         if not len(free):
@@ -345,12 +351,16 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
         if dv > 1e-12:
             pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
     # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones.
-    sides = np.array([lo[0], hi[0], lo[1], hi[1]])
-    off = sides[:, None] - cen[:, _AXIS].T  # (side, circle)
-    e, k = np.nonzero(np.abs(off) <= rad)
-    if len(e):
+    # Only the sides within reach (the crossings on another lie beyond it).
+    near_side = [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
+                 if abs(float(v) - float(w)) <= reach + 1e-9]
+    if near_side:
+        sides = np.array([lo[0], hi[0], lo[1], hi[1]])[near_side]
+        off = sides[:, None] - cen[:, _AXIS[near_side]].T  # (side, circle)
+        e, k = np.nonzero(np.abs(off) <= rad)
+    if near_side and len(e):
         h = np.sqrt(np.maximum(rad[k] ** 2 - off[e, k] ** 2, 0.0))
-        ax = _AXIS[e]
+        ax = _AXIS[near_side][e]
         q = np.empty((2 * len(e), 2))
         for sgn, part in ((1.0, slice(0, len(e))), (-1.0, slice(len(e), None))):
             along = cen[k, 1 - ax] + sgn * h
