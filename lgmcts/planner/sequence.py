@@ -91,8 +91,10 @@ class _Table:
         #: The discs moved and the goals (rows) reached, in order, for :class:`_Crossings` to catch up on.
         self.moved: list[int] = []
         self.closed: list[int] = []
-        #: Per radius of a disc to nudge, the crossings of the circles it may touch (built at its first nudge).
+        #: Per radius of a disc to nudge, the crossings of the circles it may touch (built once the plan has made
+        #: :data:`TABLE_AFTER` nudges), and the nudges made.
         self.crossings: dict[float, _Crossings] = {}
+        self.nudged = 0
 
     def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
@@ -304,12 +306,15 @@ NUDGE_REACH = 6.0
 #: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
 #: points; for tests).
 DIRECT = False
+#: Nudges of a plan that cross the circles afresh before :class:`_Crossings` is built (building it crosses every
+#: pair on the table once, which only pays off over many nudges; most plans need none or a few).
+TABLE_AFTER = 16
 
 _AXIS = np.array([0, 0, 1, 1])
 _SIGN = np.array([1.0, -1.0])[None, :, None]
 
 
-@functools.lru_cache(maxsize=256)
+@functools.lru_cache(maxsize=4096)
 def _pairs(m: int, first: int) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs ``a < b`` of ``m`` circles whose first member is one of the ``first`` first circles."""
     a, b = np.triu_indices(m, 1)
@@ -368,13 +373,14 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
             q[part, 1] = np.where(ax == 1, sides[e], along)
         pts.append(q[np.argsort(np.concatenate([2 * e, 2 * e + 1]), kind="stable")])
     # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
-    if DIRECT:
+    cross = None if DIRECT else t.crossings.get(rj)
+    if cross is None and not DIRECT and t.nudged >= TABLE_AFTER:
+        cross = t.crossings[rj] = _Crossings(t, rj)
+    t.nudged += 1
+    if cross is None:
         plus, minus, _, _ = circle_crossings(cen, rad, *_pairs(len(cen), len(ocen)))
         pts += [plus, minus]
     else:
-        cross = t.crossings.get(rj)
-        if cross is None:
-            cross = t.crossings[rj] = _Crossings(t, rj)
         pts.append(cross.near(t, c, reach, near, rows))
     p = np.concatenate(pts)
     x, y = p[:, 0], p[:, 1]
