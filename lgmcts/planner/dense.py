@@ -47,6 +47,8 @@ from .sequence import TOUCH, eligible
 
 __all__ = ["MAX_DISCS", "budget", "dense_plan"]
 
+_SIDE_AXIS = np.array([0, 0, 1, 1])
+
 #: Most discs on the table for which :func:`dense_plan` is tried.
 MAX_DISCS = 40
 #: Weight of the goal count against the moves made (greedier above 1).
@@ -127,32 +129,37 @@ class _Discs:
             pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
             tags = [np.full((4, 2), -1)]
             # Circles with the box's sides: x = lo, x = hi, y = lo, y = hi.
-            axis = np.array([0, 0, 1, 1])
+            axis = _SIDE_AXIS
             side = np.array([lo[0], hi[0], lo[1], hi[1]])
             off = side[:, None] - pos[:, axis].T  # (side, disc)
             e, j = np.nonzero(np.abs(off) <= rad[None, :])
             h = np.sqrt(np.maximum(rad[j] ** 2 - off[e, j] ** 2, 0.0))
+            ax = axis[e]
+            along = pos[j, 1 - ax]
+            at = side[e]
+            side_tag = np.stack([j, np.full(len(j), -1)], axis=1)
             for sgn in (1.0, -1.0):
-                p = np.empty((len(e), 2))
-                p[np.arange(len(e)), axis[e]] = side[e]
-                p[np.arange(len(e)), 1 - axis[e]] = pos[j, 1 - axis[e]] + sgn * h
-                pts.append(p)
-                tags.append(np.stack([j, np.full(len(j), -1)], axis=1))
+                q = along + sgn * h
+                pts.append(np.stack([np.where(ax == 0, at, q), np.where(ax == 1, at, q)], axis=1))
+                tags.append(side_tag)
             # Circles with each other.
             plus, minus, a, b = circle_crossings(pos, rad, *self.pairs)
             pts += [plus, minus]
             tags += [np.stack([a, b], axis=1)] * 2
             p = np.concatenate(pts)
             tag = np.concatenate(tags)
-            inside = (p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)
-            p, tag = np.clip(p[inside], lo, hi), tag[inside]
+            x, y = p[:, 0], p[:, 1]
+            inside = (x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)
+            p, tag = np.minimum(np.maximum(p[inside], lo), hi), tag[inside]
             # bad[m, j]: point m is too close to disc j (rounding lets a point on j's circle count as on it).
             bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) \
                 < rad[None, :] * (1 - 1e-12)
             nbad = bad.sum(axis=1)
-            for i in members:
-                keep = (nbad - bad[:, i] == 0) & (tag[:, 0] != i) & (tag[:, 1] != i)
-                out[i] = p[keep]
+            # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
+            mem = np.asarray(members)
+            keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
+            for k, i in enumerate(members):
+                out[i] = p[keep[:, k]]
         return out
 
 

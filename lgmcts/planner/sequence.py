@@ -88,6 +88,13 @@ class _Table:
         #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
         self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
         self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        #: The discs moved and the goals (rows) reached, in order, for :class:`_Crossings` to catch up on.
+        self.moved: list[int] = []
+        self.closed: list[int] = []
+        #: Per radius of a disc to nudge, the crossings of the circles it may touch (built once the plan has made
+        #: :data:`TABLE_AFTER` nudges), and the nudges made.
+        self.crossings: dict[float, _Crossings] = {}
+        self.nudged = 0
 
     def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
@@ -103,6 +110,7 @@ class _Table:
 
     def move(self, j: int, xy: np.ndarray) -> None:
         self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
+        self.moved.append(j)
         self.pos[j] = xy
         d = np.hypot(*(self.goal - xy).T)
         col = d < self.r[self.movers] + self.r[j] - TOUCH
@@ -110,6 +118,86 @@ class _Table:
         if k is not None:
             col[k] = False
         self.blocked[:, j] = col
+
+    def close(self, k: int) -> None:
+        """The goal of mover ``k`` (a row) is reached."""
+        self.done[k] = True
+        self.closed.append(k)
+
+
+class _Crossings:
+    """Where the circles a disc of radius ``rj`` may touch cross one another, for :func:`_nudge`, kept up to date.
+
+    The circles: about each disc ``i``, radius ``r_i + rj +`` the clearance (the nearest a parked disc may come),
+    and about each open goal, radius ``r_goal + rj`` and a nanometre (just off the goal disc). Kept: the
+    crossings of two disc circles, and of a disc circle and a goal circle (as :func:`_nudge` takes them), each
+    with the circles it came from. A disc that moves drops the crossings of its circle and gains its new ones,
+    a goal that is reached drops its own; every other crossing is unchanged, so a nudge picks the ones within its
+    reach instead of crossing every pair of circles near it again. Each crossing is computed from the same
+    numbers in the same order as a nudge would (``a`` the disc of lower index, a disc before a goal), so it is
+    the same point to the last bit."""
+
+    def __init__(self, t: _Table, rj: float) -> None:
+        self.n = n = len(t.r)
+        #: Circle ``i < n`` is disc ``i``'s; circle ``n + k`` goal row ``k``'s.
+        self.span = n + len(t.movers)
+        self.rad = np.concatenate([t.r + rj + CLEARANCE, t.r[t.movers] + rj + 1e-9])
+        self.p = np.zeros((0, 2))
+        self.a = np.zeros(0, dtype=np.intp)
+        self.b = np.zeros(0, dtype=np.intp)
+        #: The order a nudge generates the crossings in: all the ``+`` ones, then the ``-`` ones, each by (a, b).
+        self.key = np.zeros(0, dtype=np.intp)
+        self.seen = (len(t.moved), len(t.closed))
+        a, b = np.triu_indices(n, 1)
+        self._add(t, a, b, np.flatnonzero(~t.done), np.arange(n))
+
+    def _add(self, t: _Table, a: np.ndarray, b: np.ndarray, rows: np.ndarray, discs: np.ndarray) -> None:
+        """Add the crossings of the disc pairs ``(a, b)`` and of each of ``discs`` with each goal of ``rows``."""
+        n = self.n
+        cen = np.concatenate([t.pos, t.goal])
+        a = np.concatenate([a, np.repeat(discs, len(rows))])
+        b = np.concatenate([b, n + np.tile(rows, len(discs))])
+        # Circles too far apart to cross are left out here already (as circle_crossings would).
+        ok = ((cen[b] - cen[a]) ** 2).sum(axis=1) < (self.rad[a] + self.rad[b]) ** 2 * 1.01 + 1e-12
+        plus, minus, a, b = circle_crossings(cen, self.rad, a[ok], b[ok])
+        key = a * self.span + b
+        self.p = np.concatenate([self.p, plus, minus])
+        self.a = np.concatenate([self.a, a, a])
+        self.b = np.concatenate([self.b, b, b])
+        self.key = np.concatenate([self.key, key, key + self.span * self.span])
+
+    def update(self, t: _Table) -> None:
+        """Catch up on the discs moved and the goals reached since the last call."""
+        moved, closed = t.moved[self.seen[0]:], t.closed[self.seen[1]:]
+        if not moved and not closed:
+            return
+        self.seen = (len(t.moved), len(t.closed))
+        n = self.n
+        gone = np.zeros(self.span, dtype=bool)
+        gone[moved] = True
+        gone[n + np.asarray(closed, dtype=np.intp)] = True
+        keep = ~(gone[self.a] | gone[self.b])
+        self.p, self.a, self.b, self.key = self.p[keep], self.a[keep], self.b[keep], self.key[keep]
+        if moved:
+            m = np.unique(np.asarray(moved, dtype=np.intp))
+            i = np.repeat(m, n)
+            k = np.tile(np.arange(n), len(m))
+            # Each pair once: with a disc that did not move, or with a moved one of higher index.
+            ok = (i != k) & (~gone[k] | (k > i))
+            i, k = i[ok], k[ok]
+            self._add(t, np.minimum(i, k), np.maximum(i, k), np.flatnonzero(~t.done), m)
+
+    def near(self, t: _Table, c: np.ndarray, reach: float, near: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """The crossings of pairs of the circles of discs ``near`` and goals ``rows`` that may lie within ``reach``
+        of ``c`` (a little more: the caller tests the reach itself), in a nudge's order."""
+        self.update(t)
+        p = self.p
+        sel = np.flatnonzero((p[:, 0] - c[0]) ** 2 + (p[:, 1] - c[1]) ** 2 <= (reach + 1e-6) ** 2)
+        inn = np.zeros(self.span, dtype=bool)
+        inn[near] = True
+        inn[self.n + rows] = True
+        sel = sel[inn[self.a[sel]] & inn[self.b[sel]]]
+        return p[sel[np.argsort(self.key[sel])]]
 
 
 class _Spots:
@@ -140,6 +228,8 @@ class _Spots:
         self.todo: list[tuple[int, np.ndarray, float, int]] = []
         #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
         self._goal_stamp: dict[int, np.ndarray] = {}
+        #: Per disc, the grid points it crowds where it stands (as in ``count``), with that place.
+        self._own_stamp: dict[int, tuple[tuple[float, float], np.ndarray]] = {}
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -183,7 +273,11 @@ class _Spots:
         k = t.row[j]
         # Disc j counts once at each point of its own stamp: there, only j crowds the point when the count is 1.
         mask = self.count == 0
-        own = self._stamp(t.pos[j], t.r[j] + self.reach)
+        at = (float(t.pos[j, 0]), float(t.pos[j, 1]))
+        kept = self._own_stamp.get(j)
+        if kept is None or kept[0] != at:
+            kept = self._own_stamp[j] = (at, self._stamp(t.pos[j], t.r[j] + self.reach))
+        own = kept[1]
         mask[own] = self.count[own] == 1
         free = np.flatnonzero(mask)
         if not len(free):
@@ -209,11 +303,18 @@ CYCLES = True
 NUDGE_REACH = 6.0
 
 
+#: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
+#: points; for tests).
+DIRECT = False
+#: Nudges of a plan that cross the circles afresh before :class:`_Crossings` is built (building it crosses every
+#: pair on the table once, which only pays off over many nudges; most plans need none or a few).
+TABLE_AFTER = 16
+
 _AXIS = np.array([0, 0, 1, 1])
 _SIGN = np.array([1.0, -1.0])[None, :, None]
 
 
-@functools.lru_cache(maxsize=256)
+@functools.lru_cache(maxsize=4096)
 def _pairs(m: int, first: int) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs ``a < b`` of ``m`` circles whose first member is one of the ``first`` first circles."""
     a, b = np.triu_indices(m, 1)
@@ -254,20 +355,37 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
         dv = math.hypot(float(v[0]), float(v[1]))
         if dv > 1e-12:
             pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
-    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi (each side: the + then the - crossing).
-    sides = np.array([lo[0], hi[0], lo[1], hi[1]])
-    off = sides[:, None] - cen[:, _AXIS].T  # (side, circle)
-    h = np.sqrt(np.maximum(rad ** 2 - off ** 2, 0.0))
-    q = np.empty((4, 2, len(cen), 2))
-    for ax in (0, 1):
-        q[:, :, :, ax] = np.where(_AXIS[:, None, None] == ax, sides[:, None, None],
-                                  cen[None, None, :, ax] + _SIGN * h[:, None, :])
-    pts.append(q[np.broadcast_to((np.abs(off) <= rad)[:, None, :], (4, 2, len(cen)))])
+    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones.
+    # Only the sides within reach (the crossings on another lie beyond it).
+    near_side = [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
+                 if abs(float(v) - float(w)) <= reach + 1e-9]
+    if near_side:
+        sides = np.array([lo[0], hi[0], lo[1], hi[1]])[near_side]
+        off = sides[:, None] - cen[:, _AXIS[near_side]].T  # (side, circle)
+        e, k = np.nonzero(np.abs(off) <= rad)
+    if near_side and len(e):
+        h = np.sqrt(np.maximum(rad[k] ** 2 - off[e, k] ** 2, 0.0))
+        ax = _AXIS[near_side][e]
+        q = np.empty((2 * len(e), 2))
+        for sgn, part in ((1.0, slice(0, len(e))), (-1.0, slice(len(e), None))):
+            along = cen[k, 1 - ax] + sgn * h
+            q[part, 0] = np.where(ax == 0, sides[e], along)
+            q[part, 1] = np.where(ax == 1, sides[e], along)
+        pts.append(q[np.argsort(np.concatenate([2 * e, 2 * e + 1]), kind="stable")])
     # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
-    plus, minus, _, _ = circle_crossings(cen, rad, *_pairs(len(cen), len(ocen)))
-    pts += [plus, minus]
+    cross = None if DIRECT else t.crossings.get(rj)
+    if cross is None and not DIRECT and t.nudged >= TABLE_AFTER:
+        cross = t.crossings[rj] = _Crossings(t, rj)
+    t.nudged += 1
+    if cross is None:
+        plus, minus, _, _ = circle_crossings(cen, rad, *_pairs(len(cen), len(ocen)))
+        pts += [plus, minus]
+    else:
+        pts.append(cross.near(t, c, reach, near, rows))
     p = np.concatenate(pts)
-    p = np.clip(p[(p >= lo - 1e-12).all(axis=1) & (p <= hi + 1e-12).all(axis=1)], lo, hi)
+    x, y = p[:, 0], p[:, 1]
+    p = p[(x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)]
+    p = np.minimum(np.maximum(p, lo), hi)
     p = p[np.hypot(*(p - c).T) <= reach]
     # Squared distances (the margins below are far above their rounding). Rounding lets a point on a disc's circle
     # count as on it, not inside.
@@ -457,7 +575,7 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                 actions.append(_action(sc.ids[o], pose, "goal"))
                 old = t.pos[o].copy()
                 t.move(o, t.goal[k])
-                t.done[k] = True
+                t.close(k)
                 if spots is not None:
                     spots.moved(t, o, old)
                     spots.closed(t, k)

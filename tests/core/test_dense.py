@@ -94,6 +94,56 @@ def test_budget_ends_a_search_with_no_plan():
     assert f"and {q.stats['corner_states']} table states of the corner search;" in q.stats["reason"]
 
 
+def _corners_one_by_one(t, pos: np.ndarray, i: int) -> np.ndarray:
+    """Disc ``i``'s free-space corners the plain way: every crossing of two other discs' circles, of one with a side
+    of ``i``'s box, and the box's own corners, kept where inside the box and no other circle holds them."""
+    lo, hi = t.lo[i], t.hi[i]
+    others = [k for k in range(t.n) if k != i]
+    pts = [(lo[0], lo[1]), (lo[0], hi[1]), (hi[0], lo[1]), (hi[0], hi[1])]
+    for k in others:
+        rk = t.far[i, k]
+        for axis, value in ((0, lo[0]), (0, hi[0]), (1, lo[1]), (1, hi[1])):
+            off = value - pos[k, axis]
+            if abs(off) <= rk:
+                h = math.sqrt(max(rk * rk - off * off, 0.0))
+                for sgn in (1.0, -1.0):
+                    q = [0.0, 0.0]
+                    q[axis], q[1 - axis] = value, pos[k, 1 - axis] + sgn * h
+                    pts.append((q[0], q[1]))
+    for x, k in enumerate(others):
+        for m in others[x + 1:]:
+            d = math.hypot(*(pos[m] - pos[k]))
+            ra, rb = t.far[i, k], t.far[i, m]
+            if 1e-12 < d < ra + rb and d > abs(ra - rb):
+                u = (pos[m] - pos[k]) / d
+                a = (d * d + ra * ra - rb * rb) / (2 * d)
+                h = math.sqrt(max(ra * ra - a * a, 0.0))
+                base = pos[k] + u * a
+                for sgn in (1.0, -1.0):
+                    pts.append(tuple(base + sgn * h * np.array([-u[1], u[0]])))
+    p = np.array(pts, dtype=float)
+    p = np.clip(p[((p >= lo - 1e-12) & (p <= hi + 1e-12)).all(axis=1)], lo, hi)
+    held = np.hypot(p[:, None, 0] - pos[None, others, 0], p[:, None, 1] - pos[None, others, 1]) \
+        < t.far[i, others][None, :] * (1 - 1e-12)
+    return p[~held.any(axis=1)]
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(2, 9), st.floats(60.0, 140.0), st.integers(0, 10_000))
+def test_corners_are_those_found_one_disc_and_one_pair_at_a_time(n, r, seed):
+    # The corners judged for all discs of a group at once are, disc by disc, the corners found the plain way.
+    rng = np.random.default_rng(seed)
+    a = _scatter(rng, n, r, 1000.0, 800.0)
+    if a is None:
+        return
+    t = dense._Discs(disc_problem(disc_case(a, a[::-1], r, 1000.0, 800.0)))
+    for i, got in enumerate(t.corners(t.start)):
+        want = _corners_one_by_one(t, t.start, i)
+        assert len(got) == len(want)
+        got, want = got[np.lexsort(got.T)], want[np.lexsort(want.T)]
+        assert np.allclose(got, want, atol=1e-9)
+
+
 def _random_case(n: int, r: float, box: tuple[float, float], seed: int):
     """Two random packings of ``n`` discs in ``box`` as start and goal, or None where one does not fit."""
     w, h = box

@@ -227,3 +227,57 @@ def test_a_remembered_nudge_gives_the_same_plan_as_a_fresh_one(seed, n, density)
         assert sequence_plan(pr) == cached
     finally:
         seq._cached_nudge = fresh
+
+
+def _mixed(c, seed: int):
+    """The case with some discs shrunk (still apart where they stand and at their goals): radii of two or three
+    sizes, so that the crossings kept per radius are several."""
+    rng = np.random.default_rng(seed)
+    objects = []
+    for o in c.scene.objects:
+        f = float(rng.choice([1.0, 0.9, 0.8]))
+        objects.append(o.model_copy(update={"shape": o.shape.model_copy(update={"radius": o.shape.radius * f})}))
+    return c.scene.model_copy(update={"objects": objects})
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 30), density=st.sampled_from([0.4, 0.45, 0.5]),
+       mixed=st.booleans())
+def test_kept_crossings_give_the_nudges_of_crossing_afresh(seed, n, density, mixed):
+    # Each nudge of a plan, with the circle crossings kept up to date as discs move (_Crossings), is the nudge of
+    # crossing the circles near the disc afresh, to the last bit; so is the plan.
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    scene = _mixed(c, seed) if mixed else c.scene
+    pr = Problem.build(Scene.from_spec(scene), c.goals)
+    kept = seq._nudge
+    calls = []
+
+    def both(t, j, freed, cover):
+        got = kept(t, j, freed, cover)
+        seq.DIRECT = True
+        try:
+            fresh = kept(t, j, freed, cover)
+        finally:
+            seq.DIRECT = False
+        calls.append((got, fresh))
+        return got
+
+    table_after = seq.TABLE_AFTER
+    try:
+        seq._nudge = both
+        seq.TABLE_AFTER = 0  # the table from the first nudge on
+        plan_kept = sequence_plan(pr)
+    finally:
+        seq._nudge = kept
+        seq.TABLE_AFTER = table_after
+    for got, fresh in calls:
+        assert (got is None) == (fresh is None)
+        if got is not None and fresh is not None:
+            assert np.array_equal(got[0], fresh[0]) and got[1:] == fresh[1:]
+    seq.DIRECT = True
+    try:
+        assert sequence_plan(pr) == plan_kept
+    finally:
+        seq.DIRECT = False
