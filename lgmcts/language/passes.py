@@ -199,6 +199,10 @@ class _TokenPasses(ParserHost):
                 while out[j - 1] in (",", "and", "or"):
                     j -= 1
                 nxt = out[j] if j < len(out) else ""
+                if nxt in ("one", "ones"):
+                    res.extend(["the", *out[k + 1 : j]])  # "but not white one": the article only
+                    k = j
+                    continue
                 if not self._content_word(nxt) or nxt in _ASIDE_KEEP or nxt in _DIR_WORDS or nxt in self.key_vocab:
                     res.extend(["the", *out[k + 1 : j], "ones"])
                     k = j

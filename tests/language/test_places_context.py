@@ -384,3 +384,14 @@ def test_more_telegraphic_and_run_on_commands(said, goal):
                         ("can", "blue", 0.3, -0.2)]), said).goals
     assert [(g.pattern, sorted(g.objects) if g.pattern != "tower" else list(g.objects), g.region) for g in got] \
         == [goal]
+
+
+def test_a_colour_exception_said_with_one_and_a_colour_match_said_with_like():
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("can", "white", 0.3, -0.2), ("bowl", "green", 0.2, 0.2)])
+    (goal,) = parse(scene, "all cans but not white one, stack").goals
+    assert (goal.pattern, sorted(goal.objects)) == ("tower", [2, 3])
+    (goal,) = parse(scene, "can same color like green bowl, put on plate").goals
+    assert (goal.pattern, list(goal.objects)) == ("tower", [1, 3])
