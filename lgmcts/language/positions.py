@@ -213,6 +213,17 @@ def _said_apart(ws: tuple[str, ...], k: int) -> bool:
     return False
 
 
+def _goal_after(ws: tuple[str, ...], k: int) -> bool:
+    """Whether the clause goes on after ``k`` with where to put the object ("put the one farther from me to
+    the left of the mug": the comparative picked the object)."""
+    for w in ws[k:]:
+        if w in (",", ".", ";", ":", "!", "?", "and", "then"):
+            return False
+        if w in ("left", "right", "behind", "front", "on", "onto", "under", "beside", "next", "in", "into", "atop"):
+            return True
+    return False
+
+
 def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
     """Every phrase of ``words`` that picks objects by where they stand, left to right.
 
@@ -228,7 +239,8 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
         said = [k for k in compared if ref.start <= k < ref.end]
         if not said:
             out.append(ref)
-        elif ((ref.start > 0 and ws[ref.start - 1] in _PLACING) or ws[ref.start] in _PLACING) and ref.count == 1:
+        elif ((ref.start > 0 and ws[ref.start - 1] in _PLACING) or ws[ref.start] in _PLACING) and ref.count == 1 \
+                and not _goal_after(ws, ref.end):
             continue  # "move the cup closer to the plate": a placing, left for the parser
         else:
             out.append(ref if ref.of is not None else replace(ref, of=2))

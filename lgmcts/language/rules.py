@@ -127,6 +127,8 @@ class _State:
     header: tuple[str, dict, str] | None = None
     #: "one X" choices made so far ("the other one" takes the one left).
     choices: list = field(default_factory=list)
+    #: A group said first and apart ("of the two green things, ..."), which "the other one" chooses from.
+    group: list[int] = field(default_factory=list)
     #: The tower of the previous clause, which "then the red block" extends.
     tower: "_Pending | None" = None
     #: The object a stack role just placed in that tower: "then green" goes right above it.
@@ -242,8 +244,9 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
     def _rewritten(self, text: str) -> str:
         """The text with objects picked by position or colour named by id, the rewrite table applied, ids said
         after their category and letters said bare read as objects."""
+        text, self.state.group = stages.partitive(text, self._find, self._every_match)
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
-                                  dict(self.vocab.borrowed))
+                                  dict(self.vocab.borrowed), group=self.state.group)
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = stages.same_again(text, self._find, self._every_match)
         self._nearness(text)

@@ -149,6 +149,13 @@ class _Selecting(ParserHost):
             return [x for x in last if isinstance(x, int)]
         self.state.mass = bool(re.search(r"\b(stuff|everything|anything|cutlery|silverware|flatware|crockery|"
                                          r"tableware|dishware)\b", m.text))
+        if m.det == "other" and not m.plural and self.state.group:
+            # "of the two green things, put the cup on the plate and the other one ...": the one of the group
+            # that no goal has named yet
+            rest = [x for x in self.state.group if x not in self.state.named]
+            if len(rest) == 1:
+                self.state.named.add(rest[0])
+                return rest
         if m.det == "other" and not m.plural and self.state.choices:
             # "one mug ... the other one", "one of the mugs ... the remaining mug": the one of two that
             # the first did not take (a noun must name the same two objects).

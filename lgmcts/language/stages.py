@@ -21,7 +21,7 @@ is called from a few points of :mod:`.rules`:
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Sequence, Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
@@ -37,7 +37,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "said_facings", "said_places", "same_again", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "partitive", "said_facings", "said_places", "same_again", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -266,7 +266,7 @@ _HYPHEN_MOST = tuple((f"{side}{dash}most", f"{side}most") for w in ("left", "rig
 def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
                 pose_of: Callable[[int], tuple[float, float] | None], centre: tuple[float, float],
                 nouns: frozenset[str] = frozenset(),
-                borrowed: Mapping[tuple[str, ...], str] | None = None) -> str:
+                borrowed: Mapping[tuple[str, ...], str] | None = None, group: Sequence[int] = ()) -> str:
     """``text`` with each phrase that picks objects by where they stand replaced by their ids.
 
     ``find(words)`` grounds a noun phrase (the parser's mention finder); ``ids_of(mention)``
@@ -287,7 +287,7 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
     if not refs:
         return text
     said_heads: list[tuple[str, ...]] = []
-    picked: list[int] = []
+    picked: list[int] = list(group)  # "of the two green things, ... the one farther from me": of those two
     out: list[str] = []
     at = 0
     for ref in refs:
@@ -357,6 +357,33 @@ def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of
     if len(found) != 1:
         return None
     return list(ids_of(found[0]))
+
+
+_COUNT_WORDS = {"two": 2, "three": 3, "four": 4, "five": 5, "both": 2}
+
+
+def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]
+              ) -> tuple[str, list[int]]:
+    """A group said first and apart ("of the two green things, put the cup on the plate and the other one ...",
+    "out of the three bowls, ..."): the text without it and the group's objects, which "the other one" and
+    "the one farther from me" then choose among. Left as said (and no group) where the phrase names a
+    different number of objects than it says."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    i = 0
+    while i < len(words) and words[i] in ("ok", "okay", "so", "now", "right", "well", ","):
+        i += 1
+    i += words[i : i + 2] == ("out", "of")
+    if words[i : i + 2] != ("of", "the") and words[i : i + 2] != ("of", "these"):
+        return text, []
+    comma = next((k for k in range(i + 2, min(len(words), i + 8)) if words[k] == ","), None)
+    if comma is None:
+        return text, []
+    count = _COUNT_WORDS.get(words[i + 2])
+    ids = _ids(("the",) + tuple(w for w in words[i + 2 + (count is not None) : comma]), find, ids_of)
+    if not ids or (count is not None and len(ids) != count):
+        return text, []
+    return text[: toks[i - (words[i - 1 : i] == ("out",))].pos if i else 0] + text[_end(text, toks[comma]) :], ids
 
 
 def same_again(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:

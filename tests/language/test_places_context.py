@@ -395,3 +395,19 @@ def test_a_colour_exception_said_with_one_and_a_colour_match_said_with_like():
     assert (goal.pattern, sorted(goal.objects)) == ("tower", [2, 3])
     (goal,) = parse(scene, "can same color like green bowl, put on plate").goals
     assert (goal.pattern, list(goal.objects)) == ("tower", [1, 3])
+
+
+@pytest.mark.parametrize("said, goals", [
+    ("of the two cans, put the red one on the plate and the other one left of the bowl",
+     [("tower", [1, 2], None), ("left", [3], 4)]),
+    ("of the two cans, put the one farther from me behind the bowl", [("behind", [2], 4)]),
+    ("put the can that is farther from me behind the bowl", [("behind", [2], 4)]),   # a comparative, then a goal
+])
+def test_a_group_said_first_and_the_other_one(said, goals):
+    """"of the two cans, ...": "the other one" and "the one farther from me" choose among those two."""
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("bowl", "blue", 0.3, -0.2)])
+    got = parse(scene, said).goals
+    assert [(g.pattern, list(g.objects), g.anchor) for g in got] == goals
