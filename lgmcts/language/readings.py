@@ -711,6 +711,12 @@ def _read_objects_for_next_clause(self: _Parser, f: Frame) -> list[_Pending] | N
                 for x in y if isinstance(y, list) else [y]:
                     if x not in sel:
                         sel.append(x)
+        shape = self.state.last_shape
+        if f.params and shape is not None and set(sel) == set(shape.objects):
+            # "letters in a rectangle: A, R, T, E, facing right": the arrangement's objects said again, with its
+            # facing (or place, or size)
+            _add_params(shape, f.params, f.text)
+            return []
         self.state.selection = sel
         self.state.last = list(sel)
         self.state.it_pair = None

@@ -96,7 +96,11 @@ _PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|
                             r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
                             r"they don't|they do not|they can|they won't|they take|it takes|there's|there is|everything's|"
                             r"everything is|everything will|nothing|the (?:[a-z]+ ){1,2}?(?:is|are|isn't|aren't|won't|doesn't|"
-                            r"don't|will|stays|stay|gets|get))\b[^.;!?]*)")
+                            r"don't|will|stays|stay|gets|get))\b[^.;!?,]*"
+                            # up to a comma before a part that says where, which way or how big
+                            r"(?:,(?!\s*(?:in|at|on|along|near|toward|towards|facing|pointing|turned|oriented|"
+                            r"over on|up at|halfway|dead|by|next|beside|around|inside|under|about|spanning|\d)\b)"
+                            r"[^.;!?,]*)*)")
 _PURPOSE_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?:so that|so|in order to|to|in order that|because|since)\s+"
                              rf"(?P<c>[^,;.!?]+),\s*(?={_ACT})")
 _REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i need|we need|i want|i have to|i must|i'd like|i'm|i am|i'll|i will|we're|we are|i've|we've|i have|we have|"
@@ -219,10 +223,20 @@ _HEIGHTS = re.compile(r"(?i)\b(?:tall|taller|topmost|bottommost|stack(?:ed|ing)?
                       r"on the bottom|as the base|(?:bottom|top) to (?:top|bottom)|under(?:neath)?|beneath|above|below|"
                       r"highest|lowest|high|vertical)\b")
 
+#: Words by which a part after "yeah" / "like" says where, which way or how big ("..., yeah at the front").
+_PLACE_SAID = frozenset({"front", "back", "rear", "corner", "edge", "middle", "centre", "center", "facing", "pointing",
+                         "near", "far", "small", "large", "big", "little", "tiny", "cm", "mm", "north", "south",
+                         "east", "west"})
+
+
 def _like_restated(m: re.Match) -> str:
     """Drop ", like ..." where the words before it already ask for an arrangement;
     else keep what it says ("the cups, like round in a circle")."""
-    if says(m.group(1), "asks"):
+    before = set(lexicon.words(m.group(1)))
+    said = lexicon.words(m.group(2))
+    # ", yeah at the front of the table": a "yeah" that goes on to add a place (a "like ..." restates)
+    new = [w for w in said if w in _PLACE_SAID and w not in before] if said[:1] in (["yeah"], ["yes"], ["yep"]) else []
+    if says(m.group(1), "asks") and not new:
         return m.group(1)
     return m.group(1) + re.sub(r"(?i),\s*(?:so |and )?(?:like|yeah|you know|i mean|basically)\b", ",", m.group(2))
 

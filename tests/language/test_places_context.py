@@ -411,3 +411,29 @@ def test_a_group_said_first_and_the_other_one(said, goals):
                     ("bowl", "blue", 0.3, -0.2)])
     got = parse(scene, said).goals
     assert [(g.pattern, list(g.objects), g.anchor) for g in got] == goals
+
+
+@pytest.mark.parametrize("said, region", [
+    ("put the red can and the green can in a line, since I need to count them before dinner near the front, "
+     "on the left", "bottom left"),
+    ("the cans should form a line so I can see at once whether one is missing, in the middle of the right side",
+     "middle right"),
+    ("put the red can and the green can in a line, yeah at the front of the table", "bottom"),
+])
+def test_a_place_after_a_reason_or_a_yeah_is_kept(said, region):
+    """A reason ("since I need to count them ...") or a "yeah" ends before a place said after it: the place is
+    the arrangement's, never dropped with the reason."""
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, goal.region) == ("line", region)
+
+
+def test_objects_said_again_after_a_header_take_its_facing():
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                            ("can", "blue", 0.3, -0.2)]),
+                    "cans in a line: the red one, the green one, the blue one, facing right").goals
+    assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", [2, 3, 4], "east")
