@@ -409,6 +409,13 @@ class _TokenPasses(ParserHost):
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
         if self._remark(clause):
+            if "," in clause and self._names_objects(list(clause)):
+                # "A, R, T, E, by the window": a list of objects with an aside that says where is no remark
+                for k, w in enumerate(clause):
+                    if w == "," and k + 1 < len(clause):
+                        tail = list(clause[k + 1 :])
+                        if "," not in tail and not any(self._content_word(x) for x in tail):
+                            self._unread_aside(tail)
             self._remember(clause)  # "the bottles are a mess. could you stick them ...": them
             return ()
         parts: list[list[str]] = [[]]

@@ -437,3 +437,13 @@ def test_objects_said_again_after_a_header_take_its_facing():
                             ("can", "blue", 0.3, -0.2)]),
                     "cans in a line: the red one, the green one, the blue one, facing right").goals
     assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", [2, 3, 4], "east")
+
+
+def test_a_list_of_objects_with_an_aside_that_says_where_is_refused_not_dropped():
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("can", "blue", 0.3, -0.2)])
+    with pytest.raises(InputError, match="'by the window'"):
+        parse(scene, "cans in a line: the red one, the green one, the blue one, by the window")
