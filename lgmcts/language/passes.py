@@ -688,9 +688,11 @@ class _TokenPasses(ParserHost):
     def _part_patterns(self, part: list[str]) -> set[str]:
         """The arrangements (not relations) the words of ``part`` name by themselves."""
         out = set()
-        for w in part:
+        for k, w in enumerate(part):
             if not w.isalpha() or len(w) < 3 or w in STOPWORDS or _stem(w) in FILLERS or w in _DIR_WORDS:
                 continue
+            if w in ("row", "column") and k and (part[k - 1] in ROWS or part[k - 1] in COLS):
+                continue  # "top row", "left column": a place, not a line
             p, _, _ = self.matcher.word_pattern(w)
             if p is not None and not self.infos[p].anchored:
                 out.add(p)

@@ -176,8 +176,9 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
             return (Place("middle", None, True) if across else Place(None, "center", True)), _of_table(words, k + 1)
         return None
     # "the middle row", "the left column", "the front row of the table"
-    if w in _ROWS and j + 1 < n and words[j + 1] == "row" and j > i and words[j - 1] == "the" \
-            and w not in ("left", "right"):
+    if w in _ROWS and j + 1 < n and words[j + 1] == "row" and w not in ("left", "right") and (
+            (j > i and words[j - 1] == "the") or (j == i and (i == 0 or words[i - 1] in (",", ";", ":")))):
+        # "the middle row", ", top row" said apart
         return Place(_ROWS[w], None, True), _of_table(words, j + 2)
     if w in _COLS and j + 1 < n and words[j + 1] == "column" and j > i and words[j - 1] == "the":
         return Place(None, _COLS[w], True), _of_table(words, j + 2)

@@ -103,7 +103,8 @@ def said_facings(text: str) -> str:
         got = read_facing(words, i)
         if got is None or not (words[i] in POINTING_PARTS or any(w in _EDGE_WORDS for w in words[i : got[1]])
                                or words[got[1] - 2 : got[1]] in (("the", "left"), ("the", "right"))
-                               or (words[i] in ("face", "faces") and i and words[i - 1] in _BEFORE_FACE)):
+                               or (words[i] in ("face", "faces", "point", "points")
+                                   and (not i or words[i - 1] in _BEFORE_FACE | {",", "and"}))):
             i += 1  # facing the viewer or away: read where it stands by the parameter reader
             continue
         start = i

@@ -447,3 +447,16 @@ def test_a_list_of_objects_with_an_aside_that_says_where_is_refused_not_dropped(
                     ("can", "blue", 0.3, -0.2)])
     with pytest.raises(InputError, match="'by the window'"):
         parse(scene, "cans in a line: the red one, the green one, the blue one, by the window")
+
+
+@pytest.mark.parametrize("said, region, facing", [
+    ("cans, line, top row", "top", None),                    # a row said apart is a place, not a second line
+    ("cans in row, point to me", None, "south"),             # "point" as the verb
+    ("put the cans in a line um over by me on the left", "bottom left", None),   # by the viewer: the front row
+])
+def test_places_and_facings_said_tersely(said, region, facing):
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+                    said).goals
+    assert (goal.pattern, goal.region, goal.facing) == ("line", region, facing)
