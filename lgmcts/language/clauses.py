@@ -162,7 +162,7 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
 #: Verbs of taking an object up, after which a command on "it" starts a clause of its own.
 _TAKING = frozenset({"take", "grab", "pick", "get", "lift", "fetch"})
 #: Verbs that start a clause of their own when a pronoun follows ("and have them facing me").
-_VERBS_OF_PRONOUN = frozenset({"have", "turn", "keep", "rotate", "spin", "orient", "point", "angle", "leave"})
+_VERBS_OF_PRONOUN = frozenset({"have", "turn", "keep", "rotate", "spin", "orient", "point", "angle", "leave", "do"})
 
 #: Words that give an arrangement or a relation after the objects ("the bowl on the plate").
 _GOAL_WORDS = frozenset({"on", "onto", "under", "underneath", "below", "beneath", "above", "behind", "front", "left",

@@ -204,6 +204,9 @@ def read_place(words: tuple[str, ...], i: int) -> tuple[Place, int] | None:
             if side in _ROWS:
                 return Place(_ROWS[side], "center"), end
         return None
+    # "front and centre": the middle of the front row
+    if w in ("front", "back") and words[j + 1 : j + 2] == ("and",) and j + 2 < n and words[j + 2] in _CENTRE:
+        return Place(_ROWS[w], "center"), j + 3
     # "the near right corner", "the far-left corner", "the back left corner"
     if w in ("near", "far", "front", "back", "rear") and j + 2 < n and words[j + 1] in ("left", "right") \
             and words[j + 2] == "corner":

@@ -231,7 +231,8 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
 #: Words of a hedge, which ask for nothing ("middle right i guess").
 _HEDGE_WORDS = frozenset({"guess", "think", "suppose", "reckon", "probably", "maybe", "perhaps", "yeah", "mean"})
 #: Verbs that move an arrangement already said to a place ("centre it on the table", "shift them to the back").
-_MOVE_VERBS = frozenset({"centre", "center", "shift", "move", "slide", "push", "bring", "keep", "have", "want", "leave"})
+_MOVE_VERBS = frozenset({"centre", "center", "shift", "move", "slide", "push", "bring", "keep", "have", "want", "leave",
+                         "do", "build", "make", "put", "set"})
 
 
 def _restates(word: str, pattern: str) -> bool:

@@ -256,6 +256,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
             text = self._spelled(text, letters)
+            text = stages.letters_named(text, letters)
         if letters:
             # "the T", "the A": a capital letter standing for the letter the scene has.
             text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"

@@ -49,6 +49,8 @@ INFORMAL: dict[str, str] = {
     "im": "i'm", "ive": "i've", "youre": "you're", "theyre": "they're", "isnt": "isn't", "wont": "won't",
     "whats": "what's", "theres": "there's", "wouldnt": "wouldn't", "couldnt": "couldn't", "shouldnt": "shouldn't",
     "didnt": "didn't", "arent": "aren't", "hasnt": "hasn't", "havent": "haven't", "em": "them", "ya": "you",
+    # texting: "fork knife n spoon", "ur", "plz"
+    "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
 #: "plate" on a table with a plate).
@@ -60,6 +62,9 @@ SOUNDS_LIKE: dict[str, str] = {
 #: the scene ("the read bowl", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".
 _BEFORE_A_THING = {"read": "red", "too": "two", "for": "four", "won": "one"}
 _SIDE_SOUNDS = {"write": "right", "rite": "right", "wright": "right"}
+#: Words after which a "2" said between words is "to" ("closest 2 me", "2 the right", "needs 2 be").
+_AFTER_TO = frozenset({"the", "me", "us", "be", "look", "you", "u", "my", "them", "its", "their", "face", "point",
+                       "his", "her", "left", "right"})
 #: English words with a vocabulary rank above this are rare enough to be a dropped-letter slip.
 RARE_RANK = 7000
 
@@ -204,7 +209,7 @@ class Corrector:
     def text(self, text: str) -> str:
         """``text`` with each misspelt word replaced (case kept for the first letter), the rest as it was."""
 
-        found = list(_WORD.finditer(text))
+        found = [m for m in _WORD.finditer(text) if not (m.group(0) == "2" and text[m.end() : m.end() + 1] in ")].:")]
         said = [m.group(0).lower() for m in found]
         out: list[str] = []
         at = 0
@@ -234,6 +239,8 @@ class Corrector:
                 return want
         if w in _SIDE_SOUNDS and (nxt == "of" or (k and said[k - 1] in ("the", "to"))):
             return _SIDE_SOUNDS[w]
+        if w == "2" and nxt in _AFTER_TO and k and not said[k - 1].isdigit():
+            return "to"  # texting: "closest 2 me", "slide it 2 the right", "needs 2 be"
         return None
 
 

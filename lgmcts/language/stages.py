@@ -21,7 +21,7 @@ is called from a few points of :mod:`.rules`:
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
@@ -37,7 +37,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "other_side", "partitive", "said_facings", "said_places", "same_again", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "said_facings", "said_places", "same_again", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -358,6 +358,34 @@ def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of
     if len(found) != 1:
         return None
     return list(ids_of(found[0]))
+
+
+def letters_named(text: str, letters: Collection[str]) -> str:
+    """``text`` with "the letters A and T" ("letters R, T, E") said as each letter ("the letter A and the letter T"),
+    so that the plural does not take every letter of the scene. Only capitals the scene has as letters."""
+    toks = tokenize(text)
+    out: list[str] = []
+    at = 0
+    for k, t in enumerate(toks):
+        if t.text not in ("letters", "leters", "lettres") or k + 1 >= len(toks):
+            continue
+        named: list[int] = []
+        j = k + 1
+        while j < len(toks):
+            raw = text[toks[j].pos : toks[j].pos + len(toks[j].text)]
+            if len(raw) == 1 and raw.isupper() and raw in letters:
+                named.append(j)
+            elif toks[j].text not in (",", "and", "&"):
+                break
+            j += 1
+        if len(named) < 2 or toks[named[-1]].text in (",", "and"):
+            continue
+        said = [f"letter {text[toks[i].pos]}" for i in named]
+        joined = ", ".join(said[:-1]) + f" and {said[-1]}"
+        out.append(text[at : t.pos] + joined)
+        at = _end(text, toks[named[-1]])
+    out.append(text[at:])
+    return "".join(out)
 
 
 _COUNT_WORDS = {"two": 2, "three": 3, "four": 4, "five": 5, "both": 2}

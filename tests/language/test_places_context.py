@@ -460,3 +460,17 @@ def test_places_and_facings_said_tersely(said, region, facing):
     (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
                     said).goals
     assert (goal.pattern, goal.region, goal.facing) == ("line", region, facing)
+
+
+def test_letters_named_one_by_one_after_the_plural():
+    """"the letters A and T" are those two letters, not every letter of the scene and those two."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": f"letter {c}", "color": "red", "shape": {"type": "box", "size": [0.04, 0.04, 0.01]},
+         "pose": [-0.3 + 0.15 * k, 0.1, 0.0]} for k, c in enumerate("ARTE")]})
+    (goal,) = parse(scene, "put the letters A and T in a line").goals
+    assert sorted(goal.objects) == [1, 3]
+    (goal,) = parse(scene, "stack letters R, T and E, front and centre").goals
+    assert (list(goal.objects), goal.region) == ([2, 3, 4], "bottom center")

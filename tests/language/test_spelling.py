@@ -44,6 +44,7 @@ def _fix(text: str) -> str:
     ("put the read mug write of the box", "put the red mug right of the box"),  # homophones read by their neighbours
     ("put too mugs on the plate", "put two mugs on the plate"),
     ("put for cans in a row", "put four cans in a row"),
+    ("the mug closest 2 me, n the box", "the mug closest to me, and the box"),   # texting
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -65,6 +66,7 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "the tower should read orange, purple, yellow",    # ... and before a colour too
     "put the mug on the box for me",      # "for" before no plural of the scene
     "put the nife behind the box",        # a sound-alike of a name the scene lacks (no knife here)
+    "1) stack the mugs 2) put the box on the dish",   # a numbered step is no "to"
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
