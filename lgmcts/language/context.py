@@ -93,6 +93,9 @@ def _clock_words(part: Sequence[str]) -> set[int]:
     for j in range(len(part)):
         if _clock_time(part, j):
             out.update((j, j + 1) if part[j + 1] != "o" else (j, j + 1, j + 2))
+        elif part[j].isdigit() and j and part[j - 1] in ("at", "by", "till", "until") and (
+                j + 1 == len(part) or part[j + 1] in (",", "and", "so", "tonight", "today", "tomorrow", ".")):
+            out.add(j)  # "my mom gets home at 6 and ...": a time
     return out
 
 
@@ -108,7 +111,7 @@ def _time_clause(part: tuple[str, ...]) -> bool:
     if part[0] in _SOLO_TIME and len(part) <= 3:
         return True
     if part[0] in ("after", "before") and len(part) > 1 and part[1] in _KEEP_AFTER - {"the"}:
-        return part[1] == "then" if part[0] == "before" else False
+        return part[1] in ("then", "that") and len(part) == 2 if part[0] == "before" else False
     return any(w in _TIME_WORDS or w.isdigit() for w in part[1:])
 
 
@@ -117,11 +120,12 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     """``words`` without the background sentences and time clauses that ask for nothing."""
     sentences = _sentences(words)
     kept: list[tuple[str, ...]] = []
-    for sent in sentences:
+    for k, sent in enumerate(sentences):
         sent = _without_chatter(sent, object_word, request_word)
         body = tuple(w for w in sent if w not in _ENDS)
-        if body and _idle(body, object_word, request_word):
-            continue  # a background sentence
+        if body and (_idle(body, object_word, request_word) or (
+                k < len(sentences) - 1 and _asks_nothing(body, object_word, request_word))):
+            continue  # a background sentence ("it's been raining all week and the cat's been under my feet.")
         kept.append(_without_time(sent, object_word, request_word))
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
@@ -146,6 +150,8 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             if before in _CTX["place_before"] or after in _CTX["place_after"]:
                 return False
             continue
+        if part[j + 1 : j + 2] and part[j + 1] in ("my", "his", "her", "our", "their", "your"):
+            continue  # "under my feet", "on her way": of a person, not of the table
         if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and timed):
             return False
     return True
@@ -172,11 +178,14 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
     n = len(sent)
     for k in range(1, n):
         opener = next((o for o in _OPENERS if sent[k : k + len(o)] == o), None)
-        cut = opener is not None or sent[k] in _CHATTER_CUTS or sent[k] == ":"
+        cut = opener is not None or sent[k] in _CHATTER_CUTS or sent[k] == ":" or (
+            sent[k] == "," and k + 1 < n and sent[k + 1] in ("just", "please", "now", "so"))
         if not cut:
             continue
         head = [w for w in sent[:k] if w not in _LEAD]
         tail = sent[k:] if opener is not None else sent[k + 1 :]
+        if opener is not None and (opener[-1] == "find" or opener[:3] == ("i", "should", "like")):
+            tail = sent[k + len(opener) :]  # "i should like to find the two cups ...": the wish's frame goes too
         if head and _asks_nothing(head, object_word, request_word) and any(
                 object_word(w) or request_word(w) for w in tail):
             while tail and tail[0] in _LEAD:

@@ -37,7 +37,7 @@ FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "
 #: Parts of an object that say which way it points ("tines toward the right edge").
 POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
                             "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs"})
-_TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight",
+_TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight", "off",
            "directly", "round", "around", "so", "they", "it", "that", "all", "are", "is", "as")
 _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
 #: Which way a thing faces when it faces that edge (or the viewer).
@@ -75,8 +75,9 @@ def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
         return "north", j + 1
     if j < n and words[j] in _VIEWER:
         return "south", j + 1
-    if j + 1 < n and words[j] in _EDGES and words[j + 1] in _SIDE_NOUNS:
-        k = j + 2
+    hand = j + 2 < n and words[j] in ("left", "right") and words[j + 1] == "hand"  # "the right-hand side"
+    if j + 1 + hand < n and words[j] in _EDGES and words[j + 1 + hand] in _SIDE_NOUNS:
+        k = j + 2 + hand
         if k + 1 < n and words[k] == "of" and (words[k + 1] == "the" or words[k + 1] in _TABLE):
             k += 2 + (words[k + 1] == "the" and k + 2 < n and words[k + 2] in _TABLE)
         return _EDGES[words[j]], k

@@ -99,7 +99,8 @@ class _Selecting(ParserHost):
                     own = set(candidates(self.vocab, replace(mm, excluding=(), det="all")))
                 except InputError:
                     own = set()
-                if ex and not ex & own:
+                if ex and (not ex & own or e.text.split()[:1] in (["anything"], ["everything"], ["any"], ["all"])):
+                    # also "the cans and bowls except anything red": said of anything, the whole list's
                     out = [[x for x in got if x not in ex] if isinstance(got, list) else got for got in out]
         return out
 

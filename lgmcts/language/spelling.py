@@ -68,7 +68,7 @@ _AFTER_TO = frozenset({"the", "me", "us", "be", "look", "you", "u", "my", "them"
 #: English words with a vocabulary rank above this are rare enough to be a dropped-letter slip.
 RARE_RANK = 7000
 
-_WORD = re.compile(r"[A-Za-z]+(?:'[A-Za-z]+)?|[A-Za-z]*\d[A-Za-z\d]*")
+_WORD = re.compile(r"[A-Za-z]*\d[A-Za-z\d]*|[A-Za-z]+(?:'[A-Za-z]+)?")
 
 
 def edit_distance(a: str, b: str, cap: int = 3) -> int:

@@ -474,3 +474,21 @@ def test_letters_named_one_by_one_after_the_plural():
     assert sorted(goal.objects) == [1, 3]
     (goal,) = parse(scene, "stack letters R, T and E, front and centre").goals
     assert (list(goal.objects), goal.region) == ([2, 3, 4], "bottom center")
+
+
+@pytest.mark.parametrize("said, objects, facing", [
+    ("all the cans and plates except anything red, in a line", [1, 3, 5], None),  # "anything": the whole list's
+    ("the red can and the green can in a line, pointing off towards the right-hand side of the table", [2, 3], "east"),
+    ("the red can and the green can in a line, all facing the left-hand edge of the table", [2, 3], "west"),
+    ("my mom gets home at 6 and shes gonna freak, just put the red can and the green can in a line b4 that",
+     [2, 3], None),
+    ("It's been raining all week and the cat's been under my feet. Put the red can and the green can in a line.",
+     [2, 3], None),
+])
+def test_fresh_phrasings_of_exceptions_facings_and_chatter(said, objects, facing):
+    from lgmcts.language import parse
+
+    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1),
+                    ("plate", "red", 0.3, -0.2), ("can", "white", 0.2, 0.2)])
+    (goal,) = parse(scene, said).goals
+    assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", objects, facing)
