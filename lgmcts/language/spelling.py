@@ -50,13 +50,14 @@ INFORMAL: dict[str, str] = {
     "whats": "what's", "theres": "there's", "wouldnt": "wouldn't", "couldnt": "couldn't", "shouldnt": "shouldn't",
     "didnt": "didn't", "arent": "aren't", "hasnt": "hasn't", "havent": "haven't", "em": "them", "ya": "you",
     # texting: "fork knife n spoon", "ur", "plz"
-    "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though",
+    "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though", "thre": "three",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
 #: "plate" on a table with a plate).
 SOUNDS_LIKE: dict[str, str] = {
     "plait": "plate", "plaits": "plates", "bowel": "bowl", "bowels": "bowls", "nife": "knife", "nives": "knives",
-    "mugg": "mug", "kup": "cup", "cerial": "cereal", "bottel": "bottle", "phon": "phone",
+    "mugg": "mug", "kup": "cup", "cerial": "cereal", "bottel": "bottle", "phon": "phone", "telephone": "phone",
+    "cellphone": "phone", "smartphone": "phone", "boles": "bowls", "bole": "bowl", "lyne": "line",
 }
 #: Homophones read by the next word: "read" is "red" and "too"/"for" are "two"/"four" before a thing of
 #: the scene ("the read bowl", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".

@@ -45,6 +45,7 @@ def _fix(text: str) -> str:
     ("put too mugs on the plate", "put two mugs on the plate"),
     ("put for cans in a row", "put four cans in a row"),
     ("the mug closest 2 me, n the box", "the mug closest to me, and the box"),   # texting
+    ("the thre mugs on the plait", "the three mugs on the plate"),
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
