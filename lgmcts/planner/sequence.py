@@ -135,9 +135,14 @@ class _Crossings:
     a goal that is reached drops its own; every other crossing is unchanged, so a nudge picks the ones within its
     reach instead of crossing every pair of circles near it again. Each crossing is computed from the same
     numbers in the same order as a nudge would (``a`` the disc of lower index, a disc before a goal), so it is
-    the same point to the last bit."""
+    the same point to the last bit.
 
-    def __init__(self, t: _Table, rj: float) -> None:
+    Kept too: where each of those circles crosses a side of the box ``lo``-``hi`` (that of the disc the table was
+    built for; a nudge of a disc with another box crosses the sides itself), as a nudge would cross them; such an
+    entry has its circle as both ``a`` and ``b``, and a key below every pair's, in the nudge's order (side by
+    side, the ``+`` ones, then the ``-`` ones, by circle)."""
+
+    def __init__(self, t: _Table, rj: float, lo: np.ndarray, hi: np.ndarray) -> None:
         self.n = n = len(t.r)
         #: Circle ``i < n`` is disc ``i``'s; circle ``n + k`` goal row ``k``'s.
         self.span = n + len(t.movers)
@@ -147,9 +152,34 @@ class _Crossings:
         self.b = np.zeros(0, dtype=np.intp)
         #: The order a nudge generates the crossings in: all the ``+`` ones, then the ``-`` ones, each by (a, b).
         self.key = np.zeros(0, dtype=np.intp)
+        self.lo, self.hi = lo.copy(), hi.copy()
+        self.sides = np.array([lo[0], hi[0], lo[1], hi[1]])
         self.seen = (len(t.moved), len(t.closed))
         a, b = np.triu_indices(n, 1)
-        self._add(t, a, b, np.flatnonzero(~t.done), np.arange(n))
+        rows = np.flatnonzero(~t.done)
+        self._add(t, a, b, rows, np.arange(n))
+        self._add_sides(t, np.concatenate([np.arange(n), n + rows]))
+
+    def _add_sides(self, t: _Table, circles: np.ndarray) -> None:
+        """Add the crossings of each of ``circles`` with the box's sides."""
+        cen = np.concatenate([t.pos, t.goal])[circles]
+        rad = self.rad[circles]
+        off = self.sides[:, None] - cen[:, _AXIS].T  # (side, circle)
+        e, k = np.nonzero(np.abs(off) <= rad)
+        if not len(e):
+            return
+        h = np.sqrt(np.maximum(rad[k] ** 2 - off[e, k] ** 2, 0.0))
+        ax = _AXIS[e]
+        side = self.sides[e]
+        for sg, sgn in enumerate((1.0, -1.0)):
+            along = cen[k, 1 - ax] + sgn * h
+            q = np.empty((len(e), 2))
+            q[:, 0] = np.where(ax == 0, side, along)
+            q[:, 1] = np.where(ax == 1, side, along)
+            self.p = np.concatenate([self.p, q])
+            self.a = np.concatenate([self.a, circles[k]])
+            self.b = np.concatenate([self.b, circles[k]])
+            self.key = np.concatenate([self.key, (2 * e + sg - 8) * self.span + circles[k]])
 
     def _add(self, t: _Table, a: np.ndarray, b: np.ndarray, rows: np.ndarray, discs: np.ndarray) -> None:
         """Add the crossings of the disc pairs ``(a, b)`` and of each of ``discs`` with each goal of ``rows``."""
@@ -186,13 +216,17 @@ class _Crossings:
             ok = (i != k) & (~gone[k] | (k > i))
             i, k = i[ok], k[ok]
             self._add(t, np.minimum(i, k), np.maximum(i, k), np.flatnonzero(~t.done), m)
+            self._add_sides(t, m)
 
-    def near(self, t: _Table, c: np.ndarray, reach: float, near: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    def near(self, t: _Table, c: np.ndarray, reach: float, near: np.ndarray, rows: np.ndarray, sides: bool
+             ) -> np.ndarray:
         """The crossings of pairs of the circles of discs ``near`` and goals ``rows`` that may lie within ``reach``
-        of ``c`` (a little more: the caller tests the reach itself), in a nudge's order."""
+        of ``c`` (a little more: the caller tests the reach itself), in a nudge's order; first those of the circles
+        with the box's sides when ``sides``."""
         self.update(t)
         p = self.p
-        sel = np.flatnonzero((p[:, 0] - c[0]) ** 2 + (p[:, 1] - c[1]) ** 2 <= (reach + 1e-6) ** 2)
+        close = (p[:, 0] - c[0]) ** 2 + (p[:, 1] - c[1]) ** 2 <= (reach + 1e-6) ** 2
+        sel = np.flatnonzero(close if sides else close & (self.key >= 0))
         inn = np.zeros(self.span, dtype=bool)
         inn[near] = True
         inn[self.n + rows] = True
@@ -228,8 +262,8 @@ class _Spots:
         self.todo: list[tuple[int, np.ndarray, float, int]] = []
         #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
         self._goal_stamp: dict[int, np.ndarray] = {}
-        #: Per disc, the grid points it crowds where it stands (as in ``count``), with that place.
-        self._own_stamp: dict[int, tuple[tuple[float, float], np.ndarray]] = {}
+        #: The points no disc crowds and those one disc crowds, as the counts stand (``None``: not yet found).
+        self._free: tuple[np.ndarray, np.ndarray] | None = None
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -264,6 +298,7 @@ class _Spots:
                     idx = self._stamp(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
                     arr += sign * np.bincount(idx, minlength=len(arr))
         self.todo.clear()
+        self._free = None
 
     def spot(self, t: _Table, j: int) -> tuple[np.ndarray, int] | None:
         """The free point for disc ``j`` that covers the fewest open goals
@@ -271,15 +306,18 @@ class _Spots:
         if self.todo:
             self._flush()
         k = t.row[j]
-        # Disc j counts once at each point of its own stamp: there, only j crowds the point when the count is 1.
-        mask = self.count == 0
-        at = (float(t.pos[j, 0]), float(t.pos[j, 1]))
-        kept = self._own_stamp.get(j)
-        if kept is None or kept[0] != at:
-            kept = self._own_stamp[j] = (at, self._stamp(t.pos[j], t.r[j] + self.reach))
-        own = kept[1]
-        mask[own] = self.count[own] == 1
-        free = np.flatnonzero(mask)
+        # The points no disc crowds, and those only j crowds: a count of 1 at a point of j's own stamp (the test
+        # of _stamp, on the few points of count 1 instead of j's whole window).
+        if self._free is None:
+            self._free = (np.flatnonzero(self.count == 0), np.flatnonzero(self.count == 1))
+        free, ones = self._free
+        if len(ones):
+            rad = t.r[j] + self.reach
+            dx = self.gx[ones % len(self.gx)] - t.pos[j, 0]
+            dy = self.gy[ones // len(self.gx)] - t.pos[j, 1]
+            mine = ones[dx ** 2 + dy ** 2 < rad * rad]
+            if len(mine):
+                free = np.sort(np.concatenate([free, mine]))
         if not len(free):
             return None
         hits = self.hits[free]
@@ -355,10 +393,17 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
         dv = math.hypot(float(v[0]), float(v[1]))
         if dv > 1e-12:
             pts.append((t.goal[k] + v / dv * (t.r[t.movers[k]] + rj + 1e-9))[None])
-    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones.
-    # Only the sides within reach (the crossings on another lie beyond it).
-    near_side = [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
-                 if abs(float(v) - float(w)) <= reach + 1e-9]
+    cross = None if DIRECT else t.crossings.get(rj)
+    if cross is None and not DIRECT and t.nudged >= TABLE_AFTER:
+        cross = t.crossings[rj] = _Crossings(t, rj, lo, hi)
+    t.nudged += 1
+    # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones
+    # (kept in the table when it was built for this box). Only the sides within reach (the crossings on another
+    # lie beyond it).
+    kept_sides = cross is not None and bool(np.array_equal(cross.lo, lo) and np.array_equal(cross.hi, hi))
+    near_side = [] if kept_sides else \
+        [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
+         if abs(float(v) - float(w)) <= reach + 1e-9]
     if near_side:
         sides = np.array([lo[0], hi[0], lo[1], hi[1]])[near_side]
         off = sides[:, None] - cen[:, _AXIS[near_side]].T  # (side, circle)
@@ -373,15 +418,11 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
             q[part, 1] = np.where(ax == 1, sides[e], along)
         pts.append(q[np.argsort(np.concatenate([2 * e, 2 * e + 1]), kind="stable")])
     # Circle pairs with at least one disc's circle (two goal circles' crossings lie in some disc's, as a rule).
-    cross = None if DIRECT else t.crossings.get(rj)
-    if cross is None and not DIRECT and t.nudged >= TABLE_AFTER:
-        cross = t.crossings[rj] = _Crossings(t, rj)
-    t.nudged += 1
     if cross is None:
         plus, minus, _, _ = circle_crossings(cen, rad, *_pairs(len(cen), len(ocen)))
         pts += [plus, minus]
     else:
-        pts.append(cross.near(t, c, reach, near, rows))
+        pts.append(cross.near(t, c, reach, near, rows, kept_sides))
     p = np.concatenate(pts)
     x, y = p[:, 0], p[:, 1]
     p = p[(x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)]
