@@ -150,22 +150,11 @@ class _TokenPasses(ParserHost):
             out.append(w)
         return tuple(out)
 
-    def _bare_colour_sets(self, words: tuple[str, ...]) -> tuple[str, ...]:
-        """Colours standing for objects after a negation: "neither purple nor orange"
-        -> "not purple or orange"; "not red and not blue" -> "not red or blue";
-        "except yellow and orange" -> "except the yellow and orange ones"."""
+    def _noun_first_lists(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """A plural noun said before its colours ("blocks red blue green yellow -> line": the red, blue, green and
+        yellow blocks) or before its count ("bowls 3, line": three bowls, where 3 is no id of that kind)."""
         colour = lambda w: w in self.vocab.color_words or w in COLOUR_WORDS  # noqa: E731
         out = list(words)
-        k = 0
-        while k < len(out):
-            if out[k] == "neither" and k + 1 < len(out) and colour(out[k + 1]):
-                out[k] = "not"
-            if out[k] == "nor" and k > 0 and colour(out[k - 1]):
-                out[k] = "or"
-            if out[k : k + 2] == ["and", "not"] and k > 0 and colour(out[k - 1]) and k + 2 < len(out) \
-                    and colour(out[k + 2]) and any(out[j] == "not" for j in range(max(0, k - 4), k)):
-                out[k : k + 2] = ["or"]
-            k += 1
         k = 0
         while k < len(out):
             # "blocks red blue green yellow -> line": a plural noun, then its colours (two or more)
@@ -185,6 +174,24 @@ class _TokenPasses(ParserHost):
                 out[k:j] = [*listed, out[k]]
                 k += len(listed) + 1
                 continue
+            k += 1
+        return tuple(out)
+
+    def _bare_colour_sets(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """Colours standing for objects after a negation: "neither purple nor orange"
+        -> "not purple or orange"; "not red and not blue" -> "not red or blue";
+        "except yellow and orange" -> "except the yellow and orange ones"."""
+        colour = lambda w: w in self.vocab.color_words or w in COLOUR_WORDS  # noqa: E731
+        out = list(words)
+        k = 0
+        while k < len(out):
+            if out[k] == "neither" and k + 1 < len(out) and colour(out[k + 1]):
+                out[k] = "not"
+            if out[k] == "nor" and k > 0 and colour(out[k - 1]):
+                out[k] = "or"
+            if out[k : k + 2] == ["and", "not"] and k > 0 and colour(out[k - 1]) and k + 2 < len(out) \
+                    and colour(out[k + 2]) and any(out[j] == "not" for j in range(max(0, k - 4), k)):
+                out[k : k + 2] = ["or"]
             k += 1
         res: list[str] = []
         k = 0

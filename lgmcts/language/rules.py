@@ -316,7 +316,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         words = self._context_sentences(words)
         words = self._trailing_remarks(words)
         words = self._former_latter(words)
-        words = self._bare_colour_sets(words)
+        words = self._bare_colour_sets(self._noun_first_lists(words))
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
         cand = [w for w in dict.fromkeys(words) if w.isalpha() and len(w) >= 4 and _stem(w) not in self.key_vocab
