@@ -180,4 +180,7 @@ def test_reference_guards(matcher):
     rel = [g for g in got if g["pattern"] == "right"]
     assert len(rel) == 1 and rel[0]["anchor"] in (9, 10, 11)
     # "on the plate" at the end of a longer phrase still puts the plate at the bottom.
-    assert goal_dicts(k, "stack the bowls upside down on the plate", matcher=matcher)[0]["objects"][0] == 5
+    assert goal_dicts(k, "stack the bowls neatly one by one on the plate", matcher=matcher)[0]["objects"][0] == 5
+    # ... but "upside down" is a way to stand no goal holds: refused, quoted, never dropped.
+    with pytest.raises(InputError, match="'upside down'"):
+        goal_dicts(k, "stack the bowls upside down on the plate", matcher=matcher)
