@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 import tomllib
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -46,6 +47,7 @@ __all__ = [
     "alternation",
     "check_shape_nouns",
     "context_words",
+    "phrase_spans",
     "says",
     "words",
 ]
@@ -121,13 +123,22 @@ def says(text: str, *cues: str) -> bool:
     >>> says("so the kids can reach it", "goal")
     False
     """
-    said = words(text)
+    return next(phrase_spans(words(text), *cues), None) is not None
+
+
+def phrase_spans(tokens: Sequence[str], *cues: str) -> Iterator[tuple[int, int, str]]:
+    """Where the phrases of the cue lists named stand in ``tokens`` (lower-case words, however the caller cut
+    them): ``(start, end, cue list)`` for each occurrence, list by list, phrase by phrase, left to right.
+
+    >>> list(phrase_spans(["the", "cans", "upside", "down"], "tilt"))
+    [(2, 4, 'tilt')]
+    """
     for name in cues:
         for phrase in CUES[name]:
             n = len(phrase)
-            if any(tuple(said[i : i + n]) == phrase for i in range(len(said) - n + 1)):
-                return True
-    return False
+            for i in range(len(tokens) - n + 1):
+                if tuple(tokens[i : i + n]) == phrase:
+                    yield i, i + n, name
 
 
 def alternation(words: tuple[str, ...] | list[str] | frozenset[str]) -> str:

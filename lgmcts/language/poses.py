@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 
 from . import lexicon
 
-from .measures import _number as _number_at, _tokens, _unit
+from .measures import UNITS, _number as _number_at, _tokens, _unit
 
 __all__ = ["MARK", "SaidPose", "find_offsets", "find_poses", "is_mark", "mark_poses"]
 
@@ -37,7 +37,6 @@ _POSE = re.compile(
     + rf"|(?<=\b(?:at|to)\s)\s*\(\s*(?P<xp>{_NUM})\s*(?P<xup>{_UNIT})?\s*,\s*(?P<yp>{_NUM})\s*(?P<yu_p>{_UNIT})?"
     rf"(?:\s*,\s*(?P<yawp>{_ANGLE})\s*(?P<yup>{_ANGLE_UNIT})?)?\s*\)"
     + _YAW.replace("?P<yaw>", "?P<yaw2>").replace("?P<yu>", "?P<yu2>"))
-_SCALE = {"mm": 0.001, "cm": 0.01, "m": 1.0}
 
 
 @dataclass(frozen=True)
@@ -78,14 +77,8 @@ def is_mark(word: str) -> bool:
 
 
 def _scale(unit: str | None) -> float | None:
-    if not unit:
-        return None
-    u = unit.lower()
-    if u.startswith("milli") or u == "mm":
-        return _SCALE["mm"]
-    if u.startswith("centi") or u == "cm":
-        return _SCALE["cm"]
-    return _SCALE["m"]
+    """Metres per unit of a unit said with a coordinate (every spelling ``_UNIT`` matches is one of ``UNITS``)."""
+    return UNITS[unit.lower()] if unit else None
 
 
 def _number(s: str) -> float:
@@ -237,13 +230,10 @@ def _without_heading_words(text: str, found: list[SaidPose]) -> tuple[str, bool]
     ws = [t[0] for t in toks]
     cut: list[tuple[int, int]] = []
     square = False
-    for name in ("same_heading", "square_heading"):
-        for phrase in lexicon.CUES[name]:
-            n = len(phrase)
-            for i in range(len(ws) - n + 1):
-                if tuple(ws[i : i + n]) == phrase and not any(a < toks[i][2] and toks[i][1] < b for a, b in cut):
-                    cut.append((toks[i][1], toks[i + n - 1][2]))
-                    square = square or name == "square_heading"
+    for i, end, name in lexicon.phrase_spans(ws, "same_heading", "square_heading"):
+        if not any(a < toks[i][2] and toks[i][1] < b for a, b in cut):
+            cut.append((toks[i][1], toks[end - 1][2]))
+            square = square or name == "square_heading"
     for a, b in cut:
         if not any(p.start < b and a < p.end for p in found):
             text = text[:a] + " " * (b - a) + text[b:]

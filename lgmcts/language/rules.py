@@ -271,13 +271,10 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         """Refuse a way to stand an object that no goal holds ("the cans in a row, upside down"); said before
         a noun it is a name, not a way to stand ("upside-down challenge!")."""
         toks = [t.text for t in tokenize(text) if t.text != "-"]
-        for phrase in lexicon.CUES["tilt"]:
-            n = len(phrase)
-            for i in range(len(toks) - n + 1):
-                if tuple(toks[i : i + n]) == phrase and (
-                        i + n == len(toks) or not toks[i + n][0].isalpha() or toks[i + n] in _AFTER_TILT):
-                    raise InputError(f"'{' '.join(phrase)}': a goal keeps every object upright and sets only which "
-                                     f"way it faces on the table; say the command without it")
+        for i, end, _ in lexicon.phrase_spans(toks, "tilt"):
+            if end == len(toks) or not toks[end][0].isalpha() or toks[end] in _AFTER_TILT:
+                raise InputError(f"'{' '.join(toks[i:end])}': a goal keeps every object upright and sets only which "
+                                 f"way it faces on the table; say the command without it")
 
     def _nearness(self, text: str) -> None:
         """Refuse "closer to the plate" left over once references by position are read: how near one object
