@@ -132,6 +132,14 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     return tuple(w for s in kept for w in s)
 
 
+def _in_place(part: Sequence[str], j: int) -> bool:
+    """Whether the direction word at ``j`` takes part in a place ("to the left", "left of", "the left side"),
+    not a verb ("the kids left them out")."""
+    before = part[j - 1] if j else ""
+    after = part[j + 1] if j + 1 < len(part) else ""
+    return before in _CTX["place_before"] or after in _CTX["place_after"]
+
+
 def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
                   request_word: Callable[[str], bool]) -> bool:
     """Whether ``part`` names no object and asks for no goal: a direction counts only in a place ("to the
@@ -145,9 +153,7 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
         if object_word(w) and w not in ("everything", "anything"):
             return False
         if w in lexicon.DIRECTIONS:
-            before = part[j - 1] if j else ""
-            after = part[j + 1] if j + 1 < len(part) else ""
-            if before in _CTX["place_before"] or after in _CTX["place_after"]:
+            if _in_place(part, j):
                 return False
             continue
         if part[j + 1 : j + 2] and part[j + 1] in ("my", "his", "her", "our", "their", "your"):
@@ -291,9 +297,7 @@ def person_remark(body: Sequence[str], object_word: Callable[[str], bool],
         if w in _CTX["asking"] or object_word(w):
             return False
         if w in lexicon.DIRECTIONS:
-            before = rest[j - 1] if j else ""
-            after = rest[j + 1] if j + 1 < len(rest) else ""
-            if before in _CTX["place_before"] or after in _CTX["place_after"]:
+            if _in_place(rest, j):
                 return False
             continue
         if request_word(w) and not command_verb(w):

@@ -298,8 +298,7 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
             cands_of = {i: xy for i in picked if (xy := pose_of(i)) is not None}
             lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])
             got = pick(ref, cands_of, anchor_xy=None, centre=centre, said=text[lo:hi])
-            out.append(text[at:lo] + ("object " + str(got[0]) if len(got) == 1 else
-                                      "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}"))
+            out.append(text[at:lo] + _said_ids(got))
             at = hi
             continue
         if head in (("one",), ("ones",)):
@@ -335,11 +334,17 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         got = pick(ref, cands, anchor_xy=anchor_xy, centre=centre, said=said)
         picked = list(got)
         out.append(text[at:lo])
-        out.append("object " + str(got[0]) if len(got) == 1 else
-                   "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")
+        out.append(_said_ids(got))
         at = hi
     out.append(text[at:])
     return "".join(out)
+
+
+def _said_ids(ids: Sequence[int]) -> str:
+    """Objects picked by a stage, said by id for the parser: "object 3", "objects 1, 4 and 5"."""
+    if len(ids) == 1:
+        return f"object {ids[0]}"
+    return "objects " + ", ".join(str(i) for i in ids[:-1]) + f" and {ids[-1]}"
 
 
 def _end(text: str, tok: Token) -> int:
@@ -466,8 +471,7 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
         if not got:
             raise InputError(f"'{text[lo:hi]}' selects nothing: no such object has that colour")
         out.append(text[at:lo])
-        out.append("object " + str(got[0]) if len(got) == 1 else
-                   "objects " + ", ".join(str(i) for i in got[:-1]) + f" and {got[-1]}")
+        out.append(_said_ids(got))
         at = hi
     out.append(text[at:])
     return "".join(out)
