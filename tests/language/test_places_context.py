@@ -126,6 +126,11 @@ def _table(objects: list[tuple[str, str, float, float]]):
          "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
 
 
+def _plate_and_cans():
+    """A white plate (1), a red can (2) and a green can (3): the table most tests here read on."""
+    return _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])
+
+
 def _remark(text: str) -> bool:
     return person_remark(text.split(), _OBJ.__contains__, _REQ.__contains__, lambda w: w in ("put", "get", "move"))
 
@@ -178,7 +183,7 @@ def test_a_place_in_a_clause_that_names_the_arrangement_again(said, region):
     """", in a strip along the back": the clause names the line again (a strip, a row) and says where it goes."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
 
@@ -189,7 +194,7 @@ def test_a_band_or_strip_is_a_line_in_that_band(said, region):
     """"in a band across the middle" names the line and its band at once (a band is one of the line's keys)."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
 
@@ -205,7 +210,7 @@ def test_a_column_is_the_whole_column(said, region):
     and "the right-hand column of the workspace" is a place, not a second line."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, list(goal.objects), goal.region) == ("line", [2, 3], region)
 
@@ -217,7 +222,7 @@ def test_a_column_is_the_whole_column(said, region):
 def test_facing_to_a_side(said, facing):
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, goal.facing) == ("line", facing)
 
@@ -237,14 +242,14 @@ def test_a_way_to_stand_that_no_goal_holds_is_refused(said, quoted):
     from lgmcts.language import parse
 
     with pytest.raises(InputError, match=quoted):
-        parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]), said)
+        parse(_plate_and_cans(), said)
 
 
 def test_upside_down_before_a_noun_is_a_name_not_a_way_to_stand():
     from lgmcts.errors import InputError
     from lgmcts.language import parse
 
-    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])
+    scene = _plate_and_cans()
     with pytest.raises(InputError, match="upright"):
         parse(scene, "Upside-down, stack the cans.")
     try:
@@ -260,7 +265,7 @@ def test_nearness_to_an_object_is_refused(said):
     from lgmcts.language import parse
 
     with pytest.raises(InputError, match="how near"):
-        parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]), said)
+        parse(_plate_and_cans(), said)
 
 
 @pytest.mark.parametrize("said, facing", [
@@ -273,7 +278,7 @@ def test_a_facing_said_of_the_arrangement_just_read(said, facing):
     """"... and have them facing me", "turn them to face me": the facing of the line just read, never dropped."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", [2, 3], facing)
 
@@ -287,7 +292,7 @@ def test_a_topic_then_a_request_by_a_pronoun(said):
     or a remark about them before a comma ("the cans are a mess, stack them"): "them" are those objects."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, list(goal.objects)) == ("tower", [3, 2])
 
@@ -335,7 +340,7 @@ def test_a_stack_ordered_by_places_on_the_table():
 def test_chatter_in_the_same_breath_asks_nothing(said):
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, list(goal.objects), goal.anchor) == ("left", [2], 1)
 
@@ -350,7 +355,7 @@ def test_a_place_before_a_request_opener_is_not_chatter(said):
     from lgmcts.errors import InputError
     from lgmcts.language import parse
 
-    scene = _table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)])
+    scene = _plate_and_cans()
     try:
         goals = parse(scene, said).goals
     except InputError:
@@ -425,7 +430,7 @@ def test_a_place_after_a_reason_or_a_yeah_is_kept(said, region):
     the arrangement's, never dropped with the reason."""
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, goal.region) == ("line", region)
 
@@ -457,7 +462,7 @@ def test_a_list_of_objects_with_an_aside_that_says_where_is_refused_not_dropped(
 def test_places_and_facings_said_tersely(said, region, facing):
     from lgmcts.language import parse
 
-    (goal,) = parse(_table([("plate", "white", 0.0, 0.0), ("can", "red", -0.2, 0.1), ("can", "green", -0.3, -0.1)]),
+    (goal,) = parse(_plate_and_cans(),
                     said).goals
     assert (goal.pattern, goal.region, goal.facing) == ("line", region, facing)
 

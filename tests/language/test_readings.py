@@ -101,6 +101,22 @@ def test_reading_takes_its_examples(name, ref, seen, matcher):
     assert name in seen, f"{case.instruction!r}: {seen}"
 
 
+_CUBES = ["jade", "blue", "cream", "amber", "grey"]
+
+
+def _stacked_cubes(text: str) -> list[str]:
+    """The colours, bottom up, of the one tower ``text`` asks for on a row of five cubes (:data:`_CUBES`)."""
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": "cube", "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
+         "pose": [-0.3 + 0.12 * k, 0.1, 0.0]} for k, c in enumerate(_CUBES)]})
+    (goal,) = parse(scene, text).goals
+    assert goal.pattern == "tower"
+    return [_CUBES[i - 1] for i in goal.objects]
+
+
 @pytest.mark.parametrize("text, want", [
     ("tower: jade at the bottom, then blue, then cream, amber on top", ["jade", "blue", "cream", "amber"]),
     ("build a stack with the amber cube at the base, then cream, then jade, and the blue one at the top",
@@ -110,16 +126,7 @@ def test_reading_takes_its_examples(name, ref, seen, matcher):
 def test_a_stack_said_base_to_top_keeps_every_object_in_order(text, want):
     """Objects named one by one after the base ("then blue, then cream") are part of the stack,
     in the order said, also when the last one is given a role ("amber on top")."""
-    from lgmcts.formats import parse_scene
-    from lgmcts.language import parse
-
-    colours = ["jade", "blue", "cream", "amber", "grey"]
-    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": "cube", "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
-         "pose": [-0.3 + 0.12 * k, 0.1, 0.0]} for k, c in enumerate(colours)]})
-    (goal,) = parse(scene, text).goals
-    assert goal.pattern == "tower"
-    assert [colours[i - 1] for i in goal.objects] == want
+    assert _stacked_cubes(text) == want
 
 
 @pytest.mark.parametrize("text, want", [
@@ -130,16 +137,7 @@ def test_a_stack_said_base_to_top_keeps_every_object_in_order(text, want):
 def test_an_order_that_names_some_of_a_group_is_read_as_said(text, want):
     """"stack the cubes, top to bottom: amber, jade, blue" with five cubes is the three the order names:
     the two it leaves out are not filled in on top (their place would be a guess)."""
-    from lgmcts.formats import parse_scene
-    from lgmcts.language import parse
-
-    colours = ["jade", "blue", "cream", "amber", "grey"]
-    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": "cube", "color": c, "shape": {"type": "box", "size": [0.04, 0.04, 0.04]},
-         "pose": [-0.3 + 0.12 * k, 0.1, 0.0]} for k, c in enumerate(colours)]})
-    (goal,) = parse(scene, text).goals
-    assert goal.pattern == "tower"
-    assert [colours[i - 1] for i in goal.objects] == want
+    assert _stacked_cubes(text) == want
 
 
 def test_a_trailing_not_is_an_exception_or_a_refusal_never_dropped():
