@@ -24,7 +24,7 @@ from .clauses import (
 )
 from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Mention, candidates, find_mentions
 from .qualifiers import _ATTRS
-from .lexicon import HUES as _HUES, context_words
+from .lexicon import HUES as _HUES, TABLE_WORDS, VIEWER_WORDS, context_words
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
@@ -330,7 +330,8 @@ class _TokenPasses(ParserHost):
         """The text with misspellings corrected against the scene and the parser's words (.spelling)."""
         lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
                    | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | _SUPERLATIVE
-                   | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
+                   | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | TABLE_WORDS
+                   | VIEWER_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()

@@ -33,6 +33,7 @@ from typing import Literal
 
 from ..errors import InputError
 from .ir import scan
+from . import lexicon
 
 __all__ = ["TOO_CLOSE", "Key", "PositionRef", "find_position_refs", "pick"]
 
@@ -84,8 +85,7 @@ _MOST = {
 _NEAR = frozenset({"nearest", "closest"})
 _FAR = frozenset({"furthest", "farthest"})
 #: Sides of the table a "nearest/furthest" phrase may name, as a key of the near end.
-_SIDES = {"front": Key("y", 1), "near": Key("y", 1), "viewer": Key("y", 1), "me": Key("y", 1), "us": Key("y", 1),
-          "you": Key("y", 1), "camera": Key("y", 1), "robot": Key("y", 1), "back": Key("y", -1),
+_SIDES = {**{w: Key("y", 1) for w in lexicon.VIEWER_WORDS}, "front": Key("y", 1), "near": Key("y", 1), "back": Key("y", -1),
           "far": Key("y", -1), "rear": Key("y", -1), "left": Key("x", 1), "right": Key("x", -1),
           "center": Key("centre", 1), "centre": Key("centre", 1), "middle": Key("centre", 1)}
 _SIDE_NOUNS = frozenset({"edge", "side", "end", "wall", "border", "corner", "of", "the", "table", "hand"})
@@ -99,9 +99,11 @@ _STOP = frozenset({
     "nearest", "closest", "furthest", "farthest", "from", "please", "it", "them", "one", "that", "which", "who",
     "ends", "end", "stays", "has", "have", "will", "would", "up", "out", "as", "for", "of", "except", "but",
     "going", "counting", "gets", "get", "be", "most", "all",
-})
+}) | lexicon.COMMAND_VERBS | {"take", "grab", "pick", "bring", "slide", "shift", "push", "pull", "position", "carry"}
 _ARTICLES = frozenset({"the", "a", "an"})
 _WHATEVER = frozenset({"whatever", "whichever", "whoever"})
+#: Head nouns that take their kind after "of" ("piece of cutlery", "items of silverware").
+_PIECES = frozenset({"piece", "pieces", "item", "items", "bit", "bits"})
 _BE = frozenset({"is", "sits", "stands", "lies", "sitting", "standing", "lying", "are", "'s", "happens"})
 
 
@@ -114,7 +116,7 @@ def _np(ws: tuple[str, ...], i: int, limit: int = 6) -> int:
     while k < len(ws) and k - j < limit and ws[k] not in _STOP:
         k += 1
     # "piece of silverware", "pieces of cutlery": "of" inside a head
-    if k + 1 < len(ws) and ws[k] == "of" and k > j and ws[k - 1] in ("piece", "pieces", "item", "items", "bit", "bits"):
+    if k + 1 < len(ws) and ws[k] == "of" and k > j and ws[k - 1] in _PIECES:
         k = _np(ws, k + 1, limit)
     return k if k > j else i
 
@@ -255,10 +257,12 @@ def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:
     head_end = j
     while head_end < len(ws) and ws[head_end] not in _BE and ws[head_end] not in _STOP and head_end - j < 4:
         head_end += 1
+    if head_end > j and ws[head_end : head_end + 1] == ("of",) and ws[head_end - 1] in _PIECES:
+        head_end = _np(ws, head_end + 1, 3)  # "whichever piece of cutlery lies nearest the front"
     head = tuple(ws[j:head_end])
     k = head_end
-    if k < len(ws) and ws[k] in _BE:
-        k += 1
+    while k < len(ws) and ws[k] in _BE and k - head_end < 2:
+        k += 1  # "is", "is lying"
     if head and ws[k : k + 3] in (("in", "the", "middle"), ("in", "the", "centre"), ("in", "the", "center")):
         # "whichever utensil is in the middle (going left to right)": the middle one of them by x
         return PositionRef(i, _skip_reading_order(ws, k + 3), head, Key("middle"))
@@ -305,7 +309,7 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     if w in _WHATEVER:
         return _whatever_ref(ws, i)
     bare = (i == 0 or ws[i - 1] in (",", ".", ";", ":", "!", "?")) and w not in _STOP
-    if w not in _ARTICLES and w not in _ORDINALS and not bare:
+    if w not in _ARTICLES and w not in _ORDINALS and w not in _MOST and not bare:  # "on rightmost block"
         return None
     j = i + (w in _ARTICLES)
     if j >= len(ws):
@@ -361,6 +365,8 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
         if ws[end : end + 1] == ("from",) or (ws[end : end + 1] == ("counting",) and ws[end + 1 : end + 2] == ("from",)):
             k = end + 1 + (ws[end] == "counting")
             side = _side_key(ws, k)
+            if side is None and ws[k : k + 1] in (("left",), ("right",)):
+                side = _SIDES[ws[k]], k + 1  # "the third block from left"
             if side is not None and side[0].kind in ("x", "y"):
                 if rank == -1:
                     return None

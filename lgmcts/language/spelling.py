@@ -15,7 +15,9 @@ purpose, since a wrong correction is a wrong goal:
   swapped: "recangle", "behnd", "circel", "purpel"), two edits for words of
   eight letters or more; of two known words at the same distance, the one
   the word is with a letter left out wins ("stak": stack, not star), and
-  any other tie leaves the word as it is;
+  then the one the word is with a letter typed twice ("bowll": bowl, not
+  bowls), then the one of the scene's own words ("forc": fork where the
+  scene has a fork); any other tie leaves the word as it is;
 * a rare English word (:data:`RARE_RANK`) one dropped letter away from
   exactly one of the scene's names or colours or a pattern noun is that word
   ("blu" blue, "hart" heart when the scene has a heart, "lin" line);
@@ -51,6 +53,8 @@ INFORMAL: dict[str, str] = {
     "didnt": "didn't", "arent": "aren't", "hasnt": "hasn't", "havent": "haven't", "em": "them", "ya": "you",
     # texting: "fork knife n spoon", "ur", "plz"
     "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though", "thre": "three",
+    # ordinals in figures: "the 2nd can from the left"
+    "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
 #: "plate" on a table with a plate).
@@ -136,6 +140,12 @@ def _vowels_dropped(short: str, long: str) -> bool:
     return k == len(short)
 
 
+def _doubled(long: str, short: str) -> bool:
+    """Whether ``long`` is ``short`` with one of its letters typed twice ("bowll", "cupp")."""
+    return len(long) == len(short) + 1 and any(
+        long[k] == long[k - 1] and long[:k] + long[k + 1 :] == short for k in range(1, len(long)))
+
+
 def _dropped_letter(short: str, long: str) -> bool:
     return len(long) == len(short) + 1 and any(long[:k] + long[k + 1 :] == short for k in range(len(long)))
 
@@ -203,9 +213,14 @@ class Corrector:
         if best_d > cap:
             return w
         if len(best) > 1:
-            # A letter left out is the commonest slip: "stak" is "stack" before "star".
-            best = [t for t in best if _dropped_letter(w, t)]
-        return best[0] if len(best) == 1 else w
+            # A letter left out is the commonest slip ("stak" is "stack" before "star"), then a letter typed
+            # twice ("bowll" is "bowl" before "bowls"), then the scene's own word ("forc" is "fork" on a table
+            # with a fork, before "form").
+            for prefer in (lambda t: _dropped_letter(w, t), lambda t: _doubled(w, t), lambda t: t in self.scene):
+                if sum(map(prefer, best)) == 1:
+                    return next(t for t in best if prefer(t))
+            return w
+        return best[0]
 
     def text(self, text: str) -> str:
         """``text`` with each misspelt word replaced (case kept for the first letter), the rest as it was."""

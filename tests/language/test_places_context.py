@@ -44,6 +44,7 @@ def _scan(text: str) -> list[tuple[str, str, str]]:
     ("a row of forks, handles toward the left edge", "west", "handles toward the left edge"),
     ("the spoon behind the plate, pointing to the right side", "east", "pointing to the right side"),
     ("the knife left of the bowl, blade facing the front", "south", "blade facing the front"),
+    ("the jars in a row, labels facing the customers", "south", "labels facing the customers"),  # a shop's viewer
 ])
 def test_a_facing_said_by_an_edge_or_the_viewer(text, facing, said):
     assert _scan(text) == [("facing", facing, said)]
@@ -62,6 +63,7 @@ def test_a_facing_said_by_an_edge_or_the_viewer(text, facing, said):
     ("a line centered left to right", "center column", "centered left to right"),
     ("the forks in the middle row", "middle row", "in the middle row"),
     ("the cans in the right column", "right", "in the right column"),
+    ("a ring, dead center of the display", "middle center", "dead center of the display"),  # a shop's table
 ])
 def test_a_place_said_freely(text, region, said):
     assert _scan(text) == [("region", region, said)]

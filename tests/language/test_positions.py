@@ -50,6 +50,16 @@ def _refs(text: str):
      Key("x", 1), 1, 0, None),
     ("utensil most right, put on plate", "utensil most right", ("utensil",), Key("x", -1), 1, 0, None),
     ("the cup most to the back goes left of the box", "the cup most to the back", ("cup",), Key("y", -1), 1, 0, None),
+    # said without articles, as by a speaker whose language has none
+    ("third block from left goes on the plate", "third block from left", ("block",), Key("x", 1), 1, 2, None),
+    ("put it on rightmost block", "rightmost block", ("block",), Key("x", -1), 1, 0, None),
+    # a verb before the head is no part of it; a kind said after "piece of"; "is lying"
+    ("take the piece of cutlery closest to me and lay it down", "the piece of cutlery closest to me",
+     ("piece", "of", "cutlery"), Key("y", 1), 1, 0, None),
+    ("whichever piece of cutlery is lying nearest the box, on the plate", "whichever piece of cutlery is lying nearest "
+     "the box", ("piece", "of", "cutlery"), Key("near", 1, ("the", "box")), 1, 0, None),
+    ("the can closest to the customers goes left", "the can closest to the customers", ("can",), Key("y", 1), 1, 0,
+     None),
 ])
 def test_a_position_phrase_is_read(text, phrase, head, key, count, rank, of):
     (got,) = _refs(text)

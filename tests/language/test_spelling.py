@@ -46,6 +46,9 @@ def _fix(text: str) -> str:
     ("put for cans in a row", "put four cans in a row"),
     ("the mug closest 2 me, n the box", "the mug closest to me, and the box"),   # texting
     ("the thre mugs on the plait", "the three mugs on the plate"),
+    ("the fork left of the bowll", "the fork left of the bowl"),       # a letter typed twice: not 'bowls'
+    ("put the forc behind the box", "put the fork behind the box"),   # a tie broken by the scene's own word
+    ("the 2nd mug from the left", "the second mug from the left"),    # an ordinal in figures
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
