@@ -17,6 +17,7 @@ import re
 from . import lexicon
 from .lexicon import HUES, MACROS, says
 from .normalise import apply, replacer, step
+from .stages import is_mark
 
 __all__ = ["rewrite", "unframe", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
 
@@ -236,6 +237,8 @@ def _like_restated(m: re.Match) -> str:
     said = lexicon.words(m.group(2))
     # ", yeah at the front of the table": a "yeah" that goes on to add a place (a "like ..." restates)
     new = [w for w in said if w in _PLACE_SAID and w not in before] if said[:1] in (["yeah"], ["yes"], ["yep"]) else []
+    # ", like half a metre long": a measure said loosely is kept (a marked measure never disappears)
+    new += [w for w in said if is_mark(w)]
     if says(m.group(1), "asks") and not new:
         return m.group(1)
     return m.group(1) + re.sub(r"(?i),\s*(?:so |and )?(?:like|yeah|you know|i mean|basically)\b", ",", m.group(2))

@@ -29,6 +29,7 @@ from .colour_refs import find_colour_refs, select
 from .context import drop_context
 from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import Measure, find_measures, size_for
+from . import lexicon
 from .lexicon import TABLE_WORDS
 from .places import POINTING_PARTS, read_facing
 from .positions import find_position_refs, pick
@@ -69,17 +70,36 @@ def spell(text: str, vocab: Vocabulary, lexicon: Iterable[str], nouns: Iterable[
                      colours=set(vocab.color_words) | COLOUR_WORDS).text(text)
 
 
+#: Words that may stand between a measure and the same measure said again ("30 cm across, i mean thirty
+#: centimetres", "half a metre long, um, fifty centimetres").
+_RESTATING = frozenset({"i", "mean", "yeah", "yes", "so", "or", "like", "that's", "thats", "is", "that", "about",
+                        "roughly", "exactly", "say", "call", "it", "um", "umm", "uh", "er", "erm", "hmm", "well", "oh",
+                        "ok", "okay", "ah"})
+
+
+def _restated(text: str, before: Measure, m: Measure) -> bool:
+    """Whether ``m`` says ``before`` again right after it ("half a metre long, fifty centimetres"): the same
+    quantity of the same role (or none said), only fillers between."""
+    return (abs(m.metres - before.metres) < 1e-9 and (m.role == before.role or "plain" in (m.role, before.role))
+            and all(w in _RESTATING for w in lexicon.words(text[before.end : m.start])))
+
+
 def mark_measures(text: str) -> tuple[str, list[Measure]]:
-    """``text`` with each measure replaced by a marker word, and the measures in order."""
-    found = find_measures(text)
+    """``text`` with each measure replaced by a marker word, and the measures in order. A measure said again
+    right after itself is one measure (its repeat is left out)."""
     out: list[str] = []
     at = 0
-    for k, m in enumerate(found[:26]):
+    kept: list[Measure] = []
+    for m in find_measures(text):
         out.append(text[at : m.start])
-        out.append(f"{MARK}{chr(97 + k)}")
         at = m.end
+        if kept and _restated(text, kept[-1], m):
+            continue
+        if len(kept) < 26:
+            out.append(f"{MARK}{chr(97 + len(kept))}")
+        kept.append(m)
     out.append(text[at:])
-    return "".join(out), found[:26]
+    return "".join(out), kept[:26]
 
 
 _EDGE_WORDS = frozenset({"edge", "side", "wall", "end", "border", "rim", "back", "front"})

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from lgmcts.errors import InputError
 from lgmcts.formats import parse_goals
 from lgmcts.language.measures import find_measures, size_for
+from lgmcts.language.stages import mark_measures
 
 
 @pytest.mark.parametrize("text, metres, role, said", [
@@ -56,6 +57,17 @@ def test_numbers_without_a_unit_are_no_measure(text):
 def test_two_measures_in_one_command_are_both_found():
     got = find_measures("a ring of 10 cm radius and a row 30 cm long")
     assert [(m.metres, m.role) for m in got] == [(0.1, "radius"), (0.3, "length")]
+
+
+@pytest.mark.parametrize("text, marked, kept", [
+    ("a ring 30 cm across, thirty centimetres across yeah", "a ring sizemarka,  yeah", [0.3]),
+    ("a row half a metre long, um, fifty centimetres", "a row sizemarka, um, ", [0.5]),
+    ("a ring 30 cm across, 20 cm across", "a ring sizemarka, sizemarkb", [0.3, 0.2]),   # two: left to be refused
+    ("a ring of 10 cm radius and a row 10 cm long", "a ring of sizemarka and a row sizemarkb", [0.1, 0.1]),
+])
+def test_a_measure_said_again_right_after_itself_is_one(text, marked, kept):
+    out, found = mark_measures(text)
+    assert out == marked and [m.metres for m in found] == kept
 
 
 @pytest.mark.parametrize("pattern, text, n, size", [
