@@ -112,11 +112,23 @@ def find_colour_refs(words: tuple[str, ...]) -> list[ColourRef]:
     return scan(tuple(words), _at)
 
 
+#: A comparison said with a preposition rather than a relative clause ("the cup with the colour of the bottle",
+#: "block in same colour as letter T").
+_PREPOSITIONAL = tuple(
+    (prep,) + art + cmp
+    for prep in ("in", "with", "of")
+    for art in (("the",), ())
+    for cmp in (("same", "colour", "as"), ("same", "color", "as"), ("colour", "of"), ("color", "of")))
+_OPENING = frozenset({",", ".", ";", ":", "!", "?"})
+
+
 def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
     det = ws[i]
-    if det not in ("the", "every", "all", "each", "any", "whichever", "whatever"):
+    bare = (not i or ws[i - 1] in _OPENING) and det.isalpha() and det not in _STOP and det not in _VERBS
+    if det not in ("the", "every", "all", "each", "any", "whichever", "whatever") and not bare:
         return None
-    j = i + 1 + (det == "all" and ws[i + 1 : i + 2] == ("the",))
+    j = i if det not in ("the", "every", "all", "each", "any", "whichever", "whatever") else \
+        i + 1 + (det == "all" and ws[i + 1 : i + 2] == ("the",))
     end = j
     while end < len(ws) and end - j < 4 and ws[end] not in _STOP and ws[end] not in _VERBS:
         end += 1
@@ -137,6 +149,8 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
         if k3 == k:
             return None
         k = k3
+    elif _seq(ws, k, _PREPOSITIONAL) > k:
+        k = _seq(ws, k, _PREPOSITIONAL)  # "the cup with the colour of the bottle"
     else:
         if k < len(ws) and ws[k] in _REL:
             k += 1

@@ -38,6 +38,11 @@ def test_a_quantified_reference_is_marked():
      ("bowl",), ("the", "cans"), False),
     ("whichever cup matches the colour of object 3 goes behind the box",
      "whichever cup matches the colour of object 3", ("cup",), ("object", "3"), False),
+    # with a preposition, and without articles, as a speaker whose language has none says it
+    ("the cup with the colour of the bottle, put it behind the box", "the cup with the colour of the bottle",
+     ("cup",), ("the", "bottle"), False),
+    ("block in same colour as letter t, put on top of red block", "block in same colour as letter t",
+     ("block",), ("letter", "t"), False),
 ])
 def test_a_colour_comparison_is_read(text, phrase, head, ref, negated):
     assert _refs(text) == [(phrase, head, ref, negated)]
@@ -46,6 +51,7 @@ def test_a_colour_comparison_is_read(text, phrase, head, ref, negated):
 @pytest.mark.parametrize("text", [
     "put the red can on the box", "the cans that are red", "objects whose color is equal to the red can",
     "select objects that have the same color as the red can", "everything else of its colour",
+    "arrange the cans in a row", "cans in a row, in the colour order of the rainbow",
 ])
 def test_left_to_the_grounding(text):
     assert _refs(text) == []
