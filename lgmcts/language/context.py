@@ -115,6 +115,22 @@ def _time_clause(part: tuple[str, ...]) -> bool:
     return any(w in _TIME_WORDS or w.isdigit() for w in part[1:])
 
 
+#: Openers of a clause that says when by an event ("once the rice is on", "until the guests have gone"), and
+#: the words a subject of such an event starts with.
+_EVENT_OPENERS = frozenset({"once", "after", "before", "until", "till"})
+_SUBJECT_START = frozenset({"the", "my", "our", "his", "her", "your", "their", "we", "i", "you", "he", "she", "they",
+                            "we've", "i've", "everyone", "everybody"})
+
+
+def _event_clause(part: tuple[str, ...], object_word: Callable[[str], bool],
+                  request_word: Callable[[str], bool]) -> bool:
+    """Whether ``part`` (without its comma) says when by an event of the house that names no object of the
+    scene and asks nothing ("once the rice is on", "before my sister gets here"): a particle of chatter
+    ("on", "over") is no request there (:func:`_asks_nothing`)."""
+    return (len(part) > 2 and part[0] in _EVENT_OPENERS and part[1] in _SUBJECT_START
+            and _asks_nothing(part[1:], object_word, request_word))
+
+
 def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
                  request_word: Callable[[str], bool]) -> tuple[str, ...]:
     """``words`` without the background sentences and time clauses that ask for nothing."""
@@ -239,7 +255,8 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if cut is None or cut == 0:
             break
         head = sent[:cut]
-        if not (_time_clause(head) and _idle(head[1:], object_word, request_word)):
+        if not ((_time_clause(head) and _idle(head[1:], object_word, request_word))
+                or _event_clause(head, object_word, request_word)):
             break
         sent = sent[cut + 1 :]
     end = len(sent)
