@@ -221,7 +221,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         self._tilt(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
-        text = stages.other_side(stages.said_places(stages.said_facings(text)))
+        text = stages.other_side(stages.said_places(stages.pronoun_facings(stages.said_facings(text))))
         text = unframe(text)
         order_by = _ORDER_BY.search(text)
         self._stack_axis = _stack_axis(lexicon.words(text))

@@ -38,7 +38,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "said_facings", "said_places", "same_again", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -108,6 +108,35 @@ _EDGE_WORDS = frozenset({"edge", "side", "wall", "end", "border", "rim", "back",
 #: Words before the verb "face" that make it a facing of objects named before ("turn them to face me",
 #: "so they face the viewer").
 _BEFORE_FACE = frozenset({"to", "they", "it", "all", "both", "each", "so", "will", "should", "must", "them"})
+
+
+#: Words of a clause that only turns the objects just arranged ("..., but turn them to face the back wall",
+#: "..., they should all point left"): joining words, verbs of turning, pronouns and modals.
+_TURNING = frozenset({"but", "and", "then", "so", "also", "turn", "make", "have", "get", "set", "rotate", "spin",
+                      "should", "must", "will", "all", "both", "each", "need", "needs", "to", "please", "just",
+                      "with", "and", "can", "could", "you"})
+_PRONOUNS = frozenset({"them", "they", "it", "those", "these"})
+_COMPASS_WORDS = frozenset({"north", "east", "south", "west"})
+
+
+def pronoun_facings(text: str) -> str:
+    """``text`` with a last clause that only turns the objects of the clause before by a pronoun
+    (", but turn them facing north", ", they facing west", once :func:`said_facings` has said the facing
+    by its compass point) said as that clause's facing (", facing north")."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    for k, w in enumerate(words):
+        if w != ",":
+            continue
+        j = k + 1
+        said: set[str] = set()
+        while j < len(words) and (words[j] in _TURNING or words[j] in _PRONOUNS):
+            said.add(words[j])
+            j += 1
+        if (said & _PRONOUNS and words[j : j + 1] in (("facing",), ("pointing",)) and j + 1 < len(words)
+                and words[j + 1] in _COMPASS_WORDS and (j + 2 == len(words) or words[j + 2] in (".", "!", ";"))):
+            return text[: toks[k + 1].pos] + text[toks[j].pos :]
+    return text
 
 
 def said_facings(text: str) -> str:

@@ -9,6 +9,7 @@ from lgmcts.formats import parse_goals
 from lgmcts.language.context import drop_context, person_remark
 from lgmcts.language.grounding import tokenize
 from lgmcts.language.places import Place, read_facing, read_place
+from lgmcts.language.stages import pronoun_facings
 
 
 def _ws(text: str) -> tuple[str, ...]:
@@ -502,3 +503,21 @@ def test_fresh_phrasings_of_exceptions_facings_and_chatter(said, objects, facing
                     ("plate", "red", 0.3, -0.2), ("can", "white", 0.2, 0.2)])
     (goal,) = parse(scene, said).goals
     assert (goal.pattern, sorted(goal.objects), goal.facing) == ("line", objects, facing)
+
+
+@pytest.mark.parametrize("text, said", [
+    ("put the cans in a row, but turn them facing north.", "put the cans in a row, facing north."),
+    ("fork and knife in one line, they facing west", "fork and knife in one line, facing west"),
+    ("the red can left of the box, and make it facing south", "the red can left of the box, facing south"),
+])
+def test_a_clause_that_only_turns_the_objects_before_is_their_facing(text, said):
+    assert pronoun_facings(text) == said
+
+
+@pytest.mark.parametrize("text", [
+    "put the cans in a row, facing north",                      # said plainly already
+    "put the cans in a row, turn the plate facing north",       # turns another object: not a pronoun
+    "put them facing north, then stack the bowls",              # the facing is not the clause's last words
+])
+def test_other_facings_are_left_as_said(text):
+    assert pronoun_facings(text) == text
