@@ -142,6 +142,9 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
         if body and (_idle(body, object_word, request_word) or (
                 k < len(sentences) - 1 and _asks_nothing(body, object_word, request_word))):
             continue  # a background sentence ("it's been raining all week and the cat's been under my feet.")
+        if k < len(sentences) - 1 and _story(body, object_word, request_word) and not any(
+                w in _PRONOUNS for s in sentences[k + 1 :] for w in s):
+            continue  # "i used to play with blocks like these as a little girl." before the request
         kept.append(_without_time(sent, object_word, request_word))
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
@@ -201,14 +204,17 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
     for k in range(1, n):
         opener = next((o for o in _OPENERS if sent[k : k + len(o)] == o), None)
         cut = opener is not None or sent[k] in _CHATTER_CUTS or sent[k] == ":" or (
-            sent[k] == "," and k + 1 < n and sent[k + 1] in ("just", "please", "now", "so"))
+            sent[k] == "," and k + 1 < n and sent[k + 1] in ("just", "please", "now", "so")) or (
+            sent[k] in (",", "and") and _told(sent[:k]))
         if not cut:
             continue
         head = [w for w in sent[:k] if w not in _LEAD]
         tail = sent[k:] if opener is not None else sent[k + 1 :]
         if opener is not None and (opener[-1] == "find" or opener[:3] == ("i", "should", "like")):
             tail = sent[k + len(opener) :]  # "i should like to find the two cups ...": the wish's frame goes too
-        if head and _asks_nothing(head, object_word, request_word) and any(
+        if head and (_asks_nothing(head, object_word, request_word) or (
+                sent[k] == "," and _story(head, object_word, request_word)
+                and not any(w in _PRONOUNS for w in tail))) and any(
                 object_word(w) or request_word(w) for w in tail):
             while tail and tail[0] in _LEAD:
                 tail = tail[1:]
@@ -230,12 +236,51 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if first and "," not in sent[:first]:
             start = _phrase_start(sent, first, object_word)
             when = sent[:start]
-            if len(when) > 1 and _time_clause(when) and _asks_nothing(when[1:], object_word, request_word):
-                return sent[start:]
+            if len(when) > 1 and ((_time_clause(when) and _asks_nothing(when[1:], object_word, request_word))
+                                  or _event_clause(when, object_word, request_word)):
+                return sent[start:]  # "after my nap the cans lined up"
     return sent
 
 
 _NUMBER_WORDS = frozenset({"two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"})
+#: Verbs by which a clause tells what happened or happens in the house ("the groceries finally came", "i just got
+#: back from the store", "my daughter keeps knocking ..."), besides past forms in -ed.
+_TELLING = frozenset({"came", "come", "comes", "got", "get", "gets", "went", "go", "goes", "is", "are", "was", "were",
+                      "'s", "has", "have", "had", "keeps", "keep", "kept", "says", "said", "sits", "left", "leaves",
+                      "made", "makes", "did", "does", "do", "took", "takes", "brought", "bought", "ate", "fell",
+                      "broke", "spilled", "spilt", "knocked", "arrived", "played", "used", "love", "loves", "likes"})
+
+
+_PRONOUNS = frozenset({"it", "them", "they", "those", "these", "one", "ones", "its", "their"})
+
+
+def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word: Callable[[str], bool]) -> bool:
+    """Whether ``body`` tells what the people of the house do or did, naming objects only as part of the story
+    ("my daughter keeps knocking the bottles over", "i used to play with blocks like these"): a person's
+    subject, a verb of telling, no word by which it asks, no place, and no word of a goal but the objects'."""
+    words = [w for w in body if w not in _LEAD]
+    if not _subject_end(words) or not _told(words):
+        return False
+    for j, w in enumerate(words):
+        if (w in _CTX["asking"] and not object_word(w)) or (w in lexicon.DIRECTIONS and _in_place(words, j)):
+            return False
+        if request_word(w) and not object_word(w) and w not in _CHATTER_PARTICLES:
+            return False
+    return True
+
+
+def _told(head: Sequence[str]) -> bool:
+    """Whether ``head`` tells something rather than names things: a subject and a verb of telling in at least
+    four words ("the groceries finally came"), not a list of objects ("the saucer and the red can")."""
+    body = [w for w in head if w not in _LEAD]
+    if any(w in lexicon.DIRECTIONS and not (w == "back" and j and body[j - 1] in _BACK_FROM)
+           for j, w in enumerate(body)):
+        return False  # "the teapot is to be placed diagonally behind": where, not a story ("i just got back" is)
+    return len(body) >= 4 and any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:])
+
+
+_BACK_FROM = frozenset({"got", "get", "gets", "came", "come", "comes", "went", "go", "be", "been", "am", "i'm", "is",
+                        "was", "just", "bring", "brought"})
 
 
 def _phrase_start(sent: tuple[str, ...], first: int, object_word: Callable[[str], bool]) -> int:

@@ -292,6 +292,46 @@ class _TokenPasses(ParserHost):
             return m.group(0)
         return _ARTICLE_AT.sub(one, text)
 
+    def _only_these(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """A sentence that only narrows the group of the sentence before ("line up the blocks. oh, only the
+        blue and the green ones"): the group said as the narrower one ("line up the blue and the green
+        blocks"), where every object it names is one of the group's and the group is the sentence's only
+        plural reference. Left as it is otherwise (and then refused, never dropped)."""
+        sentences = _sentences(words, (".", "!", ";"))
+        for k in range(1, len(sentences)):
+            sent = [w for w in sentences[k] if w not in (".", "!", ";")]
+            j = 0
+            while j < len(sent) and sent[j] in ("oh", "ah", "um", "uh", "wait", "actually", ",", "but", "no", "sorry"):
+                j += 1
+            if j >= len(sent) or sent[j] not in ("only", "just"):
+                continue
+            narrow = tuple(sent[j + 1 :])
+            rest: tuple[str, ...] = ()
+            if "," in narrow[1:]:
+                # "only the blue and the green ones, the rest can stay where they are": the rest is its own sentence
+                cut = narrow.index(",", 1)
+                narrow, rest = narrow[:cut], narrow[cut + 1 :] + tuple(w for w in sentences[k][-1:] if w in ".!;")
+            try:
+                before = [m for m in self._find(sentences[k - 1]) if m.plural and m.det != "pronoun"]
+                if len(before) != 1:
+                    continue
+                noun = sentences[k - 1][before[0].end - 1]
+                new = tuple(noun if w in ("ones", "one") else w for w in narrow)
+                new = new if new[-1:] == (noun,) else new + (noun,)  # "the blue and the green (ones)": blocks
+                said = self._find(new)
+            except InputError:
+                continue
+            if not said or said[0].start != 0 or said[-1].end != len(new):
+                continue
+            group = set(self._every_match(before[0]))
+            picked = {i for m in said for i in self._every_match(m)}
+            if not picked or not picked <= group or picked == group:
+                continue
+            prev = sentences[k - 1]
+            sentences[k - 1] = prev[: before[0].start] + new + prev[before[0].end :]
+            sentences[k] = rest
+        return tuple(w for s in sentences for w in s)
+
     def _former_latter(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"take the spoon and the fork; put the former in front of the latter":
         "the former" / "the latter" replaced by the two references named before."""
@@ -398,8 +438,8 @@ class _TokenPasses(ParserHost):
             or w in COLS or w in FACINGS or w in ("order", "first", "last", "then", "facing")
             or (_is_number(w) and k not in counted)
             for k, w in enumerate(clause))
-        if goal:
-            return False
+        if goal or (lead in ("only", "just") and any(m is not None for m in named)):
+            return False  # "oh, only the blue and the green ones": which objects, never a remark
         try:
             ms = self._find(clause)
         except InputError:

@@ -311,7 +311,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         words = self._parentheses(words)
         words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
-        words = self._trailing_remarks(words)
+        words = self._only_these(self._trailing_remarks(words))
         words = self._former_latter(words)
         words = self._bare_colour_sets(self._noun_first_lists(words))
         # Words that may be read by their own embedding, encoded in one batch

@@ -106,6 +106,11 @@ def _drop(text: str) -> str:
     ("guests at 8. before then, put the bowls in a circle", "put the bowls in a circle"),
     ("once the rice is on, stack the bowls", "stack the bowls"),           # an event of the house, said by when
     ("until my sister has gone back, put the mug left of the plate", "put the mug left of the plate"),
+    ("after my nap the bowls in a circle", "the bowls in a circle"),                   # said when, without a comma
+    ("i just got back from the store, put the mug left of the plate", "put the mug left of the plate"),
+    ("the groceries finally came and the bowls in a circle", "the bowls in a circle"),
+    ("my daughter keeps knocking the bowls over, so stack the bowls", "stack the bowls"),   # a story of the house
+    ("i used to play with bowls like these as a kid. stack the bowls", "stack the bowls"),
 ])
 def test_context_that_asks_nothing_is_dropped(text, left):
     assert _drop(text) == left
@@ -114,6 +119,9 @@ def test_context_that_asks_nothing_is_dropped(text, left):
 @pytest.mark.parametrize("text", [
     "after the bowl is on the plate, put the red mug behind it",   # names an object: a real order of steps
     "once the mugs are in a row, put the plate behind them",
+    "the teapot is to be placed behind and to the left of the plate",   # where, not a story: left to be refused
+    "the kids left the bowls out, put them in a row",                    # 'them': what the story names
+    "my son keeps the bowls here. stack them",
     "after that, put the mug left of the plate",
     "the blue mug is in my way. move it behind the plate",          # the remark names what 'it' means
     "we are having friends over tonight.",                          # nothing but context: left to be refused
@@ -521,3 +529,29 @@ def test_a_clause_that_only_turns_the_objects_before_is_their_facing(text, said)
 ])
 def test_other_facings_are_left_as_said(text):
     assert pronoun_facings(text) == text
+
+
+@pytest.mark.parametrize("said, goals", [
+    ("line up the cans. oh, only the red and the green ones", [{"pattern": "line", "objects": [3, 4]}]),
+    ("put the cans in a row - just the red and the blue ones, the rest can stay where they are",
+     [{"pattern": "line", "objects": [3, 5]}]),
+])
+def test_a_sentence_that_only_narrows_the_group_before(said, goals):
+    from lgmcts.language import parse
+
+    got = parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+                        ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]), said)
+    assert [g.model_dump(exclude_none=True) for g in got.goals] == goals
+
+
+@pytest.mark.parametrize("said", [
+    "line up the cans. only the blue mug",                  # not one of the cans: never silently dropped
+    "line up the cans. oh, only the red ones and the mug",
+])
+def test_a_narrowing_that_does_not_narrow_is_refused(said):
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    with pytest.raises(InputError):
+        parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+                      ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]), said)
