@@ -92,6 +92,11 @@ def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int, bool]
     end = _np(ws, j)
     if end == j:
         return None
+    while not quant and ws[end : end + 2] in (("and", "the"), ("or", "the")) and _np(ws, end + 1) > end + 2:
+        # "the blocks that match the letter A and the letter E": the colours of both, pooled
+        end, quant = _np(ws, end + 1), True
+        if ws[j - 1 : j] != ("the",) and ws[j : j + 1] != ("the",):
+            break
     words = tuple(ws[j:end])
     if words[-1].endswith("'s"):
         words = words[:-1] + (words[-1][:-2],)
@@ -101,7 +106,7 @@ def _reference(ws: tuple[str, ...], i: int) -> tuple[tuple[str, ...], int, bool]
         # "either mug", "any can": every object the noun names
         last = words[-1]
         words = ("the",) + words[:-1] + ((last if last.endswith("s") else last + "s"),)
-    elif quant:
+    elif quant and "and" not in words and "or" not in words:
         last = words[-1]
         words = words[:-1] + ((last if last.endswith("s") else last + "s"),)
     return words, end, quant
@@ -164,7 +169,9 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
             ("share", "the", "same", "colour", "as"), ("shares", "the", "same", "colour", "as"),
             ("share", "colours", "with"), ("share", "colour", "with"), ("share", "their", "colour", "with"),
             ("match", "the", "colour", "of"), ("matches", "the", "colour", "of"), ("match", "the", "color", "of"),
-            ("matches", "the", "color", "of"), ("match", "in", "colour"), ("match",), ("matches",),
+            ("matches", "the", "color", "of"), ("match", "the", "colours", "of"), ("match", "the", "colors", "of"),
+            ("matches", "the", "colours", "of"), ("matches", "the", "colors", "of"), ("match", "in", "colour"),
+            ("match",), ("matches",),
             ("are", "the", "same", "colour", "as"), ("is", "the", "same", "colour", "as"),
             ("the", "same", "colour", "as"), ("the", "colour", "of"), ("the", "color", "of"),
             ("are", "the", "colour", "of"), ("is", "the", "colour", "of"),
@@ -190,6 +197,7 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
     if got is None:
         return None
     ref, end, quant = got
+    quant = quant or ws[k - 2 : k - 1] in (("colours",), ("colors",))  # "the colours of the mugs": pooled
     end = _seq(ws, end, (("in", "colour"), ("in", "color"), ("colour", "wise"), ("'s", "colour"), ("by", "colour")))
     return ColourRef(i, end, head, ref, negated, quant)
 

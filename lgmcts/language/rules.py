@@ -244,6 +244,12 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
     def _rewritten(self, text: str) -> str:
         """The text with objects picked by position or colour named by id, the rewrite table applied, ids said
         after their category and letters said bare read as objects."""
+        letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
+        if letters:
+            # "the T", "the A": a capital letter standing for the letter the scene has (before the references by
+            # position and colour read them: "the blocks that match the A and the E").
+            text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
+                          if m.group(2) in letters else m.group(0), text)
         text, self.state.group = stages.partitive(text, self._find, self._every_match)
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
                                   dict(self.vocab.borrowed), group=self.state.group)
@@ -253,14 +259,9 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
-        letters = {n.split()[1].upper() for _, n, _ in self.vocab.objects if n.startswith("letter ") and len(n.split()) == 2}
         if letters:
             text = self._spelled(text, letters)
             text = stages.letters_named(text, letters)
-        if letters:
-            # "the T", "the A": a capital letter standing for the letter the scene has.
-            text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
-                          if m.group(2) in letters else m.group(0), text)
             # "A then R then T then E", "R, T, E": capitals said bare ("A" only where it cannot be
             # the article: after a list word, or before one or the end).
             text = re.sub(r"\b([A-Z])\b(?!')", lambda m: _bare_letter(m, letters), text)

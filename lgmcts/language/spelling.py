@@ -233,6 +233,8 @@ class Corrector:
             w = m.group(0)
             if m.start() and text[m.start() - 1] in "'\u2019":
                 continue  # "'em", "'round": said with its apostrophe, read as it is
+            if text[m.end() : m.end() + 1] == "/":
+                continue  # "w/", "b/c": read by the rewrite table
             fixed = self._in_context(said, k) or self.word(w.lower())
             if fixed != w.lower():
                 out.append(text[at : m.start()] + (fixed[0].upper() + fixed[1:] if w[0].isupper() else fixed))
@@ -255,6 +257,8 @@ class Corrector:
                 return want
         if w in _SIDE_SOUNDS and (nxt == "of" or (k and said[k - 1] in ("the", "to"))):
             return _SIDE_SOUNDS[w]
+        if w == "w" and nxt in ("the", "a", "an", "one", "my", "its", "their", "his", "her", "them", "it", "any"):
+            return "with"  # texting: "share a color w one of the bowls"
         if w == "2" and nxt in _AFTER_TO and k and not said[k - 1].isdigit():
             return "to"  # texting: "closest 2 me", "slide it 2 the right", "needs 2 be"
         return None

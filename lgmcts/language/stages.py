@@ -403,12 +403,17 @@ def _end(text: str, tok: Token) -> int:
     return (k if k >= 0 else tok.pos) + len(tok.text)
 
 
-def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]
-         ) -> list[int] | None:
+def _ids(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
+         several: bool = False) -> list[int] | None:
+    """Every object the one reference ``words`` may name (with ``several``, the references of a list joined by
+    "and": "the letter A and the letter E"); None where they name nothing or are no such reference."""
     try:
         found = [m for m in find(words) if getattr(m, "det", None) != "pronoun"]
     except InputError:
         return None
+    if several and len(found) > 1 and found[0].start == 0 and found[-1].end == len(words) and all(
+            words[a.end : b.start] in (("and",), ("or",), (",",)) for a, b in zip(found, found[1:])):
+        return [i for m in found for i in ids_of(m)]
     if len(found) != 1:
         return None
     return list(ids_of(found[0]))
@@ -512,7 +517,7 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
         if not (ref.negated or ref.quantified) and (plural or _reads_whole(words[ref.start : ref.end], find)):
             continue  # "the things that are the same colour as the blue bowl": the grounding reads it
         head = _ids(("the",) + ref.head if ref.head else ("everything",), find, ids_of)
-        other = _ids(ref.ref, find, ids_of)
+        other = _ids(ref.ref, find, ids_of, several=True)
         if head is None or other is None:
             continue
         lo, hi = toks[ref.start].pos, _end(text, toks[ref.end - 1])

@@ -18,7 +18,8 @@ def _refs(text: str):
 def test_a_quantified_reference_is_marked():
     (one,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match one of the bowls")))
     (the,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match the red bowl")))
-    assert one.quantified and not the.quantified
+    (both,) = find_colour_refs(tuple(t.text for t in tokenize("the cans that match the red bowl and the box")))
+    assert one.quantified and both.quantified and not the.quantified
 
 
 @pytest.mark.parametrize("text, phrase, head, ref, negated", [
@@ -43,6 +44,12 @@ def test_a_quantified_reference_is_marked():
      ("cup",), ("the", "bottle"), False),
     ("block in same colour as letter t, put on top of red block", "block in same colour as letter t",
      ("block",), ("letter", "t"), False),
+    # a list of reference objects, and "the colours of" a group: their colours pooled
+    ("the blocks that match the letter a and the letter e, line them up",
+     "the blocks that match the letter a and the letter e", ("blocks",), ("the", "letter", "a", "and", "the", "letter",
+                                                                        "e"), False),
+    ("the cans that match the colors of the mugs go behind the box", "the cans that match the colors of the mugs",
+     ("cans",), ("the", "mugs"), False),
 ])
 def test_a_colour_comparison_is_read(text, phrase, head, ref, negated):
     assert _refs(text) == [(phrase, head, ref, negated)]

@@ -49,6 +49,7 @@ def _fix(text: str) -> str:
     ("the fork left of the bowll", "the fork left of the bowl"),       # a letter typed twice: not 'bowls'
     ("put the forc behind the box", "put the fork behind the box"),   # a tie broken by the scene's own word
     ("the 2nd mug from the left", "the second mug from the left"),    # an ordinal in figures
+    ("the mugs that share a color w the box", "the mugs that share a color with the box"),   # texting
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -71,6 +72,7 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "put the mug on the box for me",      # "for" before no plural of the scene
     "put the nife behind the box",        # a sound-alike of a name the scene lacks (no knife here)
     "1) stack the mugs 2) put the box on the dish",   # a numbered step is no "to"
+    "the mugs in a row w/ the box",                   # "w/" is read by the rewrite table
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
