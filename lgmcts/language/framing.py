@@ -17,6 +17,11 @@ from .matcher import FILLERS, STOPWORDS
 from .selection import _COMPASS_LEFT, _FACING_CUES
 from .shapes import SIZES, stack_roles, take_params
 
+#: Words of a place or size that a clause may say with no arrangement word ("put the bowl on the plate, dead
+#: centre"): their clause's parameters are read (never left unread).
+_PLACE_OR_SIZE = frozenset({"centre", "center", "corner"}) | frozenset(SIZES)
+
+
 if TYPE_CHECKING:
     from .host import ParserHost
 else:
@@ -239,8 +244,8 @@ class _Framing(ParserHost):
         params: dict = {}
         inside = {k for m in mentions for k in range(m.start, m.end)}
         if self.state.header is not None or (not mentions and self.state.last_shape is not None) or any(
-                self._free_word(w) or stages.is_mark(w) or w in _FACING_CUES for k, w in enumerate(words)
-                if k not in inside) or (not mentions and self._last_read is not None):
+                self._free_word(w) or stages.is_mark(w) or w in _FACING_CUES or w in _PLACE_OR_SIZE
+                for k, w in enumerate(words) if k not in inside) or (not mentions and self._last_read is not None):
             stackish = any(_stacking(w) for w in words) or (
                 self.state.header is not None and self.state.header[0] == "tower")
             order_by = None

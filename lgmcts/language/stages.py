@@ -112,11 +112,14 @@ _BEFORE_FACE = frozenset({"to", "they", "it", "all", "both", "each", "so", "will
 
 #: Words of a clause that only turns the objects just arranged ("..., but turn them to face the back wall",
 #: "..., they should all point left"): joining words, verbs of turning, pronouns and modals.
+_BE_WORDS = frozenset({"are", "is", "'re", "they're", "it's", "'s", "be", "all"})
 _TURNING = frozenset({"but", "and", "then", "so", "also", "turn", "make", "have", "get", "set", "rotate", "spin",
                       "should", "must", "will", "all", "both", "each", "need", "needs", "to", "please", "just",
                       "with", "and", "can", "could", "you"})
-_PRONOUNS = frozenset({"them", "they", "it", "those", "these"})
+_PRONOUNS = frozenset({"them", "they", "it", "those", "these", "they're", "it's"})
 _COMPASS_WORDS = frozenset({"north", "east", "south", "west"})
+#: Words of a facing said by the viewer ("pointing toward me", "facing away from us").
+_AT_VIEWER = frozenset({"toward", "towards", "at", "to", "away", "from", "the"}) | lexicon.VIEWER_WORDS
 
 
 def pronoun_facings(text: str) -> str:
@@ -126,16 +129,23 @@ def pronoun_facings(text: str) -> str:
     toks = tokenize(text)
     words = tuple(t.text for t in toks)
     for k, w in enumerate(words):
-        if w != ",":
-            continue
+        if w != "," and not (w == "so" and words[k + 1 : k + 2] and words[k + 1] in _PRONOUNS):
+            continue  # ", but turn them ...", "so they're all pointing toward me"
         j = k + 1
         said: set[str] = set()
-        while j < len(words) and (words[j] in _TURNING or words[j] in _PRONOUNS):
+        while j < len(words) and (words[j] in _TURNING or words[j] in _PRONOUNS or words[j] in _BE_WORDS):
             said.add(words[j])
             j += 1
-        if (said & _PRONOUNS and words[j : j + 1] in (("facing",), ("pointing",)) and j + 1 < len(words)
-                and words[j + 1] in _COMPASS_WORDS and (j + 2 == len(words) or words[j + 2] in (".", "!", ";"))):
-            return text[: toks[k + 1].pos] + text[toks[j].pos :]
+        if (said & _PRONOUNS and words[j : j + 2] in (("facing", ","), ("pointing", ","))
+                and "facing" in words[j + 2 : j + 6]):
+            return text[: toks[k].pos].rstrip() + text[toks[j + 1].pos :]  # "so it's pointing, like, facing north"
+        end = next((e for e in range(j, len(words)) if words[e] in (".", "!", ";")), len(words))
+        said_how = words[j + 1 : end]
+        if (said & _PRONOUNS and words[j : j + 1] in (("facing",), ("pointing",)) and said_how
+                and ((len(said_how) == 1 and said_how[0] in _COMPASS_WORDS) or (
+                    all(w in _AT_VIEWER for w in said_how) and any(w in lexicon.VIEWER_WORDS for w in said_how)))):
+            return text[: toks[k + 1].pos] + text[toks[j].pos :] if w == "," else \
+                text[: toks[k].pos].rstrip() + ", " + text[toks[j].pos :]
     return text
 
 

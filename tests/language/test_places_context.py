@@ -517,6 +517,8 @@ def test_fresh_phrasings_of_exceptions_facings_and_chatter(said, objects, facing
     ("put the cans in a row, but turn them facing north.", "put the cans in a row, facing north."),
     ("fork and knife in one line, they facing west", "fork and knife in one line, facing west"),
     ("the red can left of the box, and make it facing south", "the red can left of the box, facing south"),
+    ("put the cans in a row so they're all pointing toward me.", "put the cans in a row, pointing toward me."),
+    ("line up the forks so it's pointing, like, facing north", "line up the forks, like, facing north"),
 ])
 def test_a_clause_that_only_turns_the_objects_before_is_their_facing(text, said):
     assert pronoun_facings(text) == said
@@ -526,6 +528,7 @@ def test_a_clause_that_only_turns_the_objects_before_is_their_facing(text, said)
     "put the cans in a row, facing north",                      # said plainly already
     "put the cans in a row, turn the plate facing north",       # turns another object: not a pronoun
     "put them facing north, then stack the bowls",              # the facing is not the clause's last words
+    "put the cans in a row so I can read them",                 # a reason, read elsewhere
 ])
 def test_other_facings_are_left_as_said(text):
     assert pronoun_facings(text) == text
@@ -537,6 +540,22 @@ def test_other_facings_are_left_as_said(text):
      [{"pattern": "line", "objects": [3, 5]}]),
 ])
 def test_a_sentence_that_only_narrows_the_group_before(said, goals):
+    from lgmcts.language import parse
+
+    got = parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+                        ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]), said)
+    assert [g.model_dump(exclude_none=True) for g in got.goals] == goals
+
+
+@pytest.mark.parametrize("said, goals", [
+    # a place, a size or a facing said with no arrangement word is read, never left out of the goal
+    ("put the blue mug on the plate, dead centre", [{"pattern": "tower", "objects": [1, 2], "region": "middle center"}]),
+    ("stack the red can on the green can, faced toward the right-hand edge",
+     [{"pattern": "tower", "objects": [4, 3], "facing": "east"}]),
+    ("put the cans in a row so they're all pointing toward me", [{"pattern": "line", "objects": [3, 4, 5],
+                                                                  "facing": "south"}]),
+])
+def test_what_is_said_after_the_goal_is_part_of_it(said, goals):
     from lgmcts.language import parse
 
     got = parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
