@@ -87,6 +87,8 @@ class _Table:
         self.changes: list[np.ndarray] = []
         #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
         self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
+        #: Per disc, its last bound of :class:`_Cells` (changes seen, centre, freed goals, cover, the bound).
+        self.bounds: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[int, int] | None]] = {}
         self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         #: The discs moved and the goals (rows) reached, in order, for :class:`_Crossings` to catch up on.
         self.moved: list[int] = []
@@ -264,6 +266,9 @@ class _Spots:
         self._goal_stamp: dict[int, np.ndarray] = {}
         #: The points no disc crowds and those one disc crowds, as the counts stand (``None``: not yet found).
         self._free: tuple[np.ndarray, np.ndarray] | None = None
+        #: For :meth:`open_spot`, as the counts stand: whether a point has both counts 0, else the points with both
+        #: counts at most 1 and which of the two counts is 1 there (``None``: not yet found).
+        self._open: tuple[bool, np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
@@ -299,6 +304,42 @@ class _Spots:
                     arr += sign * np.bincount(idx, minlength=len(arr))
         self.todo.clear()
         self._free = None
+        self._open = None
+
+    def open_spot(self, t: _Table, j: int) -> bool:
+        """Whether :meth:`spot` finds disc ``j`` a point that covers no open goal (its own aside), without the query:
+        a point of count 0 or of count 1 in j's own stamp (the disc crowding it is j), with no open goal or only j's
+        own (its goal stamp) within reach. Both counts of such a point are at most 1, and such points are few on a
+        packed table, so this tests them alone."""
+        if self.todo:
+            self._flush()
+        if self._open is None:
+            low = (self.count <= 1) & (self.hits <= 1)
+            both0 = bool((low & (self.count == 0) & (self.hits == 0)).any())
+            pts = np.flatnonzero(low)
+            self._open = (both0, pts, self.count[pts] == 1, self.hits[pts] == 1)
+        both0, pts, crowded, hit = self._open
+        if both0:
+            return True
+        if not len(pts):
+            return False
+        # The test of spot on j's points of count 1, on these points.
+        rad = t.r[j] + self.reach
+        dx = self.gx[pts % len(self.gx)] - t.pos[j, 0]
+        dy = self.gy[pts // len(self.gx)] - t.pos[j, 1]
+        ok = ~crowded | (dx ** 2 + dy ** 2 < rad * rad)
+        k = t.row[j]
+        if t.done[k]:
+            return bool((ok & ~hit).any())
+        if j not in self._goal_stamp:
+            self._goal_stamp[j] = self._goal_mask(t, j)
+        return bool((ok & (~hit | self._goal_stamp[j][pts])).any())
+
+    def _goal_mask(self, t: _Table, j: int) -> np.ndarray:
+        """The grid points disc ``j``'s own goal disc reaches (as in ``hits``)."""
+        mine = np.zeros(len(self.count), dtype=bool)
+        mine[self._stamp(t.goal[t.row[j]], t.r[j] + self.rmax - TOUCH)] = True
+        return mine
 
     def spot(self, t: _Table, j: int) -> tuple[np.ndarray, int] | None:
         """The free point for disc ``j`` that covers the fewest open goals
@@ -323,14 +364,130 @@ class _Spots:
         hits = self.hits[free]
         if not t.done[k]:
             if j not in self._goal_stamp:
-                mine = np.zeros(len(self.count), dtype=bool)
-                mine[self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH)] = True
-                self._goal_stamp[j] = mine
+                self._goal_stamp[j] = self._goal_mask(t, j)
             hits = hits - self._goal_stamp[j][free]
         xy = np.stack([self.gx[free % len(self.gx)], self.gy[free // len(self.gx)]], axis=1)
         dist = np.hypot(*(xy - t.goal[k]).T)
         m = int(np.lexsort((dist, hits))[0])
         return xy[m], int(hits[m])
+
+
+class _Cells:
+    """Square cells over the table, each with how many disc circles and open goal circles cover it *whole*, to
+    bound what a nudge can reach before computing it (:meth:`bound`).
+
+    The circles are those of :func:`_nudge` for the smallest disc to nudge (a larger disc's circles are larger, so a
+    cell covered whole for the smallest is covered whole for every disc): about each disc ``i`` radius
+    ``r_i + rmin +`` the clearance, about each open goal ``r_goal + rmin`` (less :data:`TOUCH`). A cell is counted
+    when its centre is nearer than the radius less half the cell's diagonal (and a nanometre), so every point of
+    it lies inside. Kept up to date as discs move and goals are reached, as :class:`_Spots` keeps its counts."""
+
+    def __init__(self, t: _Table, bounds: tuple[float, float, float, float]) -> None:
+        self.rmin = float(np.min(t.r[t.movers]))
+        self.side = CELL * self.rmin
+        self.half = self.side * math.sqrt(2.0) / 2
+        xmin, xmax, ymin, ymax = bounds
+        self.cx = xmin + self.side * (np.arange(max(1, math.ceil((xmax - xmin) / self.side))) + 0.5)
+        self.cy = ymin + self.side * (np.arange(max(1, math.ceil((ymax - ymin) / self.side))) + 0.5)
+        self.origin = (xmin, ymin)
+        size = len(self.cx) * len(self.cy)
+        self.discs = np.bincount(self._inside(t.pos, self._disc_rad(t.r)), minlength=size)
+        open_ = ~t.done
+        self.goals = np.bincount(self._inside(t.goal[open_], self._goal_rad(t.r[t.movers[open_]])), minlength=size)
+        #: Changes not yet applied: (0 discs / 1 goals, centre, radius, sign).
+        self.todo: list[tuple[int, np.ndarray, float, int]] = []
+        #: The cells no disc circle covers whole, then those one covers whole, as the counts stand: centres, open
+        #: goals covering them whole, and how many of the first kind (``None``: not yet found).
+        self._free: tuple[np.ndarray, np.ndarray, np.ndarray, int] | None = None
+
+    def _disc_rad(self, r: np.ndarray | float) -> np.ndarray:
+        return np.asarray(r + self.rmin + CLEARANCE - self.half - 1e-9, dtype=float)
+
+    def _goal_rad(self, r: np.ndarray | float) -> np.ndarray:
+        return np.asarray(r + self.rmin - TOUCH - self.half - 1e-9, dtype=float)
+
+    def _inside(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
+        """Flat indices of the cells whose centre is nearer than ``rad[i]`` to ``xy[i]``, for every i (repeats kept)."""
+        xy = np.atleast_2d(xy)
+        rad = np.atleast_1d(rad)
+        keep = rad > 0
+        xy, rad = xy[keep], rad[keep]
+        if not len(xy):
+            return np.zeros(0, dtype=np.intp)
+        k = math.ceil(2 * float(rad.max()) / self.side) + 2
+        w, h = len(self.cx), len(self.cy)
+        ix = np.floor((xy[:, 0] - rad - self.cx[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
+        iy = np.floor((xy[:, 1] - rad - self.cy[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
+        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
+        dx = np.where(ix == ixc, self.cx[ixc] - xy[:, :1], np.inf)
+        dy = np.where(iy == iyc, self.cy[iyc] - xy[:, 1:], np.inf)
+        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
+        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
+
+    def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
+        rad = float(self._disc_rad(t.r[j]))
+        self.todo.append((0, old, rad, -1))
+        self.todo.append((0, t.pos[j].copy(), rad, 1))
+
+    def closed(self, t: _Table, k: int) -> None:
+        self.todo.append((1, t.goal[k], float(self._goal_rad(t.r[t.movers[k]])), -1))
+
+    def _flush(self) -> None:
+        for which, arr in ((0, self.discs), (1, self.goals)):
+            for sign in (-1, 1):
+                sel = [(xy, rad) for w, xy, rad, sg in self.todo if w == which and sg == sign]
+                if sel:
+                    idx = self._inside(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
+                    arr += sign * np.bincount(idx, minlength=len(arr))
+        self.todo.clear()
+        self._free = None
+
+    def bound(self, t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[int, int] | None:
+        """An upper bound on the ``(gain, cover - hits)`` of :func:`_nudge` for disc ``j``; ``None`` when the nudge
+        surely finds no free place. Every candidate of the nudge lies within its reach of ``j`` and inside j's box,
+        free of every other disc's circle: in a cell not covered whole by another disc's circle, and there it lies in
+        every goal circle that covers the cell whole; so its gain is at most ``len(freed)`` less the goals of
+        ``freed`` covering its cell whole, its hits at least the open goals but ``j``'s own covering it whole."""
+        if self.todo:
+            self._flush()
+        if self._free is None:
+            zero = np.flatnonzero(self.discs == 0)
+            one = np.flatnonzero(self.discs == 1)
+            w = len(self.cx)
+            self._free = (np.concatenate([self.cx[zero % w], self.cx[one % w]]),
+                          np.concatenate([self.cy[zero // w], self.cy[one // w]]),
+                          np.concatenate([self.goals[zero], self.goals[one]]), len(zero))
+        x, y, hits, nz = self._free
+        c = t.pos[j]
+        lo, hi = t.box(j)
+        reach = NUDGE_REACH * float(t.r[j]) + self.half + 1e-9
+        dx, dy = x - c[0], y - c[1]
+        d2 = dx ** 2 + dy ** 2
+        half = self.side / 2 + 1e-9
+        ok = (d2 <= reach * reach) & (x >= lo[0] - half) & (x <= hi[0] + half) & (y >= lo[1] - half) \
+            & (y <= hi[1] + half)
+        # A cell one disc covers whole is free for j when that disc is j (the test it was counted by).
+        own_r = float(self._disc_rad(t.r[j]))
+        ok[nz:] &= d2[nz:] < own_r * own_r
+        sel = np.flatnonzero(ok)
+        if not len(sel):
+            return None
+        x, y, h = x[sel], y[sel], hits[sel]
+        k = t.row.get(j)
+        if k is not None and not t.done[k]:
+            h = h - self._covers(x, y, t.goal[k], float(self._goal_rad(t.r[j])))
+        gain = np.full(len(sel), len(freed))
+        for g in freed.tolist():
+            gain -= self._covers(x, y, t.goal[g], float(self._goal_rad(t.r[t.movers[g]])))
+        best = int(gain.max())
+        return best, cover - int(h[gain == best].min())
+
+    def _covers(self, x: np.ndarray, y: np.ndarray, xy: np.ndarray, rad: float) -> np.ndarray:
+        """Whether the circle about ``xy`` of (shrunk) radius ``rad`` covers each cell of centre ``(x, y)`` whole, as
+        counted."""
+        if rad <= 0:
+            return np.zeros(len(x), dtype=np.intp)
+        return ((x - xy[0]) ** 2 + (y - xy[1]) ** 2 < rad * rad).astype(np.intp)
 
 
 #: How many discs, best score first, are offered a parking spot on the grid when the goals left are blocked.
@@ -339,6 +496,10 @@ CANDIDATES = 4
 CYCLES = True
 #: How far (in its own radii) a nudged disc may go from where it stands (see :func:`_nudge`).
 NUDGE_REACH = 6.0
+#: The side of a cell of :class:`_Cells`, in radii of the smallest disc.
+CELL = 0.25
+#: Bound a nudge by :class:`_Cells` before computing it (off: compute every nudge the order asks for; for tests).
+BOUND = True
 
 
 #: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
@@ -449,26 +610,49 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     return p[m], int(hits[m]), int(gain[m])
 
 
-def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+def _unchanged(t: _Table, j: int, seen: tuple, key: tuple[int, ...], cover: int, near: float) -> bool:
+    """Whether an answer for disc ``j`` remembered as ``seen`` (changes seen, centre, freed goals, cover, answer) still
+    holds: ``j`` stands where it stood, covers the same goals, and no disc left or arrived within ``near`` of it."""
+    if seen[2] != key or seen[3] != cover or not np.array_equal(seen[1], t.pos[j]):
+        return False
+    fresh = t.changes[seen[0]:]
+    return not fresh or not bool((np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any())
+
+
+def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, cells: _Cells | None = None,
+                  floor: tuple[int, int] | None = None) -> tuple[np.ndarray, int, int] | None:
     """:func:`_nudge`, answered from the last one for ``j`` when nothing it depends on changed: ``j`` stands where
     it stood, covers the same goals, and no disc left or arrived within the reach of its discs and goals (its
-    nudge looks only there; a goal closes only when a disc arrives on it)."""
+    nudge looks only there; a goal closes only when a disc arrives on it).
+
+    Else, given ``cells`` and ``floor`` (the ``(gain, cover - hits)`` of the caller's best nudge so far; it keeps the
+    first of equal ones), ``None`` without computing it where :meth:`_Cells.bound` shows that it finds nothing that
+    beats ``floor``; such an answer is not remembered (the bound is). Without ``floor`` the bound is not tried: the
+    first disc's nudge is nearly always needed."""
     key = tuple(freed.tolist())
+    rmax = float(np.max(t.r))
+    near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
     seen = t.nudges.get(j)
-    if seen is not None and seen[2] == key and seen[3] == cover and np.array_equal(seen[1], t.pos[j]):
-        fresh = t.changes[seen[0]:]
-        if not fresh:
-            return seen[4]
-        rmax = float(np.max(t.r))
-        near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
-        if not (np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any():
-            return seen[4]
+    if seen is not None and _unchanged(t, j, seen, key, cover, near):
+        return seen[4]
+    if cells is not None and floor is not None and BOUND:
+        # The bound looks at the cells whose centre lies within the reach and half a cell's diagonal of j; a disc
+        # counts for a cell within its circle's radius less that half diagonal, a goal likewise: the same ``near``.
+        known = t.bounds.get(j)
+        if known is not None and _unchanged(t, j, known, key, cover, near):
+            most = known[4]
+        else:
+            most = cells.bound(t, j, freed, cover)
+            t.bounds[j] = (len(t.changes), t.pos[j].copy(), key, cover, most)
+        if most is None or most <= floor:
+            return None
     found = _nudge(t, j, freed, cover)
     t.nudges[j] = (len(t.changes), t.pos[j].copy(), key, cover, found)
     return found
 
 
-def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
+def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray, cells: _Cells | None = None
+            ) -> tuple[int, np.ndarray] | None:
     """The disc to park and its spot; ``None`` when no move makes progress (parking would go round in circles).
 
     In this order: of the :data:`CANDIDATES` best scored discs (with goals of their own), the first whose grid
@@ -476,17 +660,12 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     covers left; candidates in score order, stopping once none further can do better); else the grid spot whose
     move uncovers the most goals."""
     order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
-    best: tuple[int, int, np.ndarray] | None = None
     for j in order[:CANDIDATES]:
-        found = spots.spot(t, j)
-        if found is None:
-            continue
-        spot, hits = found
-        gain = int(cover[j]) - hits
-        if hits == 0:
-            return j, spot
-        if gain > 0 and (best is None or gain > best[0]):
-            best = (gain, j, spot)
+        # The query itself only for a disc it answers with a spot clear of the open goals (on a packed table, none).
+        if spots.open_spot(t, j):
+            found = spots.spot(t, j)
+            assert found is not None and found[1] == 0
+            return j, found[0]
     rows = np.flatnonzero(~t.done)
     b = t.blocked[rows]
     sole = b.sum(axis=1) == 1
@@ -496,7 +675,7 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
         # The best a move of j can do: uncover every goal it alone covers, and cover none.
         if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
             break
-        found_n = _cached_nudge(t, j, freed, int(cover[j]))
+        found_n = _cached_nudge(t, j, freed, int(cover[j]), cells, None if nudge is None else nudge[0])
         if found_n is None:
             continue
         key = (found_n[2], int(cover[j]) - found_n[1])
@@ -504,6 +683,11 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
             nudge = (key, j, found_n[0])
     if nudge is not None:
         return nudge[1], nudge[2]
+    best: tuple[int, int, np.ndarray] | None = None
+    for j in order[:CANDIDATES]:
+        found = spots.spot(t, j)
+        if found is not None and int(cover[j]) - found[1] > 0 and (best is None or int(cover[j]) - found[1] > best[0]):
+            best = (int(cover[j]) - found[1], j, found[0])
     return None if best is None else (best[1], best[2])
 
 
@@ -597,6 +781,7 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     t = _Table(problem)
     limit = 3 * sc.n if max_actions is None else max_actions
     spots: _Spots | None = None
+    cells: _Cells | None = None
     # An object that already meets its goal stays where it is, unless it covers another goal.
     at = np.hypot(*(t.pos[t.movers] - t.goal).T) <= XY_TOL
     at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
@@ -620,12 +805,16 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                 if spots is not None:
                     spots.moved(t, o, old)
                     spots.closed(t, k)
+                if cells is not None:
+                    cells.moved(t, o, old)
+                    cells.closed(t, k)
             continue
         b = t.blocked[~t.done]
         score = _score(t, b)
         if spots is None:
             spots = _Spots(t, sc.bounds)
-        park = _choose(t, spots, score, b.sum(axis=0))
+            cells = _Cells(t, sc.bounds)
+        park = _choose(t, spots, score, b.sum(axis=0), cells)
         if park is None:
             return None
         j, spot = park
@@ -633,6 +822,8 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
         old = t.pos[j].copy()
         t.move(j, spot)
         spots.moved(t, j, old)
+        if cells is not None:
+            cells.moved(t, j, old)
     return actions
 
 
