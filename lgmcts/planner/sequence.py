@@ -97,6 +97,8 @@ class _Table:
         #: :data:`TABLE_AFTER` nudges), and the nudges made.
         self.crossings: dict[float, _Crossings] = {}
         self.nudged = 0
+        #: The cells that bound a nudge before it is computed (built the first time one is to be bounded).
+        self.cells: _Cells | None = None
 
     def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
@@ -114,6 +116,8 @@ class _Table:
         self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
         self.moved.append(j)
         self.pos[j] = xy
+        if self.cells is not None:
+            self.cells.moved(j)
         d = np.hypot(*(self.goal - xy).T)
         col = d < self.r[self.movers] + self.r[j] - TOUCH
         k = self.row.get(j)
@@ -125,6 +129,8 @@ class _Table:
         """The goal of mover ``k`` (a row) is reached."""
         self.done[k] = True
         self.closed.append(k)
+        if self.cells is not None:
+            self.cells.closed(k)
 
 
 class _Crossings:
@@ -390,15 +396,19 @@ class _Cells:
         self.cx = xmin + self.side * (np.arange(max(1, math.ceil((xmax - xmin) / self.side))) + 0.5)
         self.cy = ymin + self.side * (np.arange(max(1, math.ceil((ymax - ymin) / self.side))) + 0.5)
         self.origin = (xmin, ymin)
-        size = len(self.cx) * len(self.cy)
-        self.discs = np.bincount(self._inside(t.pos, self._disc_rad(t.r)), minlength=size)
-        open_ = ~t.done
-        self.goals = np.bincount(self._inside(t.goal[open_], self._goal_rad(t.r[t.movers[open_]])), minlength=size)
-        #: Changes not yet applied: (0 discs / 1 goals, centre, radius, sign).
-        self.todo: list[tuple[int, np.ndarray, float, int]] = []
-        #: The cells no disc circle covers whole, then those one covers whole, as the counts stand: centres, open
-        #: goals covering them whole, and how many of the first kind (``None``: not yet found).
-        self._free: tuple[np.ndarray, np.ndarray, np.ndarray, int] | None = None
+        self.size = len(self.cx) * len(self.cy)
+        #: Per disc, the cells its circle covers whole where it stands; per goal (row), those its circle covers.
+        self.stamps = self._each(t.pos, self._disc_rad(t.r))
+        self.goal_stamps = self._each(t.goal, self._goal_rad(t.r[t.movers]))
+        self.discs = np.bincount(np.concatenate(self.stamps), minlength=self.size)
+        self.goals = np.bincount(np.concatenate([self.goal_stamps[k] for k in np.flatnonzero(~t.done)] + [_NONE]),
+                                 minlength=self.size)
+        #: Discs moved and goals reached since the counts were last brought up to date.
+        self.todo: list[int] = []
+        self.todo_goals: list[int] = []
+        #: The cells no disc circle covers whole, as the counts stand: centres and the open goals covering them whole
+        #: (``None``: not yet found).
+        self._zero: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def _disc_rad(self, r: np.ndarray | float) -> np.ndarray:
         return np.asarray(r + self.rmin + CLEARANCE - self.half - 1e-9, dtype=float)
@@ -406,41 +416,43 @@ class _Cells:
     def _goal_rad(self, r: np.ndarray | float) -> np.ndarray:
         return np.asarray(r + self.rmin - TOUCH - self.half - 1e-9, dtype=float)
 
-    def _inside(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
-        """Flat indices of the cells whose centre is nearer than ``rad[i]`` to ``xy[i]``, for every i (repeats kept)."""
+    def _each(self, xy: np.ndarray, rad: np.ndarray) -> list[np.ndarray]:
+        """Per ``i``, the flat indices of the cells whose centre is nearer than ``rad[i]`` to ``xy[i]``."""
         xy = np.atleast_2d(xy)
         rad = np.atleast_1d(rad)
-        keep = rad > 0
-        xy, rad = xy[keep], rad[keep]
         if not len(xy):
-            return np.zeros(0, dtype=np.intp)
-        k = math.ceil(2 * float(rad.max()) / self.side) + 2
+            return []
+        k = max(1, math.ceil(2 * float(rad.max()) / self.side) + 2)
         w, h = len(self.cx), len(self.cy)
         ix = np.floor((xy[:, 0] - rad - self.cx[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
         iy = np.floor((xy[:, 1] - rad - self.cy[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
         ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
         dx = np.where(ix == ixc, self.cx[ixc] - xy[:, :1], np.inf)
         dy = np.where(iy == iyc, self.cy[iyc] - xy[:, 1:], np.inf)
-        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
-        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
+        ok = (dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]) & (rad > 0)[:, None, None]
+        idx = iyc[:, :, None] * w + ixc[:, None, :]
+        return [idx[i][ok[i]] for i in range(len(xy))]
 
-    def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
-        rad = float(self._disc_rad(t.r[j]))
-        self.todo.append((0, old, rad, -1))
-        self.todo.append((0, t.pos[j].copy(), rad, 1))
+    def moved(self, j: int) -> None:
+        self.todo.append(j)
 
-    def closed(self, t: _Table, k: int) -> None:
-        self.todo.append((1, t.goal[k], float(self._goal_rad(t.r[t.movers[k]])), -1))
+    def closed(self, k: int) -> None:
+        self.todo_goals.append(k)
 
-    def _flush(self) -> None:
-        for which, arr in ((0, self.discs), (1, self.goals)):
-            for sign in (-1, 1):
-                sel = [(xy, rad) for w, xy, rad, sg in self.todo if w == which and sg == sign]
-                if sel:
-                    idx = self._inside(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
-                    arr += sign * np.bincount(idx, minlength=len(arr))
+    def _flush(self, t: _Table) -> None:
+        if self.todo:
+            moved = list(dict.fromkeys(self.todo))
+            new = self._each(t.pos[moved], self._disc_rad(t.r[moved]))
+            self.discs -= np.bincount(np.concatenate([self.stamps[j] for j in moved]), minlength=self.size)
+            self.discs += np.bincount(np.concatenate(new), minlength=self.size)
+            for j, cells in zip(moved, new):
+                self.stamps[j] = cells
+        if self.todo_goals:
+            self.goals -= np.bincount(np.concatenate([self.goal_stamps[k] for k in self.todo_goals]),
+                                      minlength=self.size)
         self.todo.clear()
-        self._free = None
+        self.todo_goals.clear()
+        self._zero = None
 
     def bound(self, t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[int, int] | None:
         """An upper bound on the ``(gain, cover - hits)`` of :func:`_nudge` for disc ``j``; ``None`` when the nudge
@@ -448,31 +460,27 @@ class _Cells:
         free of every other disc's circle: in a cell not covered whole by another disc's circle, and there it lies in
         every goal circle that covers the cell whole; so its gain is at most ``len(freed)`` less the goals of
         ``freed`` covering its cell whole, its hits at least the open goals but ``j``'s own covering it whole."""
-        if self.todo:
-            self._flush()
-        if self._free is None:
+        if self.todo or self.todo_goals:
+            self._flush(t)
+        w = len(self.cx)
+        if self._zero is None:
             zero = np.flatnonzero(self.discs == 0)
-            one = np.flatnonzero(self.discs == 1)
-            w = len(self.cx)
-            self._free = (np.concatenate([self.cx[zero % w], self.cx[one % w]]),
-                          np.concatenate([self.cy[zero // w], self.cy[one // w]]),
-                          np.concatenate([self.goals[zero], self.goals[one]]), len(zero))
-        x, y, hits, nz = self._free
+            self._zero = (self.cx[zero % w], self.cy[zero // w], self.goals[zero])
+        # The cells no disc covers whole, and those only j covers whole (of j's own stamp, a count of 1).
+        mine = self.stamps[j]
+        mine = mine[self.discs[mine] == 1]
+        zx, zy, zh = self._zero
+        x = np.concatenate([zx, self.cx[mine % w]])
+        y = np.concatenate([zy, self.cy[mine // w]])
         c = t.pos[j]
         lo, hi = t.box(j)
         reach = NUDGE_REACH * float(t.r[j]) + self.half + 1e-9
-        dx, dy = x - c[0], y - c[1]
-        d2 = dx ** 2 + dy ** 2
         half = self.side / 2 + 1e-9
-        ok = (d2 <= reach * reach) & (x >= lo[0] - half) & (x <= hi[0] + half) & (y >= lo[1] - half) \
-            & (y <= hi[1] + half)
-        # A cell one disc covers whole is free for j when that disc is j (the test it was counted by).
-        own_r = float(self._disc_rad(t.r[j]))
-        ok[nz:] &= d2[nz:] < own_r * own_r
-        sel = np.flatnonzero(ok)
+        sel = np.flatnonzero(((x - c[0]) ** 2 + (y - c[1]) ** 2 <= reach * reach) & (x >= lo[0] - half)
+                             & (x <= hi[0] + half) & (y >= lo[1] - half) & (y <= hi[1] + half))
         if not len(sel):
             return None
-        x, y, h = x[sel], y[sel], hits[sel]
+        x, y, h = x[sel], y[sel], np.concatenate([zh, self.goals[mine]])[sel]
         k = t.row.get(j)
         if k is not None and not t.done[k]:
             h = h - self._covers(x, y, t.goal[k], float(self._goal_rad(t.r[j])))
@@ -483,8 +491,8 @@ class _Cells:
         return best, cover - int(h[gain == best].min())
 
     def _covers(self, x: np.ndarray, y: np.ndarray, xy: np.ndarray, rad: float) -> np.ndarray:
-        """Whether the circle about ``xy`` of (shrunk) radius ``rad`` covers each cell of centre ``(x, y)`` whole, as
-        counted."""
+        """Whether the circle about ``xy`` of (shrunk) radius ``rad`` covers each cell of centre ``(x, y)`` whole (the
+        test of :meth:`_each`)."""
         if rad <= 0:
             return np.zeros(len(x), dtype=np.intp)
         return ((x - xy[0]) ** 2 + (y - xy[1]) ** 2 < rad * rad).astype(np.intp)
@@ -510,6 +518,7 @@ DIRECT = False
 TABLE_AFTER = 16
 
 _AXIS = np.array([0, 0, 1, 1])
+_NONE = np.zeros(0, dtype=np.intp)
 _SIGN = np.array([1.0, -1.0])[None, :, None]
 
 
@@ -619,13 +628,13 @@ def _unchanged(t: _Table, j: int, seen: tuple, key: tuple[int, ...], cover: int,
     return not fresh or not bool((np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any())
 
 
-def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, cells: _Cells | None = None,
-                  floor: tuple[int, int] | None = None) -> tuple[np.ndarray, int, int] | None:
+def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, floor: tuple[int, int] | None = None
+                  ) -> tuple[np.ndarray, int, int] | None:
     """:func:`_nudge`, answered from the last one for ``j`` when nothing it depends on changed: ``j`` stands where
     it stood, covers the same goals, and no disc left or arrived within the reach of its discs and goals (its
     nudge looks only there; a goal closes only when a disc arrives on it).
 
-    Else, given ``cells`` and ``floor`` (the ``(gain, cover - hits)`` of the caller's best nudge so far; it keeps the
+    Else, given ``floor`` (the ``(gain, cover - hits)`` of the caller's best nudge so far; it keeps the
     first of equal ones), ``None`` without computing it where :meth:`_Cells.bound` shows that it finds nothing that
     beats ``floor``; such an answer is not remembered (the bound is). Without ``floor`` the bound is not tried: the
     first disc's nudge is nearly always needed."""
@@ -635,14 +644,16 @@ def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, cells: _Cell
     seen = t.nudges.get(j)
     if seen is not None and _unchanged(t, j, seen, key, cover, near):
         return seen[4]
-    if cells is not None and floor is not None and BOUND:
+    if floor is not None and BOUND:
+        if t.cells is None:
+            t.cells = _Cells(t, t.scene.bounds)
         # The bound looks at the cells whose centre lies within the reach and half a cell's diagonal of j; a disc
         # counts for a cell within its circle's radius less that half diagonal, a goal likewise: the same ``near``.
         known = t.bounds.get(j)
         if known is not None and _unchanged(t, j, known, key, cover, near):
             most = known[4]
         else:
-            most = cells.bound(t, j, freed, cover)
+            most = t.cells.bound(t, j, freed, cover)
             t.bounds[j] = (len(t.changes), t.pos[j].copy(), key, cover, most)
         if most is None or most <= floor:
             return None
@@ -651,8 +662,7 @@ def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, cells: _Cell
     return found
 
 
-def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray, cells: _Cells | None = None
-            ) -> tuple[int, np.ndarray] | None:
+def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> tuple[int, np.ndarray] | None:
     """The disc to park and its spot; ``None`` when no move makes progress (parking would go round in circles).
 
     In this order: of the :data:`CANDIDATES` best scored discs (with goals of their own), the first whose grid
@@ -675,7 +685,7 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray, cell
         # The best a move of j can do: uncover every goal it alone covers, and cover none.
         if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
             break
-        found_n = _cached_nudge(t, j, freed, int(cover[j]), cells, None if nudge is None else nudge[0])
+        found_n = _cached_nudge(t, j, freed, int(cover[j]), None if nudge is None else nudge[0])
         if found_n is None:
             continue
         key = (found_n[2], int(cover[j]) - found_n[1])
@@ -781,7 +791,6 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     t = _Table(problem)
     limit = 3 * sc.n if max_actions is None else max_actions
     spots: _Spots | None = None
-    cells: _Cells | None = None
     # An object that already meets its goal stays where it is, unless it covers another goal.
     at = np.hypot(*(t.pos[t.movers] - t.goal).T) <= XY_TOL
     at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
@@ -805,16 +814,12 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                 if spots is not None:
                     spots.moved(t, o, old)
                     spots.closed(t, k)
-                if cells is not None:
-                    cells.moved(t, o, old)
-                    cells.closed(t, k)
             continue
         b = t.blocked[~t.done]
         score = _score(t, b)
         if spots is None:
             spots = _Spots(t, sc.bounds)
-            cells = _Cells(t, sc.bounds)
-        park = _choose(t, spots, score, b.sum(axis=0), cells)
+        park = _choose(t, spots, score, b.sum(axis=0))
         if park is None:
             return None
         j, spot = park
@@ -822,8 +827,6 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
         old = t.pos[j].copy()
         t.move(j, spot)
         spots.moved(t, j, old)
-        if cells is not None:
-            cells.moved(t, j, old)
     return actions
 
 

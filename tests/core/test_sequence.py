@@ -367,13 +367,14 @@ def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
     kept = seq._cached_nudge
     pairs = []
 
-    def both(t, j, freed, cover, cells=None, floor=None):
-        if cells is not None:
+    def both(t, j, freed, cover, floor=None):
+        got = kept(t, j, freed, cover, floor)
+        if t.cells is not None:
             nudged = t.nudged
             fresh = seq._nudge(t, j, freed, cover)
             t.nudged = nudged
-            pairs.append((cells.bound(t, j, freed, cover), fresh, cover))
-        return kept(t, j, freed, cover, cells, floor)
+            pairs.append((t.cells.bound(t, j, freed, cover), fresh, cover))
+        return got
 
     try:
         seq._cached_nudge = both
