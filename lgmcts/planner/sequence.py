@@ -83,12 +83,16 @@ class _Table:
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
         self.scene = sc
-        #: Where discs left and arrived, in order (a cached nudge stays valid while none of these is near).
-        self.changes: list[np.ndarray] = []
+        #: Where discs left and arrived, in order, the first ``nchanges`` rows (a cached nudge stays valid while none
+        #: of these is near).
+        self.changes = np.zeros((16, 2))
+        self.nchanges = 0
+        self.rmax = float(np.max(self.r))
         #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
-        self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
+        self.nudges: dict[int, tuple[int, tuple[float, float], tuple[int, ...], int,
+                                     tuple[np.ndarray, int, int] | None]] = {}
         #: Per disc, its last bound of :class:`_Cells` (changes seen, centre, freed goals, cover, the bound).
-        self.bounds: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[int, int] | None]] = {}
+        self.bounds: dict[int, tuple[int, tuple[float, float], tuple[int, ...], int, tuple[int, int] | None]] = {}
         self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         #: The discs moved and the goals (rows) reached, in order, for :class:`_Crossings` to catch up on.
         self.moved: list[int] = []
@@ -113,7 +117,11 @@ class _Table:
         return self._boxes[j]
 
     def move(self, j: int, xy: np.ndarray) -> None:
-        self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
+        if self.nchanges + 2 > len(self.changes):
+            self.changes = np.concatenate([self.changes, np.zeros_like(self.changes)])
+        self.changes[self.nchanges] = self.pos[j]
+        self.changes[self.nchanges + 1] = xy
+        self.nchanges += 2
         self.moved.append(j)
         self.pos[j] = xy
         if self.cells is not None:
@@ -242,6 +250,46 @@ class _Crossings:
         return p[sel[np.argsort(self.key[sel])]]
 
 
+def _within(gx: np.ndarray, gy: np.ndarray, step: float, xy: np.ndarray, rad: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The points of the grid ``gx`` x ``gy`` (spacing ``step``) closer than ``rad[i]`` to ``xy[i]`` (none where
+    ``rad[i] <= 0``), as flat indices, those of ``xy[0]`` first, then ``xy[1]``'s and so on; and how many each."""
+    xy = np.atleast_2d(xy)
+    rad = np.atleast_1d(rad)
+    if not len(gx) or not len(gy) or not len(xy):
+        return np.zeros(0, dtype=np.intp), np.zeros(len(xy), dtype=np.intp)
+    k = max(1, math.ceil(2 * float(rad.max()) / step) + 2)
+    w, h = len(gx), len(gy)
+    ix = np.floor((xy[:, 0] - rad - gx[0]) / step).astype(np.intp)[:, None] + np.arange(k)
+    iy = np.floor((xy[:, 1] - rad - gy[0]) / step).astype(np.intp)[:, None] + np.arange(k)
+    ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
+    dx = np.where(ix == ixc, gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
+    dy = np.where(iy == iyc, gy[iyc] - xy[:, 1:], np.inf)
+    ok = (dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]) & (rad > 0)[:, None, None]
+    return (iyc[:, :, None] * w + ixc[:, None, :])[ok], ok.reshape(len(xy), -1).sum(axis=1)
+
+
+class _Stamps:
+    """Per disc (or goal), the flat indices of the grid points it counts for, where it stands now: those of
+    :func:`_within` for all at first, then each one's own after it moves."""
+
+    def __init__(self, flat: np.ndarray, counts: np.ndarray) -> None:
+        self.flat = flat
+        self.start = np.concatenate([[0], np.cumsum(counts)]).tolist()
+        self.new: dict[int, np.ndarray] = {}
+
+    def __getitem__(self, i: int) -> np.ndarray:
+        got = self.new.get(i)
+        return self.flat[self.start[i]:self.start[i + 1]] if got is None else got
+
+    def __setitem__(self, i: int, cells: np.ndarray) -> None:
+        self.new[i] = cells
+
+    def count(self, items: list[int], size: int) -> np.ndarray:
+        """How many of ``items`` count for each of the ``size`` points."""
+        return np.bincount(np.concatenate([self[i] for i in items] + [_NONE]), minlength=size)
+
+
 class _Spots:
     """Grid points where a parked disc could stand, kept up to date as discs move.
 
@@ -262,13 +310,16 @@ class _Spots:
         xmin, xmax, ymin, ymax = bounds
         self.gx = np.arange(xmin + edge, xmax - edge + 1e-12, self.step)
         self.gy = np.arange(ymin + edge, ymax - edge + 1e-12, self.step)
-        size = len(self.gx) * len(self.gy)
-        self.count = np.bincount(self._stamp(t.pos, t.r + self.reach), minlength=size)
-        open_ = ~t.done
-        self.hits = np.bincount(self._stamp(t.goal[open_], t.r[t.movers[open_]] + rmax - TOUCH), minlength=size)
-        #: Changes not yet applied to the counts: (0 count / 1 hits, centre, radius, sign).
-        self.todo: list[tuple[int, np.ndarray, float, int]] = []
-        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
+        self.size = len(self.gx) * len(self.gy)
+        #: Per disc, the points it crowds where it stands; per goal (row), the points it reaches.
+        self.stamps = _Stamps(*_within(self.gx, self.gy, self.step, t.pos, t.r + self.reach))
+        self.goal_stamps = _Stamps(*_within(self.gx, self.gy, self.step, t.goal, t.r[t.movers] + rmax - TOUCH))
+        self.count = self.stamps.count(list(range(len(t.r))), self.size)
+        self.hits = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
+        #: Discs moved and goals reached since the counts were last brought up to date.
+        self.todo: list[int] = []
+        self.todo_goals: list[int] = []
+        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), as a mask, kept once made.
         self._goal_stamp: dict[int, np.ndarray] = {}
         #: The points no disc crowds and those one disc crowds, as the counts stand (``None``: not yet found).
         self._free: tuple[np.ndarray, np.ndarray] | None = None
@@ -276,39 +327,30 @@ class _Spots:
         #: counts at most 1 and which of the two counts is 1 there (``None``: not yet found).
         self._open: tuple[bool, np.ndarray, np.ndarray, np.ndarray] | None = None
 
-    def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
+    def _stamp(self, xy: np.ndarray, rad: np.ndarray | float) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
-        xy = np.atleast_2d(xy)
-        rad = np.atleast_1d(rad)
-        if not len(self.gx) or not len(self.gy) or not len(xy):
-            return np.zeros(0, dtype=np.intp)
-        k = math.ceil(2 * float(rad.max()) / self.step) + 2
-        w, h = len(self.gx), len(self.gy)
-        ix = np.floor((xy[:, 0] - rad - self.gx[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
-        iy = np.floor((xy[:, 1] - rad - self.gy[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
-        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
-        dx = np.where(ix == ixc, self.gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
-        dy = np.where(iy == iyc, self.gy[iyc] - xy[:, 1:], np.inf)
-        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
-        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
+        return _within(self.gx, self.gy, self.step, xy, np.atleast_1d(rad))[0]
 
-    def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
-        """Disc ``j`` moved from ``old`` to where it stands now (applied at the next query, all moves at once)."""
-        self.todo.append((0, old, t.r[j] + self.reach, -1))
-        self.todo.append((0, t.pos[j].copy(), t.r[j] + self.reach, 1))
+    def moved(self, j: int) -> None:
+        """Disc ``j`` moved (applied at the next query, all moves at once)."""
+        self.todo.append(j)
 
-    def closed(self, t: _Table, k: int) -> None:
+    def closed(self, k: int) -> None:
         """The goal of mover ``k`` is reached: no spot covers it any more."""
-        self.todo.append((1, t.goal[k], t.r[t.movers[k]] + self.rmax - TOUCH, -1))
+        self.todo_goals.append(k)
 
-    def _flush(self) -> None:
-        for which, arr in ((0, self.count), (1, self.hits)):
-            for sign in (-1, 1):
-                sel = [(xy, rad) for w, xy, rad, sg in self.todo if w == which and sg == sign]
-                if sel:
-                    idx = self._stamp(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
-                    arr += sign * np.bincount(idx, minlength=len(arr))
+    def _flush(self, t: _Table) -> None:
+        if self.todo:
+            moved = list(dict.fromkeys(self.todo))
+            flat, counts = _within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach)
+            self.count -= self.stamps.count(moved, self.size)
+            self.count += np.bincount(flat, minlength=self.size)
+            for j, cells in zip(moved, np.split(flat, np.cumsum(counts)[:-1])):
+                self.stamps[j] = cells
+        if self.todo_goals:
+            self.hits -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
+        self.todo_goals.clear()
         self._free = None
         self._open = None
 
@@ -317,8 +359,8 @@ class _Spots:
         a point of count 0 or of count 1 in j's own stamp (the disc crowding it is j), with no open goal or only j's
         own (its goal stamp) within reach. Both counts of such a point are at most 1, and such points are few on a
         packed table, so this tests them alone."""
-        if self.todo:
-            self._flush()
+        if self.todo or self.todo_goals:
+            self._flush(t)
         if self._open is None:
             low = (self.count <= 1) & (self.hits <= 1)
             both0 = bool((low & (self.count == 0) & (self.hits == 0)).any())
@@ -344,14 +386,14 @@ class _Spots:
     def _goal_mask(self, t: _Table, j: int) -> np.ndarray:
         """The grid points disc ``j``'s own goal disc reaches (as in ``hits``)."""
         mine = np.zeros(len(self.count), dtype=bool)
-        mine[self._stamp(t.goal[t.row[j]], t.r[j] + self.rmax - TOUCH)] = True
+        mine[self.goal_stamps[t.row[j]]] = True
         return mine
 
     def spot(self, t: _Table, j: int) -> tuple[np.ndarray, int] | None:
         """The free point for disc ``j`` that covers the fewest open goals
         (other than its own), nearest its goal among those; with that count."""
-        if self.todo:
-            self._flush()
+        if self.todo or self.todo_goals:
+            self._flush(t)
         k = t.row[j]
         # The points no disc crowds, and those only j crowds: a count of 1 at a point of j's own stamp (the test
         # of _stamp, on the few points of count 1 instead of j's whole window).
@@ -398,11 +440,10 @@ class _Cells:
         self.origin = (xmin, ymin)
         self.size = len(self.cx) * len(self.cy)
         #: Per disc, the cells its circle covers whole where it stands; per goal (row), those its circle covers.
-        self.stamps = self._each(t.pos, self._disc_rad(t.r))
-        self.goal_stamps = self._each(t.goal, self._goal_rad(t.r[t.movers]))
-        self.discs = np.bincount(np.concatenate(self.stamps), minlength=self.size)
-        self.goals = np.bincount(np.concatenate([self.goal_stamps[k] for k in np.flatnonzero(~t.done)] + [_NONE]),
-                                 minlength=self.size)
+        self.stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.pos, self._disc_rad(t.r)))
+        self.goal_stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.goal, self._goal_rad(t.r[t.movers])))
+        self.discs = self.stamps.count(list(range(len(t.r))), self.size)
+        self.goals = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
         #: Discs moved and goals reached since the counts were last brought up to date.
         self.todo: list[int] = []
         self.todo_goals: list[int] = []
@@ -416,23 +457,6 @@ class _Cells:
     def _goal_rad(self, r: np.ndarray | float) -> np.ndarray:
         return np.asarray(r + self.rmin - TOUCH - self.half - 1e-9, dtype=float)
 
-    def _each(self, xy: np.ndarray, rad: np.ndarray) -> list[np.ndarray]:
-        """Per ``i``, the flat indices of the cells whose centre is nearer than ``rad[i]`` to ``xy[i]``."""
-        xy = np.atleast_2d(xy)
-        rad = np.atleast_1d(rad)
-        if not len(xy):
-            return []
-        k = max(1, math.ceil(2 * float(rad.max()) / self.side) + 2)
-        w, h = len(self.cx), len(self.cy)
-        ix = np.floor((xy[:, 0] - rad - self.cx[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
-        iy = np.floor((xy[:, 1] - rad - self.cy[0]) / self.side).astype(np.intp)[:, None] + np.arange(k)
-        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
-        dx = np.where(ix == ixc, self.cx[ixc] - xy[:, :1], np.inf)
-        dy = np.where(iy == iyc, self.cy[iyc] - xy[:, 1:], np.inf)
-        ok = (dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]) & (rad > 0)[:, None, None]
-        idx = iyc[:, :, None] * w + ixc[:, None, :]
-        return [idx[i][ok[i]] for i in range(len(xy))]
-
     def moved(self, j: int) -> None:
         self.todo.append(j)
 
@@ -442,14 +466,13 @@ class _Cells:
     def _flush(self, t: _Table) -> None:
         if self.todo:
             moved = list(dict.fromkeys(self.todo))
-            new = self._each(t.pos[moved], self._disc_rad(t.r[moved]))
-            self.discs -= np.bincount(np.concatenate([self.stamps[j] for j in moved]), minlength=self.size)
-            self.discs += np.bincount(np.concatenate(new), minlength=self.size)
-            for j, cells in zip(moved, new):
+            flat, counts = _within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved]))
+            self.discs -= self.stamps.count(moved, self.size)
+            self.discs += np.bincount(flat, minlength=self.size)
+            for j, cells in zip(moved, np.split(flat, np.cumsum(counts)[:-1])):
                 self.stamps[j] = cells
         if self.todo_goals:
-            self.goals -= np.bincount(np.concatenate([self.goal_stamps[k] for k in self.todo_goals]),
-                                      minlength=self.size)
+            self.goals -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
         self.todo_goals.clear()
         self._zero = None
@@ -492,7 +515,7 @@ class _Cells:
 
     def _covers(self, x: np.ndarray, y: np.ndarray, xy: np.ndarray, rad: float) -> np.ndarray:
         """Whether the circle about ``xy`` of (shrunk) radius ``rad`` covers each cell of centre ``(x, y)`` whole (the
-        test of :meth:`_each`)."""
+        test of :func:`_within`)."""
         if rad <= 0:
             return np.zeros(len(x), dtype=np.intp)
         return ((x - xy[0]) ** 2 + (y - xy[1]) ** 2 < rad * rad).astype(np.intp)
@@ -622,10 +645,13 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
 def _unchanged(t: _Table, j: int, seen: tuple, key: tuple[int, ...], cover: int, near: float) -> bool:
     """Whether an answer for disc ``j`` remembered as ``seen`` (changes seen, centre, freed goals, cover, answer) still
     holds: ``j`` stands where it stood, covers the same goals, and no disc left or arrived within ``near`` of it."""
-    if seen[2] != key or seen[3] != cover or not np.array_equal(seen[1], t.pos[j]):
+    c = t.pos[j]
+    if seen[2] != key or seen[3] != cover or seen[1] != (c[0], c[1]):
         return False
-    fresh = t.changes[seen[0]:]
-    return not fresh or not bool((np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any())
+    if seen[0] == t.nchanges:
+        return True
+    d = t.changes[seen[0]:t.nchanges] - c
+    return not bool((np.hypot(d[:, 0], d[:, 1]) < near).any())
 
 
 def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, floor: tuple[int, int] | None = None
@@ -639,8 +665,7 @@ def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, floor: tuple
     beats ``floor``; such an answer is not remembered (the bound is). Without ``floor`` the bound is not tried: the
     first disc's nudge is nearly always needed."""
     key = tuple(freed.tolist())
-    rmax = float(np.max(t.r))
-    near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
+    near = NUDGE_REACH * t.r[j] + t.r[j] + t.rmax + CLEARANCE + 1e-6
     seen = t.nudges.get(j)
     if seen is not None and _unchanged(t, j, seen, key, cover, near):
         return seen[4]
@@ -654,11 +679,11 @@ def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, floor: tuple
             most = known[4]
         else:
             most = t.cells.bound(t, j, freed, cover)
-            t.bounds[j] = (len(t.changes), t.pos[j].copy(), key, cover, most)
+            t.bounds[j] = (t.nchanges, (t.pos[j, 0], t.pos[j, 1]), key, cover, most)
         if most is None or most <= floor:
             return None
     found = _nudge(t, j, freed, cover)
-    t.nudges[j] = (len(t.changes), t.pos[j].copy(), key, cover, found)
+    t.nudges[j] = (t.nchanges, (t.pos[j, 0], t.pos[j, 1]), key, cover, found)
     return found
 
 
@@ -808,12 +833,11 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                 o = int(t.movers[k])
                 pose = np.array([t.goal[k, 0], t.goal[k, 1], t.yaw[k]])
                 actions.append(_action(sc.ids[o], pose, "goal"))
-                old = t.pos[o].copy()
                 t.move(o, t.goal[k])
                 t.close(k)
                 if spots is not None:
-                    spots.moved(t, o, old)
-                    spots.closed(t, k)
+                    spots.moved(o)
+                    spots.closed(k)
             continue
         b = t.blocked[~t.done]
         score = _score(t, b)
@@ -824,9 +848,8 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
             return None
         j, spot = park
         actions.append(_action(sc.ids[j], (spot[0], spot[1], sc.initial.poses[j, 2]), "relocate"))
-        old = t.pos[j].copy()
         t.move(j, spot)
-        spots.moved(t, j, old)
+        spots.moved(j)
     return actions
 
 

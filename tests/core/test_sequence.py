@@ -301,8 +301,8 @@ def test_kept_crossings_give_the_nudges_of_crossing_afresh(seed, n, density, mix
 def _spot_by_stamps(spots, t, j):
     """A grid spot for disc ``j`` found as the query did before it kept the points of count 0 and 1: every point
     of count 0, and those of count 1 within j's own stamp (its whole window stamped afresh)."""
-    if spots.todo:
-        spots._flush()
+    if spots.todo or spots.todo_goals:
+        spots._flush(t)
     k = t.row[j]
     mask = spots.count == 0
     own = spots._stamp(t.pos[j], t.r[j] + spots.reach)
