@@ -77,11 +77,14 @@ class _Table:
         self.goal = np.array([problem.fixed[o][:2] for o in self.movers], dtype=float)
         self.yaw = np.array([float(problem.fixed[o][2]) for o in self.movers])
         self.row = {int(o): k for k, o in enumerate(self.movers)}
+        self.is_mover = np.zeros(len(self.r), dtype=bool)
+        self.is_mover[self.movers] = True
         # blocked[k, j]: disc j, where it stands, overlaps the goal disc of mover k.
         d = np.hypot(*(self.goal[:, None, :] - self.pos[None, :, :]).transpose(2, 0, 1))
         self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
+        self._open_rows: np.ndarray | None = None
         self.scene = sc
         #: Where discs left and arrived, in order, the first ``nchanges`` rows (a cached nudge stays valid while none
         #: of these is near).
@@ -133,8 +136,15 @@ class _Table:
             col[k] = False
         self.blocked[:, j] = col
 
+    def open_rows(self) -> np.ndarray:
+        """The goals (rows) not yet reached, in order (not to be changed by the caller)."""
+        if self._open_rows is None:
+            self._open_rows = np.flatnonzero(~self.done)
+        return self._open_rows
+
     def close(self, k: int) -> None:
         """The goal of mover ``k`` (a row) is reached."""
+        self._open_rows = None
         self.done[k] = True
         self.closed.append(k)
         if self.cells is not None:
@@ -170,11 +180,19 @@ class _Crossings:
         self.key = np.zeros(0, dtype=np.intp)
         self.lo, self.hi = lo.copy(), hi.copy()
         self.sides = np.array([lo[0], hi[0], lo[1], hi[1]])
+        self._same: dict[int, bool] = {}
         self.seen = (len(t.moved), len(t.closed))
         a, b = np.triu_indices(n, 1)
         rows = np.flatnonzero(~t.done)
         self._add(t, a, b, rows, np.arange(n))
         self._add_sides(t, np.concatenate([np.arange(n), n + rows]))
+
+    def same_box(self, j: int, lo: np.ndarray, hi: np.ndarray) -> bool:
+        """Whether disc ``j``'s box ``lo``-``hi`` is the one whose sides are kept (remembered per disc)."""
+        got = self._same.get(j)
+        if got is None:
+            got = self._same[j] = bool(np.array_equal(self.lo, lo) and np.array_equal(self.hi, hi))
+        return got
 
     def _add_sides(self, t: _Table, circles: np.ndarray) -> None:
         """Add the crossings of each of ``circles`` with the box's sides."""
@@ -573,7 +591,7 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     near = near[near != j]
     ocen, orad = t.pos[near], t.r[near] + rj + CLEARANCE
     own = t.row.get(j)
-    rows = np.flatnonzero(~t.done)
+    rows = t.open_rows()
     if own is not None:
         rows = rows[rows != own]
     rows = rows[np.hypot(*(t.goal[rows] - c).T) < reach + t.r[t.movers[rows]] + rj]
@@ -593,7 +611,7 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones
     # (kept in the table when it was built for this box). Only the sides within reach (the crossings on another
     # lie beyond it).
-    kept_sides = cross is not None and bool(np.array_equal(cross.lo, lo) and np.array_equal(cross.hi, hi))
+    kept_sides = cross is not None and cross.same_box(j, lo, hi)
     near_side = [] if kept_sides else \
         [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
          if abs(float(v) - float(w)) <= reach + 1e-9]
@@ -694,7 +712,9 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     spot covers no open goal; else the best :func:`_nudge` of any candidate (most goals uncovered, then fewest
     covers left; candidates in score order, stopping once none further can do better); else the grid spot whose
     move uncovers the most goals."""
-    order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
+    idx = np.argsort(-score, kind="stable")
+    idx = idx[(score[idx] > 0) & t.is_mover[idx]]
+    order = idx.tolist()
     for j in order[:CANDIDATES]:
         # The query itself only for a disc it answers with a spot clear of the open goals (on a packed table, none).
         if spots.open_spot(t, j):
@@ -821,6 +841,7 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
     at &= ~t.blocked[:, t.movers].any(axis=0)
     t.done[at] = True
+    t._open_rows = None
     actions: list[Action] = []
     while not t.done.all():
         if len(actions) >= limit:
