@@ -363,8 +363,9 @@ class _Spots:
             flat, counts = _within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach)
             self.count -= self.stamps.count(moved, self.size)
             self.count += np.bincount(flat, minlength=self.size)
-            for j, cells in zip(moved, np.split(flat, np.cumsum(counts)[:-1])):
-                self.stamps[j] = cells
+            ends = np.cumsum(counts).tolist()
+            for j, a, e in zip(moved, [0, *ends], ends):
+                self.stamps[j] = flat[a:e]
         if self.todo_goals:
             self.hits -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
@@ -487,8 +488,9 @@ class _Cells:
             flat, counts = _within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved]))
             self.discs -= self.stamps.count(moved, self.size)
             self.discs += np.bincount(flat, minlength=self.size)
-            for j, cells in zip(moved, np.split(flat, np.cumsum(counts)[:-1])):
-                self.stamps[j] = cells
+            ends = np.cumsum(counts).tolist()
+            for j, a, e in zip(moved, [0, *ends], ends):
+                self.stamps[j] = flat[a:e]
         if self.todo_goals:
             self.goals -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
