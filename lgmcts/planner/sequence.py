@@ -205,15 +205,16 @@ class _Crossings:
         h = np.sqrt(np.maximum(rad[k] ** 2 - off[e, k] ** 2, 0.0))
         ax = _AXIS[e]
         side = self.sides[e]
+        q = np.empty((2, len(e), 2))
         for sg, sgn in enumerate((1.0, -1.0)):
             along = cen[k, 1 - ax] + sgn * h
-            q = np.empty((len(e), 2))
-            q[:, 0] = np.where(ax == 0, side, along)
-            q[:, 1] = np.where(ax == 1, side, along)
-            self.p = np.concatenate([self.p, q])
-            self.a = np.concatenate([self.a, circles[k]])
-            self.b = np.concatenate([self.b, circles[k]])
-            self.key = np.concatenate([self.key, (2 * e + sg - 8) * self.span + circles[k]])
+            q[sg, :, 0] = np.where(ax == 0, side, along)
+            q[sg, :, 1] = np.where(ax == 1, side, along)
+        ck = circles[k]
+        self.p = np.concatenate([self.p, q.reshape(-1, 2)])
+        self.a = np.concatenate([self.a, ck, ck])
+        self.b = np.concatenate([self.b, ck, ck])
+        self.key = np.concatenate([self.key, (2 * e - 8) * self.span + ck, (2 * e - 7) * self.span + ck])
 
     def _add(self, t: _Table, a: np.ndarray, b: np.ndarray, rows: np.ndarray, discs: np.ndarray) -> None:
         """Add the crossings of the disc pairs ``(a, b)`` and of each of ``discs`` with each goal of ``rows``."""
@@ -243,7 +244,7 @@ class _Crossings:
         keep = ~(gone[self.a] | gone[self.b])
         self.p, self.a, self.b, self.key = self.p[keep], self.a[keep], self.b[keep], self.key[keep]
         if moved:
-            m = np.unique(np.asarray(moved, dtype=np.intp))
+            m = np.array(sorted(set(moved)), dtype=np.intp)
             i = np.repeat(m, n)
             k = np.tile(np.arange(n), len(m))
             # Each pair once: with a disc that did not move, or with a moved one of higher index.
