@@ -77,16 +77,25 @@ class _Table:
         self.goal = np.array([problem.fixed[o][:2] for o in self.movers], dtype=float)
         self.yaw = np.array([float(problem.fixed[o][2]) for o in self.movers])
         self.row = {int(o): k for k, o in enumerate(self.movers)}
+        self.is_mover = np.zeros(len(self.r), dtype=bool)
+        self.is_mover[self.movers] = True
         # blocked[k, j]: disc j, where it stands, overlaps the goal disc of mover k.
         d = np.hypot(*(self.goal[:, None, :] - self.pos[None, :, :]).transpose(2, 0, 1))
         self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
         self.blocked[np.arange(len(self.movers)), self.movers] = False
         self.done = np.zeros(len(self.movers), dtype=bool)
+        self._open_rows: np.ndarray | None = None
         self.scene = sc
-        #: Where discs left and arrived, in order (a cached nudge stays valid while none of these is near).
-        self.changes: list[np.ndarray] = []
+        #: Where discs left and arrived, in order, the first ``nchanges`` rows (a cached nudge stays valid while none
+        #: of these is near).
+        self.changes = np.zeros((16, 2))
+        self.nchanges = 0
+        self.rmax = float(np.max(self.r))
         #: Per disc, its last nudge: (changes seen, centre, freed goals, cover, the answer).
-        self.nudges: dict[int, tuple[int, np.ndarray, tuple[int, ...], int, tuple[np.ndarray, int, int] | None]] = {}
+        self.nudges: dict[int, tuple[int, tuple[float, float], tuple[int, ...], int,
+                                     tuple[np.ndarray, int, int] | None]] = {}
+        #: Per disc, its last bound of :class:`_Cells` (changes seen, centre, freed goals, cover, the bound).
+        self.bounds: dict[int, tuple[int, tuple[float, float], tuple[int, ...], int, tuple[int, int] | None]] = {}
         self._boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         #: The discs moved and the goals (rows) reached, in order, for :class:`_Crossings` to catch up on.
         self.moved: list[int] = []
@@ -95,6 +104,8 @@ class _Table:
         #: :data:`TABLE_AFTER` nudges), and the nudges made.
         self.crossings: dict[float, _Crossings] = {}
         self.nudged = 0
+        #: The cells that bound a nudge before it is computed (built the first time one is to be bounded).
+        self.cells: _Cells | None = None
 
     def box(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lower and upper corners of the box disc ``j``'s centre stays in at its start yaw (its footprint polygon
@@ -109,9 +120,15 @@ class _Table:
         return self._boxes[j]
 
     def move(self, j: int, xy: np.ndarray) -> None:
-        self.changes += [self.pos[j].copy(), np.array(xy, dtype=float)]
+        if self.nchanges + 2 > len(self.changes):
+            self.changes = np.concatenate([self.changes, np.zeros_like(self.changes)])
+        self.changes[self.nchanges] = self.pos[j]
+        self.changes[self.nchanges + 1] = xy
+        self.nchanges += 2
         self.moved.append(j)
         self.pos[j] = xy
+        if self.cells is not None:
+            self.cells.moved(j)
         d = np.hypot(*(self.goal - xy).T)
         col = d < self.r[self.movers] + self.r[j] - TOUCH
         k = self.row.get(j)
@@ -119,10 +136,19 @@ class _Table:
             col[k] = False
         self.blocked[:, j] = col
 
+    def open_rows(self) -> np.ndarray:
+        """The goals (rows) not yet reached, in order (not to be changed by the caller)."""
+        if self._open_rows is None:
+            self._open_rows = np.flatnonzero(~self.done)
+        return self._open_rows
+
     def close(self, k: int) -> None:
         """The goal of mover ``k`` (a row) is reached."""
+        self._open_rows = None
         self.done[k] = True
         self.closed.append(k)
+        if self.cells is not None:
+            self.cells.closed(k)
 
 
 class _Crossings:
@@ -154,11 +180,19 @@ class _Crossings:
         self.key = np.zeros(0, dtype=np.intp)
         self.lo, self.hi = lo.copy(), hi.copy()
         self.sides = np.array([lo[0], hi[0], lo[1], hi[1]])
+        self._same: dict[int, bool] = {}
         self.seen = (len(t.moved), len(t.closed))
         a, b = np.triu_indices(n, 1)
         rows = np.flatnonzero(~t.done)
         self._add(t, a, b, rows, np.arange(n))
         self._add_sides(t, np.concatenate([np.arange(n), n + rows]))
+
+    def same_box(self, j: int, lo: np.ndarray, hi: np.ndarray) -> bool:
+        """Whether disc ``j``'s box ``lo``-``hi`` is the one whose sides are kept (remembered per disc)."""
+        got = self._same.get(j)
+        if got is None:
+            got = self._same[j] = bool(np.array_equal(self.lo, lo) and np.array_equal(self.hi, hi))
+        return got
 
     def _add_sides(self, t: _Table, circles: np.ndarray) -> None:
         """Add the crossings of each of ``circles`` with the box's sides."""
@@ -171,15 +205,16 @@ class _Crossings:
         h = np.sqrt(np.maximum(rad[k] ** 2 - off[e, k] ** 2, 0.0))
         ax = _AXIS[e]
         side = self.sides[e]
+        q = np.empty((2, len(e), 2))
         for sg, sgn in enumerate((1.0, -1.0)):
             along = cen[k, 1 - ax] + sgn * h
-            q = np.empty((len(e), 2))
-            q[:, 0] = np.where(ax == 0, side, along)
-            q[:, 1] = np.where(ax == 1, side, along)
-            self.p = np.concatenate([self.p, q])
-            self.a = np.concatenate([self.a, circles[k]])
-            self.b = np.concatenate([self.b, circles[k]])
-            self.key = np.concatenate([self.key, (2 * e + sg - 8) * self.span + circles[k]])
+            q[sg, :, 0] = np.where(ax == 0, side, along)
+            q[sg, :, 1] = np.where(ax == 1, side, along)
+        ck = circles[k]
+        self.p = np.concatenate([self.p, q.reshape(-1, 2)])
+        self.a = np.concatenate([self.a, ck, ck])
+        self.b = np.concatenate([self.b, ck, ck])
+        self.key = np.concatenate([self.key, (2 * e - 8) * self.span + ck, (2 * e - 7) * self.span + ck])
 
     def _add(self, t: _Table, a: np.ndarray, b: np.ndarray, rows: np.ndarray, discs: np.ndarray) -> None:
         """Add the crossings of the disc pairs ``(a, b)`` and of each of ``discs`` with each goal of ``rows``."""
@@ -209,7 +244,7 @@ class _Crossings:
         keep = ~(gone[self.a] | gone[self.b])
         self.p, self.a, self.b, self.key = self.p[keep], self.a[keep], self.b[keep], self.key[keep]
         if moved:
-            m = np.unique(np.asarray(moved, dtype=np.intp))
+            m = np.array(sorted(set(moved)), dtype=np.intp)
             i = np.repeat(m, n)
             k = np.tile(np.arange(n), len(m))
             # Each pair once: with a disc that did not move, or with a moved one of higher index.
@@ -234,6 +269,46 @@ class _Crossings:
         return p[sel[np.argsort(self.key[sel])]]
 
 
+def _within(gx: np.ndarray, gy: np.ndarray, step: float, xy: np.ndarray, rad: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The points of the grid ``gx`` x ``gy`` (spacing ``step``) closer than ``rad[i]`` to ``xy[i]`` (none where
+    ``rad[i] <= 0``), as flat indices, those of ``xy[0]`` first, then ``xy[1]``'s and so on; and how many each."""
+    xy = np.atleast_2d(xy)
+    rad = np.atleast_1d(rad)
+    if not len(gx) or not len(gy) or not len(xy):
+        return np.zeros(0, dtype=np.intp), np.zeros(len(xy), dtype=np.intp)
+    k = max(1, math.ceil(2 * float(rad.max()) / step) + 2)
+    w, h = len(gx), len(gy)
+    ix = np.floor((xy[:, 0] - rad - gx[0]) / step).astype(np.intp)[:, None] + np.arange(k)
+    iy = np.floor((xy[:, 1] - rad - gy[0]) / step).astype(np.intp)[:, None] + np.arange(k)
+    ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
+    dx = np.where(ix == ixc, gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
+    dy = np.where(iy == iyc, gy[iyc] - xy[:, 1:], np.inf)
+    ok = (dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]) & (rad > 0)[:, None, None]
+    return (iyc[:, :, None] * w + ixc[:, None, :])[ok], ok.reshape(len(xy), -1).sum(axis=1)
+
+
+class _Stamps:
+    """Per disc (or goal), the flat indices of the grid points it counts for, where it stands now: those of
+    :func:`_within` for all at first, then each one's own after it moves."""
+
+    def __init__(self, flat: np.ndarray, counts: np.ndarray) -> None:
+        self.flat = flat
+        self.start = np.concatenate([[0], np.cumsum(counts)]).tolist()
+        self.new: dict[int, np.ndarray] = {}
+
+    def __getitem__(self, i: int) -> np.ndarray:
+        got = self.new.get(i)
+        return self.flat[self.start[i]:self.start[i + 1]] if got is None else got
+
+    def __setitem__(self, i: int, cells: np.ndarray) -> None:
+        self.new[i] = cells
+
+    def count(self, items: list[int], size: int) -> np.ndarray:
+        """How many of ``items`` count for each of the ``size`` points."""
+        return np.bincount(np.concatenate([self[i] for i in items] + [_NONE]), minlength=size)
+
+
 class _Spots:
     """Grid points where a parked disc could stand, kept up to date as discs move.
 
@@ -254,57 +329,91 @@ class _Spots:
         xmin, xmax, ymin, ymax = bounds
         self.gx = np.arange(xmin + edge, xmax - edge + 1e-12, self.step)
         self.gy = np.arange(ymin + edge, ymax - edge + 1e-12, self.step)
-        size = len(self.gx) * len(self.gy)
-        self.count = np.bincount(self._stamp(t.pos, t.r + self.reach), minlength=size)
-        open_ = ~t.done
-        self.hits = np.bincount(self._stamp(t.goal[open_], t.r[t.movers[open_]] + rmax - TOUCH), minlength=size)
-        #: Changes not yet applied to the counts: (0 count / 1 hits, centre, radius, sign).
-        self.todo: list[tuple[int, np.ndarray, float, int]] = []
-        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), kept once computed.
+        self.size = len(self.gx) * len(self.gy)
+        #: Per disc, the points it crowds where it stands; per goal (row), the points it reaches.
+        self.stamps = _Stamps(*_within(self.gx, self.gy, self.step, t.pos, t.r + self.reach))
+        self.goal_stamps = _Stamps(*_within(self.gx, self.gy, self.step, t.goal, t.r[t.movers] + rmax - TOUCH))
+        self.count = self.stamps.count(list(range(len(t.r))), self.size)
+        self.hits = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
+        #: Discs moved and goals reached since the counts were last brought up to date.
+        self.todo: list[int] = []
+        self.todo_goals: list[int] = []
+        #: Per disc, the grid points its own goal disc reaches (as in ``hits``), as a mask, kept once made.
         self._goal_stamp: dict[int, np.ndarray] = {}
         #: The points no disc crowds and those one disc crowds, as the counts stand (``None``: not yet found).
         self._free: tuple[np.ndarray, np.ndarray] | None = None
+        #: For :meth:`open_spot`, as the counts stand: whether a point has both counts 0, else the points with both
+        #: counts at most 1 and which of the two counts is 1 there (``None``: not yet found).
+        self._open: tuple[bool, np.ndarray, np.ndarray, np.ndarray] | None = None
 
-    def _stamp(self, xy: np.ndarray, rad: np.ndarray) -> np.ndarray:
+    def _stamp(self, xy: np.ndarray, rad: np.ndarray | float) -> np.ndarray:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
-        xy = np.atleast_2d(xy)
-        rad = np.atleast_1d(rad)
-        if not len(self.gx) or not len(self.gy) or not len(xy):
-            return np.zeros(0, dtype=np.intp)
-        k = math.ceil(2 * float(rad.max()) / self.step) + 2
-        w, h = len(self.gx), len(self.gy)
-        ix = np.floor((xy[:, 0] - rad - self.gx[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
-        iy = np.floor((xy[:, 1] - rad - self.gy[0]) / self.step).astype(np.intp)[:, None] + np.arange(k)
-        ixc, iyc = np.minimum(np.maximum(ix, 0), w - 1), np.minimum(np.maximum(iy, 0), h - 1)
-        dx = np.where(ix == ixc, self.gx[ixc] - xy[:, :1], np.inf)  # (m, k); off the grid: never inside
-        dy = np.where(iy == iyc, self.gy[iyc] - xy[:, 1:], np.inf)
-        ok = dx[:, None, :] ** 2 + dy[:, :, None] ** 2 < (rad * rad)[:, None, None]
-        return (iyc[:, :, None] * w + ixc[:, None, :])[ok]
+        return _within(self.gx, self.gy, self.step, xy, np.atleast_1d(rad))[0]
 
-    def moved(self, t: _Table, j: int, old: np.ndarray) -> None:
-        """Disc ``j`` moved from ``old`` to where it stands now (applied at the next query, all moves at once)."""
-        self.todo.append((0, old, t.r[j] + self.reach, -1))
-        self.todo.append((0, t.pos[j].copy(), t.r[j] + self.reach, 1))
+    def moved(self, j: int) -> None:
+        """Disc ``j`` moved (applied at the next query, all moves at once)."""
+        self.todo.append(j)
 
-    def closed(self, t: _Table, k: int) -> None:
+    def closed(self, k: int) -> None:
         """The goal of mover ``k`` is reached: no spot covers it any more."""
-        self.todo.append((1, t.goal[k], t.r[t.movers[k]] + self.rmax - TOUCH, -1))
+        self.todo_goals.append(k)
 
-    def _flush(self) -> None:
-        for which, arr in ((0, self.count), (1, self.hits)):
-            for sign in (-1, 1):
-                sel = [(xy, rad) for w, xy, rad, sg in self.todo if w == which and sg == sign]
-                if sel:
-                    idx = self._stamp(np.array([x for x, _ in sel]), np.array([r for _, r in sel]))
-                    arr += sign * np.bincount(idx, minlength=len(arr))
+    def _flush(self, t: _Table) -> None:
+        if self.todo:
+            moved = list(dict.fromkeys(self.todo))
+            flat, counts = _within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach)
+            self.count -= self.stamps.count(moved, self.size)
+            self.count += np.bincount(flat, minlength=self.size)
+            ends = np.cumsum(counts).tolist()
+            for j, a, e in zip(moved, [0, *ends], ends):
+                self.stamps[j] = flat[a:e]
+        if self.todo_goals:
+            self.hits -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
+        self.todo_goals.clear()
         self._free = None
+        self._open = None
+
+    def open_spot(self, t: _Table, j: int) -> bool:
+        """Whether :meth:`spot` finds disc ``j`` a point that covers no open goal (its own aside), without the query:
+        a point of count 0 or of count 1 in j's own stamp (the disc crowding it is j), with no open goal or only j's
+        own (its goal stamp) within reach. Both counts of such a point are at most 1, and such points are few on a
+        packed table, so this tests them alone."""
+        if self.todo or self.todo_goals:
+            self._flush(t)
+        if self._open is None:
+            low = (self.count <= 1) & (self.hits <= 1)
+            both0 = bool((low & (self.count == 0) & (self.hits == 0)).any())
+            pts = np.flatnonzero(low)
+            self._open = (both0, pts, self.count[pts] == 1, self.hits[pts] == 1)
+        both0, pts, crowded, hit = self._open
+        if both0:
+            return True
+        if not len(pts):
+            return False
+        # The test of spot on j's points of count 1, on these points.
+        rad = t.r[j] + self.reach
+        dx = self.gx[pts % len(self.gx)] - t.pos[j, 0]
+        dy = self.gy[pts // len(self.gx)] - t.pos[j, 1]
+        ok = ~crowded | (dx ** 2 + dy ** 2 < rad * rad)
+        k = t.row[j]
+        if t.done[k]:
+            return bool((ok & ~hit).any())
+        if j not in self._goal_stamp:
+            self._goal_stamp[j] = self._goal_mask(t, j)
+        return bool((ok & (~hit | self._goal_stamp[j][pts])).any())
+
+    def _goal_mask(self, t: _Table, j: int) -> np.ndarray:
+        """The grid points disc ``j``'s own goal disc reaches (as in ``hits``)."""
+        mine = np.zeros(len(self.count), dtype=bool)
+        mine[self.goal_stamps[t.row[j]]] = True
+        return mine
 
     def spot(self, t: _Table, j: int) -> tuple[np.ndarray, int] | None:
         """The free point for disc ``j`` that covers the fewest open goals
         (other than its own), nearest its goal among those; with that count."""
-        if self.todo:
-            self._flush()
+        if self.todo or self.todo_goals:
+            self._flush(t)
         k = t.row[j]
         # The points no disc crowds, and those only j crowds: a count of 1 at a point of j's own stamp (the test
         # of _stamp, on the few points of count 1 instead of j's whole window).
@@ -323,14 +432,114 @@ class _Spots:
         hits = self.hits[free]
         if not t.done[k]:
             if j not in self._goal_stamp:
-                mine = np.zeros(len(self.count), dtype=bool)
-                mine[self._stamp(t.goal[k], t.r[j] + self.rmax - TOUCH)] = True
-                self._goal_stamp[j] = mine
+                self._goal_stamp[j] = self._goal_mask(t, j)
             hits = hits - self._goal_stamp[j][free]
         xy = np.stack([self.gx[free % len(self.gx)], self.gy[free // len(self.gx)]], axis=1)
         dist = np.hypot(*(xy - t.goal[k]).T)
         m = int(np.lexsort((dist, hits))[0])
         return xy[m], int(hits[m])
+
+
+class _Cells:
+    """Square cells over the table, each with how many disc circles and open goal circles cover it *whole*, to
+    bound what a nudge can reach before computing it (:meth:`bound`).
+
+    The circles are those of :func:`_nudge` for the smallest disc to nudge (a larger disc's circles are larger, so a
+    cell covered whole for the smallest is covered whole for every disc): about each disc ``i`` radius
+    ``r_i + rmin +`` the clearance, about each open goal ``r_goal + rmin`` (less :data:`TOUCH`). A cell is counted
+    when its centre is nearer than the radius less half the cell's diagonal (and a nanometre), so every point of
+    it lies inside. Kept up to date as discs move and goals are reached, as :class:`_Spots` keeps its counts."""
+
+    def __init__(self, t: _Table, bounds: tuple[float, float, float, float]) -> None:
+        self.rmin = float(np.min(t.r[t.movers]))
+        self.side = CELL * self.rmin
+        self.half = self.side * math.sqrt(2.0) / 2
+        xmin, xmax, ymin, ymax = bounds
+        self.cx = xmin + self.side * (np.arange(max(1, math.ceil((xmax - xmin) / self.side))) + 0.5)
+        self.cy = ymin + self.side * (np.arange(max(1, math.ceil((ymax - ymin) / self.side))) + 0.5)
+        self.origin = (xmin, ymin)
+        self.size = len(self.cx) * len(self.cy)
+        #: Per disc, the cells its circle covers whole where it stands; per goal (row), those its circle covers.
+        self.stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.pos, self._disc_rad(t.r)))
+        self.goal_stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.goal, self._goal_rad(t.r[t.movers])))
+        self.discs = self.stamps.count(list(range(len(t.r))), self.size)
+        self.goals = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
+        #: Discs moved and goals reached since the counts were last brought up to date.
+        self.todo: list[int] = []
+        self.todo_goals: list[int] = []
+        #: The cells no disc circle covers whole, as the counts stand: centres and the open goals covering them whole
+        #: (``None``: not yet found).
+        self._zero: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def _disc_rad(self, r: np.ndarray | float) -> np.ndarray:
+        return np.asarray(r + self.rmin + CLEARANCE - self.half - 1e-9, dtype=float)
+
+    def _goal_rad(self, r: np.ndarray | float) -> np.ndarray:
+        return np.asarray(r + self.rmin - TOUCH - self.half - 1e-9, dtype=float)
+
+    def moved(self, j: int) -> None:
+        self.todo.append(j)
+
+    def closed(self, k: int) -> None:
+        self.todo_goals.append(k)
+
+    def _flush(self, t: _Table) -> None:
+        if self.todo:
+            moved = list(dict.fromkeys(self.todo))
+            flat, counts = _within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved]))
+            self.discs -= self.stamps.count(moved, self.size)
+            self.discs += np.bincount(flat, minlength=self.size)
+            ends = np.cumsum(counts).tolist()
+            for j, a, e in zip(moved, [0, *ends], ends):
+                self.stamps[j] = flat[a:e]
+        if self.todo_goals:
+            self.goals -= self.goal_stamps.count(self.todo_goals, self.size)
+        self.todo.clear()
+        self.todo_goals.clear()
+        self._zero = None
+
+    def bound(self, t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[int, int] | None:
+        """An upper bound on the ``(gain, cover - hits)`` of :func:`_nudge` for disc ``j``; ``None`` when the nudge
+        surely finds no free place. Every candidate of the nudge lies within its reach of ``j`` and inside j's box,
+        free of every other disc's circle: in a cell not covered whole by another disc's circle, and there it lies in
+        every goal circle that covers the cell whole; so its gain is at most ``len(freed)`` less the goals of
+        ``freed`` covering its cell whole, its hits at least the open goals but ``j``'s own covering it whole."""
+        if self.todo or self.todo_goals:
+            self._flush(t)
+        w = len(self.cx)
+        if self._zero is None:
+            zero = np.flatnonzero(self.discs == 0)
+            self._zero = (self.cx[zero % w], self.cy[zero // w], self.goals[zero])
+        # The cells no disc covers whole, and those only j covers whole (of j's own stamp, a count of 1).
+        mine = self.stamps[j]
+        mine = mine[self.discs[mine] == 1]
+        zx, zy, zh = self._zero
+        x = np.concatenate([zx, self.cx[mine % w]])
+        y = np.concatenate([zy, self.cy[mine // w]])
+        c = t.pos[j]
+        lo, hi = t.box(j)
+        reach = NUDGE_REACH * float(t.r[j]) + self.half + 1e-9
+        half = self.side / 2 + 1e-9
+        sel = np.flatnonzero(((x - c[0]) ** 2 + (y - c[1]) ** 2 <= reach * reach) & (x >= lo[0] - half)
+                             & (x <= hi[0] + half) & (y >= lo[1] - half) & (y <= hi[1] + half))
+        if not len(sel):
+            return None
+        x, y, h = x[sel], y[sel], np.concatenate([zh, self.goals[mine]])[sel]
+        k = t.row.get(j)
+        if k is not None and not t.done[k]:
+            h = h - self._covers(x, y, t.goal[k], float(self._goal_rad(t.r[j])))
+        gain = np.full(len(sel), len(freed))
+        for g in freed.tolist():
+            gain -= self._covers(x, y, t.goal[g], float(self._goal_rad(t.r[t.movers[g]])))
+        best = int(gain.max())
+        return best, cover - int(h[gain == best].min())
+
+    def _covers(self, x: np.ndarray, y: np.ndarray, xy: np.ndarray, rad: float) -> np.ndarray:
+        """Whether the circle about ``xy`` of (shrunk) radius ``rad`` covers each cell of centre ``(x, y)`` whole (the
+        test of :func:`_within`)."""
+        if rad <= 0:
+            return np.zeros(len(x), dtype=np.intp)
+        return ((x - xy[0]) ** 2 + (y - xy[1]) ** 2 < rad * rad).astype(np.intp)
 
 
 #: How many discs, best score first, are offered a parking spot on the grid when the goals left are blocked.
@@ -339,6 +548,10 @@ CANDIDATES = 4
 CYCLES = True
 #: How far (in its own radii) a nudged disc may go from where it stands (see :func:`_nudge`).
 NUDGE_REACH = 6.0
+#: The side of a cell of :class:`_Cells`, in radii of the smallest disc.
+CELL = 0.25
+#: Bound a nudge by :class:`_Cells` before computing it (off: compute every nudge the order asks for; for tests).
+BOUND = True
 
 
 #: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
@@ -349,6 +562,7 @@ DIRECT = False
 TABLE_AFTER = 16
 
 _AXIS = np.array([0, 0, 1, 1])
+_NONE = np.zeros(0, dtype=np.intp)
 _SIGN = np.array([1.0, -1.0])[None, :, None]
 
 
@@ -380,7 +594,7 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     near = near[near != j]
     ocen, orad = t.pos[near], t.r[near] + rj + CLEARANCE
     own = t.row.get(j)
-    rows = np.flatnonzero(~t.done)
+    rows = t.open_rows()
     if own is not None:
         rows = rows[rows != own]
     rows = rows[np.hypot(*(t.goal[rows] - c).T) < reach + t.r[t.movers[rows]] + rj]
@@ -400,7 +614,7 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     # Circles with the box's sides x = lo, x = hi, y = lo, y = hi: per side, the + crossings, then the - ones
     # (kept in the table when it was built for this box). Only the sides within reach (the crossings on another
     # lie beyond it).
-    kept_sides = cross is not None and bool(np.array_equal(cross.lo, lo) and np.array_equal(cross.hi, hi))
+    kept_sides = cross is not None and cross.same_box(j, lo, hi)
     near_side = [] if kept_sides else \
         [s for s, (v, w) in enumerate(((lo[0], c[0]), (hi[0], c[0]), (lo[1], c[1]), (hi[1], c[1])))
          if abs(float(v) - float(w)) <= reach + 1e-9]
@@ -449,22 +663,48 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     return p[m], int(hits[m]), int(gain[m])
 
 
-def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray, int, int] | None:
+def _unchanged(t: _Table, j: int, seen: tuple, key: tuple[int, ...], cover: int, near: float) -> bool:
+    """Whether an answer for disc ``j`` remembered as ``seen`` (changes seen, centre, freed goals, cover, answer) still
+    holds: ``j`` stands where it stood, covers the same goals, and no disc left or arrived within ``near`` of it."""
+    c = t.pos[j]
+    if seen[2] != key or seen[3] != cover or seen[1] != (c[0], c[1]):
+        return False
+    if seen[0] == t.nchanges:
+        return True
+    d = t.changes[seen[0]:t.nchanges] - c
+    return not bool((np.hypot(d[:, 0], d[:, 1]) < near).any())
+
+
+def _cached_nudge(t: _Table, j: int, freed: np.ndarray, cover: int, floor: tuple[int, int] | None = None
+                  ) -> tuple[np.ndarray, int, int] | None:
     """:func:`_nudge`, answered from the last one for ``j`` when nothing it depends on changed: ``j`` stands where
     it stood, covers the same goals, and no disc left or arrived within the reach of its discs and goals (its
-    nudge looks only there; a goal closes only when a disc arrives on it)."""
+    nudge looks only there; a goal closes only when a disc arrives on it).
+
+    Else, given ``floor`` (the ``(gain, cover - hits)`` of the caller's best nudge so far; it keeps the
+    first of equal ones), ``None`` without computing it where :meth:`_Cells.bound` shows that it finds nothing that
+    beats ``floor``; such an answer is not remembered (the bound is). Without ``floor`` the bound is not tried: the
+    first disc's nudge is nearly always needed."""
     key = tuple(freed.tolist())
+    near = NUDGE_REACH * t.r[j] + t.r[j] + t.rmax + CLEARANCE + 1e-6
     seen = t.nudges.get(j)
-    if seen is not None and seen[2] == key and seen[3] == cover and np.array_equal(seen[1], t.pos[j]):
-        fresh = t.changes[seen[0]:]
-        if not fresh:
-            return seen[4]
-        rmax = float(np.max(t.r))
-        near = NUDGE_REACH * t.r[j] + t.r[j] + rmax + CLEARANCE + 1e-6
-        if not (np.hypot(*(np.array(fresh) - t.pos[j]).T) < near).any():
-            return seen[4]
+    if seen is not None and _unchanged(t, j, seen, key, cover, near):
+        return seen[4]
+    if floor is not None and BOUND:
+        if t.cells is None:
+            t.cells = _Cells(t, t.scene.bounds)
+        # The bound looks at the cells whose centre lies within the reach and half a cell's diagonal of j; a disc
+        # counts for a cell within its circle's radius less that half diagonal, a goal likewise: the same ``near``.
+        known = t.bounds.get(j)
+        if known is not None and _unchanged(t, j, known, key, cover, near):
+            most = known[4]
+        else:
+            most = t.cells.bound(t, j, freed, cover)
+            t.bounds[j] = (t.nchanges, (t.pos[j, 0], t.pos[j, 1]), key, cover, most)
+        if most is None or most <= floor:
+            return None
     found = _nudge(t, j, freed, cover)
-    t.nudges[j] = (len(t.changes), t.pos[j].copy(), key, cover, found)
+    t.nudges[j] = (t.nchanges, (t.pos[j, 0], t.pos[j, 1]), key, cover, found)
     return found
 
 
@@ -475,18 +715,15 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
     spot covers no open goal; else the best :func:`_nudge` of any candidate (most goals uncovered, then fewest
     covers left; candidates in score order, stopping once none further can do better); else the grid spot whose
     move uncovers the most goals."""
-    order = [int(j) for j in np.argsort(-score, kind="stable") if score[j] > 0 and int(j) in t.row]
-    best: tuple[int, int, np.ndarray] | None = None
+    idx = np.argsort(-score, kind="stable")
+    idx = idx[(score[idx] > 0) & t.is_mover[idx]]
+    order = idx.tolist()
     for j in order[:CANDIDATES]:
-        found = spots.spot(t, j)
-        if found is None:
-            continue
-        spot, hits = found
-        gain = int(cover[j]) - hits
-        if hits == 0:
-            return j, spot
-        if gain > 0 and (best is None or gain > best[0]):
-            best = (gain, j, spot)
+        # The query itself only for a disc it answers with a spot clear of the open goals (on a packed table, none).
+        if spots.open_spot(t, j):
+            found = spots.spot(t, j)
+            assert found is not None and found[1] == 0
+            return j, found[0]
     rows = np.flatnonzero(~t.done)
     b = t.blocked[rows]
     sole = b.sum(axis=1) == 1
@@ -496,7 +733,7 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
         # The best a move of j can do: uncover every goal it alone covers, and cover none.
         if nudge is not None and nudge[0] >= (len(freed), int(cover[j])):
             break
-        found_n = _cached_nudge(t, j, freed, int(cover[j]))
+        found_n = _cached_nudge(t, j, freed, int(cover[j]), None if nudge is None else nudge[0])
         if found_n is None:
             continue
         key = (found_n[2], int(cover[j]) - found_n[1])
@@ -504,6 +741,11 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
             nudge = (key, j, found_n[0])
     if nudge is not None:
         return nudge[1], nudge[2]
+    best: tuple[int, int, np.ndarray] | None = None
+    for j in order[:CANDIDATES]:
+        found = spots.spot(t, j)
+        if found is not None and int(cover[j]) - found[1] > 0 and (best is None or int(cover[j]) - found[1] > best[0]):
+            best = (int(cover[j]) - found[1], j, found[0])
     return None if best is None else (best[1], best[2])
 
 
@@ -602,6 +844,7 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     at &= np.abs(wrap_angle(sc.initial.poses[t.movers, 2] - t.yaw)) <= YAW_TOL
     at &= ~t.blocked[:, t.movers].any(axis=0)
     t.done[at] = True
+    t._open_rows = None
     actions: list[Action] = []
     while not t.done.all():
         if len(actions) >= limit:
@@ -614,12 +857,11 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
                 o = int(t.movers[k])
                 pose = np.array([t.goal[k, 0], t.goal[k, 1], t.yaw[k]])
                 actions.append(_action(sc.ids[o], pose, "goal"))
-                old = t.pos[o].copy()
                 t.move(o, t.goal[k])
                 t.close(k)
                 if spots is not None:
-                    spots.moved(t, o, old)
-                    spots.closed(t, k)
+                    spots.moved(o)
+                    spots.closed(k)
             continue
         b = t.blocked[~t.done]
         score = _score(t, b)
@@ -630,9 +872,8 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
             return None
         j, spot = park
         actions.append(_action(sc.ids[j], (spot[0], spot[1], sc.initial.poses[j, 2]), "relocate"))
-        old = t.pos[j].copy()
         t.move(j, spot)
-        spots.moved(t, j, old)
+        spots.moved(j)
     return actions
 
 

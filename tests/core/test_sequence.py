@@ -223,7 +223,7 @@ def test_a_remembered_nudge_gives_the_same_plan_as_a_fresh_one(seed, n, density)
     cached = sequence_plan(pr)
     fresh = seq._cached_nudge
     try:
-        seq._cached_nudge = lambda t, j, freed, cover: seq._nudge(t, j, freed, cover)
+        seq._cached_nudge = lambda t, j, freed, cover, *bound: seq._nudge(t, j, freed, cover)
         assert sequence_plan(pr) == cached
     finally:
         seq._cached_nudge = fresh
@@ -301,8 +301,8 @@ def test_kept_crossings_give_the_nudges_of_crossing_afresh(seed, n, density, mix
 def _spot_by_stamps(spots, t, j):
     """A grid spot for disc ``j`` found as the query did before it kept the points of count 0 and 1: every point
     of count 0, and those of count 1 within j's own stamp (its whole window stamped afresh)."""
-    if spots.todo:
-        spots._flush()
+    if spots.todo or spots.todo_goals:
+        spots._flush(t)
     k = t.row[j]
     mask = spots.count == 0
     own = spots._stamp(t.pos[j], t.r[j] + spots.reach)
@@ -348,3 +348,81 @@ def test_a_grid_spot_is_the_one_found_by_stamping_the_disc_afresh(seed, n, densi
         assert (got is None) == (ref is None)
         if got is not None and ref is not None:
             assert np.array_equal(got[0], ref[0]) and got[1] == ref[1]
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.4, 0.45, 0.5, 0.55]),
+       mixed=st.booleans(), turned=st.booleans())
+def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
+    # Wherever the plan looks for a nudge, the bound of the cells is at least what the nudge finds: (gain,
+    # cover - hits) no larger, and no nudge where the bound says none; radii of several sizes and boxes that
+    # differ (turned discs) included.
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    scene = _mixed(c, seed) if mixed else c.scene
+    if turned:
+        scene = _turned(scene, seed)
+    pr = Problem.build(Scene.from_spec(scene), c.goals)
+    kept = seq._cached_nudge
+    pairs = []
+
+    def both(t, j, freed, cover, floor=None):
+        got = kept(t, j, freed, cover, floor)
+        if t.cells is not None:
+            nudged = t.nudged
+            fresh = seq._nudge(t, j, freed, cover)
+            t.nudged = nudged
+            pairs.append((t.cells.bound(t, j, freed, cover), fresh, cover))
+        return got
+
+    try:
+        seq._cached_nudge = both
+        sequence_plan(pr)
+    finally:
+        seq._cached_nudge = kept
+    for most, fresh, cover in pairs:
+        if fresh is not None:
+            assert most is not None and (fresh[2], cover - fresh[1]) <= most
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.4, 0.45, 0.5, 0.55]),
+       mixed=st.booleans())
+def test_nudges_skipped_by_their_bound_leave_the_plan_as_it_was(seed, n, density, mixed):
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = Problem.build(Scene.from_spec(_mixed(c, seed) if mixed else c.scene), c.goals)
+    bounded = sequence_plan(pr)
+    try:
+        seq.BOUND = False
+        assert sequence_plan(pr) == bounded
+    finally:
+        seq.BOUND = True
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.3, 0.4, 0.5]),
+       mixed=st.booleans())
+def test_open_spot_says_whether_the_grid_spot_covers_no_goal(seed, n, density, mixed):
+    # The cheap test before a grid query answers as the query would: a spot of no open goal (but the disc's own).
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return
+    pr = Problem.build(Scene.from_spec(_mixed(c, seed) if mixed else c.scene), c.goals)
+    kept = seq._Spots.open_spot
+    calls = []
+
+    def both(self, t, j):
+        got = kept(self, t, j)
+        found = self.spot(t, j)
+        calls.append((got, found is not None and found[1] == 0))
+        return got
+
+    try:
+        seq._Spots.open_spot = both
+        sequence_plan(pr)
+    finally:
+        seq._Spots.open_spot = kept
+    assert all(got == ref for got, ref in calls)
