@@ -22,7 +22,10 @@ no object ("another line"). A tower goal with ``"unordered": true`` matches
 its objects in any order (a stack whose order the command leaves open). A
 relation of one object to one anchor also matches its inverse ("the cup
 right of the mug" and "the mug left of the cup"): the acceptance rule holds
-of both in the same states.
+of both in the same states. For the same reason, relation goals of one
+direction, one anchor and the same parameters are compared joined into one
+("the cup behind the bowl" and "the mug behind the bowl" match "the cup and
+the mug behind the bowl"; not where ``disjoint`` is given).
 ``{"any_of": [expect, expect, ...]}`` passes when any alternative matches
 (a place setting with the cutlery on either side). The optional pattern
 parameters ``region`` ("top left", "middle center": ``<row> <col>`` with
@@ -333,12 +336,34 @@ def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
     return True
 
 
+def _merged_relations(goals: list[dict]) -> list[dict]:
+    """``goals`` with the relation goals of one direction, one anchor and the same parameters joined into one
+    ("the cup behind the bowl" and "the mug behind the bowl" as "the cup and the mug behind the bowl"): a
+    relation holds of each of its objects apart, so the two forms ask for the same thing."""
+    out: list[dict] = []
+    at: dict[tuple, int] = {}
+    for g in goals:
+        if g.get("pattern") not in _INVERSE or "anchor" not in g or "objects" not in g:
+            out.append(g)
+            continue
+        key = (g["pattern"], g["anchor"], *(json.dumps(g.get(k)) for k in PARAMS))
+        if key in at:
+            k = at[key]
+            out[k] = {**out[k], "objects": list(dict.fromkeys([*out[k]["objects"], *g["objects"]]))}
+        else:
+            at[key] = len(out)
+            out.append(g)
+    return out
+
+
 def goals_match(expected: dict, got: GoalSpec | dict) -> bool:
     """Whether ``got`` equals the expected goals under the rules above."""
     data = to_dict(got) if isinstance(got, GoalSpec) else got
     if "any_of" in expected:
         return any(goals_match(alt, data) for alt in expected["any_of"])
     exp_goals, got_goals = list(expected.get("goals", [])), list(data.get("goals", []))
+    if "disjoint" not in expected:  # (its pairs are positions in the list as written)
+        exp_goals, got_goals = _merged_relations(exp_goals), _merged_relations(got_goals)
     if len(exp_goals) != len(got_goals):
         return False
     ordered = _ordered_patterns()

@@ -53,3 +53,16 @@ def test_a_relation_matches_its_inverse_only():
     # Several objects to one anchor are not one relation the other way round.
     many = {"goals": [{"pattern": "behind", "objects": [1, 2], "anchor": 3}]}
     assert not goals_match(many, {"goals": [{"pattern": "front", "objects": [3], "anchor": 1}]})
+
+
+def test_relations_of_one_direction_and_anchor_compare_joined():
+    # "the cup and the mug behind the bowl" asks what "the cup behind the bowl, the mug behind the bowl" asks.
+    joined = {"goals": [{"pattern": "behind", "objects": [2, 4], "anchor": 7}]}
+    apart = {"goals": [{"pattern": "behind", "objects": [2], "anchor": 7}, {"pattern": "behind", "objects": [4], "anchor": 7}]}
+    assert goals_match(joined, apart) and goals_match(apart, joined)
+    # another anchor, another direction or another facing stays another goal
+    for other in ({"pattern": "behind", "objects": [4], "anchor": 8}, {"pattern": "front", "objects": [4], "anchor": 7},
+                  {"pattern": "behind", "objects": [4], "anchor": 7, "facing": "north"}):
+        assert not goals_match(joined, {"goals": [{"pattern": "behind", "objects": [2], "anchor": 7}, other]})
+    # an object left out is still missing
+    assert not goals_match(joined, {"goals": [{"pattern": "behind", "objects": [2], "anchor": 7}]})
