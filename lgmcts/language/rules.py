@@ -309,7 +309,7 @@ class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
                         nxt in self._cat_words or _stem(nxt) in self._cat_words or nxt in COLOUR_WORDS)))) or (
                     w == "none" and nxt == "of"):
                 raise InputError(f"'{w} {nxt}': a reference to no object selects nothing to arrange")
-        words = self._parentheses(words)
+        words = self._all_but(self._parentheses(words))
         words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
         words = self._only_these(self._trailing_remarks(words))

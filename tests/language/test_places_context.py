@@ -574,3 +574,33 @@ def test_a_narrowing_that_does_not_narrow_is_refused(said):
     with pytest.raises(InputError):
         parse(_table([("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
                       ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]), said)
+
+
+_CANS = [("plate", "white", 0.0, 0.0), ("mug", "blue", 0.2, 0.1), ("can", "red", -0.2, 0.1),
+         ("can", "green", -0.3, -0.1), ("can", "blue", 0.3, -0.2)]
+
+
+@pytest.mark.parametrize("said, count", [
+    ("all but one of the cans in a line", 2), ("line up all the cans but one", 2), ("every can except one in a row", 2),
+])
+def test_all_but_a_number_is_a_free_choice_of_the_rest(said, count):
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table(_CANS), said).goals
+    assert goal.pattern == "line" and len(goal.objects) == count and set(goal.objects) <= {3, 4, 5}
+
+
+@pytest.mark.parametrize("said", ["all but three of the cans in a line", "all the cans except four in a row"])
+def test_all_but_as_many_as_there_are_is_refused(said):
+    from lgmcts.errors import InputError
+    from lgmcts.language import parse
+
+    with pytest.raises(InputError, match="leaves no object"):
+        parse(_table(_CANS), said)
+
+
+def test_all_but_a_named_object_is_an_exception():
+    from lgmcts.language import parse
+
+    (goal,) = parse(_table(_CANS), "all the cans except the red one in a line").goals
+    assert sorted(goal.objects) == [4, 5]
