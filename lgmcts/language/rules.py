@@ -60,6 +60,7 @@ from .arrangements import _Arrangements
 from .assembly import _Finishing
 from .framing import _Framing
 from .passes import _TokenPasses
+from .group_passes import _GroupPasses
 from .selection import _Selecting
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
@@ -155,7 +156,7 @@ class _State:
 _HUES = HUES
 
 
-class _Parser(_TokenPasses, _Selecting, _Arrangements, _Framing, _Finishing):
+class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _Finishing):
     """The state of one command being read; its steps are the methods of the mixins it is built from."""
 
     def __init__(self, spec: SceneSpec, matcher: PatternMatcher, options: RulesOptions) -> None:
