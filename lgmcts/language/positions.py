@@ -196,7 +196,8 @@ def _after_head(ws: tuple[str, ...], i: int) -> tuple[Key, int] | None:
 
 #: Comparatives read as the superlative over exactly two candidates ("whichever mug is further to the left",
 #: "the one farther from me", "the cup nearer to me").
-_COMPARATIVES = {"further": "furthest", "farther": "farthest", "nearer": "nearest", "closer": "closest"}
+_COMPARATIVES = {"further": "furthest", "farther": "farthest", "nearer": "nearest", "closer": "closest",
+                 "more": "most"}  # "the one more to the back"
 #: Verbs after which "the cup closer to the plate" asks to move the cup, not to pick it.
 _PLACING = frozenset({"put", "move", "place", "set", "push", "pull", "bring", "shift", "slide", "get", "nudge",
                       "pop", "stick", "drag", "take"})

@@ -472,13 +472,16 @@ def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     while i < len(words) and words[i] in ("ok", "okay", "so", "now", "right", "well", ","):
         i += 1
     i += words[i : i + 2] == ("out", "of")
-    if words[i : i + 2] != ("of", "the") and words[i : i + 2] != ("of", "these"):
+    if words[i : i + 1] != ("of",) or i + 1 >= len(words):
         return text, []
-    comma = next((k for k in range(i + 2, min(len(words), i + 8)) if words[k] == ","), None)
+    j = i + 1 + (words[i + 1] in ("the", "these"))
+    if j == i + 1 and words[j] not in _COUNT_WORDS:
+        return text, []  # "of two green things" (said without an article) is one too
+    comma = next((k for k in range(j, min(len(words), i + 8)) if words[k] == ","), None)
     if comma is None:
         return text, []
-    count = _COUNT_WORDS.get(words[i + 2])
-    ids = _ids(("the",) + tuple(w for w in words[i + 2 + (count is not None) : comma]), find, ids_of)
+    count = _COUNT_WORDS.get(words[j])
+    ids = _ids(("the",) + tuple(w for w in words[j + (count is not None) : comma]), find, ids_of)
     if not ids or (count is not None and len(ids) != count):
         return text, []
     return text[: toks[i - (words[i - 1 : i] == ("out",))].pos if i else 0] + text[_end(text, toks[comma]) :], ids

@@ -60,6 +60,7 @@ def _refs(text: str):
      "the box", ("piece", "of", "cutlery"), Key("near", 1, ("the", "box")), 1, 0, None),
     ("the can closest to the customers goes left", "the can closest to the customers", ("can",), Key("y", 1), 1, 0,
      None),
+    ("the one more to the back goes on the plate", "the one more to the back", ("one",), Key("y", -1), 1, 0, 2),
 ])
 def test_a_position_phrase_is_read(text, phrase, head, key, count, rank, of):
     (got,) = _refs(text)
@@ -197,3 +198,13 @@ def test_a_comparative_one_of_the_two_just_picked(said, tower):
          "pose": [x, y, 0.0]} for k, (c, x, y) in enumerate(cans)]})
     (goal,) = parse(scene, said).goals
     assert (goal.pattern, list(goal.objects)) == ("tower", tower)
+
+
+@pytest.mark.parametrize("said", ["of the two cans, ", "Of two cans, ", "out of the two cans, "])
+def test_a_group_said_first_is_taken_out_with_its_objects(said):
+    from lgmcts.language.stages import partitive
+
+    ids = {("the", "cans"): [3, 4]}
+    rest, group = partitive(said + "the one nearer me goes left", lambda ws: [ws] if ws in ids else [],
+                            lambda m: ids[m])
+    assert rest.strip() == "the one nearer me goes left" and group == [3, 4]
