@@ -173,6 +173,7 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
             ("matches", "the", "colours", "of"), ("matches", "the", "colors", "of"), ("match", "in", "colour"),
             ("match",), ("matches",),
             ("are", "the", "same", "colour", "as"), ("is", "the", "same", "colour", "as"),
+            ("are", "the", "same", "colours", "as"), ("are", "the", "same", "colors", "as"),
             ("the", "same", "colour", "as"), ("the", "colour", "of"), ("the", "color", "of"),
             ("are", "the", "colour", "of"), ("is", "the", "colour", "of"),
         ))

@@ -55,6 +55,8 @@ _AFTER: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
     (("apart",), "spacing"), (("between", "them"), "spacing"), (("between", "each"), "spacing"),
     (("between", "each", "one"), "spacing"), (("from", "each", "other"), "spacing"), (("spacing",), "spacing"),
     (("gap",), "spacing"), (("gaps",), "spacing"), (("gap", "between", "them"), "spacing"),
+    (("from", "centre", "to", "centre"), "spacing"), (("from", "center", "to", "center"), "spacing"),
+    (("centre", "to", "centre"), "spacing"), (("center", "to", "center"), "spacing"),
     (("each", "side"), "side"), (("a", "side"), "side"), (("per", "side"), "side"), (("on", "each", "side"), "side"),
     (("on", "a", "side"), "side"), (("on", "every", "side"), "side"), (("to", "a", "side"), "side"),
     (("each", "way"), "side"), (("square",), "side"), (("on", "each", "edge"), "side"), (("each", "edge"), "side"),

@@ -206,8 +206,8 @@ _PLACING = frozenset({"put", "move", "place", "set", "push", "pull", "bring", "s
 def _said_apart(ws: tuple[str, ...], k: int) -> bool:
     """Whether the comparative at ``k`` is read otherwise: "the farther of the two" (read as it stands) or
     "nearer the viewer than the red can" (a relation between two objects, not a reference)."""
-    if ws[k + 1 : k + 2] == ("of",):
-        return True
+    if ws[k + 1 : k + 2] == ("of",) or (ws[k + 1 : k + 2] and ws[k + 1] in _FORWARD and ws[k + 2 : k + 3] == ("of",)):
+        return True  # "the farther of the two", "the farther back of the two"
     for w in ws[k + 1 :]:
         if w == "than":
             return True
@@ -262,6 +262,8 @@ def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:
         head_end = _np(ws, head_end + 1, 3)  # "whichever piece of cutlery lies nearest the front"
     head = tuple(ws[j:head_end])
     k = head_end
+    if head and head[-1].endswith("'s") and k < len(ws) and (ws[k] in _NEAR or ws[k] in _FAR or ws[k] in _MOST):
+        head = head[:-1] + (head[-1][:-2],)  # "whichever bowl's nearest the phone": "'s" is "is"
     while k < len(ws) and ws[k] in _BE and k - head_end < 2:
         k += 1  # "is", "is lying"
     if head and ws[k : k + 3] in (("in", "the", "middle"), ("in", "the", "centre"), ("in", "the", "center")):
@@ -315,13 +317,15 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     j = i + (w in _ARTICLES)
     if j >= len(ws):
         return None
-    # "the farther / nearer of the two bottles"
-    if ws[j] in ("farther", "further", "nearer", "closer") and ws[j + 1 : j + 3] == ("of", "the") \
-            and j + 3 < len(ws) and ws[j + 3] in _COUNTS:
-        n = _COUNTS[ws[j + 3]]
-        end = _np(ws, j + 4)
-        head = tuple(ws[j + 4 : end]) or ("ones",)
-        key = Key("y", -1) if ws[j] in ("farther", "further") else Key("y", 1)
+    # "the farther / nearer of the two bottles", "the farther back of the two"
+    way = ws[j + 1] if ws[j] in ("farther", "further") and j + 1 < len(ws) and ws[j + 1] in _FORWARD else None
+    k = j + 1 + (way is not None)
+    if ws[j] in ("farther", "further", "nearer", "closer") and ws[k : k + 2] == ("of", "the") \
+            and k + 2 < len(ws) and ws[k + 2] in _COUNTS:
+        n = _COUNTS[ws[k + 2]]
+        end = _np(ws, k + 3)
+        head = tuple(ws[k + 3 : end]) or ("ones",)
+        key = _FORWARD[way] if way is not None else Key("y", -1) if ws[j] in ("farther", "further") else Key("y", 1)
         return PositionRef(i, end, head, key, of=n)
     # "the middle/centre one (of the three bowls)", "the middle bowl of the three"
     if ws[j] in ("middle", "centre", "center", "central") and j + 1 < len(ws):

@@ -236,7 +236,9 @@ def _like_restated(m: re.Match) -> str:
     before = set(lexicon.words(m.group(1)))
     said = lexicon.words(m.group(2))
     # ", yeah at the front of the table": a "yeah" that goes on to add a place (a "like ..." restates)
-    new = [w for w in said if w in _PLACE_SAID and w not in before] if said[:1] in (["yeah"], ["yes"], ["yep"]) else []
+    # ", like a strip along the front": a "like ..." that adds a place (or a "yeah" that goes on to add one)
+    new = [w for w in said if w in _PLACE_SAID and w not in before] if said[:1] in (
+        ["yeah"], ["yes"], ["yep"]) or "strip" in said or "band" in said else []
     # ", like half a metre long": a measure said loosely is kept (a marked measure never disappears)
     new += [w for w in said if is_mark(w)]
     if says(m.group(1), "asks") and not new:

@@ -66,3 +66,10 @@ def test_relations_of_one_direction_and_anchor_compare_joined():
         assert not goals_match(joined, {"goals": [{"pattern": "behind", "objects": [2], "anchor": 7}, other]})
     # an object left out is still missing
     assert not goals_match(joined, {"goals": [{"pattern": "behind", "objects": [2], "anchor": 7}]})
+
+
+def test_a_size_in_metres_matches_to_the_millimetre():
+    exp = {"goals": [{"pattern": "line", "objects": [1, 2], "size": 0.3048}]}
+    assert goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": 0.305}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": 0.31}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": "medium"}]})
