@@ -276,9 +276,14 @@ def _told(head: Sequence[str]) -> bool:
     if any(w in lexicon.DIRECTIONS and not (w == "back" and j and body[j - 1] in _BACK_FROM)
            for j, w in enumerate(body)):
         return False  # "the teapot is to be placed diagonally behind": where, not a story ("i just got back" is)
+    if any(w in _WISHING or (w in _CTX["place_prepositions"] and j + 1 < len(body) and body[j + 1] in ("the", "a", "an"))
+           for j, w in enumerate(body)):
+        return False  # "the teapot should go on the tray": a request about an object the scene lacks
     return len(body) >= 4 and any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:])
 
 
+_WISHING = frozenset({"should", "must", "need", "needs", "want", "wants", "would", "could", "please", "gotta",
+                      "gonna", "has to", "have to", "let's"})
 _BACK_FROM = frozenset({"got", "get", "gets", "came", "come", "comes", "went", "go", "be", "been", "am", "i'm", "is",
                         "was", "just", "bring", "brought"})
 

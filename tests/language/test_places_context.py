@@ -120,6 +120,8 @@ def test_context_that_asks_nothing_is_dropped(text, left):
     "after the bowl is on the plate, put the red mug behind it",   # names an object: a real order of steps
     "once the mugs are in a row, put the plate behind them",
     "the teapot is to be placed behind and to the left of the plate",   # where, not a story: left to be refused
+    "the teapot goes on the tray, and stack the bowls",                  # a place for an object the scene lacks
+    "the teapot should go by the door and stack the bowls",             # a wish, not a story
     "the kids left the bowls out, put them in a row",                    # 'them': what the story names
     "my son keeps the bowls here. stack them",
     "after that, put the mug left of the plate",
