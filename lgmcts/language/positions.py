@@ -102,6 +102,8 @@ _STOP = frozenset({
 }) | lexicon.COMMAND_VERBS | {"take", "grab", "pick", "bring", "slide", "shift", "push", "pull", "position", "carry"}
 _ARTICLES = frozenset({"the", "a", "an"})
 _WHATEVER = frozenset({"whatever", "whichever", "whoever"})
+#: Adverbs of time after "is" in a reference ("whatever is currently nearest the plate").
+_NOW = frozenset({"currently", "now", "presently", "still"})
 #: Head nouns that take their kind after "of" ("piece of cutlery", "items of silverware").
 _PIECES = frozenset({"piece", "pieces", "item", "items", "bit", "bits"})
 _BE = frozenset({"is", "sits", "stands", "lies", "sitting", "standing", "lying", "are", "'s", "happens"})
@@ -180,6 +182,8 @@ def _after_head(ws: tuple[str, ...], i: int) -> tuple[Key, int] | None:
         return Key("x", 1 if ws[i + 3] == "left" else -1), i + 4  # "the cup on the far left"
     if w in _NEAR or w in _FAR:
         return _near_far(ws, i + 1, w in _NEAR, anchor_ok=True)
+    if w == "most" and i + 1 < len(ws) and ws[i + 1] in ("far", "near", "close"):
+        return _near_far(ws, i + 2, ws[i + 1] != "far", anchor_ok=True)  # "the utensil most far from me"
     if w == "most" and i + 1 < len(ws):
         return _near_far(ws, i + 1, False, anchor_ok=False)  # "the utensil most right", "most to the left"
     if ws[i : i + 3] == ("all", "the", "way"):
@@ -264,8 +268,8 @@ def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:
     k = head_end
     if head and head[-1].endswith("'s") and k < len(ws) and (ws[k] in _NEAR or ws[k] in _FAR or ws[k] in _MOST):
         head = head[:-1] + (head[-1][:-2],)  # "whichever bowl's nearest the phone": "'s" is "is"
-    while k < len(ws) and ws[k] in _BE and k - head_end < 2:
-        k += 1  # "is", "is lying"
+    while k < len(ws) and (ws[k] in _BE or (k > head_end and ws[k] in _NOW)) and k - head_end < 3:
+        k += 1  # "is", "is lying", "is currently"
     if head and ws[k : k + 3] in (("in", "the", "middle"), ("in", "the", "centre"), ("in", "the", "center")):
         # "whichever utensil is in the middle (going left to right)": the middle one of them by x
         return PositionRef(i, _skip_reading_order(ws, k + 3), head, Key("middle"))

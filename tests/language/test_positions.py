@@ -61,6 +61,10 @@ def _refs(text: str):
     ("the can closest to the customers goes left", "the can closest to the customers", ("can",), Key("y", 1), 1, 0,
      None),
     ("the one more to the back goes on the plate", "the one more to the back", ("one",), Key("y", -1), 1, 0, 2),
+    ("utensil most far from me, put it on the plate", "utensil most far from me", ("utensil",), Key("y", -1), 1, 0,
+     None),
+    ("whatever is currently nearest the box goes left", "whatever is currently nearest the box", (),
+     Key("near", 1, ("the", "box")), 1, 0, None),
 ])
 def test_a_position_phrase_is_read(text, phrase, head, key, count, rank, of):
     (got,) = _refs(text)
