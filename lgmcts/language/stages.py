@@ -484,7 +484,30 @@ def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     ids = _ids(("the",) + tuple(w for w in words[j + (count is not None) : comma]), find, ids_of)
     if not ids or (count is not None and len(ids) != count):
         return text, []
-    return text[: toks[i - (words[i - 1 : i] == ("out",))].pos if i else 0] + text[_end(text, toks[comma]) :], ids
+    rest = text[_end(text, toks[comma]) :]
+    noun = words[comma - 1]
+    one = noun[:-1] if noun.endswith("s") and _ids(("the", noun[:-1]), find, ids_of) else noun
+    return text[: toks[i - (words[i - 1 : i] == ("out",))].pos if i else 0] + _one_of(rest, one, ids, find,
+                                                                                     ids_of), ids
+
+
+def _one_of(text: str, noun: str, group: Sequence[int], find: Callable[[tuple[str, ...]], list],
+            ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with "the blue one" said of a group taken out before it ("of the two bottles, put the blue one
+    ...") said with the group's noun ("the blue bottle"), where that names one object of the group."""
+    toks = tokenize(text)
+    out: list[str] = []
+    at = 0
+    for k, t in enumerate(toks):
+        if t.text != "one" or k < 2 or toks[k - 2].text != "the" or not toks[k - 1].text.isalpha():
+            continue
+        got = _ids(("the", toks[k - 1].text, noun), find, ids_of)
+        if toks[k - 1].text in ("other", "same") or got is None or len(got) != 1 or got[0] not in group:
+            continue
+        out.append(text[at : t.pos] + noun)
+        at = _end(text, t)
+    out.append(text[at:])
+    return "".join(out)
 
 
 def same_again(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:

@@ -212,3 +212,13 @@ def test_a_group_said_first_is_taken_out_with_its_objects(said):
     rest, group = partitive(said + "the one nearer me goes left", lambda ws: [ws] if ws in ids else [],
                             lambda m: ids[m])
     assert rest.strip() == "the one nearer me goes left" and group == [3, 4]
+
+
+def test_the_colour_one_of_a_group_said_first_takes_its_noun():
+    from lgmcts.language.stages import partitive
+
+    named = {("the", "bottles"): [6, 7], ("the", "bottle"): [6, 7], ("the", "blue", "bottle"): [7],
+             ("the", "blue", "bowl"): [5]}
+    rest, group = partitive("of the two bottles, put the blue one left of the knife and the other one right of it",
+                            lambda ws: [ws] if ws in named else [], lambda m: named[m])
+    assert group == [6, 7] and rest.strip() == "put the blue bottle left of the knife and the other one right of it"
