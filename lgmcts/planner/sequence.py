@@ -308,6 +308,15 @@ class _Stamps:
         """How many of ``items`` count for each of the ``size`` points."""
         return np.bincount(np.concatenate([self[i] for i in items] + [_NONE]), minlength=size)
 
+    def restamp(self, items: list[int], flat: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
+        """Give ``items`` their new stamps (``flat``, ``counts`` as :func:`_within` returns them, in the order of
+        ``items``); returns the change of the count at each of the ``size`` points (new less old)."""
+        change = np.bincount(flat, minlength=size) - self.count(items, size)
+        ends = np.cumsum(counts).tolist()
+        for i, a, e in zip(items, [0, *ends], ends):
+            self[i] = flat[a:e]
+        return change
+
 
 class _Spots:
     """Grid points where a parked disc could stand, kept up to date as discs move.
@@ -361,12 +370,8 @@ class _Spots:
     def _flush(self, t: _Table) -> None:
         if self.todo:
             moved = list(dict.fromkeys(self.todo))
-            flat, counts = _within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach)
-            self.count -= self.stamps.count(moved, self.size)
-            self.count += np.bincount(flat, minlength=self.size)
-            ends = np.cumsum(counts).tolist()
-            for j, a, e in zip(moved, [0, *ends], ends):
-                self.stamps[j] = flat[a:e]
+            self.count += self.stamps.restamp(
+                moved, *_within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach), self.size)
         if self.todo_goals:
             self.hits -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()
@@ -486,12 +491,8 @@ class _Cells:
     def _flush(self, t: _Table) -> None:
         if self.todo:
             moved = list(dict.fromkeys(self.todo))
-            flat, counts = _within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved]))
-            self.discs -= self.stamps.count(moved, self.size)
-            self.discs += np.bincount(flat, minlength=self.size)
-            ends = np.cumsum(counts).tolist()
-            for j, a, e in zip(moved, [0, *ends], ends):
-                self.stamps[j] = flat[a:e]
+            self.discs += self.stamps.restamp(
+                moved, *_within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved])), self.size)
         if self.todo_goals:
             self.goals -= self.goal_stamps.count(self.todo_goals, self.size)
         self.todo.clear()

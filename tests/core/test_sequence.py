@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 
 import numpy as np
 from disc_cases import disc_case, disc_problem
@@ -11,6 +12,7 @@ from hypothesis import strategies as st
 
 import lgmcts.planner.sequence as seq
 from lgmcts import PlanSpec, check, plan
+from lgmcts.errors import InputError
 from lgmcts.patterns import CLEARANCE
 from lgmcts.planner.problem import Problem
 from lgmcts.planner.search import SearchOptions
@@ -252,6 +254,33 @@ def _turned(scene, seed: int):
     return scene.model_copy(update={"objects": objects})
 
 
+def _varied_problem(seed: int, n: int, density: float, mixed: bool, turned: bool = False) -> Problem | None:
+    """A dense disc case as a problem, its radii mixed and its discs turned where asked (None: no case, or a turned
+    disc whose footprint polygon reaches past the workspace, which the scene refuses)."""
+    c = _dense_case(seed, n, density)
+    if c is None:
+        return None
+    scene = _mixed(c, seed) if mixed else c.scene
+    if turned:
+        scene = _turned(scene, seed)
+        try:
+            Scene.from_spec(scene)
+        except InputError:
+            return None
+    return Problem.build(Scene.from_spec(scene), c.goals)
+
+
+@contextmanager
+def _replaced(owner, name: str, fn):
+    """``owner.name`` replaced by ``fn`` while the block runs."""
+    kept = getattr(owner, name)
+    setattr(owner, name, fn)
+    try:
+        yield kept
+    finally:
+        setattr(owner, name, kept)
+
+
 @settings(max_examples=20, deadline=None)
 @given(seed=st.integers(0, 10_000), n=st.integers(6, 30), density=st.sampled_from([0.4, 0.45, 0.5]),
        mixed=st.booleans(), turned=st.booleans())
@@ -259,13 +288,9 @@ def test_kept_crossings_give_the_nudges_of_crossing_afresh(seed, n, density, mix
     # Each nudge of a plan, with the circle crossings (of circle pairs, and of circles with the box's sides where
     # the disc's box is the table's) kept up to date as discs move (_Crossings), is the nudge of crossing the
     # circles near the disc afresh, to the last bit; so is the plan.
-    c = _dense_case(seed, n, density)
-    if c is None:
+    pr = _varied_problem(seed, n, density, mixed, turned)
+    if pr is None:
         return
-    scene = _mixed(c, seed) if mixed else c.scene
-    if turned:
-        scene = _turned(scene, seed)
-    pr = Problem.build(Scene.from_spec(scene), c.goals)
     kept = seq._nudge
     calls = []
 
@@ -327,10 +352,9 @@ def _spot_by_stamps(spots, t, j):
 def test_a_grid_spot_is_the_one_found_by_stamping_the_disc_afresh(seed, n, density, mixed):
     # The grid query tests only the points of count 1 against the disc's own stamp; each answer of a plan is the
     # one of stamping the disc's whole window (the same point to the last bit, the same count).
-    c = _dense_case(seed, n, density)
-    if c is None:
+    pr = _varied_problem(seed, n, density, mixed)
+    if pr is None:
         return
-    pr = Problem.build(Scene.from_spec(_mixed(c, seed) if mixed else c.scene), c.goals)
     kept = seq._Spots.spot
     calls = []
 
@@ -339,11 +363,8 @@ def test_a_grid_spot_is_the_one_found_by_stamping_the_disc_afresh(seed, n, densi
         calls.append((got, _spot_by_stamps(self, t, j)))
         return got
 
-    try:
-        seq._Spots.spot = both
+    with _replaced(seq._Spots, "spot", both):
         sequence_plan(pr)
-    finally:
-        seq._Spots.spot = kept
     for got, ref in calls:
         assert (got is None) == (ref is None)
         if got is not None and ref is not None:
@@ -357,13 +378,9 @@ def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
     # Wherever the plan looks for a nudge, the bound of the cells is at least what the nudge finds: (gain,
     # cover - hits) no larger, and no nudge where the bound says none; radii of several sizes and boxes that
     # differ (turned discs) included.
-    c = _dense_case(seed, n, density)
-    if c is None:
+    pr = _varied_problem(seed, n, density, mixed, turned)
+    if pr is None:
         return
-    scene = _mixed(c, seed) if mixed else c.scene
-    if turned:
-        scene = _turned(scene, seed)
-    pr = Problem.build(Scene.from_spec(scene), c.goals)
     kept = seq._cached_nudge
     pairs = []
 
@@ -376,11 +393,8 @@ def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
             pairs.append((t.cells.bound(t, j, freed, cover), fresh, cover))
         return got
 
-    try:
-        seq._cached_nudge = both
+    with _replaced(seq, "_cached_nudge", both):
         sequence_plan(pr)
-    finally:
-        seq._cached_nudge = kept
     for most, fresh, cover in pairs:
         if fresh is not None:
             assert most is not None and (fresh[2], cover - fresh[1]) <= most
@@ -390,10 +404,9 @@ def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
 @given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.4, 0.45, 0.5, 0.55]),
        mixed=st.booleans())
 def test_nudges_skipped_by_their_bound_leave_the_plan_as_it_was(seed, n, density, mixed):
-    c = _dense_case(seed, n, density)
-    if c is None:
+    pr = _varied_problem(seed, n, density, mixed)
+    if pr is None:
         return
-    pr = Problem.build(Scene.from_spec(_mixed(c, seed) if mixed else c.scene), c.goals)
     bounded = sequence_plan(pr)
     try:
         seq.BOUND = False
@@ -407,10 +420,9 @@ def test_nudges_skipped_by_their_bound_leave_the_plan_as_it_was(seed, n, density
        mixed=st.booleans())
 def test_open_spot_says_whether_the_grid_spot_covers_no_goal(seed, n, density, mixed):
     # The cheap test before a grid query answers as the query would: a spot of no open goal (but the disc's own).
-    c = _dense_case(seed, n, density)
-    if c is None:
+    pr = _varied_problem(seed, n, density, mixed)
+    if pr is None:
         return
-    pr = Problem.build(Scene.from_spec(_mixed(c, seed) if mixed else c.scene), c.goals)
     kept = seq._Spots.open_spot
     calls = []
 
@@ -420,9 +432,6 @@ def test_open_spot_says_whether_the_grid_spot_covers_no_goal(seed, n, density, m
         calls.append((got, found is not None and found[1] == 0))
         return got
 
-    try:
-        seq._Spots.open_spot = both
+    with _replaced(seq._Spots, "open_spot", both):
         sequence_plan(pr)
-    finally:
-        seq._Spots.open_spot = kept
     assert all(got == ref for got, ref in calls)
