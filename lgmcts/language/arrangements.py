@@ -216,7 +216,9 @@ class _Arrangements(ParserHost):
     def _dinner_at(self, words: tuple[str, ...]) -> int | None:
         """Where a place setting is asked for ("set the table", "dinner"), if it is."""
         return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s
-                     and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))),
+                     and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))
+                     and not (s == ("dinner",) and words[i + 1 : i + 2] in (("party",), ("parties",), ("guests",))
+                              )),
                     None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:

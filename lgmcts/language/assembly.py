@@ -56,7 +56,8 @@ def _add_params(shape: _Pending, params: dict, text: str) -> None:
             if key == "region" and merged_region(shape.params[key], val) is not None:
                 params = {**params, key: merged_region(shape.params[key], val)}
                 continue
-            raise InputError(f"'{text}': two different {key}s for one arrangement")
+            where = f"'{text.strip()}': " if text.strip() else ""
+            raise InputError(f"{where}two different {key}s for one arrangement")
     shape.params.update(params)
 
 

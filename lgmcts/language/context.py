@@ -54,7 +54,8 @@ _TIME_WORDS = frozenset({"lunch", "dinner", "breakfast", "tea", "supper", "brunc
                          "meeting", "class", "guests", "kids", "done", "finished", "leave", "leaves", "o'clock",
                          "noon", "midnight", "soon", "sometime", "eventually", "afterwards", "bed", "school", "work",
                          "shift", "demo", "test", "experiment", "session", "party", "meal", "moment", "second",
-                         "while", "wake", "wakes", "start", "starts", "begin", "begins", "over", "ready", "time"})
+                         "while", "wake", "wakes", "start", "starts", "begin", "begins", "over", "ready", "time",
+                         "round", "rounds", "handover", "break", "nap", "shower", "call", "meds", "visit", "visitors"})
 _SOLO_TIME = frozenset({"tonight", "tomorrow", "later", "today", "afterwards", "soon", "sometime", "eventually"})
 _KEEP_AFTER = frozenset({"that", "this", "it", "them", "which", "those", "these", "all", "the"})
 _ENDS = (".", "!", "?", ";")
@@ -78,13 +79,43 @@ _CLOCK = frozenset({"min", "mins", "minute", "minutes", "hour", "hours", "hr", "
                     "tomorrow", "later", "noon", "pm", "am"})
 
 
-def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_word: Callable[[str], bool]) -> bool:
+def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_word: Callable[[str], bool],
+          timed: bool = False) -> bool:
     """Whether ``part`` names no object and no word of a request; a meal said with a time ("dinner's
-    in 20 minutes") is no request for a place setting."""
-    timed = any(w in _CLOCK for w in part)
+    in 20 minutes") or after a time clause's opener (``timed``: "before lunch") is no request for a place
+    setting."""
+    timed = timed or any(w in _CLOCK for w in part)
     clock = _clock_words(part)
-    return not any((object_word(w) or (request_word(w) and not (timed and w in _MEALS))) and j not in clock
-                   for j, w in enumerate(part))
+    owned = _owned(part)
+    return not any((object_word(w) or (request_word(w) and not (timed and w in _MEALS) and j not in owned))
+                   and j not in clock for j, w in enumerate(part))
+
+
+def _owned(part: Sequence[str]) -> set[int]:
+    """The places of the nouns said after a person's possessive ("my shift", "her nap"): nouns, never the
+    verbs of a request the same words can be ("shift", "set")."""
+    return {j for j in range(1, len(part)) if part[j - 1] in _POSSESSIVES and not part[j].isdigit()}
+
+
+_POSSESSIVES = frozenset({"my", "our", "his", "her", "their", "your"})
+
+
+def _time_spans(part: Sequence[str]) -> set[int]:
+    """The places of the words of a time said inside ``part`` by an opener and a word of time ("quick one
+    before lunch", "right after my shift"): a time, not a request ("before" is also "in front of")."""
+    out: set[int] = set()
+    for j, w in enumerate(part):
+        if w not in _EVENT_OPENERS and w != "by":
+            continue
+        k = j + 1
+        while k < len(part) and part[k] in _POSSESSIVES | {"the"}:
+            k += 1
+        if k < len(part) and (part[k] in _TIME_WORDS or part[k] in _MEALS or part[k] in _DAY_WORDS):
+            out.update(range(j, k + 1))
+            while k + 1 < len(part) and part[k + 1] in _TIME_WORDS:
+                k += 1
+                out.add(k)  # "before meds round"
+    return out
 
 
 def _clock_words(part: Sequence[str]) -> set[int]:
@@ -164,7 +195,7 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
     """Whether ``part`` names no object and asks for no goal: a direction counts only in a place ("to the
     left", "left of"; "my daughter just left" is a verb), a verb or particle of chatter not at all
     ("coming over", "knocked everything over", "at seven")."""
-    clock = _clock_words(part)
+    clock = _clock_words(part) | _time_spans(part)
     timed = any(w in _CLOCK for w in part)  # "lunch is at one, it's almost noon": a meal said with a time
     for j, w in enumerate(part):
         if j in clock:
@@ -305,7 +336,7 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if cut is None or cut == 0:
             break
         head = sent[:cut]
-        if not ((_time_clause(head) and _idle(head[1:], object_word, request_word))
+        if not ((_time_clause(head) and _idle(head[1:], object_word, request_word, timed=True))
                 or _event_clause(head, object_word, request_word)):
             break
         sent = sent[cut + 1 :]
@@ -316,7 +347,7 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if sent[k] in TIME_OPENERS and sent[k] not in ("in", "at", "as", "this", "first", "while"):
             tail = sent[k:end]
             before = sent[:k]
-            if _time_clause(tail) and _idle(tail[1:], object_word, request_word) and any(
+            if _time_clause(tail) and _idle(tail[1:], object_word, request_word, timed=True) and any(
                     request_word(w) for w in before):
                 while before and before[-1] == ",":
                     before = before[:-1]

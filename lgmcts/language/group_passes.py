@@ -1,6 +1,6 @@
-"""Token passes over a group said by its size: "all but two of the blocks" (how many of it are taken) and a
+"""Token passes over a group said by its size: "all but two of the blocks" (how many of it are taken), a
 sentence that only narrows the group of the sentence before ("line up the blocks. oh, only the blue and the
-green ones"). Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
+green ones") and "the one ..." said again after one object ("the farther bottle, the one at the back, ..."). Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
 
 from __future__ import annotations
 
@@ -107,3 +107,52 @@ class _GroupPasses(ParserHost):
             sentences[k - 1] = prev[: before[0].start] + new + prev[before[0].end :]
             sentences[k] = rest
         return tuple(w for s in sentences for w in s)
+
+    def _restated_one(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """"the farther bottle, the one at the back, right of the knife": "the one" said between commas after a
+        reference to one object, with only words of where it stands, says the same object again and is left
+        out (read as a place it would be a second, wrong goal)."""
+        try:
+            found = self._find(words)
+        except InputError:
+            return words
+        ends = {m.end: m for m in found}
+        k = 0
+        out = list(words)
+        while k < len(out):
+            before = ends.get(k)
+            if out[k] == "," and out[k + 1 : k + 3] == ["the", "one"] and before is not None \
+                    and before.det == "ids" and len(before.ids) == 1:
+                j = next((e for e in range(k + 3, min(len(out), k + 12)) if out[e] == ","), None)
+                if j is not None and j > k + 3 and j + 1 < len(out) and all(
+                        w in _WHERE_WORDS for w in out[k + 3 : j]) and self._stands_so(before.ids[0], out[k + 3 : j]):
+                    del out[k:j]
+                    break
+            k += 1
+        return tuple(out)
+
+    def _stands_so(self, oid: int, said: list[str]) -> bool:
+        """Whether object ``oid`` is the one of its kind furthest toward the one side ``said`` names ("at the
+        back", "on the left", "closest to me"); refused where it is another, False where no one side is said."""
+        sides = {_SIDE_KEYS[w] for w in said if w in _SIDE_KEYS}
+        if len(sides) != 1:
+            return False
+        axis, sign = sides.pop()
+        obj = next(o for o in self.spec.objects if o.id == oid)
+        kind = [o for o in self.spec.objects if o.name == obj.name and o.pose is not None and o.on is None]
+        if obj.pose is None or obj not in kind:
+            return False
+        best = max(kind, key=lambda o: sign * float(o.pose[axis]))  # type: ignore[index]
+        if best.id != oid:
+            raise InputError(f"'the one {' '.join(said)}' is not the {obj.name} named before it; say which one")
+        return True
+
+
+#: Sides said in "the one at the back": the axis of the table position and which way is furthest.
+_SIDE_KEYS = {"back": (1, 1), "far": (1, 1), "rear": (1, 1), "front": (1, -1), "near": (1, -1), "me": (1, -1),
+              "us": (1, -1), "you": (1, -1), "left": (0, -1), "right": (0, 1)}
+#: Words that say where an object stands ("the one at the back", "the one closest to me").
+_WHERE_WORDS = frozenset({"at", "on", "in", "to", "by", "the", "back", "front", "left", "right", "far", "near", "rear",
+                          "end", "side", "corner", "middle", "centre", "center", "top", "bottom", "closest", "nearest",
+                          "furthest", "farthest", "me", "us", "you", "over", "there", "that's", "which", "is",
+                          "sitting", "standing", "further", "farther", "closer", "nearer", "edge", "hand", "more"})

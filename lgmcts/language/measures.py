@@ -250,13 +250,38 @@ def _first_to_last(ws: list[str], j: int) -> int | None:
     return k
 
 
+_CENTRE_WORDS = frozenset({"centre", "center", "centres", "centers"})
+
+
+def _centre_to_centre(ws: list[str], j: int) -> int | None:
+    """The end of how a measure was taken, said after it: "(,) (measured) (from) centre(-)to(-)centre" and then
+    "from the first (can) to the last"; None where it is not said at ``j``."""
+    k = j + (ws[j : j + 1] == [","])
+    k += ws[k : k + 1] == ["measured"]
+    k += ws[k : k + 1] == ["from"]
+    if k >= len(ws) or ws[k] not in _CENTRE_WORDS:
+        return None
+    k += 1
+    k += ws[k : k + 1] == ["-"]
+    if ws[k : k + 1] != ["to"]:
+        return None
+    k += 1
+    k += ws[k : k + 1] == ["-"]
+    if k >= len(ws) or ws[k] not in _CENTRE_WORDS:
+        return None
+    k += 1
+    return _first_to_last(ws, k) or k
+
+
 def _role_after(ws: list[str], j: int) -> tuple[Role, int] | None:
     for seq, role in _AFTER:
         if tuple(ws[j : j + len(seq)]) == seq:
-            return role, j + len(seq)
-    end = _first_to_last(ws, j)
-    if end is not None:
-        return "length", end
+            # "18 cm each side, centre-to-centre", "25 cm apart center to center": how it was measured goes with it
+            end = j + len(seq)
+            return role, _centre_to_centre(ws, end) or end
+    last = _first_to_last(ws, j)
+    if last is not None:
+        return "length", last
     return None
 
 
@@ -284,6 +309,8 @@ def find_measures(text: str) -> list[Measure]:
         after = _role_after(ws, hi)
         if after is not None:
             role, hi = after
+            if ws[hi - 1] == "square" and i and ws[i - 1] in ("a", "an", "one"):
+                hi -= 1  # "a 20 cm square": the noun stays for the arrangement, the measure is its side
         k = lo
         while k > 0 and ws[k - 1] in _HEDGES:
             k -= 1

@@ -23,8 +23,10 @@ Each ``[[rewrite]]`` row of the table has
 Rows apply in the order of the file, each to the output of the one before.
 The file holds more than one table: ``[[rewrite]]`` rows make :func:`apply`'s
 default chain, ``[[frame]]`` rows strip the words that frame a request as an
-end state or open it in speech (:func:`.rewrite.unframe`); ``apply(text,
-"frame")`` runs one table by name. Nothing here knows the scene.
+end state or open it in speech (:func:`.rewrite.unframe`), ``[[plain]]`` rows
+say a trade's own words for the table's sides plainly before anything else
+reads the command ("frame left", "the foreground"); ``apply(text, "frame")``
+runs one table by name. Nothing here knows the scene.
 """
 
 from __future__ import annotations
@@ -141,7 +143,7 @@ def _compile(row: dict, n: int, macros: dict[str, str]) -> Rule:
 
 
 #: The tables of the file, by name.
-TABLES = ("rewrite", "frame")
+TABLES = ("rewrite", "frame", "plain")
 
 
 @lru_cache(maxsize=len(TABLES))

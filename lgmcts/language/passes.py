@@ -47,6 +47,12 @@ _ARTICLE_AT = re.compile(rf"(?i)((?:^|[.;!?:]|\b(?:{'|'.join(sorted(_COMMAND_VER
 
 #: The word lists of a remark and an aside (``[context]`` of the lexicon).
 _CTX = context_words()
+#: Containers an object can be put in, read as a stack on them ("drop the block in the bowl").
+_CONTAINERS = frozenset({"bowl", "mug", "cup", "pan", "pot", "box", "basket", "tray", "dish", "jar", "bin", "crate",
+                         "container", "glass"})
+_PUT_IN_VERBS = frozenset({"put", "drop", "place", "pop", "set", "stick", "toss", "tuck", "nest", "stash", "move",
+                           "goes", "go", "should", "sit", "sits", "land", "lands"})
+_PART_ENDS = frozenset({",", ".", ";", "!", "?", ":", "and", "then"})
 #: Determiners and possessives before the noun of an aside ("by the window", "in my kitchen").
 _ASIDE_DETS = frozenset({"the", "a", "an", "my", "your", "our", "his", "her", "their", "that", "this", "these", "those",
                          "some", "any", "one"})
@@ -313,6 +319,12 @@ class _TokenPasses(ParserHost):
             return words
         if len(named) < 2:
             return words
+        # "..., and then the purple block on the right of the latter": the two named before the part that
+        # says it, where there are two (what that part names first is what moves, never its own reference)
+        cut = max((k for k in range(at[0]) if words[k] in (",", ";", ".", ":", "and", "then")), default=0)
+        before = [m for m in named if m.end <= cut]
+        if len(before) >= 2:
+            named = before
         pair = {"former": words[named[-2].start : named[-2].end], "latter": words[named[-1].start : named[-1].end]}
         out: list[str] = []
         k = 0
@@ -325,6 +337,38 @@ class _TokenPasses(ParserHost):
             out.append(words[k])
             k += 1
         return tuple(out)
+
+    def _put_in(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """"drop the red block in the white bowl", "red block in the white bowl, blue one in the black bowl":
+        one object said to go in a container (a bowl, mug, cup, pan, box ...) at the end of its part goes on
+        it, a stack, as "into" does; said after a verb that puts it there or as the whole part. "The can in
+        the bowl" inside a longer part stays a reference."""
+        try:
+            found = self._find(words)
+        except InputError:
+            return words
+        out = list(words)
+        by_start = {m.start: m for m in found}
+        for k, w in enumerate(words):
+            m = by_start.get(k + 1)
+            if w not in ("in", "inside") or m is None or m.plural or not self._container(m):
+                continue
+            if m.end < len(words) and words[m.end] not in _PART_ENDS:
+                continue
+            start = max((j + 1 for j in range(k) if words[j] in _PART_ENDS), default=0)
+            left = [x for x in found if start <= x.start and x.end <= k]
+            if not left or left[-1].end != k:
+                continue
+            said = words[start : left[-1].start]
+            if all(x in _PUT_IN_VERBS or x in ("please", "just", "now", "then", "and", "also") for x in said) and (
+                    not said or any(x in _PUT_IN_VERBS for x in said)):
+                out[k] = "on"
+        return tuple(out)
+
+    def _container(self, m: Mention) -> bool:
+        """Whether the one object ``m`` names is a container ("the white bowl", "object 7" a bowl)."""
+        names = {o.name for o in self.spec.objects if o.id in m.ids} if m.ids else set(m.names or ())
+        return bool(names) and all(n.split()[-1] in _CONTAINERS for n in names)
 
     def _spelled_right(self, text: str) -> str:
         """The text with misspellings corrected against the scene and the parser's words (.spelling)."""

@@ -726,6 +726,10 @@ def _read_objects_for_next_clause(self: _Parser, f: Frame) -> list[_Pending] | N
     return None
 
 
+#: Words by which one object stands on or in another.
+_SUPPORT_WORDS = frozenset({"on", "onto", "atop", "upon", "in", "into"})
+
+
 @reading("arrangement")
 def _read_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
     """The arrangement or relation the phrase matches best, over the objects of the clause."""
@@ -753,6 +757,13 @@ def _read_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
         if not any(counts):
             counts = [len(_pattern_positions(words, lo, hi, self.key_vocab)) for lo, hi in gaps]
         p = max(range(len(counts)), key=lambda g: (counts[g], -g)) if any(counts) else 0
+        for lo, hi in gaps[1:p]:
+            # "the mug on the plate goes behind the bowl": a support said between the objects that move is no
+            # joining word; reading them all behind the bowl would drop it
+            said = [w for w in words[lo:hi] if w not in ("the", "a", "an")]
+            if len(said) == 1 and said[0] in _SUPPORT_WORDS:
+                raise InputError(f"'{text}': cannot tell what '{' '.join(words[lo:hi])}' asks of the objects "
+                                 f"around it")
         return _with_facing(self._relation(m.pattern, groups, sels, p, text), params)
     if m.pattern != "tower" and not infos[m.pattern].needs_pose and len(groups) >= 2:
         # Objects of one arrangement are joined by "and", "with", "of", "using" or the

@@ -19,7 +19,7 @@ from .lexicon import HUES, MACROS, says
 from .normalise import apply, replacer, step
 from .stages import is_mark
 
-__all__ = ["rewrite", "unframe", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
+__all__ = ["rewrite", "unframe", "plain_words", "QUESTION", "ASKS_TO_ACT", "FREE_ORDER"]
 
 #: A clause that only leaves the order open ("any order is fine"): a stack in any order is a stack.
 FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|random|an arbitrary|no particular|any old) "
@@ -206,6 +206,12 @@ def unframe(text: str) -> str:
     """The request without the words that frame it as an end state or open it in speech: the rows of the
     ``[[frame]]`` table of ``data/rewrites.toml``, in order."""
     return apply(text, "frame")
+
+
+def plain_words(text: str) -> str:
+    """A trade's own words for the table's sides and parts said plainly ("frame left" is left, "the
+    foreground" the front): the rows of the ``[[plain]]`` table of ``data/rewrites.toml``, in order."""
+    return apply(text, "plain")
 
 
 #: Verb stems of "-ing" forms and their base forms.

@@ -54,7 +54,7 @@ from .lexicon import HUES
 
 from .matcher import FILLERS, PatternMatcher, STOPWORDS, _stem
 from .passes import _SAME
-from .rewrite import ASKS_TO_ACT, QUESTION, rewrite, unframe
+from .rewrite import ASKS_TO_ACT, QUESTION, plain_words, rewrite, unframe
 from .shapes import normalise
 from .arrangements import _Arrangements
 from .assembly import _Finishing
@@ -218,7 +218,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = self._spelled_right(text)
+        text = plain_words(self._spelled_right(text))
         self._tilt(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
@@ -227,7 +227,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         order_by = _ORDER_BY.search(text)
         self._stack_axis = _stack_axis(lexicon.words(text))
         # The order along a line ("from left to right") is not part of any goal.
-        text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)\b", " ", text)
+        # "the third block from the left to the right of the bowl" is a reference and a side, no order.
+        text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)"
+                      r"\b(?!(?:\s+hand)?(?:\s+side)?\s+of\b)", " ", text)
         text = re.sub(r"(?i)\b(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest) to (the )?"
                       r"(shortest|smallest|tallest|largest|biggest|lightest|darkest)\b", " ", text)
         bare = re.sub(r"(?i)^\s*(?:(?:hmm+|um+|uh+|so|well|ok(?:ay)?|hey|hi|oh|right|now)\b[,\s]*)+", "", text)
@@ -314,7 +316,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
         words = self._only_these(self._trailing_remarks(words))
-        words = self._former_latter(words)
+        words = self._restated_one(self._put_in(self._former_latter(words)))
         words = self._bare_colour_sets(self._noun_first_lists(words))
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).
@@ -456,4 +458,11 @@ def parse_rules(
     InputError
         With one line saying what was not understood.
     """
-    return _Parser(spec, matcher, options or RulesOptions()).command(text)
+    parser = _Parser(spec, matcher, options or RulesOptions())
+    try:
+        return parser.command(text)
+    except InputError as err:
+        said = stages.unmark(str(err), parser._measures)
+        if said == str(err):
+            raise
+        raise InputError(said) from None

@@ -329,7 +329,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
 
     def put(key: str, val: str | int, text: str) -> None:
         if key in params and params[key] != val:
-            raise InputError(f"'{text}': two different {key}s ({params[key]}, {val}) for one arrangement")
+            both = "" if key == "measure" else f" ({params[key]}, {val})"  # a measure is said in the quote
+            raise InputError(f"'{text}': two different {key}s{both} for one arrangement")
         params[key] = val
 
     while i < n:

@@ -54,6 +54,8 @@ INFORMAL: dict[str, str] = {
     # texting: "fork knife n spoon", "ur", "plz"
     "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though", "thre": "three",
     # ordinals in figures: "the 2nd can from the left"
+    # shorthand for "except": "all the letters exc the T"
+    "exc": "except", "excl": "except", "xcept": "except",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
@@ -150,6 +152,25 @@ def _dropped_letter(short: str, long: str) -> bool:
     return len(long) == len(short) + 1 and any(long[:k] + long[k + 1 :] == short for k in range(len(long)))
 
 
+_KEY_ROWS = ("qwertyuiop", "asdfghjkl", "zxcvbnm")
+#: Letters beside each other on a keyboard row.
+_NEIGHBOURS = {a: {row[k - 1] if k else "", row[k + 1] if k + 1 < len(row) else ""} - {""}
+               for row in _KEY_ROWS for k, a in enumerate(row)}
+
+
+def _key_slip(w: str, t: str) -> bool:
+    """Whether ``w`` is ``t`` with one letter struck as its neighbour on the keyboard ("cip": cup)."""
+    diff = [(a, b) for a, b in zip(w, t) if a != b]
+    return len(w) == len(t) and len(diff) == 1 and diff[0][0] in _NEIGHBOURS.get(diff[0][1], set())
+
+
+def _sound(w: str) -> str:
+    """A rough key of how a word sounds: c and k alike, s before e/i/y as c, ph as f, a final -el as -le
+    ("sirkle", "cirkel" and "circle" share one)."""
+    w = re.sub(r"^s(?=[eiy])", "c", w.replace("ph", "f").replace("ck", "c").replace("k", "c"))
+    return re.sub(r"el$", "le", w)
+
+
 class Corrector:
     """Corrections against a fixed vocabulary.
 
@@ -198,7 +219,12 @@ class Corrector:
             return skeleton[0]  # "orng", "prpl", "grn": a scene word or colour with its vowels left out
         if len(w) == 3:
             hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
+            if not hits:  # "cip": a neighbouring key struck for one letter of a three-letter name ("cup")
+                hits = [t for t in self.scene if len(t) == 3 and _key_slip(w, t)]
             return hits[0] if len(hits) == 1 else w
+        sounds = {t for t in self.nouns | self.colours if len(t) > 3 and _sound(t) == _sound(w)}
+        if len(sounds) == 1:
+            return sounds.pop()  # "sirkle", "cirkel": spelt as it sounds
         cap = 2 if len(w) >= 8 else 1
         best: list[str] = []
         best_d = cap + 1

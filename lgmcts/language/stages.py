@@ -38,7 +38,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "unmark", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -80,8 +80,20 @@ _RESTATING = frozenset({"i", "mean", "yeah", "yes", "so", "or", "like", "that's"
 def _restated(text: str, before: Measure, m: Measure) -> bool:
     """Whether ``m`` says ``before`` again right after it ("half a metre long, fifty centimetres"): the same
     quantity of the same role (or none said), only fillers between."""
-    return (abs(m.metres - before.metres) < 1e-9 and (m.role == before.role or "plain" in (m.role, before.role))
+    same = abs(m.metres - before.metres) < 1e-9 or (
+        # "8 inches long -- approximately 20 cm": said again in other units, hedged, within 3 %
+        any(w in _HEDGED for w in lexicon.words(m.text)) and abs(m.metres - before.metres) <= 0.03 * before.metres)
+    return (same and (m.role == before.role or "plain" in (m.role, before.role))
             and all(w in _RESTATING for w in lexicon.words(text[before.end : m.start])))
+
+
+_HEDGED = frozenset({"about", "around", "roughly", "approximately", "approx", "circa", "some", "say"})
+
+
+def unmark(message: str, measures: list[Measure]) -> str:
+    """``message`` with each measure marker ("sizemarka") said as the words it stands for ("30 cm long")."""
+    return re.sub(rf"\b{MARK}([a-z])\b", lambda m: measures[ord(m.group(1)) - 97].text
+                  if ord(m.group(1)) - 97 < len(measures) else m.group(0), message)
 
 
 def mark_measures(text: str) -> tuple[str, list[Measure]]:
@@ -226,18 +238,23 @@ def said_places(text: str) -> str:
                 say = f"the {_COLUMN_MARKS[w]}"
             else:
                 say = f"in the {_COLUMN_MARKS[w]}"
-        elif w in ("centre", "center", "middle") and i and words[i - 1] == "the" and words[i + 1 : i + 2] == ("of",):
+        elif w in ("centre", "center", "middle") and words[i + 1 : i + 2] == ("of",) and (
+                (i and words[i - 1] == "the") or not i or words[i - 1] in (",", ";", ":", "-")):
             # "the centre of the left side", "the middle of the front edge": the cell halfway along that side
+            # (said bare after a comma too: "..., middle of the right side of frame")
             k = i + 2 + (words[i + 2 : i + 3] == ("the",))
             k += words[k : k + 1] == ("table's",)
             side = words[k] if k < len(words) else ""
             hand = words[k + 1 : k + 2] == ("hand",)
-            if side in _SIDE_CELLS and words[k + 1 + hand : k + 2 + hand] in (("side",), ("edge",), ("end",), ("half",),
-                                                                             ("wall",)):
-                end = k + 2 + hand
+            noun = words[k + 1 + hand : k + 2 + hand] in (("side",), ("edge",), ("end",), ("half",), ("wall",))
+            # "in the middle of the back" said with no noun: the clause ends there or the table is named
+            bare = not hand and (words[k + 1 : k + 2] in ((), (",",), (".",), (";",), ("!",), ("and",)) or bool(
+                words[k + 1 : k + 3] == ("of", "the") and words[k + 3 : k + 4] and words[k + 3] in TABLE_WORDS))
+            if side in _SIDE_CELLS and (noun or bare):
+                end = k + 1 + hand + noun
                 if words[end : end + 2] == ("of", "the") and words[end + 2 : end + 3] and words[end + 2] in TABLE_WORDS:
                     end += 3
-                i -= 1  # the article goes too
+                i -= words[i - 1] == "the"  # the article goes too
                 if i >= 2 and words[i - 1] == "in" and words[i - 2] in ("right", "smack", "dead", "bang", "slap"):
                     i -= 2  # "right in the middle of the back edge": the intensifier and "in" too
                 say = f"in the {_SIDE_CELLS[side]}cell"

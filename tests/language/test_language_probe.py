@@ -17,8 +17,11 @@ CASES = load_cases(Path(__file__).with_name("probe_cases.jsonl"))
 #: Probe cases the parser does not answer as labelled (docs/language.md, "What
 #: does not work"): "it" after a two-object stack is read as its top ("stack
 #: the red block on the blue block and put the green block left of it"), which
-#: the probe labels as ambiguous. ("it" after "A left of B" is refused.)
-KNOWN = {"probe-refusal-011"}
+#: the probe labels as ambiguous. ("it" after "A left of B" is refused.) "put the red can in the blue bowl"
+#: is labelled a refusal here, but containment is read as a stack (docs/language.md: "into the bowl",
+#: "sitting in the black bowl"), as every writer's set labels "put X in the bowl" (fresh7b-ref-position-052,
+#: w10a-stack-074, w12a-plain-068 ...): the parser follows the documented convention.
+KNOWN = {"probe-refusal-011", "probe-refusal-025"}
 
 
 def _scene(name: str):

@@ -39,6 +39,12 @@ from lgmcts.language.stages import mark_measures
     ("a ring, radius nought point one five m", 0.15, "radius", "radius nought point one five m"),
     ("a line one point two metres long", 1.2, "length", "one point two metres long"),
     ("a rectangle 0,3 m by 0,2 m", 0.3, "long_side", "0,3 m by 0,2 m"),                # a decimal comma
+    # how it was measured, said after the role, goes with it (never read as a place at the centre)
+    ("mugs in a line 25cm apart center to center", 0.25, "spacing", "25cm apart center to center"),
+    ("in a square 18 cm each side, centre-to-centre.", 0.18, "side", "18 cm each side, centre-to-centre"),
+    ("a line 30 cm long, measured centre-to-centre from the first can to the last", 0.3, "length",
+     "30 cm long, measured centre-to-centre from the first can to the last"),
+    ("cans in a 20 cm square, back left", 0.2, "side", "20 cm"),     # "a 20 cm square": the noun stays
 ])
 def test_a_quantity_is_read_with_its_role_and_span(text, metres, role, said):
     (m,) = find_measures(text)
@@ -64,6 +70,10 @@ def test_two_measures_in_one_command_are_both_found():
     ("a row half a metre long, um, fifty centimetres", "a row sizemarka, um, ", [0.5]),
     ("a ring 30 cm across, 20 cm across", "a ring sizemarka, sizemarkb", [0.3, 0.2]),   # two: left to be refused
     ("a ring of 10 cm radius and a row 10 cm long", "a ring of sizemarka and a row sizemarkb", [0.1, 0.1]),
+    # said again in other units, hedged, within 3 %: one measure, the first
+    ("a line 8 inches long -- approximately 20 cm", "a line sizemarka -- ", [0.203]),
+    ("a line 8 inches long -- 20 cm", "a line sizemarka -- sizemarkb", [0.203, 0.2]),   # not hedged: two
+    ("a line 8 inches long -- approximately 25 cm", "a line sizemarka -- sizemarkb", [0.203, 0.25]),
 ])
 def test_a_measure_said_again_right_after_itself_is_one(text, marked, kept):
     out, found = mark_measures(text)

@@ -111,6 +111,10 @@ def _drop(text: str) -> str:
     ("the groceries finally came and the bowls in a circle", "the bowls in a circle"),
     ("my daughter keeps knocking the bowls over, so stack the bowls", "stack the bowls"),   # a story of the house
     ("i used to play with bowls like these as a kid. stack the bowls", "stack the bowls"),
+    ("before lunch, put the mug left of the plate", "put the mug left of the plate"),   # a meal after "before"
+    ("quick one before lunch: stack the bowls", "stack the bowls"),                      # ... said inside chatter
+    ("before my shift, stack the bowls", "stack the bowls"),            # "shift" after "my" is a noun, no verb
+    ("ok quick one before meds round: stack the bowls", "stack the bowls"),
 ])
 def test_context_that_asks_nothing_is_dropped(text, left):
     assert _drop(text) == left
@@ -128,6 +132,8 @@ def test_context_that_asks_nothing_is_dropped(text, left):
     "the blue mug is in my way. move it behind the plate",          # the remark names what 'it' means
     "we are having friends over tonight.",                          # nothing but context: left to be refused
     "put the mug left of the plate",
+    "before the red mug, stack the bowls",                          # an object after "before": kept
+    "i want to see all my cans at a glance. stack them",            # "my cans" names objects
 ])
 def test_what_may_matter_is_kept(text):
     assert _drop(text) == " ".join(_ws(text))

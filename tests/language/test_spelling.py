@@ -50,6 +50,10 @@ def _fix(text: str) -> str:
     ("put the forc behind the box", "put the fork behind the box"),   # a tie broken by the scene's own word
     ("the 2nd mug from the left", "the second mug from the left"),    # an ordinal in figures
     ("the mugs that share a color w the box", "the mugs that share a color with the box"),   # texting
+    ("the red mug and the blue myg", "the red mug and the blue mug"),   # a neighbouring key in a three-letter name
+    ("cans in a sirkle", "cans in a circle"),                            # spelt as it sounds
+    ("the mugs in a cirkel", "the mugs in a circle"),
+    ("all the letters exc the box", "all the letters except the box"),  # shorthand
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -73,6 +77,7 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "put the nife behind the box",        # a sound-alike of a name the scene lacks (no knife here)
     "1) stack the mugs 2) put the box on the dish",   # a numbered step is no "to"
     "the mugs in a row w/ the box",                   # "w/" is read by the rewrite table
+    "put the mug in the mux",                         # 'x' is no neighbour of 'g' on the keyboard
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text

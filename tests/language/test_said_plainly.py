@@ -1,0 +1,114 @@
+"""Words of a trade said plainly (the ``[[plain]]`` table), containers, "the former/latter" after a clause's own
+subject, "the one ..." said again after one object, and a support said between the objects that move: each
+read end to end on a small table."""
+
+from __future__ import annotations
+
+import pytest
+
+from lgmcts.errors import InputError
+
+
+def _table(objects: list[tuple[str, str, float, float]]):
+    """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
+    from lgmcts.formats import parse_scene
+
+    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
+
+
+#: 1 plate, 2-3 bowls (white at the back left, black in front), 4-6 blocks (red, blue, green from left to right),
+#: 7-8 bottles (white at the front, blue at the back).
+_SCENE = [("plate", "white", 0.25, -0.2), ("bowl", "white", -0.25, 0.2), ("bowl", "black", -0.1, -0.05),
+          ("block", "red", -0.3, -0.25), ("block", "blue", 0.0, -0.15), ("block", "green", 0.2, 0.05),
+          ("bottle", "white", 0.05, 0.1), ("bottle", "blue", 0.1, 0.25)]
+
+
+def _goals(said: str) -> list[dict]:
+    from lgmcts.language import parse
+
+    return [g.model_dump(exclude_none=True) for g in parse(_table(_SCENE), said).goals]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # a photographer's frame: the camera stands where the viewer stands
+    ("blocks in a row along the foreground", [{"pattern": "line", "objects": [4, 5, 6], "region": "bottom"}]),
+    ("blocks in a row in the background", [{"pattern": "line", "objects": [4, 5, 6], "region": "top"}]),
+    ("the red block frame right of the plate", [{"pattern": "right", "objects": [4], "anchor": 1}]),
+    ("blocks side by side, partway back on frame left",
+     [{"pattern": "line", "objects": [4, 5, 6], "region": "middle left"}]),
+    ("second block from camera left goes behind the plate", [{"pattern": "behind", "objects": [5], "anchor": 1}]),
+    ("blocks in a row, middle of the right side of frame",
+     [{"pattern": "line", "objects": [4, 5, 6], "region": "middle right"}]),
+    ("blocks in a row facing camera so they read",
+     [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
+    ("stack the red block on the plate, it's the hero for this shot", [{"pattern": "tower", "objects": [1, 4]}]),
+])
+def test_a_trades_words_are_read_as_the_plain_ones(said, goals):
+    assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    ("drop the red block in the black bowl", [{"pattern": "tower", "objects": [3, 4]}]),
+    ("red block in the white bowl, blue one in the black bowl",
+     [{"pattern": "tower", "objects": [2, 4]}, {"pattern": "tower", "objects": [3, 5]}]),
+    ("put the frontmost block in the farther of the two bowls", [{"pattern": "tower", "objects": [2, 4]}]),
+    ("put the blocks in a line", [{"pattern": "line", "objects": [4, 5, 6]}]),   # "in" before an arrangement
+])
+def test_an_object_put_in_a_container_is_stacked_on_it(said, goals):
+    assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # "the latter" after "..., and then X": the two named before that part, never X itself
+    ("Put the white bowl to the left of the black bowl, and then the red block on the right of the latter.",
+     [{"pattern": "left", "objects": [2], "anchor": 3}, {"pattern": "right", "objects": [4], "anchor": 3}]),
+    ("Put the blue bottle to the right of the white one, and the red block to the right of the former.",
+     [{"pattern": "right", "objects": [8], "anchor": 7}, {"pattern": "right", "objects": [4], "anchor": 8}]),
+    ("take the red block and the plate; put the former in front of the latter",
+     [{"pattern": "front", "objects": [4], "anchor": 1}]),
+])
+def test_former_and_latter_are_the_two_named_before_the_part(said, goals):
+    assert _goals(said) == goals
+
+
+@pytest.mark.slow
+def test_the_one_said_again_after_one_object():
+    assert _goals("the farther bottle, the one at the back, right of the plate") == [
+        {"pattern": "right", "objects": [8], "anchor": 1}]
+    with pytest.raises(InputError, match="is not the bottle named before it"):
+        _goals("the farther bottle, the one at the front, right of the plate")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, why", [
+    # the red block stands on nothing: reading both behind the plate would drop "on"
+    ("the red block on the black bowl needs to go behind the plate", "cannot tell what 'on' asks"),
+    ("blocks in a line 30 cm long, 40 cm long", "'blocks in a line 30 cm long , 40 cm long': two different"),
+])
+def test_refused_with_the_words_said(said, why):
+    with pytest.raises(InputError, match=why):
+        _goals(said)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    ("Put the second block from the left to the right of the white bowl.",
+     [{"pattern": "right", "objects": [5], "anchor": 2}]),
+    ("put the blocks in a row from left to right", [{"pattern": "line", "objects": [4, 5, 6]}]),
+    ("Put the red block on the plate, and thereafter the blue block on the red block.",
+     [{"pattern": "tower", "objects": [1, 4, 5]}]),
+    ("blocks in a 20 cm square, back left", None),    # too few objects: the noun is kept, so it is a square
+    ("Dinner party tonight. The red block should end up left of the plate.",
+     [{"pattern": "left", "objects": [4], "anchor": 1}]),
+])
+def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
+    if goals is None:
+        with pytest.raises(InputError, match="a rectangle needs at least 4 objects"):
+            _goals(said)
+    else:
+        assert _goals(said) == goals
