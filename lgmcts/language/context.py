@@ -92,9 +92,14 @@ def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_wor
 
 
 def _owned(part: Sequence[str]) -> set[int]:
-    """The places of the nouns said after a person's possessive ("my shift", "her nap"): nouns, never the
-    verbs of a request the same words can be ("shift", "set")."""
-    return {j for j in range(1, len(part)) if part[j - 1] in _POSSESSIVES and not part[j].isdigit()}
+    """The places of the nouns said after a person's possessive or a length of time ("my shift", "her nap",
+    "12hr shift", "night shift"): nouns, never the verbs of a request the same words can be ("shift", "set")."""
+    return {j for j in range(1, len(part)) if not part[j].isdigit() and (
+        part[j - 1] in _POSSESSIVES or part[j - 1] in _SHIFT_KINDS
+        or (part[j] in _TIME_WORDS and (part[j - 1] in _CLOCK or any(c.isdigit() for c in part[j - 1]))))}
+
+
+_SHIFT_KINDS = frozenset({"night", "day", "late", "early", "double", "long", "morning", "evening", "graveyard"})
 
 
 _POSSESSIVES = frozenset({"my", "our", "his", "her", "their", "your"})
@@ -196,9 +201,10 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
     left", "left of"; "my daughter just left" is a verb), a verb or particle of chatter not at all
     ("coming over", "knocked everything over", "at seven")."""
     clock = _clock_words(part) | _time_spans(part)
+    owned = _owned(part)
     timed = any(w in _CLOCK for w in part)  # "lunch is at one, it's almost noon": a meal said with a time
     for j, w in enumerate(part):
-        if j in clock:
+        if j in clock or (j in owned and not object_word(w)):
             continue
         if object_word(w) and w not in ("everything", "anything"):
             return False

@@ -314,12 +314,19 @@ class _Framing(ParserHost):
 
     def _relation(self, pattern: str, groups, sels, p: int, text: str) -> list[_Pending]:
         words_rel = pattern.replace("_", " and ")
-        if p >= len(groups):
+        last = self._last_read
+        if p >= len(groups) and len(groups) == 1 and last is not None and isinstance(last.anchor, int) \
+                and _OTHER_SIDE.get(last.pattern) == pattern:
+            # "the knife on the right of the plate, the fork on the left": the other side of the same object
+            anchor_sel: list = [last.anchor]
+        elif p >= len(groups):
             raise InputError(f"'{text}': {words_rel} of what? name the reference object")
-        anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
+        else:
+            anchor_sel = [x for s in sels[p] for x in (s if isinstance(s, list) else [s])]
         tower = self.state.tower.objects if self.state.tower is not None else []
-        if (len(anchor_sel) == 1 and tower and anchor_sel[0] == tower[-1] and isinstance(tower[0], int) and any(
-                isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p])):
+        if (len(anchor_sel) == 1 and tower and anchor_sel[0] == tower[-1] and isinstance(tower[0], int)
+                and p < len(groups)
+                and any(isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p])):
             # "put the bowl on the plate and the cutlery beside it": beside the stack, named by its base.
             anchor_sel = [tower[0]]
         target_sel: list[int | Choice] = []
@@ -349,7 +356,7 @@ class _Framing(ParserHost):
         self.state.tower = None
         self.state.last_anchor = anchor_sel[0] if len(anchor_sel) == 1 else None
         self.state.it_pair = (targets[0], anchor_sel[0]) if len(targets) == 1 and len(anchor_sel) == 1 else None
-        if len(anchor_sel) == 1 and isinstance(anchor_sel[0], int) and any(
+        if len(anchor_sel) == 1 and isinstance(anchor_sel[0], int) and p < len(groups) and any(
                 isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p]):
             self.state.it_chain = anchor_sel[0]
         return [_Pending(pattern, list(targets), a, None, text) for a in anchor_sel]
@@ -384,7 +391,8 @@ class _Framing(ParserHost):
                 # "put the phone left of the mug and the knife to its right": "it" as the reference object of
                 # a side or depth is the reference object of the relation before (the mug).
                 self._it_beside = (pair is not None and isinstance(pair[1], int) and any(w in _DIR_WORDS for w in sub)
-                                   and not any(w in _VERT_WORDS - {"to", "of"} for w in sub))
+                                   and not any(w in _VERT_WORDS - {"to", "of"} and not _on_a_side(sub, k)
+                                               for k, w in enumerate(sub)))
                 self._first = None
                 if not self.state.last and own and own[0].det == "the" and not own[0].plural and any(
                         m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(
@@ -402,3 +410,14 @@ class _Framing(ParserHost):
                     named = []
                 self._note_nouns(reversed(named))
                 self._named_in.append((sub, named))
+
+
+def _on_a_side(words: tuple[str, ...], k: int) -> bool:
+    """Whether "on" at ``k`` says a side ("on the right of it", "on its left"), not that one object stands on
+    another."""
+    nxt = words[k + 1 : k + 3]
+    return words[k] == "on" and len(nxt) == 2 and nxt[0] in ("the", "its", "their") and nxt[1] in _DIR_WORDS
+
+
+#: A side and the side opposite it, of one reference object.
+_OTHER_SIDE = {"left": "right", "right": "left", "front": "behind", "behind": "front"}

@@ -1,6 +1,7 @@
 """Token passes over a group said by its size: "all but two of the blocks" (how many of it are taken), a
 sentence that only narrows the group of the sentence before ("line up the blocks. oh, only the blue and the
-green ones") and "the one ..." said again after one object ("the farther bottle, the one at the back, ..."). Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
+green ones"), "the one ..." said again after one object ("the farther bottle, the one at the back, ...") and sides
+given to a list "respectively". Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
 
 from __future__ import annotations
 
@@ -148,6 +149,47 @@ class _GroupPasses(ParserHost):
         return True
 
 
+    def _respectively(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """"place the red and blue blocks to the left and right of the white bowl, respectively": each object
+        of the list to its side, in the order said (one relation each). Refused where the list and the sides
+        are not as many."""
+        if "respectively" not in words:
+            return words
+        k = words.index("respectively")
+        s = max((j + 1 for j in range(k) if words[j] in (".", ";", "!", "?")), default=0)
+        try:
+            found = list(self._find(words[s:k]))
+        except InputError:
+            return words
+        if len(found) < 2 or found[-1].start == 0 or words[s + found[-1].start - 1] not in ("of", "behind"):
+            return words
+        anchor, subjects = found[-1], found[:-1]
+        said = words[s + subjects[-1].end : s + anchor.start - (words[s + anchor.start - 1] == "of")]
+        sides = [_SIDE_OF[w] for w in said if w in _SIDE_OF]
+        if not sides or any(w not in _SIDE_OF and w not in ("to", "the", "and", ",", "in", "on", "its") for w in said):
+            return words
+        ids: list[int] = []
+        for m in subjects:
+            got = self._select(m)
+            if not isinstance(got, list):
+                return words
+            if m.color_order and len(m.color_order) == len(got):
+                colour = {o.id: o.color for o in self.spec.objects}
+                got = sorted(got, key=lambda i: next((n for n, c in enumerate(m.color_order) if colour[i] == c), 0))
+            ids.extend(got)
+        if len(ids) != len(sides):
+            raise InputError(f"'{' '.join(words[s:k + 1])}': {len(ids)} objects and {len(sides)} sides said "
+                             f"respectively; give each object one side")
+        of = words[s + anchor.start : s + anchor.end]
+        out: list[str] = list(words[:s + subjects[0].start])
+        for n, (i, side) in enumerate(zip(ids, sides)):
+            out += (["and"] if n else []) + ["object", str(i), *side, *(() if side == ("behind",) else ("of",)), *of]
+        rest = list(words[s + anchor.end : k]) + list(words[k + 1 :])
+        while rest[:1] == [","]:
+            rest = rest[1:]
+        return tuple(out + rest)
+
+
 #: Sides said in "the one at the back": the axis of the table position and which way is furthest.
 _SIDE_KEYS = {"back": (1, 1), "far": (1, 1), "rear": (1, 1), "front": (1, -1), "near": (1, -1), "me": (1, -1),
               "us": (1, -1), "you": (1, -1), "left": (0, -1), "right": (0, 1)}
@@ -156,3 +198,7 @@ _WHERE_WORDS = frozenset({"at", "on", "in", "to", "by", "the", "back", "front", 
                           "end", "side", "corner", "middle", "centre", "center", "top", "bottom", "closest", "nearest",
                           "furthest", "farthest", "me", "us", "you", "over", "there", "that's", "which", "is",
                           "sitting", "standing", "further", "farther", "closer", "nearer", "edge", "hand", "more"})
+
+#: A side said in a list given "respectively", as the words of a relation.
+_SIDE_OF = {"left": ("to", "the", "left"), "right": ("to", "the", "right"), "front": ("in", "front"),
+            "behind": ("behind",), "back": ("behind",)}

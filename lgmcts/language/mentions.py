@@ -543,8 +543,12 @@ def _share_heads(vocab: Vocabulary, words: tuple[str, ...], mentions: list[Menti
                 # "stack the red block on the blue one": the nearest noun before it,
                 # else one named in an earlier clause ("there are two bottles. the white one ...").
                 order = [x for x in reversed(mentions[:k]) if not x.head and x.names is not None]
-                if not order and m.det not in ("other", "another"):
-                    order = [replace(m, names=n, head="") for n in context if _any_match(vocab, replace(m, names=n))][:1]
+                if not any(_any_match(vocab, replace(m, names=x.names)) for x in order) and m.det not in (
+                        "other", "another"):
+                    # none of them has one of this colour: a noun of an earlier clause ("the yellow cup into the
+                    # red bowl and the orange cup into the blue one": the bowl)
+                    order += [replace(m, names=n, head="") for n in context
+                              if _any_match(vocab, replace(m, names=n))][:1]
             if not order and m.head == "elided":
                 # "the red, green and blue blocks with red at the bottom and blue on
                 # top": a bare colour takes the noun of the nearest mention before it

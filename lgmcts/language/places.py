@@ -36,7 +36,8 @@ __all__ = ["BAND_MARKS", "FACE_VERBS", "POINTING_PARTS", "Place", "read_facing",
 FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "directed"}
 #: Parts of an object that say which way it points ("tines toward the right edge").
 POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
-                            "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs"})
+                            "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs",
+                            "logos", "logo", "lettering", "branding", "barcodes", "barcode"})
 _TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight", "off",
            "directly", "round", "around", "so", "they", "it", "that", "all", "are", "is", "as")
 _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
@@ -81,8 +82,8 @@ def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:
         if k + 1 < n and words[k] == "of" and (words[k + 1] == "the" or words[k + 1] in _TABLE):
             k += 2 + (words[k + 1] == "the" and k + 2 < n and words[k + 2] in _TABLE)
         return _EDGES[words[j]], k
-    if j < n and words[j] in ("back", "front") and j > i + 1 and words[j - 1] == "the":
-        return _EDGES[words[j]], j + 1  # "facing the back", "pointing to the front"
+    if j < n and words[j] in ("back", "front", "rear", "far") and j > i + 1 and words[j - 1] == "the":
+        return _EDGES[words[j]], _of_table(words, j + 1)  # "facing the back", "toward the rear of the table"
     if j < n and words[j] in ("left", "right") and j > i + 1 and words[j - 1] == "the" \
             and words[j + 1 : j + 2] != ("of",):
         return _EDGES[words[j]], j + 1  # "facing to the left", "turned toward the right" (not "... of the bowl")

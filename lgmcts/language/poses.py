@@ -121,7 +121,8 @@ def find_poses(text: str) -> list[SaidPose]:
 
 
 #: Verbs that move an object by a distance ("slide the bowl 10 cm further back").
-_MOVES = frozenset({"move", "slide", "shift", "nudge", "push", "pull", "scoot", "budge", "bring", "drag", "take"})
+_MOVES = frozenset({"move", "slide", "shift", "nudge", "push", "pull", "scoot", "budge", "bring", "drag", "take",
+                    "position", "reposition", "relocate", "displace", "translate", "offset"})
 #: Directions of a move, as unit steps in the table frame (+x right, +y away from the viewer).
 _STEPS = {"left": (-1.0, 0.0), "right": (1.0, 0.0), "back": (0.0, 1.0), "rightward": (1.0, 0.0),
           "leftward": (-1.0, 0.0), "rightwards": (1.0, 0.0), "leftwards": (-1.0, 0.0)}

@@ -426,7 +426,8 @@ def _mug_top_other_two(m: re.Match[str]) -> str:
 
 @replacer("next-box-left-left")
 def _next_box_left_left(m: re.Match[str]) -> str:
-    return {'far': 'behind ', 'near': 'in front of '}.get(m.group(2).lower(), f'to the {m.group(2)} of ') + m.group(1)
+    side = m.group(2) or m.group(3)  # "on its left", or "left side" said bare
+    return {'far': 'behind ', 'near': 'in front of '}.get(side.lower(), f'to the {side} of ') + m.group(1)
 
 
 @replacer("learners-english-you-putting")

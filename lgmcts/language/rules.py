@@ -69,6 +69,14 @@ __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 _AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "next", "beside", "at", "to", "please",
                          "too", "as", "so", "with", "near", "by", "left", "right", "front", "facing", "all", "but",
                          "if", "or", "like", "for", "now", "again", "instead", "under", "over", "above", "below"})
+#: Superlatives of size, and the places inside an arrangement they may be given ("tallest in the middle").
+_SIZE_SUPERLATIVES = frozenset({"tallest", "shortest", "biggest", "largest", "smallest", "widest", "heaviest",
+                                "lightest", "highest", "lowest"})
+_INSIDE_PLACES = frozenset({("in", "the", "middle"), ("in", "the", "centre"), ("in", "the", "center"),
+                            ("at", "the", "ends"), ("at", "the", "end"), ("on", "the", "ends"), ("on", "the", "outside"),
+                            ("on", "the", "outsides"), ("at", "each", "end"), ("in", "middle"), ("on", "ends"),
+                            ("on", "the", "bottom"), ("at", "the", "bottom"), ("on", "bottom"), ("at", "bottom"),
+                            ("on", "top"), ("at", "the", "top"), ("at", "top"), ("on", "the", "top")})
 #: Words after "closer to" that make it a direction, not a nearness to an object ("closer to the front edge").
 _EDGE_NOUNS = frozenset({"front", "back", "rear", "edge", "side", "wall", "left", "right", "centre", "center",
                          "middle", "corner", "table"})
@@ -220,6 +228,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = plain_words(self._spelled_right(text))
         self._tilt(text)
+        self._order_inside(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
         text = stages.other_side(stages.said_places(stages.pronoun_facings(stages.said_facings(text))))
@@ -280,6 +289,21 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
                 raise InputError(f"'{' '.join(toks[i:end])}': a goal keeps every object upright and sets only which "
                                  f"way it faces on the table; say the command without it")
 
+    @staticmethod
+    def _order_inside(text: str) -> None:
+        """Refuse an order of the objects inside an arrangement said by a superlative of size ("line up the
+        cans, tallest in the middle", "stack the bowls, biggest on the bottom"): no goal holds it (a stack by
+        size is refused like "in order of size"), and reading "in the middle" as the table's middle would be a
+        wrong goal."""
+        toks = [t.text for t in tokenize(text)]
+        for i, w in enumerate(toks):
+            if w not in _SIZE_SUPERLATIVES:
+                continue
+            k = i + 1 + (toks[i + 1 : i + 2] in (["one"], ["ones"]))
+            if tuple(toks[k : k + 3]) in _INSIDE_PLACES or tuple(toks[k : k + 2]) in _INSIDE_PLACES:
+                raise InputError(f"'{' '.join(toks[i : k + 3])}': an order of the objects inside an arrangement is "
+                                 f"not part of any goal; say the command without it")
+
     def _nearness(self, text: str) -> None:
         """Refuse "closer to the plate" left over once references by position are read: how near one object
         stands to another is part of no goal, and reading it as a side (in front of) would be a wrong goal.
@@ -316,7 +340,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         words = stages.without_context(words, self._object_word, self._request_word)
         words = self._context_sentences(words)
         words = self._only_these(self._trailing_remarks(words))
-        words = self._restated_one(self._put_in(self._former_latter(words)))
+        words = self._respectively(self._restated_one(self._put_in(self._former_latter(words))))
         words = self._bare_colour_sets(self._noun_first_lists(words))
         # Words that may be read by their own embedding, encoded in one batch
         # (one forward pass for all of them instead of one per word).

@@ -56,6 +56,7 @@ INFORMAL: dict[str, str] = {
     # ordinals in figures: "the 2nd can from the left"
     # shorthand for "except": "all the letters exc the T"
     "exc": "except", "excl": "except", "xcept": "except",
+    "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is

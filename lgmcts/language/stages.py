@@ -79,12 +79,16 @@ _RESTATING = frozenset({"i", "mean", "yeah", "yes", "so", "or", "like", "that's"
 
 def _restated(text: str, before: Measure, m: Measure) -> bool:
     """Whether ``m`` says ``before`` again right after it ("half a metre long, fifty centimetres"): the same
-    quantity of the same role (or none said), only fillers between."""
+    quantity of the same role (or none said), only fillers between; or said again in other units, hedged, in
+    brackets or after "i.e.", within 3 % ("8 inches long -- approximately 20 cm", "15 centimetres (6 inches)",
+    "20 cm by 10 cm, i.e. the longer side 20 cm")."""
+    between = text[before.end : m.start]
+    restating = lexicon.says(between, "restating")
     same = abs(m.metres - before.metres) < 1e-9 or (
-        # "8 inches long -- approximately 20 cm": said again in other units, hedged, within 3 %
-        any(w in _HEDGED for w in lexicon.words(m.text)) and abs(m.metres - before.metres) <= 0.03 * before.metres)
+        (any(w in _HEDGED for w in lexicon.words(m.text)) or "(" in between or restating)
+        and abs(m.metres - before.metres) <= 0.03 * before.metres)
     return (same and (m.role == before.role or "plain" in (m.role, before.role))
-            and all(w in _RESTATING for w in lexicon.words(text[before.end : m.start])))
+            and (restating or all(w in _RESTATING for w in lexicon.words(between))))
 
 
 _HEDGED = frozenset({"about", "around", "roughly", "approximately", "approx", "circa", "some", "say"})

@@ -112,3 +112,45 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
             _goals(said)
     else:
         assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # sides given to a list "respectively", in the order said
+    ("Place the red and blue blocks to the left and right of the white bowl, respectively.",
+     [{"pattern": "left", "objects": [4], "anchor": 2}, {"pattern": "right", "objects": [5], "anchor": 2}]),
+    ("place the red block and the blue block in front and behind the white bowl respectively",
+     [{"pattern": "front", "objects": [4], "anchor": 2}, {"pattern": "behind", "objects": [5], "anchor": 2}]),
+    # the other side of the same object, its name left out
+    ("put the red block on the right of the plate, the blue block on the left",
+     [{"pattern": "right", "objects": [4], "anchor": 1}, {"pattern": "left", "objects": [5], "anchor": 1}]),
+    ("put the red block left of the plate and the blue block on the right of it",
+     [{"pattern": "left", "objects": [4], "anchor": 1}, {"pattern": "right", "objects": [5], "anchor": 1}]),
+    # a facing said by the labels, the camera or the rear of the table
+    ("blocks in a row, labels out", [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
+    ("blocks in a row, logos to camera", [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
+    ("the blocks side by side, turned towards the rear of the table",
+     [{"pattern": "line", "objects": [4, 5, 6], "facing": "north"}]),
+    # "next to each other" with no arrangement said is a row, never a stack
+    ("the bottles next to each other", [{"pattern": "line", "objects": [7, 8]}]),
+    ("the blue bottle next to the plate, right side", [{"pattern": "right", "objects": [8], "anchor": 1}]),
+    ("Position the red block 10 cm to the left of its current position.",
+     [{"pattern": "pose", "objects": [4], "pose": (-0.4, -0.25, 0.0)}]),
+    ("blocks in a circle of radius 15 centimetres (6 inches)", [{"pattern": "circle", "objects": [4, 5, 6],
+                                                               "size": 0.15}]),
+    ("long night shift, can u put the blocks in a row", [{"pattern": "line", "objects": [4, 5, 6]}]),
+])
+def test_lists_sides_and_facings_said_loosely(said, goals):
+    assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, why", [
+    ("place the red and blue blocks to the left of the white bowl, respectively", "2 objects and 1 sides"),
+    ("line up the blocks, tallest in the middle", "an order of the objects inside an arrangement"),
+    ("stack the bottles, biggest on the bottom", "an order of the objects inside an arrangement"),
+    ("put the red block on the right of the plate, the blue block on the right", "right of what"),
+])
+def test_said_loosely_but_refused(said, why):
+    with pytest.raises(InputError, match=why):
+        _goals(said)

@@ -37,7 +37,7 @@ def _fix(text: str) -> str:
     ("the orng mug behnd the box", "the orange mug behind the box"),   # vowels left out of a colour
     ("a prpl star", "a purple star"),
     ("stak the 3 bowlz", "stack the 3 bowls"),                        # a plural said with a z
-    ("cud u put the fork rite of the box", "could u put the fork right of the box"),  # informal spellings
+    ("cud u put the fork rite of the box", "could you put the fork right of the box"),  # informal spellings
     ("put the mug thats red behind the box, doesnt matter how", "put the mug that's red behind the box, doesn't matter how"),
     ("stack em", "stack them"),                                        # contractions without their apostrophe
     ("the mug left of the plait", "the mug left of the plate"),       # sounds like a name the scene has
