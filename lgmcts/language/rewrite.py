@@ -430,6 +430,22 @@ def _next_box_left_left(m: re.Match[str]) -> str:
     return {'far': 'behind ', 'near': 'in front of '}.get(side.lower(), f'to the {side} of ') + m.group(1)
 
 
+@replacer("upstage-downstage")
+def _upstage_downstage(m: re.Match[str]) -> str:
+    return "at the back" if m.group(1).lower() == "up" else "at the front"
+
+
+_THIRDS = {"top": "at the back", "upper": "at the back", "back": "at the back", "far": "at the back",
+           "rear": "at the back", "bottom": "at the front", "lower": "at the front", "front": "at the front",
+           "near": "at the front", "left": "on the left", "right": "on the right", "left-hand": "on the left",
+           "right-hand": "on the right"}
+
+
+@replacer("thirds-of-frame")
+def _thirds_of_frame(m: re.Match[str]) -> str:
+    return _THIRDS[m.group(1).lower()]
+
+
 @replacer("learners-english-you-putting")
 def _learners_english_you_putting(m: re.Match[str]) -> str:
     return _BASE.get(m.group(1).lower(), m.group(1))

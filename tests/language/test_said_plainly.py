@@ -45,6 +45,10 @@ def _goals(said: str) -> list[dict]:
     ("blocks in a row facing camera so they read",
      [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
     ("stack the red block on the plate, it's the hero for this shot", [{"pattern": "tower", "objects": [1, 4]}]),
+    ("blocks in a row, upstage", [{"pattern": "line", "objects": [4, 5, 6], "region": "top"}]),
+    ("lay the blocks out in a line in the lower third", [{"pattern": "line", "objects": [4, 5, 6], "region": "bottom"}]),
+    ("blocks in a row in the foreground, labels frame left",
+     [{"pattern": "line", "objects": [4, 5, 6], "region": "bottom", "facing": "west"}]),
 ])
 def test_a_trades_words_are_read_as_the_plain_ones(said, goals):
     assert _goals(said) == goals
