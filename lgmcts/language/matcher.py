@@ -131,6 +131,11 @@ UNSUPPORTED: tuple[str, ...] = (
     "pentagon", "letter shape", "ellipse", "oval", "curve", "checkerboard", "v shape", "x shape", "heart shape",
 )
 
+#: Names of :data:`UNSUPPORTED` that are also words of a relation or a way of placing, never refused alone.
+_NOT_A_SHAPE = frozenset({"near", "around", "inside", "between", "random", "scattered", "cluster", "curve"})
+#: The one-word names of arrangements the database lacks ("zigzag", "triangle").
+UNSUPPORTED_SHAPES = frozenset(x for x in UNSUPPORTED if " " not in x) - _NOT_A_SHAPE
+
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
 
@@ -403,6 +408,13 @@ class PatternMatcher:
         m = Match(top, c, self._keys[i][1], runner, rs, unexplained)
         if c < self.options.floor:
             return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
+        named_shape = next((w for w in unexplained if any(f in self._neg for f in _forms(w))
+                            and w not in _NOT_A_SHAPE), None)
+        if named_shape is not None:
+            # "cans in a row, zigzag": an arrangement the database lacks, said beside one it has, is never
+            # read past (the phrase as a whole may still match the other one well)
+            return Match(None, c, self._keys[i][1], top, c, unexplained,
+                         reason=f"'{named_shape}' names an arrangement the database does not have")
         if unexplained and c < self.options.accept:
             # Words no key contains: read each by its own embedding.
             named: set[str] = set()

@@ -25,7 +25,7 @@ from .clauses import (
 from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Mention, candidates, find_mentions
 from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES, TABLE_WORDS, VIEWER_WORDS, context_words
-from .matcher import FILLERS, STOPWORDS, _forms, _stem
+from .matcher import FILLERS, STOPWORDS, UNSUPPORTED_SHAPES, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
 from .places import POINTING_PARTS
@@ -510,7 +510,11 @@ class _TokenPasses(ParserHost):
         """Refuse an aside that says where or how with a noun the parser cannot read ("by the window", "in a
         zigzag", "next to the fridge"): dropping it would leave out what was said. A preposition of
         ``[context] place_prepositions`` followed by a noun phrase whose noun is neither a word the parser reads
-        nor one of ``aside_nouns`` ("by the way", "in a minute")."""
+        nor one of ``aside_nouns`` ("by the way", "in a minute"); and an arrangement the database lacks said
+        alone (", zigzag")."""
+        shape = next((w for w in part if w in UNSUPPORTED_SHAPES and _stem(w) not in self.key_vocab), None)
+        if shape is not None:
+            raise InputError(f"'{' '.join(part)}': '{shape}' names an arrangement the database does not have")
         for k, w in enumerate(part):
             if w not in _CTX["place_prepositions"]:
                 continue

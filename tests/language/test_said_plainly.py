@@ -154,6 +154,9 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
     ("line up the blocks, tallest in the middle", "an order of the objects inside an arrangement"),
     ("stack the bottles, biggest on the bottom", "an order of the objects inside an arrangement"),
     ("put the red block on the right of the plate, the blue block on the right", "right of what"),
+    # an arrangement the database lacks, said apart beside one it has, is never read past
+    ("blocks in a row, zigzag", "'zigzag' names an arrangement the database does not have"),
+    ("put the blocks in a zigzag line", "'zigzag' names an arrangement"),
 ])
 def test_said_loosely_but_refused(said, why):
     with pytest.raises(InputError, match=why):
