@@ -16,6 +16,7 @@ rounded to the millimetre.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from typing import Literal
@@ -25,7 +26,7 @@ from . import lexicon
 
 __all__ = ["UNITS", "Measure", "Role", "find_measures", "size_for"]
 
-Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain"]
+Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain", "circumference"]
 
 #: Unit words -> metres: the lexicon's length units, with the plural and short spellings people type.
 UNITS: dict[str, float] = {
@@ -49,13 +50,17 @@ _AFTER: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
     (("radius",), "radius"), (("in", "radius"), "radius"), (("of", "radius"), "radius"),
     (("wide",), "across"), (("across",), "across"), (("diameter",), "across"), (("in", "diameter"), "across"),
     (("in", "width"), "across"), (("width",), "across"), (("diam",), "across"),
-    (("long",), "length"), (("in", "length"), "length"), (("end", "to", "end"), "length"),
+    (("long",), "length"), (("in", "length"), "length"), (("deep",), "across"), (("in", "depth"), "across"), (("end", "to", "end"), "length"),
     (("from", "end", "to", "end"), "length"), (("in", "total"), "length"), (("total",), "length"),
     (("length",), "length"), (("from", "one", "end", "to", "the", "other"), "length"),
     (("apart",), "spacing"), (("between", "them"), "spacing"), (("between", "each"), "spacing"),
     (("between", "each", "one"), "spacing"), (("from", "each", "other"), "spacing"), (("spacing",), "spacing"),
     (("gap",), "spacing"), (("gaps",), "spacing"), (("gap", "between", "them"), "spacing"),
     (("from", "centre", "to", "centre"), "spacing"), (("from", "center", "to", "center"), "spacing"),
+    (("from", "the", "next"), "spacing"), (("from", "the", "next", "one"), "spacing"),
+    (("from", "its", "neighbour"), "spacing"), (("from", "its", "neighbor"), "spacing"),
+    (("in", "circumference"), "circumference"), (("around",), "circumference"), (("round",), "circumference"),
+    (("all", "the", "way", "round"), "circumference"), (("all", "the", "way", "around"), "circumference"),
     (("centre", "to", "centre"), "spacing"), (("center", "to", "center"), "spacing"),
     (("each", "side"), "side"), (("a", "side"), "side"), (("per", "side"), "side"), (("on", "each", "side"), "side"),
     (("on", "a", "side"), "side"), (("on", "every", "side"), "side"), (("to", "a", "side"), "side"),
@@ -77,6 +82,8 @@ _BEFORE: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
     (("sides", "of"), "side"), (("side", "of"), "side"), (("side", "length", "of"), "side"), (("each", "side"), "side"),
     (("each", "side", "is"), "side"), (("sides",), "side"), (("side",), "side"), (("a", "side", "of"), "side"),
     (("length", "of"), "length"), (("a", "length", "of"), "length"), (("length",), "length"),
+    (("circumference",), "circumference"), (("circumference", "of"), "circumference"),
+    (("a", "circumference", "of"), "circumference"), (("circumference", "is"), "circumference"),
     (("spaced",), "spacing"), (("spaced", "out"), "spacing"), (("spaced", "by"), "spacing"),
     (("spacing", "of"), "spacing"), (("a", "spacing", "of"), "spacing"), (("gaps", "of"), "spacing"),
     (("a", "gap", "of"), "spacing"), (("spaced", "out", "by"), "spacing"), (("every",), "spacing"),
@@ -330,10 +337,29 @@ def find_measures(text: str) -> list[Measure]:
         value = round(max(dims), 3)
         if value <= 0:
             raise InputError(f"'{text[toks[i][1]:toks[j - 1][2]]}': a size must be more than zero")
-        out.append(Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
-                           tuple(round(d, 3) for d in dims)))
+        got = Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
+                      tuple(round(d, 3) for d in dims))
+        if out and _two_sides(out[-1], got, ws[hi - 1], text):
+            # "30 cm wide and 15 cm deep", "0.2 m long and 0.12 m deep": the two sides of one rectangle
+            first = out.pop()
+            got = Measure(first.start, got.end, text[first.start : got.end], max(first.metres, got.metres),
+                          "long_side", first.dims + got.dims)
+        out.append(got)
         i = hi
     return out
+
+
+_SIDE_WORDS = frozenset({"wide", "deep", "long", "high", "across"})
+
+
+def _two_sides(first: Measure, second: Measure, last_word: str, text: str) -> bool:
+    """Whether ``second`` is the other side of the rectangle ``first`` measures: both said with a side word
+    ("wide", "deep", "long"), joined only by "and" or "by"."""
+    between = text[first.end : second.start].strip().lower()
+    said = first.text.lower().split()[-1], second.text.lower().split()[-1]
+    return (between in ("and", "by", "x", ", and") and first.role in ("across", "length")
+            and second.role in ("across", "length") and said[0] in _SIDE_WORDS and said[1] in _SIDE_WORDS
+            and said[0] != said[1])
 
 
 _TOWERS = frozenset({"tower", "stack"})
@@ -355,6 +381,8 @@ def size_for(pattern: str, measure: Measure, n_objects: int) -> float:
             return v
         if role in ("across", "plain"):
             return round(v / 2, 3)
+        if role == "circumference":
+            return round(v / (2 * math.pi), 3)  # "a circumference of 60 cm": the radius it has
         raise InputError(f"{said}: a circle's size is its radius or its width across; say one of them")
     if pattern == "line":
         if role in ("length", "plain"):

@@ -441,6 +441,11 @@ _THIRDS = {"top": "at the back", "upper": "at the back", "back": "at the back", 
            "right-hand": "on the right"}
 
 
+@replacer("the-far-one")
+def _the_far_one(m: re.Match[str]) -> str:
+    return f"the {'farther' if m.group(1).lower() == 'far' else 'nearer'} {m.group(2)}"
+
+
 @replacer("thirds-of-frame")
 def _thirds_of_frame(m: re.Match[str]) -> str:
     return _THIRDS[m.group(1).lower()]

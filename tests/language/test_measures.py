@@ -45,6 +45,11 @@ from lgmcts.language.stages import mark_measures
     ("a line 30 cm long, measured centre-to-centre from the first can to the last", 0.3, "length",
      "30 cm long, measured centre-to-centre from the first can to the last"),
     ("cans in a 20 cm square, back left", 0.2, "side", "20 cm"),     # "a 20 cm square": the noun stays
+    ("a circle with a circumference of roughly 60 cm", 0.6, "circumference", "a circumference of roughly 60 cm"),
+    ("the cans in a row, each 15 cm from the next", 0.15, "spacing", "15 cm from the next"),
+    # the two sides of one rectangle, said with two side words: one measure, its longer side
+    ("a rectangle 30 cm wide and 15 cm deep", 0.3, "long_side", "30 cm wide and 15 cm deep"),
+    ("a rectangle 0.2 m long and 0.12 m deep", 0.2, "long_side", "0.2 m long and 0.12 m deep"),
 ])
 def test_a_quantity_is_read_with_its_role_and_span(text, metres, role, said):
     (m,) = find_measures(text)
@@ -63,6 +68,8 @@ def test_numbers_without_a_unit_are_no_measure(text):
 def test_two_measures_in_one_command_are_both_found():
     got = find_measures("a ring of 10 cm radius and a row 30 cm long")
     assert [(m.metres, m.role) for m in got] == [(0.1, "radius"), (0.3, "length")]
+    got = find_measures("a row 30 cm long and 40 cm long")      # one side word twice: two measures, not sides
+    assert [(m.metres, m.role) for m in got] == [(0.3, "length"), (0.4, "length")]
 
 
 @pytest.mark.parametrize("text, marked, kept", [
@@ -82,6 +89,7 @@ def test_a_measure_said_again_right_after_itself_is_one(text, marked, kept):
 
 @pytest.mark.parametrize("pattern, text, n, size", [
     ("circle", "a 15 cm radius", 4, 0.15),
+    ("circle", "a circumference of 62.8 cm", 4, 0.1),
     ("circle", "36 cm wide", 4, 0.18),
     ("circle", "a 30 cm circle", 4, 0.15),
     ("line", "25 cm", 3, 0.25),

@@ -143,6 +143,14 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
     ("blocks in a circle of radius 15 centimetres (6 inches)", [{"pattern": "circle", "objects": [4, 5, 6],
                                                                "size": 0.15}]),
     ("long night shift, can u put the blocks in a row", [{"pattern": "line", "objects": [4, 5, 6]}]),
+    # references by position said loosely
+    ("the far bottle behind the plate", [{"pattern": "behind", "objects": [8], "anchor": 1}]),
+    ("the near bottle behind the plate", [{"pattern": "behind", "objects": [7], "anchor": 1}]),
+    ("the last block on the right behind the plate", [{"pattern": "behind", "objects": [6], "anchor": 1}]),
+    ("the rightmost two blocks, in a row at the back", [{"pattern": "line", "objects": [6, 5], "region": "top"}]),
+    ("blocks in a row at the far end of the table", [{"pattern": "line", "objects": [4, 5, 6], "region": "top"}]),
+    ("blocks in a circle with a circumference of 62.8 cm",
+     [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.1}]),
 ])
 def test_lists_sides_and_facings_said_loosely(said, goals):
     assert _goals(said) == goals
