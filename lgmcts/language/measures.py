@@ -337,14 +337,14 @@ def find_measures(text: str) -> list[Measure]:
         value = round(max(dims), 3)
         if value <= 0:
             raise InputError(f"'{text[toks[i][1]:toks[j - 1][2]]}': a size must be more than zero")
-        got = Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
-                      tuple(round(d, 3) for d in dims))
-        if out and _two_sides(out[-1], got, ws[hi - 1], text):
+        said = Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
+                       tuple(round(d, 3) for d in dims))
+        if out and _two_sides(out[-1], said, text):
             # "30 cm wide and 15 cm deep", "0.2 m long and 0.12 m deep": the two sides of one rectangle
             first = out.pop()
-            got = Measure(first.start, got.end, text[first.start : got.end], max(first.metres, got.metres),
-                          "long_side", first.dims + got.dims)
-        out.append(got)
+            said = Measure(first.start, said.end, text[first.start : said.end], max(first.metres, said.metres),
+                           "long_side", first.dims + said.dims)
+        out.append(said)
         i = hi
     return out
 
@@ -352,7 +352,7 @@ def find_measures(text: str) -> list[Measure]:
 _SIDE_WORDS = frozenset({"wide", "deep", "long", "high", "across"})
 
 
-def _two_sides(first: Measure, second: Measure, last_word: str, text: str) -> bool:
+def _two_sides(first: Measure, second: Measure, text: str) -> bool:
     """Whether ``second`` is the other side of the rectangle ``first`` measures: both said with a side word
     ("wide", "deep", "long"), joined only by "and" or "by"."""
     between = text[first.end : second.start].strip().lower()
