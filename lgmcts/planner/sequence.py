@@ -755,12 +755,13 @@ def on_cycles(adj: np.ndarray) -> np.ndarray:
     a cycle: its strongly connected component has more than one node (Tarjan's algorithm, iterative).
 
     The graphs here have a few edges per node; a loop over the edges costs less than building a sparse matrix
-    for a library call."""
+    for a library call. The successors are read from one list by each node's first edge (the edges come by
+    source), and each node on the search path keeps a pointer to its next edge."""
     m = len(adj)
     src, dst = np.nonzero(adj)
-    succ: list[list[int]] = [[] for _ in range(m)]
-    for u, v in zip(src.tolist(), dst.tolist()):
-        succ[u].append(v)
+    first = np.searchsorted(src, np.arange(m + 1)).tolist()
+    succ = dst.tolist()
+    nxt = first[:-1]
     index = [-1] * m
     low = [0] * m
     on_stack = [False] * m
@@ -770,38 +771,41 @@ def on_cycles(adj: np.ndarray) -> np.ndarray:
     for root in range(m):
         if index[root] >= 0:
             continue
-        index[root] = low[root] = counter
+        index[root] = counter
         counter += 1
+        if first[root] == first[root + 1]:
+            continue  # no edge out: a component of its own
+        low[root] = index[root]
         stack.append(root)
         on_stack[root] = True
-        work = [(root, 0)]
-        while work:
-            u, k = work[-1]
-            if k < len(succ[u]):
-                work[-1] = (u, k + 1)
-                v = succ[u][k]
+        path = [root]
+        while path:
+            u = path[-1]
+            e = nxt[u]
+            if e < first[u + 1]:
+                nxt[u] = e + 1
+                v = succ[e]
                 if index[v] < 0:
                     index[v] = low[v] = counter
                     counter += 1
                     stack.append(v)
                     on_stack[v] = True
-                    work.append((v, 0))
-                elif on_stack[v]:
-                    low[u] = min(low[u], index[v])
+                    path.append(v)
+                elif on_stack[v] and index[v] < low[u]:
+                    low[u] = index[v]
                 continue
-            work.pop()
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[u])
+            path.pop()
+            if path and low[u] < low[path[-1]]:
+                low[path[-1]] = low[u]
             if low[u] == index[u]:
-                comp = []
-                while True:
-                    w = stack.pop()
-                    on_stack[w] = False
-                    comp.append(w)
-                    if w == u:
-                        break
-                if len(comp) > 1:
+                w = stack.pop()
+                on_stack[w] = False
+                if w != u:  # more than one node: all on a cycle
+                    comp = [w]
+                    while w != u:
+                        w = stack.pop()
+                        on_stack[w] = False
+                        comp.append(w)
                     out[comp] = True
     return out
 
