@@ -499,6 +499,21 @@ class _Cells:
         self.todo_goals.clear()
         self._zero = None
 
+    def crowded(self, t: _Table, j: int, p: np.ndarray) -> np.ndarray:
+        """Whether each point of ``p`` (on the table) lies in a cell that the circle of a disc other than ``j`` covers
+        whole: the point lies inside that disc's circle of a nudge of ``j`` (as large or larger), so no nudge of
+        ``j`` stands there."""
+        if self.todo or self.todo_goals:
+            self._flush(t)
+        w = len(self.cx)
+        ix = np.minimum(np.maximum(np.floor((p[:, 0] - self.origin[0]) / self.side).astype(np.intp), 0), w - 1)
+        iy = np.minimum(np.maximum(np.floor((p[:, 1] - self.origin[1]) / self.side).astype(np.intp), 0),
+                        len(self.cy) - 1)
+        cell = iy * w + ix
+        own = np.zeros(self.size, dtype=np.intp)
+        own[self.stamps[j]] = 1
+        return self.discs[cell] > own[cell]
+
     def bound(self, t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[int, int] | None:
         """An upper bound on the ``(gain, cover - hits)`` of :func:`_nudge` for disc ``j``; ``None`` when the nudge
         surely finds no free place. Every candidate of the nudge lies within its reach of ``j`` and inside j's box,
@@ -553,6 +568,9 @@ NUDGE_REACH = 6.0
 CELL = 0.25
 #: Bound a nudge by :class:`_Cells` before computing it (off: compute every nudge the order asks for; for tests).
 BOUND = True
+#: Drop a nudge's candidates that lie in a cell another disc's circle covers whole (:meth:`_Cells.crowded`) before
+#: the clearance test, once the cells are built (off: test them all; the same nudges; for tests).
+CROWDED = True
 
 
 #: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
@@ -642,6 +660,9 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     x, y = p[:, 0], p[:, 1]
     p = p[(x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)]
     p = np.minimum(np.maximum(p, lo), hi)
+    if t.cells is not None and CROWDED:
+        # Not in a cell that another disc's circle covers whole: such a point is not free.
+        p = p[~t.cells.crowded(t, j, p)]
     p = p[np.hypot(*(p - c).T) <= reach]
     # Squared distances (the margins below are far above their rounding). Rounding lets a point on a disc's circle
     # count as on it, not inside.
