@@ -334,8 +334,10 @@ def check(
             # always a violation; a smaller excursion is one when the area
             # outside exceeds OVERLAP_AREA.
             verts = geo.transform(sc.local[i], new_pose) if poly is None else shapely.get_coordinates(poly)
-            x, y = verts[:, 0], verts[:, 1]
-            excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
+            # The farthest vertex beyond a side (a difference is monotone in the vertex, so the extreme vertices
+            # give the largest differences).
+            low, high = verts.min(axis=0), verts.max(axis=0)
+            excursion = float(max(xmin - low[0], high[0] - xmax, ymin - low[1], high[1] - ymax))
             centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
             if excursion > 0 and poly is None:
                 poly = shapely.polygons(verts)
