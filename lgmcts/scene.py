@@ -236,8 +236,10 @@ class State:
             polys = geo.place_each(scene.local, poses)[1]
         return cls(scene, poses, tuple(on), tuple(polys))
 
-    def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE) -> State:
-        """A new state with object ``i`` at ``pose`` resting on ``on``."""
+    def moved(self, i: int, pose: np.ndarray | tuple[float, float, float], on: int = TABLE, *,
+              footprint: bool = True) -> State:
+        """A new state with object ``i`` at ``pose`` resting on ``on``; without ``footprint`` its entry of
+        :attr:`polys` is ``None`` (for a replay that judges cylinders on their circles and builds no polygon)."""
         poses = self.poses.copy()
         poses[i] = pose
         poses.setflags(write=False)
@@ -248,7 +250,7 @@ class State:
             changed[i] = on
             sup = tuple(changed)
         polys = list(self._polys)
-        polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i]))
+        polys[i] = shapely.polygons(geo.transform(self.scene.local[i], poses[i])) if footprint else None
         out = State(self.scene, poses, sup, tuple(polys))
         if on == self.on[i]:
             # Same supports: what depends on them alone carries over.
@@ -320,14 +322,15 @@ def _pose_out_of_bounds(pose: np.ndarray) -> str | None:
     return None
 
 
-def advance(state: State, number: int, action: Any) -> State:
+def advance(state: State, number: int, action: Any, *, footprint: bool = True) -> State:
     """The state after ``action`` (the plan's action ``number``, from 1).
 
     The one step of every replay: :func:`replay`, the validator, polishing,
     the pose fields, the pictures and the service's viewer all go through it.
     Only what makes the action meaningless is refused here; an illegal but
     well-formed action (picking a covered object, an overlap) is taken as
-    given, for the validator to judge.
+    given, for the validator to judge. Without ``footprint`` the moved
+    object's polygon is not built (see :meth:`State.moved`).
 
     Raises
     ------
@@ -348,7 +351,7 @@ def advance(state: State, number: int, action: Any) -> State:
     if bad is not None:
         raise InputError(f"action {number}: object {action.object} {bad}")
     sup = TABLE if action.on is None else scene.index[action.on]
-    return state.moved(scene.index[action.object], pose, sup)
+    return state.moved(scene.index[action.object], pose, sup, footprint=footprint)
 
 
 def replay(scene: Scene, actions: Sequence[Any]) -> list[State]:

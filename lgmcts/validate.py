@@ -217,6 +217,32 @@ def _shape_satisfied(goal: Goal, scene: Scene, poses: np.ndarray, on: tuple[int,
 # ---------------------------------------------------------------- replay
 
 
+#: Judge a plan of cylinders placed on the table on their circles, without polygons (:func:`_disc_overlaps`; the
+#: same verdicts); off: every placement through the polygons, for comparison.
+CIRCLES = True
+
+
+def _disc_overlaps(state: State, i: int, pose: np.ndarray, step: int) -> list[str]:
+    """:func:`_overlaps` where object ``i`` and every object within its reach are cylinders on the table: judged on
+    the circles alone. The footprint polygons circumscribe the circles, so two circles that share more than
+    ``OVERLAP_AREA`` have polygons that meet, and those that share nothing are all the polygon test would leave out:
+    the same verdicts and messages, without building or intersecting polygons."""
+    sc = state.scene
+    poses = state.poses
+    reach = sc.radii[i] + sc.radii + 1e-9
+    d = np.hypot(poses[:, 0] - pose[0], poses[:, 1] - pose[1])
+    close = d <= reach
+    close[i] = False
+    ri = float(sc.discs[i])
+    out = []
+    # Only circles closer than their radii share any area.
+    for k in np.flatnonzero(close & (d < ri + sc.discs)).tolist():
+        area = geo.lens_area(ri, float(sc.discs[k]), math.hypot(*(poses[k, :2] - pose[:2])))
+        if area > OVERLAP_AREA:
+            out.append(f"action {step}: object {sc.ids[i]} overlaps object {sc.ids[k]} by {area * 1e4:.2f} cm^2")
+    return out
+
+
 def _overlaps(state: State, i: int, pose: np.ndarray, poly, step: int) -> list[str]:
     """Why placing object ``i`` on the table at ``pose`` (footprint ``poly``)
     in ``state`` overlaps another table-level footprint, if it does."""
@@ -277,12 +303,20 @@ def check(
     state = sc.initial
     reasons: list[str] = []
     replayed = 0
+    # Cylinders only, all on the table and placed on the table: judged on their circles, no polygon built (the
+    # same verdicts, see _disc_overlaps; a footprint's vertices are those its polygon would have).
+    circles = (
+        CIRCLES
+        and bool(np.all(sc.discs > 0))
+        and all(s == TABLE for s in state.on)
+        and all(act.on is None for act in pl.actions)
+    )
     for step, act in enumerate(pl.actions, start=1):
         try:
             # The shared step; it refuses only meaningless actions (unknown
             # ids, an object on itself, a pose beyond the coordinate bounds,
             # where geometry means nothing), which end the replay.
-            after = advance(state, step, act)
+            after = advance(state, step, act, footprint=not circles)
         except InputError as e:
             reasons.append(str(e))
             break
@@ -299,17 +333,24 @@ def check(
             # centre off the workspace or a vertex beyond EDGE_TOL outside is
             # always a violation; a smaller excursion is one when the area
             # outside exceeds OVERLAP_AREA.
-            verts = shapely.get_coordinates(poly)
-            x, y = verts[:, 0], verts[:, 1]
-            excursion = float(max((xmin - x).max(), (x - xmax).max(), (ymin - y).max(), (y - ymax).max()))
+            verts = geo.transform(sc.local[i], new_pose) if poly is None else shapely.get_coordinates(poly)
+            # The farthest vertex beyond a side (a difference is monotone in the vertex, so the extreme vertices
+            # give the largest differences).
+            low, high = verts.min(axis=0), verts.max(axis=0)
+            excursion = float(max(xmin - low[0], high[0] - xmax, ymin - low[1], high[1] - ymax))
             centre_in = xmin <= new_pose[0] <= xmax and ymin <= new_pose[1] <= ymax
+            if excursion > 0 and poly is None:
+                poly = shapely.polygons(verts)
             if (
                 not centre_in
                 or excursion > EDGE_TOL
                 or (excursion > 0 and shapely.area(shapely.difference(poly, ws)) > OVERLAP_AREA)
             ):
                 reasons.append(f"action {step}: object {act.object} placed outside the workspace")
-            reasons.extend(_overlaps(state, i, new_pose, poly, step))
+            if circles:
+                reasons.extend(_disc_overlaps(state, i, new_pose, step))
+            else:
+                reasons.extend(_overlaps(state, i, new_pose, poly, step))
         else:
             j = sc.index[act.on]
             if on.count(j) > (on[i] == j):

@@ -83,6 +83,8 @@ class _Table:
         d = np.hypot(*(self.goal[:, None, :] - self.pos[None, :, :]).transpose(2, 0, 1))
         self.blocked = d < self.r[self.movers][:, None] + self.r[None, :] - TOUCH
         self.blocked[np.arange(len(self.movers)), self.movers] = False
+        #: Per goal (row), how many discs cover it (the row sums of ``blocked``, kept as discs move).
+        self.blockers = self.blocked.sum(axis=1)
         self.done = np.zeros(len(self.movers), dtype=bool)
         self._open_rows: np.ndarray | None = None
         self.scene = sc
@@ -134,6 +136,8 @@ class _Table:
         k = self.row.get(j)
         if k is not None:
             col[k] = False
+        self.blockers += col
+        self.blockers -= self.blocked[:, j]
         self.blocked[:, j] = col
 
     def open_rows(self) -> np.ndarray:
@@ -308,14 +312,21 @@ class _Stamps:
         """How many of ``items`` count for each of the ``size`` points."""
         return np.bincount(np.concatenate([self[i] for i in items] + [_NONE]), minlength=size)
 
-    def restamp(self, items: list[int], flat: np.ndarray, counts: np.ndarray, size: int) -> np.ndarray:
+    def restamp(self, items: list[int], flat: np.ndarray, counts: np.ndarray, total: np.ndarray) -> None:
         """Give ``items`` their new stamps (``flat``, ``counts`` as :func:`_within` returns them, in the order of
-        ``items``); returns the change of the count at each of the ``size`` points (new less old)."""
-        change = np.bincount(flat, minlength=size) - self.count(items, size)
+        ``items``), and bring ``total`` (the count at each point) up to date: one less at each point of an old
+        stamp, one more at each point of a new one (a stamp holds a point once)."""
         ends = np.cumsum(counts).tolist()
         for i, a, e in zip(items, [0, *ends], ends):
-            self[i] = flat[a:e]
-        return change
+            total[self[i]] -= 1
+            new = flat[a:e]
+            total[new] += 1
+            self[i] = new
+
+    def unstamp(self, items: list[int], total: np.ndarray) -> None:
+        """One less in ``total`` at each point of the stamps of ``items`` (each item once)."""
+        for i in items:
+            total[self[i]] -= 1
 
 
 class _Spots:
@@ -370,10 +381,10 @@ class _Spots:
     def _flush(self, t: _Table) -> None:
         if self.todo:
             moved = list(dict.fromkeys(self.todo))
-            self.count += self.stamps.restamp(
-                moved, *_within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach), self.size)
+            self.stamps.restamp(
+                moved, *_within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach), self.count)
         if self.todo_goals:
-            self.hits -= self.goal_stamps.count(self.todo_goals, self.size)
+            self.goal_stamps.unstamp(self.todo_goals, self.hits)
         self.todo.clear()
         self.todo_goals.clear()
         self._free = None
@@ -463,7 +474,10 @@ class _Cells:
         self.cx = xmin + self.side * (np.arange(max(1, math.ceil((xmax - xmin) / self.side))) + 0.5)
         self.cy = ymin + self.side * (np.arange(max(1, math.ceil((ymax - ymin) / self.side))) + 0.5)
         self.origin = (xmin, ymin)
+        self._origin = np.array([xmin, ymin])
+        self._last = np.array([len(self.cx) - 1, len(self.cy) - 1])
         self.size = len(self.cx) * len(self.cy)
+        self._own = np.zeros(self.size, dtype=np.intp)  # scratch: the disc of a crowded() call marked
         #: Per disc, the cells its circle covers whole where it stands; per goal (row), those its circle covers.
         self.stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.pos, self._disc_rad(t.r)))
         self.goal_stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.goal, self._goal_rad(t.r[t.movers])))
@@ -491,13 +505,29 @@ class _Cells:
     def _flush(self, t: _Table) -> None:
         if self.todo:
             moved = list(dict.fromkeys(self.todo))
-            self.discs += self.stamps.restamp(
-                moved, *_within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved])), self.size)
+            self.stamps.restamp(
+                moved, *_within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved])), self.discs)
         if self.todo_goals:
-            self.goals -= self.goal_stamps.count(self.todo_goals, self.size)
+            self.goal_stamps.unstamp(self.todo_goals, self.goals)
         self.todo.clear()
         self.todo_goals.clear()
         self._zero = None
+
+    def crowded(self, t: _Table, j: int, p: np.ndarray) -> np.ndarray:
+        """Whether each point of ``p`` (on the table) lies in a cell that the circle of a disc other than ``j`` covers
+        whole: the point lies inside that disc's circle of a nudge of ``j`` (as large or larger), so no nudge of
+        ``j`` stands there."""
+        if self.todo or self.todo_goals:
+            self._flush(t)
+        # Truncation, then at least 0: the floor's cell, as the points lie at or right of and above the origin.
+        ij = ((p - self._origin) / self.side).astype(np.intp)
+        np.minimum(np.maximum(ij, 0, out=ij), self._last, out=ij)
+        cell = ij[:, 1] * len(self.cx) + ij[:, 0]
+        mine = self.stamps[j]
+        self._own[mine] = 1
+        out = self.discs[cell] > self._own[cell]
+        self._own[mine] = 0
+        return out
 
     def bound(self, t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[int, int] | None:
         """An upper bound on the ``(gain, cover - hits)`` of :func:`_nudge` for disc ``j``; ``None`` when the nudge
@@ -553,6 +583,9 @@ NUDGE_REACH = 6.0
 CELL = 0.25
 #: Bound a nudge by :class:`_Cells` before computing it (off: compute every nudge the order asks for; for tests).
 BOUND = True
+#: Drop a nudge's candidates that lie in a cell another disc's circle covers whole (:meth:`_Cells.crowded`) before
+#: the clearance test, once the cells are built (off: test them all; the same nudges; for tests).
+CROWDED = True
 
 
 #: Cross the circles near a nudged disc afresh each time instead of keeping them (:class:`_Crossings`; the same
@@ -642,6 +675,9 @@ def _nudge(t: _Table, j: int, freed: np.ndarray, cover: int) -> tuple[np.ndarray
     x, y = p[:, 0], p[:, 1]
     p = p[(x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)]
     p = np.minimum(np.maximum(p, lo), hi)
+    if t.cells is not None and CROWDED:
+        # Not in a cell that another disc's circle covers whole: such a point is not free.
+        p = p[~t.cells.crowded(t, j, p)]
     p = p[np.hypot(*(p - c).T) <= reach]
     # Squared distances (the margins below are far above their rounding). Rounding lets a point on a disc's circle
     # count as on it, not inside.
@@ -727,7 +763,7 @@ def _choose(t: _Table, spots: _Spots, score: np.ndarray, cover: np.ndarray) -> t
             return j, found[0]
     rows = np.flatnonzero(~t.done)
     b = t.blocked[rows]
-    sole = b.sum(axis=1) == 1
+    sole = t.blockers[rows] == 1
     nudge: tuple[tuple[int, int], int, np.ndarray] | None = None
     for j in order:
         freed = rows[sole & b[:, j]]
@@ -755,12 +791,13 @@ def on_cycles(adj: np.ndarray) -> np.ndarray:
     a cycle: its strongly connected component has more than one node (Tarjan's algorithm, iterative).
 
     The graphs here have a few edges per node; a loop over the edges costs less than building a sparse matrix
-    for a library call."""
+    for a library call. The successors are read from one list by each node's first edge (the edges come by
+    source), and each node on the search path keeps a pointer to its next edge."""
     m = len(adj)
     src, dst = np.nonzero(adj)
-    succ: list[list[int]] = [[] for _ in range(m)]
-    for u, v in zip(src.tolist(), dst.tolist()):
-        succ[u].append(v)
+    first = np.searchsorted(src, np.arange(m + 1)).tolist()
+    succ = dst.tolist()
+    nxt = first[:-1]
     index = [-1] * m
     low = [0] * m
     on_stack = [False] * m
@@ -770,38 +807,41 @@ def on_cycles(adj: np.ndarray) -> np.ndarray:
     for root in range(m):
         if index[root] >= 0:
             continue
-        index[root] = low[root] = counter
+        index[root] = counter
         counter += 1
+        if first[root] == first[root + 1]:
+            continue  # no edge out: a component of its own
+        low[root] = index[root]
         stack.append(root)
         on_stack[root] = True
-        work = [(root, 0)]
-        while work:
-            u, k = work[-1]
-            if k < len(succ[u]):
-                work[-1] = (u, k + 1)
-                v = succ[u][k]
+        path = [root]
+        while path:
+            u = path[-1]
+            e = nxt[u]
+            if e < first[u + 1]:
+                nxt[u] = e + 1
+                v = succ[e]
                 if index[v] < 0:
                     index[v] = low[v] = counter
                     counter += 1
                     stack.append(v)
                     on_stack[v] = True
-                    work.append((v, 0))
-                elif on_stack[v]:
-                    low[u] = min(low[u], index[v])
+                    path.append(v)
+                elif on_stack[v] and index[v] < low[u]:
+                    low[u] = index[v]
                 continue
-            work.pop()
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[u])
+            path.pop()
+            if path and low[u] < low[path[-1]]:
+                low[path[-1]] = low[u]
             if low[u] == index[u]:
-                comp = []
-                while True:
-                    w = stack.pop()
-                    on_stack[w] = False
-                    comp.append(w)
-                    if w == u:
-                        break
-                if len(comp) > 1:
+                w = stack.pop()
+                on_stack[w] = False
+                if w != u:  # more than one node: all on a cycle
+                    comp = [w]
+                    while w != u:
+                        w = stack.pop()
+                        on_stack[w] = False
+                        comp.append(w)
                     out[comp] = True
     return out
 
@@ -810,9 +850,9 @@ def _score(t: _Table, b: np.ndarray) -> np.ndarray:
     """Per disc, how much parking it helps (0: not a candidate): the disc that alone covers the most goals (its
     move frees them) first, then the one that covers the most. Only discs on a cycle of "my goal is covered by
     you" are candidates when there are such: any other disc reaches its goal once the cycles are broken, so
-    parking it would cost a move for nothing."""
+    parking it would cost a move for nothing. ``b``: the rows of ``t.blocked`` of the open goals, in order."""
     n = len(t.r)
-    score = b[b.sum(axis=1) == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
+    score = b[t.blockers[t.open_rows()] == 1].sum(axis=0) * (n + 1) + b.sum(axis=0)
     score[t.movers[t.done]] = 0  # a disc on its goal stays
     if CYCLES:
         rows = np.flatnonzero(~t.done)
@@ -850,10 +890,10 @@ def sequence_plan(problem: Problem, max_actions: int | None = None) -> list[Acti
     while not t.done.all():
         if len(actions) >= limit:
             return None
-        ready = np.flatnonzero(~t.done & ~t.blocked.any(axis=1))
+        ready = np.flatnonzero(~t.done & (t.blockers == 0))
         if len(ready):
             for k in ready.tolist():
-                if t.blocked[k].any():  # a goal placed just before may cover it (goals that overlap)
+                if t.blockers[k]:  # a goal placed just before may cover it (goals that overlap)
                     continue
                 o = int(t.movers[k])
                 pose = np.array([t.goal[k, 0], t.goal[k, 1], t.yaw[k]])

@@ -402,6 +402,50 @@ def test_a_nudge_never_beats_its_cell_bound(seed, n, density, mixed, turned):
 
 @settings(max_examples=20, deadline=None)
 @given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.4, 0.45, 0.5, 0.55]),
+       mixed=st.booleans(), turned=st.booleans())
+def test_candidates_dropped_in_crowded_cells_are_never_free(seed, n, density, mixed, turned):
+    # A nudge drops the candidates in cells that another disc's circle covers whole (_Cells.crowded) before the
+    # clearance test: each nudge is the one of testing every candidate, to the last bit, and every point of the
+    # table such a cell holds lies inside the circle of a disc other than the nudged one (radius r_i + r_j + the
+    # clearance), so it is never free; radii of several sizes and turned discs included.
+    pr = _varied_problem(seed, n, density, mixed, turned)
+    if pr is None:
+        return
+    kept = seq._nudge
+    rng = np.random.default_rng(seed)
+    calls = []
+    inside = []
+
+    def both(t, j, freed, cover):
+        got = kept(t, j, freed, cover)
+        if t.cells is not None:
+            nudged = t.nudged
+            seq.CROWDED = False
+            try:
+                full = kept(t, j, freed, cover)
+            finally:
+                seq.CROWDED = True
+            t.nudged = nudged
+            calls.append((got, full))
+            xmin, xmax, ymin, ymax = t.scene.bounds
+            p = rng.uniform([xmin, ymin], [xmax, ymax], size=(300, 2))
+            p = p[t.cells.crowded(t, j, p)]
+            others = np.arange(len(t.r)) != j
+            d = np.hypot(p[:, None, 0] - t.pos[None, others, 0], p[:, None, 1] - t.pos[None, others, 1])
+            inside.append(bool((d < t.r[others] + t.r[j] + CLEARANCE).any(axis=1).all()))
+        return got
+
+    with _replaced(seq, "_nudge", both):
+        sequence_plan(pr)
+    assert all(inside)
+    for got, full in calls:
+        assert (got is None) == (full is None)
+        if got is not None and full is not None:
+            assert np.array_equal(got[0], full[0]) and got[1:] == full[1:]
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(6, 40), density=st.sampled_from([0.4, 0.45, 0.5, 0.55]),
        mixed=st.booleans())
 def test_nudges_skipped_by_their_bound_leave_the_plan_as_it_was(seed, n, density, mixed):
     pr = _varied_problem(seed, n, density, mixed)
