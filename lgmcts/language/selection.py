@@ -150,6 +150,12 @@ class _Selecting(ParserHost):
             return [x for x in last if isinstance(x, int)]
         self.state.mass = bool(re.search(r"\b(stuff|everything|anything|cutlery|silverware|flatware|crockery|"
                                          r"tableware|dishware)\b", m.text))
+        if m.det == "other" and m.plural and m.names is None and self.state.group:
+            # "of the cans, put the red one on the plate and the rest in a row": the rest of the group
+            rest = [x for x in self.state.group if x not in self.state.named]
+            if rest:
+                self.state.named.update(rest)
+                return rest
         if m.det == "other" and not m.plural and self.state.group:
             # "of the two green things, put the cup on the plate and the other one ...": the one of the group
             # that no goal has named yet

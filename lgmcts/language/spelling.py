@@ -168,8 +168,10 @@ def _key_slip(w: str, t: str) -> bool:
 def _sound(w: str) -> str:
     """A rough key of how a word sounds: c and k alike, s before e/i/y as c, ph as f, a final -el as -le
     ("sirkle", "cirkel" and "circle" share one)."""
-    w = re.sub(r"^s(?=[eiy])", "c", w.replace("ph", "f").replace("ck", "c").replace("k", "c"))
-    return re.sub(r"el$", "le", w)
+    w = w.replace("ph", "f").replace("ck", "c").replace("k", "c")
+    if w[:1] == "s" and w[1:2] in ("e", "i", "y"):
+        w = "c" + w[1:]
+    return w[:-2] + "le" if w.endswith("el") else w
 
 
 class Corrector:

@@ -96,8 +96,9 @@ _HEDGED = frozenset({"about", "around", "roughly", "approximately", "approx", "c
 
 def unmark(message: str, measures: list[Measure]) -> str:
     """``message`` with each measure marker ("sizemarka") said as the words it stands for ("30 cm long")."""
-    return re.sub(rf"\b{MARK}([a-z])\b", lambda m: measures[ord(m.group(1)) - 97].text
-                  if ord(m.group(1)) - 97 < len(measures) else m.group(0), message)
+    for k, m in enumerate(measures[:26]):
+        message = message.replace(f"{MARK}{chr(97 + k)}", m.text)
+    return message
 
 
 def mark_measures(text: str) -> tuple[str, list[Measure]]:

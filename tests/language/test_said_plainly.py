@@ -149,6 +149,9 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
     ("the last block on the right behind the plate", [{"pattern": "behind", "objects": [6], "anchor": 1}]),
     ("the rightmost two blocks, in a row at the back", [{"pattern": "line", "objects": [6, 5], "region": "top"}]),
     ("blocks in a row at the far end of the table", [{"pattern": "line", "objects": [4, 5, 6], "region": "top"}]),
+    ("of the blocks, put the red one on the plate and the rest in a row",
+     [{"pattern": "tower", "objects": [1, 4]}, {"pattern": "line", "objects": [5, 6]}]),
+    ("Now the bottles side by side, frame left.", [{"pattern": "line", "objects": [7, 8], "region": "left"}]),
     ("blocks in a circle with a circumference of 62.8 cm",
      [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.1}]),
 ])
