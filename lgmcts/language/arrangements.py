@@ -174,6 +174,14 @@ class _Arrangements(ParserHost):
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
             objs = sorted(objs, key=lambda x: rank.get(roles.get(x), 3))
+            if given == {"middle"}:
+                # "stack the three bowls with the white one in the middle": as many below it as above it
+                free = [x for x in objs if x not in roles]
+                if len(free) % 2:
+                    plain = " ".join(w for w in text.split() if w != "|")  # without the role marks
+                    raise InputError(f"'{plain}': with {len(free)} other object{'s' if len(free) > 1 else ''} "
+                                     f"there is no middle of the stack; say what goes at the bottom or the top")
+                objs = free[: len(free) // 2] + [x for x in objs if x in roles] + free[len(free) // 2 :]
             said = list(roles)
             for k, x in enumerate(said):
                 if roles[x] == "under_it" and k and said[k - 1] in objs and x in objs:

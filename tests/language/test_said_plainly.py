@@ -152,6 +152,14 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
     ("of the blocks, put the red one on the plate and the rest in a row",
      [{"pattern": "tower", "objects": [1, 4]}, {"pattern": "line", "objects": [5, 6]}]),
     ("Now the bottles side by side, frame left.", [{"pattern": "line", "objects": [7, 8], "region": "left"}]),
+    ("the blocks minus the green one, side by side at the front",
+     [{"pattern": "line", "objects": [4, 5], "region": "bottom"}]),
+    # one role in the middle of a stack of three: one object below it, one above
+    ("stack the three blocks with the blue one in the middle", [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    ("Make a tower: at the bottom the green block, in the middle the red block, and at top the blue block.",
+     [{"pattern": "tower", "objects": [6, 4, 5]}]),
+    ("a tower where the top block is blue and the bottom block is green, with the red block between them",
+     [{"pattern": "tower", "objects": [6, 4, 5]}]),
     ("blocks in a circle with a circumference of 62.8 cm",
      [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.1}]),
 ])
@@ -163,6 +171,7 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
 @pytest.mark.parametrize("said, why", [
     ("place the red and blue blocks to the left of the white bowl, respectively", "2 objects and 1 sides"),
     ("line up the blocks, tallest in the middle", "an order of the objects inside an arrangement"),
+    ("stack the red and blue blocks with the blue one in the middle", "no middle of the stack"),
     ("stack the bottles, biggest on the bottom", "an order of the objects inside an arrangement"),
     ("put the red block on the right of the plate, the blue block on the right", "right of what"),
     # an arrangement the database lacks, said apart beside one it has, is never read past
