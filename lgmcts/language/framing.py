@@ -329,6 +329,12 @@ class _Framing(ParserHost):
                 and any(isinstance(mm, Mention) and mm.det == "pronoun" and mm.text == "it" for mm in groups[p])):
             # "put the bowl on the plate and the cutlery beside it": beside the stack, named by its base.
             anchor_sel = [tower[0]]
+        elif (len(anchor_sel) > 1 and tower and set(anchor_sel) == set(tower) and isinstance(tower[0], int)
+              and p < len(groups)
+              and any(isinstance(mm, Mention) and mm.det == "pronoun" and mm.text in ("them", "those")
+                      for mm in groups[p])):
+            # "bowl on the plate, then the mug to the right of them": of the stack, named by its base.
+            anchor_sel = [tower[0]]
         target_sel: list[int | Choice] = []
         for g, s in enumerate(sels):
             if g == p:

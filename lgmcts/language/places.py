@@ -37,7 +37,7 @@ FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "
 #: Parts of an object that say which way it points ("tines toward the right edge").
 POINTING_PARTS = frozenset({"tines", "tine", "handles", "handle", "tips", "tip", "blades", "blade", "spout", "spouts",
                             "labels", "label", "openings", "opening", "heads", "head", "noses", "nose", "prongs",
-                            "logos", "logo", "lettering", "branding", "barcodes", "barcode"})
+                            "logos", "logo", "lettering", "branding", "barcodes", "barcode", "fronts"})
 _TOWARD = ("toward", "towards", "to", "at", "in", "into", "the", "direction", "of", "facing", "face", "out", "straight", "off",
            "directly", "round", "around", "so", "they", "it", "that", "all", "are", "is", "as")
 _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
