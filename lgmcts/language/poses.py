@@ -28,15 +28,16 @@ _NUM = r"[-+−]?(?:\d+(?:\.\d+)?|\.\d+)"
 _UNIT = r"(?:mm|cm|m|millimet(?:re|er)s?|centimet(?:re|er)s?|met(?:re|er)s?)\b"
 _ANGLE = rf"(?:(?:{_NUM})?\s*\*?\s*pi(?:\s*/\s*\d+)?|{_NUM})"
 _ANGLE_UNIT = r"(?:rad(?:ians?)?\b|deg(?:rees?)?\b|°)"
-_YAW = (rf"(?:\s*(?:,|and|with)?\s*(?:yaw|theta|heading|rotation|angle|rotated|turned)\s*(?:of|by|to)?\s*[=:]?\s*"
-        rf"(?P<yaw>{_ANGLE})\s*(?P<yu>{_ANGLE_UNIT})?)?")
+_YAW = (rf"(?:(?:\s*(?:,|and|with|i\.e\.))*\s*(?:a\s+)?(?:yaw|theta|heading|rotation|angle|rotated|turned)\s*(?:of|by|to)?"
+        rf"\s*[=:]?\s*(?:(?:about|approximately|approx\.?|roughly|around|exactly)\s+)?(?P<yaw>{_ANGLE})\s*"
+        rf"(?P<yu>{_ANGLE_UNIT})?(?:\s*(?P<yd>anti-?clockwise|counter-?clockwise|clockwise|ccw|cw)\b)?)?")
 #: "x = 0.1 m, y = -5 cm (, yaw 90 deg)" or "at (10 cm, -5 cm(, pi/2))": the second form's groups end in "p".
 _POSE = re.compile(
     rf"(?i)\bx\s*[=:]?\s*(?P<x>{_NUM})\s*(?P<xu>{_UNIT})?\s*(?:,|and)?\s*\by\s*[=:]?\s*(?P<y>{_NUM})\s*(?P<yu_>{_UNIT})?"
     + _YAW
     + rf"|(?<=\b(?:at|to)\s)\s*\(\s*(?P<xp>{_NUM})\s*(?P<xup>{_UNIT})?\s*,\s*(?P<yp>{_NUM})\s*(?P<yu_p>{_UNIT})?"
     rf"(?:\s*,\s*(?P<yawp>{_ANGLE})\s*(?P<yup>{_ANGLE_UNIT})?)?\s*\)"
-    + _YAW.replace("?P<yaw>", "?P<yaw2>").replace("?P<yu>", "?P<yu2>"))
+    + _YAW.replace("?P<yaw>", "?P<yaw2>").replace("?P<yu>", "?P<yu2>").replace("?P<yd>", "?P<yd2>"))
 
 
 @dataclass(frozen=True)
@@ -105,6 +106,9 @@ def _pose(m: re.Match) -> SaidPose:
     yaw_s = g.get("yaw" + p) or g.get("yaw2")
     yaw_u = g.get("yu" + p) or g.get("yu2")
     yaw = _angle(yaw_s, yaw_u) if yaw_s else None
+    turn = (g.get("yd") or g.get("yd2") or "").lower()
+    if yaw is not None and turn in ("clockwise", "cw"):
+        yaw = -yaw  # yaw is counter-clockwise: "90 degrees clockwise" is -pi/2
     return SaidPose(m.start(), m.end(), _number(g["x" + p]) * xs, _number(g["y" + p]) * ys, yaw)
 
 

@@ -441,6 +441,11 @@ _THIRDS = {"top": "at the back", "upper": "at the back", "back": "at the back", 
            "right-hand": "on the right"}
 
 
+@replacer("quarter-turn")
+def _quarter_turn(m: re.Match[str]) -> str:
+    return {"quarter": "90 degrees", "half": "180 degrees"}.get((m.group(1) or "").lower(), "270 degrees")
+
+
 @replacer("the-far-one")
 def _the_far_one(m: re.Match[str]) -> str:
     return f"the {'farther' if m.group(1).lower() == 'far' else 'nearer'} {m.group(2)}"

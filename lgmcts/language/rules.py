@@ -69,6 +69,8 @@ __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 _AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "next", "beside", "at", "to", "please",
                          "too", "as", "so", "with", "near", "by", "left", "right", "front", "facing", "all", "but",
                          "if", "or", "like", "for", "now", "again", "instead", "under", "over", "above", "below"})
+#: Ordinals that say a place in a stack ("fourth from the bottom").
+_STACK_ORDINALS = {"second": 2, "third": 3, "fourth": 4, "fifth": 5, "sixth": 6, "seventh": 7, "eighth": 8}
 #: Superlatives of size, and the places inside an arrangement they may be given ("tallest in the middle").
 _SIZE_SUPERLATIVES = frozenset({"tallest", "shortest", "biggest", "largest", "smallest", "widest", "heaviest",
                                 "lightest", "highest", "lowest"})
@@ -218,7 +220,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         setting, clauses = self._setting_clauses(words, clauses, pending)
         self._read_clauses(words, clauses, pending)
         self._whole_command_checks(setting, pending, order_by)
-        return self._finish(pending)
+        return self._stack_places_said(self._finish(pending))
 
     def _plain_text(self, text: str) -> tuple[str, re.Match | None]:
         """The command's text with its spelling corrected, its measures marked, its facings and places said
@@ -288,6 +290,19 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
             if end == len(toks) or not toks[end][0].isalpha() or toks[end] in _AFTER_TILT:
                 raise InputError(f"'{' '.join(toks[i:end])}': a goal keeps every object upright and sets only which "
                                  f"way it faces on the table; say the command without it")
+
+    def _stack_places_said(self, spec: GoalSpec) -> GoalSpec:
+        """Refuse a place in a stack said by its number from the bottom or the top ("the green block fourth
+        from the bottom") that the stack read does not have: the words would be read past."""
+        toks = [t.text for t in tokenize(self._said)]
+        towers = [len(g.objects) for g in spec.goals if g.pattern == "tower"]
+        for i, w in enumerate(toks):
+            n = _STACK_ORDINALS.get(w)
+            if n is not None and tuple(toks[i + 1 : i + 4]) in (("from", "the", "bottom"), ("from", "the", "top")) \
+                    and not any(k >= n for k in towers):
+                raise InputError(f"'{' '.join(toks[i : i + 4])}': the stack read has "
+                                 f"{max(towers, default=0)} objects; list the objects from the bottom up")
+        return spec
 
     @staticmethod
     def _order_inside(text: str) -> None:

@@ -73,3 +73,11 @@ def test_a_size_in_metres_matches_to_the_millimetre():
     assert goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": 0.305}]})
     assert not goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": 0.31}]})
     assert not goals_match(exp, {"goals": [{"pattern": "line", "objects": [1, 2], "size": "medium"}]})
+
+
+def test_a_pose_matches_to_half_a_millimetre_and_a_thousandth_of_a_radian():
+    exp = {"goals": [{"pattern": "pose", "objects": [15], "pose": [0.1, -0.2, 1.5708]}]}
+    assert goals_match(exp, {"goals": [{"pattern": "pose", "objects": [15], "pose": [0.1, -0.2, 1.5707963]}]})
+    assert goals_match(exp, {"goals": [{"pattern": "pose", "objects": [15], "pose": [0.1004, -0.2, 1.5708]}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "pose", "objects": [15], "pose": [0.101, -0.2, 1.5708]}]})
+    assert not goals_match(exp, {"goals": [{"pattern": "pose", "objects": [15], "pose": [0.1, -0.2, 1.58]}]})

@@ -27,6 +27,9 @@ SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in map(json.loads, FILE.r
     ("the cup at (10 cm, -5 cm)", 0.10, -0.05, None),
     ("put it at (0.1, 0.2, 3pi/4)", 0.1, 0.2, 3 * math.pi / 4),
     ("x = 12, y = 3 cm", 0.12, 0.03, None),          # a unit said once holds for both
+    ("x = 10 cm, y = -20 cm, rotated 90 degrees clockwise", 0.10, -0.20, -math.pi / 2),   # yaw is anticlockwise
+    ("x = 10 cm, y = -20 cm, rotated 90 degrees anticlockwise", 0.10, -0.20, math.pi / 2),
+    ("x = 10 cm, y = -20 cm, with a yaw of approximately 1.571 rad", 0.10, -0.20, 1.571),
 ])
 def test_find_poses(text, x, y, yaw):
     (p,) = find_poses(text)

@@ -162,6 +162,8 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
      [{"pattern": "line", "objects": [4, 5], "region": "bottom"}]),
     # one role in the middle of a stack of three: one object below it, one above
     ("stack the three blocks with the blue one in the middle", [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    ("the white bowl, together with whatever else shares its colour, in a line",
+     [{"pattern": "line", "objects": [2, 1, 7]}]),
     ("red block on the plate, then the blue block to the right of them",    # of the stack, named by its base
      [{"pattern": "tower", "objects": [1, 4]}, {"pattern": "right", "objects": [5], "anchor": 1}]),
     ("Make a tower: at the bottom the green block, in the middle the red block, and at top the blue block.",
@@ -184,6 +186,7 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
     ("place the red and blue blocks to the left of the white bowl, respectively", "2 objects and 1 sides"),
     ("line up the blocks, tallest in the middle", "an order of the objects inside an arrangement"),
     ("stack the red and blue blocks with the blue one in the middle", "no middle of the stack"),
+    ("Put the red block fourth from the bottom in a stack on the plate.", "the stack read has 2 objects"),
     ("stack the bottles, biggest on the bottom", "an order of the objects inside an arrangement"),
     ("put the red block on the right of the plate, the blue block on the right", "right of what"),
     # an arrangement the database lacks, said apart beside one it has, is never read past
