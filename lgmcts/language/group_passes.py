@@ -113,6 +113,8 @@ class _GroupPasses(ParserHost):
         """"the farther bottle, the one at the back, right of the knife": "the one" said between commas after a
         reference to one object, with only words of where it stands, says the same object again and is left
         out (read as a place it would be a second, wrong goal)."""
+        if not any(words[k : k + 3] == (",", "the", "one") for k in range(len(words))):
+            return words
         try:
             found = self._find(words)
         except InputError:

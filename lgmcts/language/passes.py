@@ -343,6 +343,8 @@ class _TokenPasses(ParserHost):
         one object said to go in a container (a bowl, mug, cup, pan, box ...) at the end of its part goes on
         it, a stack, as "into" does; said after a verb that puts it there or as the whole part. "The can in
         the bowl" inside a longer part stays a reference."""
+        if "in" not in words and "inside" not in words:
+            return words
         try:
             found = self._find(words)
         except InputError:
