@@ -150,7 +150,6 @@ class _GroupPasses(ParserHost):
             raise InputError(f"'the one {' '.join(said)}' is not the {obj.name} named before it; say which one")
         return True
 
-
     def _respectively(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"place the red and blue blocks to the left and right of the white bowl, respectively": each object
         of the list to its side, in the order said (one relation each). Refused where the list and the sides
