@@ -329,7 +329,51 @@ class _Stamps:
             total[self[i]] -= 1
 
 
-class _Spots:
+class _Kept:
+    """Counts at the points of a grid, one per disc and one per open goal standing near each point, brought up to
+    date lazily: :meth:`moved` and :meth:`closed` only note what changed, :meth:`_flush` re-stamps the discs that
+    moved and takes out the goals reached before the next query. A subclass keeps ``stamps`` and ``goal_stamps``
+    (:class:`_Stamps`), says how a disc is stamped where it stands now (:meth:`_stamped`), which arrays hold the two
+    counts (:meth:`_totals`) and what it found from them that the update makes stale (:meth:`_forget`)."""
+
+    stamps: _Stamps
+    goal_stamps: _Stamps
+
+    def __init__(self) -> None:
+        #: Discs moved and goals reached since the counts were last brought up to date.
+        self.todo: list[int] = []
+        self.todo_goals: list[int] = []
+
+    def moved(self, j: int) -> None:
+        """Disc ``j`` moved (applied at the next query, all moves at once)."""
+        self.todo.append(j)
+
+    def closed(self, k: int) -> None:
+        """The goal of mover ``k`` is reached: it counts no more."""
+        self.todo_goals.append(k)
+
+    def _stamped(self, t: _Table, moved: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        raise NotImplementedError
+
+    def _totals(self) -> tuple[np.ndarray, np.ndarray]:
+        raise NotImplementedError
+
+    def _forget(self) -> None:
+        raise NotImplementedError
+
+    def _flush(self, t: _Table) -> None:
+        discs, goals = self._totals()
+        if self.todo:
+            moved = list(dict.fromkeys(self.todo))
+            self.stamps.restamp(moved, *self._stamped(t, moved), discs)
+        if self.todo_goals:
+            self.goal_stamps.unstamp(self.todo_goals, goals)
+        self.todo.clear()
+        self.todo_goals.clear()
+        self._forget()
+
+
+class _Spots(_Kept):
     """Grid points where a parked disc could stand, kept up to date as discs move.
 
     Built the first time a disc must be parked. ``count[p]``: how many discs
@@ -355,9 +399,7 @@ class _Spots:
         self.goal_stamps = _Stamps(*_within(self.gx, self.gy, self.step, t.goal, t.r[t.movers] + rmax - TOUCH))
         self.count = self.stamps.count(list(range(len(t.r))), self.size)
         self.hits = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
-        #: Discs moved and goals reached since the counts were last brought up to date.
-        self.todo: list[int] = []
-        self.todo_goals: list[int] = []
+        super().__init__()
         #: Per disc, the grid points its own goal disc reaches (as in ``hits``), as a mask, kept once made.
         self._goal_stamp: dict[int, np.ndarray] = {}
         #: The points no disc crowds and those one disc crowds, as the counts stand (``None``: not yet found).
@@ -370,23 +412,13 @@ class _Spots:
         """Flat indices of the grid points closer than ``rad[i]`` to centre ``xy[i]``, for every i (repeats kept)."""
         return _within(self.gx, self.gy, self.step, xy, np.atleast_1d(rad))[0]
 
-    def moved(self, j: int) -> None:
-        """Disc ``j`` moved (applied at the next query, all moves at once)."""
-        self.todo.append(j)
+    def _stamped(self, t: _Table, moved: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        return _within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach)
 
-    def closed(self, k: int) -> None:
-        """The goal of mover ``k`` is reached: no spot covers it any more."""
-        self.todo_goals.append(k)
+    def _totals(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.count, self.hits
 
-    def _flush(self, t: _Table) -> None:
-        if self.todo:
-            moved = list(dict.fromkeys(self.todo))
-            self.stamps.restamp(
-                moved, *_within(self.gx, self.gy, self.step, t.pos[moved], t.r[moved] + self.reach), self.count)
-        if self.todo_goals:
-            self.goal_stamps.unstamp(self.todo_goals, self.hits)
-        self.todo.clear()
-        self.todo_goals.clear()
+    def _forget(self) -> None:
         self._free = None
         self._open = None
 
@@ -456,7 +488,7 @@ class _Spots:
         return xy[m], int(hits[m])
 
 
-class _Cells:
+class _Cells(_Kept):
     """Square cells over the table, each with how many disc circles and open goal circles cover it *whole*, to
     bound what a nudge can reach before computing it (:meth:`bound`).
 
@@ -483,9 +515,7 @@ class _Cells:
         self.goal_stamps = _Stamps(*_within(self.cx, self.cy, self.side, t.goal, self._goal_rad(t.r[t.movers])))
         self.discs = self.stamps.count(list(range(len(t.r))), self.size)
         self.goals = self.goal_stamps.count(np.flatnonzero(~t.done).tolist(), self.size)
-        #: Discs moved and goals reached since the counts were last brought up to date.
-        self.todo: list[int] = []
-        self.todo_goals: list[int] = []
+        super().__init__()
         #: The cells no disc circle covers whole, as the counts stand: centres and the open goals covering them whole
         #: (``None``: not yet found).
         self._zero: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
@@ -496,21 +526,13 @@ class _Cells:
     def _goal_rad(self, r: np.ndarray | float) -> np.ndarray:
         return np.asarray(r + self.rmin - TOUCH - self.half - 1e-9, dtype=float)
 
-    def moved(self, j: int) -> None:
-        self.todo.append(j)
+    def _stamped(self, t: _Table, moved: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        return _within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved]))
 
-    def closed(self, k: int) -> None:
-        self.todo_goals.append(k)
+    def _totals(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.discs, self.goals
 
-    def _flush(self, t: _Table) -> None:
-        if self.todo:
-            moved = list(dict.fromkeys(self.todo))
-            self.stamps.restamp(
-                moved, *_within(self.cx, self.cy, self.side, t.pos[moved], self._disc_rad(t.r[moved])), self.discs)
-        if self.todo_goals:
-            self.goal_stamps.unstamp(self.todo_goals, self.goals)
-        self.todo.clear()
-        self.todo_goals.clear()
+    def _forget(self) -> None:
         self._zero = None
 
     def crowded(self, t: _Table, j: int, p: np.ndarray) -> np.ndarray:
