@@ -270,6 +270,15 @@ def _varied_problem(seed: int, n: int, density: float, mixed: bool, turned: bool
     return Problem.build(Scene.from_spec(scene), c.goals)
 
 
+def _assert_same_answers(pairs) -> None:
+    """Each pair of answers (a point or nudge first, then what goes with it) is the same: both none, or the same
+    point to the last bit and the same rest."""
+    for got, ref in pairs:
+        assert (got is None) == (ref is None)
+        if got is not None and ref is not None:
+            assert np.array_equal(got[0], ref[0]) and got[1:] == ref[1:]
+
+
 @contextmanager
 def _replaced(owner, name: str, fn):
     """``owner.name`` replaced by ``fn`` while the block runs."""
@@ -312,10 +321,7 @@ def test_kept_crossings_give_the_nudges_of_crossing_afresh(seed, n, density, mix
     finally:
         seq._nudge = kept
         seq.TABLE_AFTER = table_after
-    for got, fresh in calls:
-        assert (got is None) == (fresh is None)
-        if got is not None and fresh is not None:
-            assert np.array_equal(got[0], fresh[0]) and got[1:] == fresh[1:]
+    _assert_same_answers(calls)
     seq.DIRECT = True
     try:
         assert sequence_plan(pr) == plan_kept
@@ -365,10 +371,7 @@ def test_a_grid_spot_is_the_one_found_by_stamping_the_disc_afresh(seed, n, densi
 
     with _replaced(seq._Spots, "spot", both):
         sequence_plan(pr)
-    for got, ref in calls:
-        assert (got is None) == (ref is None)
-        if got is not None and ref is not None:
-            assert np.array_equal(got[0], ref[0]) and got[1] == ref[1]
+    _assert_same_answers(calls)
 
 
 @settings(max_examples=20, deadline=None)
@@ -438,10 +441,7 @@ def test_candidates_dropped_in_crowded_cells_are_never_free(seed, n, density, mi
     with _replaced(seq, "_nudge", both):
         sequence_plan(pr)
     assert all(inside)
-    for got, full in calls:
-        assert (got is None) == (full is None)
-        if got is not None and full is not None:
-            assert np.array_equal(got[0], full[0]) and got[1:] == full[1:]
+    _assert_same_answers(calls)
 
 
 @settings(max_examples=20, deadline=None)
