@@ -103,6 +103,8 @@ _SHIFT_KINDS = frozenset({"night", "day", "late", "early", "double", "long", "mo
 
 
 _POSSESSIVES = frozenset({"my", "our", "his", "her", "their", "your"})
+#: Words before the noun of a time ("before the meeting", "after my shift").
+_OWNERS = _POSSESSIVES | {"the"}
 
 
 def _time_spans(part: Sequence[str]) -> set[int]:
@@ -113,7 +115,7 @@ def _time_spans(part: Sequence[str]) -> set[int]:
         if w not in _EVENT_OPENERS and w != "by":
             continue
         k = j + 1
-        while k < len(part) and part[k] in _POSSESSIVES | {"the"}:
+        while k < len(part) and part[k] in _OWNERS:
             k += 1
         if k < len(part) and (part[k] in _TIME_WORDS or part[k] in _MEALS or part[k] in _DAY_WORDS):
             out.update(range(j, k + 1))
@@ -212,7 +214,7 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             if _in_place(part, j):
                 return False
             continue
-        if part[j + 1 : j + 2] and part[j + 1] in ("my", "his", "her", "our", "their", "your"):
+        if part[j + 1 : j + 2] and part[j + 1] in _POSSESSIVES:
             continue  # "under my feet", "on her way": of a person, not of the table
         if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and timed):
             return False

@@ -24,7 +24,7 @@ from typing import Literal
 from ..errors import InputError
 from . import lexicon
 
-__all__ = ["UNITS", "Measure", "Role", "find_measures", "size_for"]
+__all__ = ["APPROXIMATE", "UNITS", "Measure", "Role", "find_measures", "size_for"]
 
 Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain", "circumference"]
 
@@ -45,6 +45,8 @@ _FRACTIONS = {"half": 0.5, "third": 1 / 3, "quarter": 0.25, "fifth": 0.2, "tenth
 #: Hedges before a quantity, taken with it ("about 30 cm").
 _HEDGES = frozenset({"about", "around", "roughly", "approximately", "approx", "exactly", "some", "precisely", "just",
                      "circa", "~"})
+#: Those of :data:`_HEDGES` that say a quantity is approximate ("approximately 20 cm"), not that it is exact.
+APPROXIMATE = _HEDGES - {"exactly", "precisely", "just"}
 #: Words after a quantity that say what it measures, longest first.
 _AFTER: tuple[tuple[tuple[str, ...], Role], ...] = tuple(sorted((
     (("radius",), "radius"), (("in", "radius"), "radius"), (("of", "radius"), "radius"),

@@ -294,6 +294,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
     def _stack_places_said(self, spec: GoalSpec) -> GoalSpec:
         """Refuse a place in a stack said by its number from the bottom or the top ("the green block fourth
         from the bottom") that the stack read does not have: the words would be read past."""
+        low = self._said.lower()
+        if not any(o in low for o in _STACK_ORDINALS):  # (each word of a token is in the lower-cased text)
+            return spec
         toks = [t.text for t in tokenize(self._said)]
         towers = [len(g.objects) for g in spec.goals if g.pattern == "tower"]
         for i, w in enumerate(toks):
@@ -310,6 +313,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         cans, tallest in the middle", "stack the bowls, biggest on the bottom"): no goal holds it (a stack by
         size is refused like "in order of size"), and reading "in the middle" as the table's middle would be a
         wrong goal."""
+        low = text.lower()
+        if not any(w in low for w in _SIZE_SUPERLATIVES):
+            return
         toks = [t.text for t in tokenize(text)]
         for i, w in enumerate(toks):
             if w not in _SIZE_SUPERLATIVES:

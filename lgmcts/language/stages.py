@@ -28,7 +28,7 @@ from ..errors import InputError
 from .colour_refs import find_colour_refs, select
 from .context import drop_context
 from .grounding import COLOUR_WORDS, Token, tokenize
-from .measures import Measure, find_measures, size_for
+from .measures import APPROXIMATE, Measure, find_measures, size_for
 from . import lexicon
 from .lexicon import TABLE_WORDS
 from .places import POINTING_PARTS, read_facing
@@ -83,15 +83,13 @@ def _restated(text: str, before: Measure, m: Measure) -> bool:
     brackets or after "i.e.", within 3 % ("8 inches long -- approximately 20 cm", "15 centimetres (6 inches)",
     "20 cm by 10 cm, i.e. the longer side 20 cm")."""
     between = text[before.end : m.start]
-    restating = lexicon.says(between, "restating")
+    restating = lexicon.says(between, "that_is")
     same = abs(m.metres - before.metres) < 1e-9 or (
-        (any(w in _HEDGED for w in lexicon.words(m.text)) or "(" in between or restating)
+        (any(w in APPROXIMATE for w in lexicon.words(m.text)) or "(" in between or restating)
         and abs(m.metres - before.metres) <= 0.03 * before.metres)
     return (same and (m.role == before.role or "plain" in (m.role, before.role))
             and (restating or all(w in _RESTATING for w in lexicon.words(between))))
 
-
-_HEDGED = frozenset({"about", "around", "roughly", "approximately", "approx", "circa", "some", "say"})
 
 
 def unmark(message: str, measures: list[Measure]) -> str:
