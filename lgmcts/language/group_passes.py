@@ -9,6 +9,7 @@ from ..errors import InputError
 from .clauses import _sentences
 from .grounding import NUMBERS
 from .host import ParserHost
+from .positions import _SIDES
 
 
 def _count(word: str) -> int | None:
@@ -137,15 +138,16 @@ class _GroupPasses(ParserHost):
     def _stands_so(self, oid: int, said: list[str]) -> bool:
         """Whether object ``oid`` is the one of its kind furthest toward the one side ``said`` names ("at the
         back", "on the left", "closest to me"); refused where it is another, False where no one side is said."""
-        sides = {_SIDE_KEYS[w] for w in said if w in _SIDE_KEYS}
+        sides = {_SIDES[w] for w in said if w in _SIDES and _SIDES[w].kind in ("x", "y")}
         if len(sides) != 1:
             return False
-        axis, sign = sides.pop()
+        key = sides.pop()  # which way along x or y is first (references by position read the same keys)
+        axis = 0 if key.kind == "x" else 1
         obj = next(o for o in self.spec.objects if o.id == oid)
         kind = [o for o in self.spec.objects if o.name == obj.name and o.pose is not None and o.on is None]
         if obj.pose is None or obj not in kind:
             return False
-        best = max(kind, key=lambda o: sign * float(o.pose[axis]))  # type: ignore[index]
+        best = min(kind, key=lambda o: key.sign * float(o.pose[axis]))  # type: ignore[index]
         if best.id != oid:
             raise InputError(f"'the one {' '.join(said)}' is not the {obj.name} named before it; say which one")
         return True
@@ -191,9 +193,6 @@ class _GroupPasses(ParserHost):
         return tuple(out + rest)
 
 
-#: Sides said in "the one at the back": the axis of the table position and which way is furthest.
-_SIDE_KEYS = {"back": (1, 1), "far": (1, 1), "rear": (1, 1), "front": (1, -1), "near": (1, -1), "me": (1, -1),
-              "us": (1, -1), "you": (1, -1), "left": (0, -1), "right": (0, 1)}
 #: Words that say where an object stands ("the one at the back", "the one closest to me").
 _WHERE_WORDS = frozenset({"at", "on", "in", "to", "by", "the", "back", "front", "left", "right", "far", "near", "rear",
                           "end", "side", "corner", "middle", "centre", "center", "top", "bottom", "closest", "nearest",

@@ -133,8 +133,6 @@ UNSUPPORTED: tuple[str, ...] = (
 
 #: Names of :data:`UNSUPPORTED` that are also words of a relation or a way of placing, never refused alone.
 _NOT_A_SHAPE = frozenset({"near", "around", "inside", "between", "random", "scattered", "cluster", "curve"})
-#: The one-word names of arrangements the database lacks ("zigzag", "triangle").
-UNSUPPORTED_SHAPES = frozenset(x for x in UNSUPPORTED if " " not in x) - _NOT_A_SHAPE
 
 _TOKEN = re.compile(r"[a-z0-9]+(?:'[a-z]+)?")
 
@@ -339,6 +337,13 @@ class PatternMatcher:
         if words:
             self.encoder.encode(list(words))
 
+    def names_unsupported(self, word: str) -> bool:
+        """Whether ``word`` (or its singular) is the name of an arrangement the database lacks ("zigzag",
+        "triangles"), not also a word of a relation or a way of placing ("near", "scattered")."""
+        self._refresh()
+        forms = _forms(word)
+        return not any(f in _NOT_A_SHAPE for f in forms) and any(f in self._neg for f in forms)
+
     def word_pattern(self, word: str, *, allowed: frozenset[str] | None = None) -> tuple[str | None, float, bool]:
         """What one content word that occurs in no key names, by its own embedding.
 
@@ -408,8 +413,7 @@ class PatternMatcher:
         m = Match(top, c, self._keys[i][1], runner, rs, unexplained)
         if c < self.options.floor:
             return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
-        named_shape = next((w for w in unexplained if any(f in self._neg for f in _forms(w))
-                            and w not in _NOT_A_SHAPE), None)
+        named_shape = next((w for w in unexplained if self.names_unsupported(w)), None)
         if named_shape is not None:
             # "cans in a row, zigzag": an arrangement the database lacks, said beside one it has, is never
             # read past (the phrase as a whole may still match the other one well)

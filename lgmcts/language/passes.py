@@ -25,7 +25,7 @@ from .clauses import (
 from .grounding import COLOUR_WORDS, GROUPS, NUMBERS, Mention, candidates, find_mentions
 from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES, TABLE_WORDS, VIEWER_WORDS, context_words
-from .matcher import FILLERS, STOPWORDS, UNSUPPORTED_SHAPES, _forms, _stem
+from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
 from .places import POINTING_PARTS
@@ -514,7 +514,7 @@ class _TokenPasses(ParserHost):
         ``[context] place_prepositions`` followed by a noun phrase whose noun is neither a word the parser reads
         nor one of ``aside_nouns`` ("by the way", "in a minute"); and an arrangement the database lacks said
         alone (", zigzag")."""
-        shape = next((w for w in part if w in UNSUPPORTED_SHAPES and _stem(w) not in self.key_vocab), None)
+        shape = next((w for w in part if self.matcher.names_unsupported(w)), None)
         if shape is not None:
             raise InputError(f"'{' '.join(part)}': '{shape}' names an arrangement the database does not have")
         for k, w in enumerate(part):
