@@ -185,6 +185,7 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
     ("put the red block on the right of the plate, the blue block on the right", "right of what"),
     # an arrangement the database lacks, said apart beside one it has, is never read past
     ("blocks in a row, zigzag", "'zigzag' names an arrangement the database does not have"),
+    ("blocks in a row, triangles", "'triangles' names an arrangement the database does not have"),
     ("put the blocks in a zigzag line", "'zigzag' names an arrangement"),
 ])
 def test_said_loosely_but_refused(said, why):
