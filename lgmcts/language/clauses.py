@@ -102,6 +102,9 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
             i += 1
             continue
+        if w in _HUES and _ordered_set(parts[-1], nouns) and ("then" in words[i + 1 : i + 3]):
+            # "stack the cans white(,) then blue then red": the set, then its order colour by colour (as after ":").
+            parts.append([])
         bare = bool(parts[-1]) and parts[-1][0] in _HUES and not any(x in _OBJECT_START for x in parts[-1])
         if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1], nouns, hues=bare)
                 and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True, hues=bare)):
@@ -193,7 +196,24 @@ def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), sta
     if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns \
             and part[first] not in _HUES:
         return False  # ", the row facing west": the arrangement itself, not objects
+    if start and part[first] in ("both", "all", "each") and tuple(part[first + 1 : first + 2]) in _FACING_AFTER:
+        return False  # ", both pointing right": a facing of the objects just named
     return any(w in _GOAL_WORDS and w not in nouns for w in part[first + 1 :])
+
+
+#: Verbs of stacking, after which a group of objects may be followed by its order.
+_STACKING = frozenset({"stack", "pile", "tower"})
+
+
+def _ordered_set(part: list[str], nouns: frozenset[str]) -> bool:
+    """Whether ``part`` is a verb of stacking and a plural group, with nothing after it but a comma
+    ("stack the cans", "pile the blocks,")."""
+    p = part[:-1] if part[-1:] == [","] else part
+    return (len(p) >= 3 and any(w in _STACKING for w in p) and p[-2] in ("the", "all", "those", "these")
+            and p[-1] != _stem(p[-1]) and _stem(p[-1]) in nouns)
+
+
+_FACING_AFTER = frozenset({("facing",), ("pointing",), ("turned",), ("oriented",), ("angled",)})
 
 
 _LIST_WORDS = frozenset({"then", "and", "on", "at", "under", "below", "above", "goes", "is", "last", "first", "next",

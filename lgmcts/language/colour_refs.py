@@ -9,6 +9,9 @@ A pure stage in two halves, like :mod:`.positions`:
   colour", "the cups that don't match any can's colour", "the cans that don't
   share a colour with either mug", "the mugs that aren't the colour of the
   phone", "the letters that have a block of the same colour";
+* :func:`find_matched_pairs` reads two objects named together and then said to
+  share a colour: "the mug and the bowl that are the same colour", "the cup and
+  plate that match", "the can and the block of the same colour";
 * :func:`select` keeps the head's candidates whose colour is (or, negated, is
   not) the colour of some object the reference names.
 
@@ -31,7 +34,7 @@ from dataclasses import dataclass
 
 from .ir import scan
 
-__all__ = ["ColourRef", "find_colour_refs", "select"]
+__all__ = ["ColourRef", "MatchedPair", "find_colour_refs", "find_matched_pairs", "select"]
 
 
 @dataclass(frozen=True)
@@ -209,3 +212,51 @@ def select(candidates: list[int], reference: list[int], colour_of: Mapping[int, 
     blue bowl" include the blue bowl), as the free-form writers label it."""
     pool = {colour_of[r] for r in reference}
     return [c for c in candidates if (colour_of[c] in pool) != negated]
+
+
+@dataclass(frozen=True)
+class MatchedPair:
+    """Two heads said to share a colour ("the mug and the bowl that are the same colour"): the token span
+    of the whole phrase and each head's words."""
+
+    start: int
+    end: int
+    first: tuple[str, ...]
+    second: tuple[str, ...]
+
+
+_SAID_SAME = frozenset({"sharing", "matching", "match", "share", "same"})
+#: What says that the two objects named before it share a colour.
+_SAME = tuple(
+    rel + cmp
+    for rel in (("that", "are"), ("which", "are"), ("that",), ("which",), ())
+    for cmp in (("the", "same", "colour"), ("the", "same", "color"), ("same", "colour"), ("same", "color"),
+                ("of", "the", "same", "colour"), ("of", "the", "same", "color"), ("in", "the", "same", "colour"),
+                ("in", "the", "same", "color"), ("share", "a", "colour"), ("share", "a", "color"),
+                ("match", "in", "colour"), ("match", "in", "color"), ("match",), ("matching", "in", "colour"),
+                ("sharing", "a", "colour"), ("sharing", "a", "color"))
+    if rel or cmp[0] in ("of", "in", "sharing", "matching"))
+
+
+def find_matched_pairs(words: tuple[str, ...]) -> list[MatchedPair]:
+    """Every "the A and (the) B that are the same colour" in ``words``, left to right."""
+    return scan(tuple(words), _pair_at)
+
+
+def _pair_at(ws: tuple[str, ...], i: int) -> MatchedPair | None:
+    if ws[i] != "the":
+        return None
+    a_end = _np(ws, i, limit=3)
+    if a_end == i + 1 or ws[a_end : a_end + 1] != ("and",):
+        return None
+    b_start = a_end + 1 + (ws[a_end + 1 : a_end + 2] == ("the",))
+    b_end = b_start
+    while b_end < len(ws) and b_end - b_start < 3 and ws[b_end] not in _STOP and ws[b_end] not in _SAID_SAME:
+        b_end += 1
+    if b_end == b_start:
+        return None
+    end = _seq(ws, b_end, _SAME)
+    if end == b_end:
+        return None
+    end = _seq(ws, end, (("as", "each", "other"), ("each", "other"), ("as", "one", "another")))
+    return MatchedPair(i, end, tuple(ws[i + 1 : a_end]), tuple(ws[b_start:b_end]))

@@ -235,8 +235,10 @@ def _quantity(ws: list[str], i: int) -> tuple[tuple[float, ...], int] | None:
     return (v * u[0],), k
 
 
-#: "from the first (piece) to the last (one)": the first and last object of a row, whatever noun is said.
-_FIRST_TO_LAST = (("from",), ("the", "very"), ("first", "1st", "leftmost", "one"), ("to",), ("the", "very"),
+#: "from the (centre of the) first (piece) to the (centre of the) last (one)": the first and last object of a
+#: row, whatever noun is said.
+_AT_ONE = ("the", "very", "centre", "center", "middle", "of")
+_FIRST_TO_LAST = (("from",), _AT_ONE, ("first", "1st", "leftmost", "one"), ("to",), _AT_ONE,
                   ("last", "rightmost", "other"))
 
 
@@ -346,12 +348,35 @@ def find_measures(text: str) -> list[Measure]:
             first = out.pop()
             said = Measure(first.start, said.end, text[first.start : said.end], max(first.metres, said.metres),
                            "long_side", first.dims + said.dims)
+        said, hi = _unit_said_once(ws, toks, text, said, lo, hi)
         out.append(said)
         i = hi
     return out
 
 
+def _unit_said_once(ws: list[str], toks: list[tuple[str, int, int]], text: str, said: Measure, lo: int,
+                    hi: int) -> tuple[Measure, int]:
+    """``said`` with the other side of its rectangle where that side's number comes without a unit right
+    after it ("36 cm long, 20 wide", "36 cm long by 20 wide": the unit said once), and the end of both."""
+    last = said.text.lower().split()[-1]
+    if said.role not in ("across", "length") or last not in _RECT_SIDES or len(said.dims) != 1:
+        return said, hi
+    k = hi
+    while k < len(ws) and ws[k] in (",", "and", "by", "x"):
+        k += 1
+    got, first = _number(ws, k), _number(ws, lo)
+    if got is None or first is None or not first[0] or got[1] >= len(ws) or ws[got[1]] not in _RECT_SIDES \
+            or ws[got[1]] == last:
+        return said, hi
+    other = round(got[0] * said.dims[0] / first[0], 3)
+    end = got[1] + 1
+    return Measure(said.start, toks[end - 1][2], text[said.start : toks[end - 1][2]], max(said.metres, other),
+                   "long_side", (*said.dims, other)), end
+
+
 _SIDE_WORDS = frozenset({"wide", "deep", "long", "high", "across"})
+#: The side words of a rectangle's two sides ("across" restates a width: "36 cm wide, thirty-six across").
+_RECT_SIDES = _SIDE_WORDS - {"across"}
 
 
 def _two_sides(first: Measure, second: Measure, text: str) -> bool:

@@ -25,7 +25,7 @@ from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
-from .colour_refs import find_colour_refs, select
+from .colour_refs import find_colour_refs, find_matched_pairs, select
 from .context import drop_context
 from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import APPROXIMATE, Measure, find_measures, size_for
@@ -563,6 +563,7 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     """``text`` with each reference through another object's colour ("the cans that share a colour
     with one of the bowls") replaced by the ids it selects (:mod:`.colour_refs`). A phrase whose head
     or reference names nothing is left as said; one that selects nothing is refused."""
+    text = _matched_pairs(text, find, ids_of, colour_of)
     toks = tokenize(text)
     words = tuple(t.text for t in toks)
     refs = find_colour_refs(words)
@@ -582,6 +583,32 @@ def by_colour(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
             raise InputError(f"'{text[lo:hi]}' selects nothing: no such object has that colour")
         out.append(text[at:lo])
         out.append(_said_ids(got))
+        at = hi
+    out.append(text[at:])
+    return "".join(out)
+
+
+def _matched_pairs(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]],
+                   colour_of: Mapping[int, str]) -> str:
+    """``text`` with each "the A and the B that are the same colour" replaced by the two objects it names: the
+    one A and the one B of a colour both kinds have. Refused where no colour or more than one pair fits."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for pair in find_matched_pairs(words):
+        firsts = _ids(("every",) + pair.first, find, ids_of)
+        seconds = _ids(("every",) + pair.second, find, ids_of)
+        if not firsts or not seconds:
+            continue
+        lo, hi = toks[pair.start].pos, _end(text, toks[pair.end - 1])
+        fits = [(a, b) for a in firsts for b in seconds if a != b and colour_of[a] == colour_of[b]]
+        if len(fits) != 1:
+            why = "no two of them share a colour" if not fits else \
+                f"{len(fits)} pairs share a colour ({', '.join(f'{a} and {b}' for a, b in fits)})"
+            raise InputError(f"'{text[lo:hi]}' is unclear: {why}")
+        out.append(text[at:lo])
+        out.append(_said_ids(fits[0]))
         at = hi
     out.append(text[at:])
     return "".join(out)

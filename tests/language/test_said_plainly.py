@@ -191,3 +191,44 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
 def test_said_loosely_but_refused(said, why):
     with pytest.raises(InputError, match=why):
         _goals(said)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # a stack's set, then its order colour by colour without commas (as after a colon)
+    ("stack the blocks red then blue then green", [{"pattern": "tower", "objects": [4, 5, 6]}]),
+    ("stack the blocks green, then blue, then red on top", [{"pattern": "tower", "objects": [6, 5, 4]}]),
+    # "both"/"all" and a facing after a comma: the facing of the objects just named
+    ("the plate and the bottles in a row, both pointing right",
+     [{"pattern": "line", "objects": [1, 7, 8], "facing": "east"}]),
+    # a compass point corrected by another, after a comma or a dash: the second holds
+    ("the blocks in a line facing west -- no, sorry, east", [{"pattern": "line", "objects": [4, 5, 6], "facing": "east"}]),
+    ("the blocks in a line facing west, I mean east", [{"pattern": "line", "objects": [4, 5, 6], "facing": "east"}]),
+    # a line's length measured from the centre of the first to the centre of the last
+    ("the blocks in a line, 25 cm from the centre of the first to the centre of the last",
+     [{"pattern": "line", "objects": [4, 5, 6], "size": 0.25}]),
+    # a rectangle's second side said without its unit: the unit of the first
+    ("the blocks and the plate in a rectangle 36 cm long 20 wide",
+     [{"pattern": "rectangle", "objects": [4, 5, 6, 1], "size": 0.36}]),
+    # two objects said to share a colour: the pair of that colour
+    ("the bowl and the bottle that are the same colour, put those 2 in a line",
+     [{"pattern": "line", "objects": [2, 7]}]),
+    ("put the block and the bottle of the same colour behind the plate",
+     [{"pattern": "behind", "objects": [5, 8], "anchor": 1}]),
+    # the viewer's edge; "all down" a side; a topic set off by a dash
+    ("the block closest to the edge by me goes behind the plate", [{"pattern": "behind", "objects": [4], "anchor": 1}]),
+    ("blocks in a row all down the left side", [{"pattern": "line", "objects": [4, 5, 6], "region": "left"}]),
+    ("the black bowl - stack the red block on it", [{"pattern": "tower", "objects": [3, 4]}]),
+])
+def test_orders_corrections_units_and_pairs(said, goals):
+    assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, why", [
+    ("put the bowl and the block that are the same colour in a line", "no two of them share a colour"),
+    ("the blocks in a rectangle 36 cm wide, thirty-six across", "rectangle"),
+])
+def test_pairs_by_colour_refused_when_unclear(said, why):
+    with pytest.raises(InputError, match=why):
+        _goals(said)
