@@ -274,7 +274,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         self._said = text
         text = self._category_ids(text)
         if letters:
-            text = self._spelled(text, letters)
+            text = stages.spelled(text, letters)
             text = stages.letters_named(text, letters)
             # "A then R then T then E", "R, T, E": capitals said bare ("A" only where it cannot be
             # the article: after a list word, or before one or the end).
