@@ -264,6 +264,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
             # position and colour read them: "the blocks that match the A and the E").
             text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
                           if m.group(2) in letters else m.group(0), text)
+        text = stages.named_before(text, self._find, self._every_match)
         text, self.state.group = stages.partitive(text, self._find, self._every_match)
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
                                   dict(self.vocab.borrowed), group=self.state.group)

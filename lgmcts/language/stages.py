@@ -38,7 +38,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "spelled", "unmark", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "named_before", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "spelled", "unmark", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -526,6 +526,43 @@ def _one_of(text: str, noun: str, group: Sequence[int], find: Callable[[tuple[st
             continue
         out.append(text[at : t.pos] + noun)
         at = _end(text, t)
+    out.append(text[at:])
+    return "".join(out)
+
+
+_CONTRASTED = frozenset({"than", "not", "instead", "never"})
+#: Words after "the bowl" that leave it a whole reference (a place or a side follows, or the clause ends).
+_AFTER_BARE = frozenset({".", ",", ";", "!", "?", "and", "then", "please", ":"})
+#: Words before "the bowl" that make it the object of a relation ("front left of the bowl", "on the bowl").
+_BEFORE_BARE = frozenset({"of", "on", "onto", "behind", "under", "beside", "near", "by", "to", "from", "with",
+                          "above", "below", "beneath", "atop"})
+
+
+def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with "the bowl" (a kind the scene has several of, said bare as the object of a relation or at
+    the end of its clause) replaced by the one object of that kind the command named before it ("the can
+    closest to the white bowl: put it front left of the bowl": the white bowl). Left as said where no
+    object or two objects of that kind were named before."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for k in range(2, len(words)):
+        if words[k - 1] != "the" or words[k - 2] not in _BEFORE_BARE or (
+                k + 1 < len(words) and words[k + 1] not in _AFTER_BARE) or _CONTRASTED & set(words[max(0, k - 4) : k - 2]):
+            continue  # "..., rather than on the bowl": the words that contrast read it as said
+        kind = _ids(("every", words[k]), find, ids_of)
+        if not kind or len(kind) < 2 or words[k].endswith("s"):
+            continue
+        try:
+            before = [m for m in find(words[: k - 1]) if getattr(m, "det", None) != "pronoun"]
+        except InputError:
+            continue
+        named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) and len(ids) == 1 for i in ids}
+        if len(named) != 1:
+            continue  # none, or two bowls named before: which one is "the bowl" is not guessed
+        out.append(text[at : toks[k - 1].pos] + f"object {named.pop()}")
+        at = _end(text, toks[k])
     out.append(text[at:])
     return "".join(out)
 
