@@ -279,3 +279,15 @@ def test_a_place_alone_is_not_read_as_an_arrangement():
     # every word known, the only pattern words another pattern's: the model's nearest key ("in a row") is not taken
     with pytest.raises(InputError):
         _goals("put the blocks at the right end of the table")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # the object "it" stood for, said again after it with "I mean" / "that is": that object holds
+    ("put the red block behind the plate, then the blue block right of it -- of the black bowl I mean",
+     [{"pattern": "behind", "objects": [4], "anchor": 1}, {"pattern": "right", "objects": [5], "anchor": 3}]),
+    ("put the red block left of the plate. And the blue block, put that in front of it. In front of the red block, "
+     "that is.", [{"pattern": "left", "objects": [4], "anchor": 1}, {"pattern": "front", "objects": [5], "anchor": 4}]),
+])
+def test_it_said_again_after_it(said, goals):
+    assert _goals(said) == goals
