@@ -320,6 +320,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
     _stack_orders(words, protected)
     seen_pattern = False
     blocked = False
+    own_list = False  # the objects said after the pattern noun and "of" ("a line of the cups and ...")
     band = False
     params: dict[str, str | int] = {}
     keep: list[str] = []
@@ -338,7 +339,8 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         if i in protected:
             end = protected[i]
             if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
-                blocked = True
+                blocked = not own_list  # "a line of the cups and the box at the back": still the line's own list
+            own_list = own_list or (seen_pattern and i > 0 and words[i - 1] == "of")
             run = _region_run(words, end) if end < n else None
             if seen_pattern and i > 0 and words[i - 1] == "with" and run is not None \
                     and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))) \
@@ -348,7 +350,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             i = end
             continue
         if pattern_nouns(w):
-            seen_pattern, blocked = True, False
+            seen_pattern, blocked, own_list = True, False, False
         if w.startswith("sizemark") and len(w) == 9:
             put("measure", ord(w[-1]) - 97, " ".join(words))  # a measure in numbers (.stages.mark_measures)
             i += 1

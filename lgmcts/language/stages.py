@@ -628,3 +628,65 @@ def without_context(words: tuple[str, ...], object_word: Callable[[str], bool],
                     request_word: Callable[[str], bool]) -> tuple[str, ...]:
     """The tokens without background sentences and time clauses (:func:`.context.drop_context`)."""
     return drop_context(words, lambda w: object_word(w) or is_mark(w), request_word)
+
+
+#: Words before a pair said on its own ("Grab the knife and the fork.", "See the red bowl and the cup?").
+_PAIR_LEAD = frozenset({"grab", "take", "get", "see", "pick", "up", "use", "okay", "ok", "so", "now", "right", "um",
+                        "uh", "here's", "there's", "you've", "got"})
+_STOPS = frozenset({".", "!", "?", ";"})
+
+
+def pair_named(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with the two objects of a pair said on its own first ("Grab the knife and the fork.", "Blue mug and
+    red mug.") named by id in the sentence right after it where it says them by their place in the pair: "first
+    one" is the first, "second one" the second and "the other one" the one of the two that sentence has not named
+    before it ("Blue one in front of the white bottle, the other one behind it": the red mug). Left as said where
+    the first sentence is not two references joined by "and" that name one object each, or where "the other one"
+    follows no object of the pair."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    stop = next((k for k, w in enumerate(words) if w in _STOPS), None)
+    if stop is None:
+        return text
+    i = 0
+    while i < stop and words[i] in _PAIR_LEAD:
+        i += 1
+    head = words[i:stop]
+    try:
+        ms = [m for m in find(head) if getattr(m, "det", None) != "pronoun"]
+    except InputError:
+        return text
+    if len(ms) != 2 or ms[0].start != 0 or ms[1].end != len(head) or head[ms[0].end : ms[1].start] != ("and",):
+        return text
+    pair = [list(ids_of(m)) for m in ms]
+    if any(len(p) != 1 for p in pair) or pair[0] == pair[1]:
+        return text
+    ids = [pair[0][0], pair[1][0]]
+    end = next((k for k in range(stop + 1, len(words)) if words[k] in _STOPS), len(words))
+    out: list[str] = []
+    at = 0
+    named: set[int] = set()
+    k = stop + 1
+    while k < end:
+        lo = k - (words[k - 1] == "the")
+        if words[k] in ("first", "second") and words[k + 1 : k + 2] == ("one",):
+            said, hi = ids[words[k] == "second"], k + 2
+        elif words[k : k + 3] == ("the", "other", "one") or (words[k : k + 2] == ("the", "other") and (
+                k + 2 >= end or not words[k + 2].isalpha() or words[k + 2] in ("goes", "go", "on", "in", "to", "at"))):
+            lo, hi = k, k + 2 + (words[k + 2 : k + 3] == ("one",))
+            try:
+                named |= {x for m in find(words[stop + 1 : k]) for x in ids_of(m) if x in ids}
+            except InputError:
+                return text
+            if len(named) != 1:
+                return text  # none of the pair named before it, or both: which is "the other" is not guessed
+            said = next(x for x in ids if x not in named)
+        else:
+            k += 1
+            continue
+        named.add(said)
+        out.append(text[at : toks[lo].pos] + f"object {said}")
+        at = _end(text, toks[hi - 1])
+        k = hi
+    out.append(text[at:])
+    return "".join(out)
