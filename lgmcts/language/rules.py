@@ -270,6 +270,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = stages.same_again(text, self._find, self._every_match)
         text = stages.pair_named(text, self._find, self._every_match)
+        text = stages.stack_by_colours(text, self._find, self._every_match)
         self._nearness(text)
         text = rewrite(self._articles(text))
         self._said = text

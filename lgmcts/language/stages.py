@@ -690,3 +690,58 @@ def pair_named(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Calla
         k = hi
     out.append(text[at:])
     return "".join(out)
+
+
+#: Words that put one object on or under another in a stack, said between two colours ("blue under red").
+_STACKED_ON = {("on",): "on", ("onto",): "on", ("over",): "on", ("above",): "on", ("on", "top", "of"): "on",
+               ("under",): "under", ("beneath",): "under", ("below",): "under", ("underneath",): "under"}
+
+
+def _colour_pairs(words: tuple[str, ...], k: int) -> tuple[list[tuple[str, str, str]], int]:
+    """The pairs "HUE on/under HUE" joined by ",", "and", "then" from ``k``, and the end of the last."""
+    pairs: list[tuple[str, str, str]] = []
+    while k < len(words) and words[k] in lexicon.HUES:
+        rel = next(((seq, r) for seq, r in _STACKED_ON.items() if words[k + 1 : k + 1 + len(seq)] == seq), None)
+        if rel is None:
+            break
+        j = k + 1 + len(rel[0])
+        if j >= len(words) or words[j] not in lexicon.HUES:
+            break
+        pairs.append((words[k], rel[1], words[j]))
+        k = j + 1
+        nxt = k
+        while nxt < len(words) and words[nxt] in (",", "and", "then"):
+            nxt += 1
+        if nxt == k or nxt >= len(words) or words[nxt] not in lexicon.HUES:
+            break
+        k = nxt
+    return pairs, k
+
+
+def stack_by_colours(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with a stack of a group ordered by its colours in pairs ("stack the bowls with blue under red and
+    red under white", "stack the cans: white on green, red on white") said with each object named ("put the blue
+    bowl under the red bowl and the red bowl under the white bowl"), where the pairs name every object of the group
+    once, one object each, and chain into one stack; left as said otherwise."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    for k, w in enumerate(words):
+        if w != "stack":
+            continue
+        j = k + 1
+        while j < len(words) and words[j] in ("up", "all", "the"):
+            j += 1
+        if j + 2 >= len(words) or not words[j].endswith("s") or words[j + 1] not in ("with", ":", ","):
+            continue
+        noun = words[j][:-1]
+        pairs, end = _colour_pairs(words, j + 2)
+        if len(pairs) < 2 or any(a[2] != b[0] and a[0] != b[2] for a, b in zip(pairs, pairs[1:])):
+            continue  # one pair, or pairs that do not chain into one stack: left to be read or refused as said
+        group = _ids(("the", words[j]), find, ids_of)
+        each = [_ids(("the", c, noun), find, ids_of) for c in dict.fromkeys(c for a, _, b in pairs for c in (a, b))]
+        if group is None or any(e is None or len(e) != 1 for e in each) or sorted(
+                e[0] for e in each if e is not None) != sorted(group):
+            continue
+        said = " and ".join(f"the {a} {noun} {rel} the {b} {noun}" for a, rel, b in pairs)
+        return text[: toks[k].pos] + "put " + said + text[_end(text, toks[end - 1]) :]
+    return text
