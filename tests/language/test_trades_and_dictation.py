@@ -97,6 +97,8 @@ def test_a_carpenters_words(said, goals):
     ("so like all the bowls except for the white one put those in a line", [{"pattern": "line", "objects": [2, 3]}]),
     ("make a line of the mugs and the spoon at the back in the middle facing the near edge",
      [{"pattern": "line", "objects": [8, 9, 7], "region": "top center", "facing": "south"}]),
+    ("make a line of the mugs and the spoon, far from me in the middle",
+     [{"pattern": "line", "objects": [8, 9, 7], "region": "top center"}]),
     # a stack ordered by colour pairs that chain and name the whole group
     ("stack the bowls with blue under red and red under white", [{"pattern": "tower", "objects": [3, 2, 4]}]),
 ])
