@@ -61,7 +61,7 @@ _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
      "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
-     "use", "find", "stick", "pop", "plonk", "shove", "chuck"}
+     "use", "find", "stick", "pop", "plonk", "shove", "chuck", "station"}
 )
 
 
@@ -111,6 +111,14 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             # "the bowl on the plate, and the mug, cup and bottle in a row": two goals said without verbs.
             parts.append([])
             i += 2
+            continue
+        if (w == "and" and "of" in parts[-1] and parts[-1][-1] not in ("it", "them", "its", "their")
+                and "so" not in parts[-1] and "such" not in parts[-1] and _asks_after_object(parts[-1], nouns)) and _of_it(
+                list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns):
+            # "A front right of B and C back right of it": a second relation whose "it" is the first's anchor
+            # (not after "so that", where every "it" is the object that moves).
+            parts.append([])
+            i += 1
             continue
         if (w == "," and _asks_after_object(parts[-1], nouns, hues=bare) and words[i + 1 : i + 2] != ("and",)
                 and _asks_after_object(list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns, start=True,
@@ -211,6 +219,12 @@ def _ordered_set(part: list[str], nouns: frozenset[str]) -> bool:
     p = part[:-1] if part[-1:] == [","] else part
     return (len(p) >= 3 and any(w in _STACKING for w in p) and p[-2] in ("the", "all", "those", "these")
             and p[-1] != _stem(p[-1]) and _stem(p[-1]) in nouns)
+
+
+def _of_it(part: list[str], nouns: frozenset[str]) -> bool:
+    """Whether ``part`` is an object put on one side of "it"/"them" ("the letter A back right of it")."""
+    return (len(part) >= 4 and part[-2:] in (["of", "it"], ["of", "them"]) and _asks_after_object(part, nouns, start=True)
+            and any(w in _DIR_WORDS for w in part[:-2]))
 
 
 _FACING_AFTER = frozenset({("facing",), ("pointing",), ("turned",), ("oriented",), ("angled",)})

@@ -120,13 +120,6 @@ _SUPERLATIVE = frozenset({"leftmost", "rightmost", "frontmost", "nearest", "clos
 
 
 
-#: What may come before "spell RATE" said as the request itself.
-_SPELL_LEADS = frozenset({"", "please", "now", "ok", "okay", "can you", "could you", "would you", "please can you",
-                          "next", "then", "and"})
-#: The letters named after the word they spell ("spell RATE with the letters").
-_SPELL_WITH = ("with the letters", "using the letters", "with the four letters", "using the four letters",
-               "out of the letters", "with those letters", "with the letter blocks")
-
 class _TokenPasses(ParserHost):
     """Text and token passes run by :meth:`.rules._Parser.command` before and around clause splitting."""
 
@@ -263,46 +256,6 @@ class _TokenPasses(ParserHost):
                 _add_params(shape, params, " ".join(words))
                 return ()
         return tuple(out)
-
-    def _spelled(self, text: str, letters: set[str]) -> str:
-        """"stack the letters so that, read from the bottom up, they spell RATE": the
-        stack of those letters in that order. Without the direction the reading is
-        open (a word on a stack reads either way), so it is refused."""
-        parts = re.split(r"(?<=[.;!?])\s+", text)
-        for k, sent in enumerate(parts):
-            m = re.search(r"\b(?i:spell|spells|spelling|spelt|reads?|reading|say|says)(?i: out)?(?i: the word)?\s*:?\s*"
-                          r"([A-Z](?:\s+[A-Z]){1,9}|[A-Z]{2,10})\b", sent)
-            if m is None:
-                continue
-            word = "".join(m.group(1).split()).upper()
-            if not (len(set(word)) == len(word) and set(word) <= letters):
-                continue
-            if not re.search(r"(?i)\b(?:stack|stacked|tower|pile|piled)\b", sent):
-                parts[k] = self._spelled_in_line(sent, m.start(), m.end(), word)
-                continue
-            up = re.search(r"(?i)\b(?:bottom up|bottom upwards?|from (?:the )?bottom|bottom to top|upwards?|going up)\b", sent)
-            down = re.search(r"(?i)\b(?:top down|top downwards?|from (?:the )?top|top to bottom|downwards?|going down)\b", sent)
-            if bool(up) == bool(down):
-                raise InputError(f"'{sent.strip()}': say whether '{word}' reads from the bottom up or from the top down")
-            order = word if up else word[::-1]
-            named = [f"the letter {c}" for c in order]
-            parts[k] = "stack " + ", ".join(named[:-1]) + f" and {named[-1]}, from the bottom up."
-        return " ".join(parts)
-
-    @staticmethod
-    def _spelled_in_line(sent: str, start: int, end: int, word: str) -> str:
-        """"Spell RATE with the letters, across the middle row", said as the request: those letters in a
-        line (a line's order is not part of its goal). Left as said where "spell" is not the request."""
-        lead = sent[:start].strip().lower().rstrip(",")
-        if lead not in _SPELL_LEADS:
-            return sent
-        tail = sent[end:]
-        low = tail.lower().lstrip()
-        said = next((w for w in _SPELL_WITH if low.startswith(w)), None)
-        if said is not None:
-            tail = tail.lstrip()[len(said) :]
-        named = [f"the letter {c}" for c in word]
-        return f"{sent[:start]}put {', '.join(named[:-1])} and {named[-1]} in a line{tail}"
 
     def _articles(self, text: str) -> str:
         """"red can should have the blue bowl behind it", "move blue mug so red mug sits

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import re
 
-from . import lexicon
+from . import compass, lexicon  # compass registers replacers of the table
 from .lexicon import HUES, MACROS, says
 from .normalise import apply, replacer, step
 from .stages import is_mark

@@ -59,6 +59,7 @@ from .shapes import normalise
 from .arrangements import _Arrangements
 from .assembly import _Finishing
 from .framing import _Framing
+from .pairs import pair_named, stack_by_colours
 from .passes import _TokenPasses
 from .group_passes import _GroupPasses
 from .selection import _Selecting
@@ -264,19 +265,20 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
             # position and colour read them: "the blocks that match the A and the E").
             text = re.sub(r"\b([Tt]he) ([A-Z])\b(?!')", lambda m: f"{m.group(1)} letter {m.group(2)}"
                           if m.group(2) in letters else m.group(0), text)
+        text = stages.named_before(text, self._find, self._every_match)
         text, self.state.group = stages.partitive(text, self._find, self._every_match)
         text = stages.by_position(text, self._find, self._every_match, self._table_xy, self._centre, self._cat_words,
                                   dict(self.vocab.borrowed), group=self.state.group)
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = stages.same_again(text, self._find, self._every_match)
-        text = stages.pair_named(text, self._find, self._every_match)
-        text = stages.stack_by_colours(text, self._find, self._every_match)
+        text = pair_named(text, self._find, self._every_match)
+        text = stack_by_colours(text, self._find, self._every_match)
         self._nearness(text)
         text = rewrite(self._articles(text))
         self._said = text
         text = self._category_ids(text)
         if letters:
-            text = self._spelled(text, letters)
+            text = stages.spelled(text, letters)
             text = stages.letters_named(text, letters)
             # "A then R then T then E", "R, T, E": capitals said bare ("A" only where it cannot be
             # the article: after a list word, or before one or the end).

@@ -38,7 +38,7 @@ from .spelling import Corrector
 if TYPE_CHECKING:
     from .grounding import Vocabulary
 
-__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "unmark", "without_context"]
+__all__ = ["MARK", "by_colour", "by_position", "is_mark", "mark_measures", "measured_size", "letters_named", "named_before", "other_side", "partitive", "pronoun_facings", "said_facings", "said_places", "same_again", "spell", "spelled", "unmark", "without_context"]
 
 #: Marker words standing for the measures of a command ("sizemarka", "sizemarkb" ...).
 MARK = "sizemark"
@@ -531,6 +531,43 @@ def _one_of(text: str, noun: str, group: Sequence[int], find: Callable[[tuple[st
     return "".join(out)
 
 
+_CONTRASTED = frozenset({"than", "not", "instead", "never"})
+#: Words after "the bowl" that leave it a whole reference (a place or a side follows, or the clause ends).
+_AFTER_BARE = frozenset({".", ",", ";", "!", "?", "and", "then", "please", ":"})
+#: Words before "the bowl" that make it the object of a relation ("front left of the bowl", "on the bowl").
+_BEFORE_BARE = frozenset({"of", "on", "onto", "behind", "under", "beside", "near", "by", "to", "from", "with",
+                          "above", "below", "beneath", "atop"})
+
+
+def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
+    """``text`` with "the bowl" (a kind the scene has several of, said bare as the object of a relation or at
+    the end of its clause) replaced by the one object of that kind the command named before it ("the can
+    closest to the white bowl: put it front left of the bowl": the white bowl). Left as said where no
+    object or two objects of that kind were named before."""
+    toks = tokenize(text)
+    words = tuple(t.text for t in toks)
+    out: list[str] = []
+    at = 0
+    for k in range(2, len(words)):
+        if words[k - 1] != "the" or words[k - 2] not in _BEFORE_BARE or (
+                k + 1 < len(words) and words[k + 1] not in _AFTER_BARE) or _CONTRASTED & set(words[max(0, k - 4) : k - 2]):
+            continue  # "..., rather than on the bowl": the words that contrast read it as said
+        kind = _ids(("every", words[k]), find, ids_of)
+        if not kind or len(kind) < 2 or words[k].endswith("s"):
+            continue
+        try:
+            before = [m for m in find(words[: k - 1]) if getattr(m, "det", None) != "pronoun"]
+        except InputError:
+            continue
+        named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) and len(ids) == 1 for i in ids}
+        if len(named) != 1:
+            continue  # none, or two bowls named before: which one is "the bowl" is not guessed
+        out.append(text[at : toks[k - 1].pos] + f"object {named.pop()}")
+        at = _end(text, toks[k])
+    out.append(text[at:])
+    return "".join(out)
+
+
 def same_again(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
     """``text`` with "that same block" ("the same bowl", "this same cup") replaced by the one object of that
     kind named before it ("put it behind the green block; the yellow piece goes in front of that same
@@ -630,118 +667,49 @@ def without_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     return drop_context(words, lambda w: object_word(w) or is_mark(w), request_word)
 
 
-#: Words before a pair said on its own ("Grab the knife and the fork.", "See the red bowl and the cup?").
-_PAIR_LEAD = frozenset({"grab", "take", "get", "see", "pick", "up", "use", "okay", "ok", "so", "now", "right", "um",
-                        "uh", "here's", "there's", "you've", "got"})
-_STOPS = frozenset({".", "!", "?", ";"})
+#: What may come before "spell RATE" said as the request itself.
+_SPELL_LEADS = frozenset({"", "please", "now", "ok", "okay", "can you", "could you", "would you", "please can you",
+                          "next", "then", "and"})
+#: The letters named after the word they spell ("spell RATE with the letters").
+_SPELL_WITH = ("with the letters", "using the letters", "with the four letters", "using the four letters",
+               "out of the letters", "with those letters", "with the letter blocks")
 
 
-def pair_named(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
-    """``text`` with the two objects of a pair said on its own first ("Grab the knife and the fork.", "Blue mug and
-    red mug.") named by id in the sentence right after it where it says them by their place in the pair: "first
-    one" is the first, "second one" the second and "the other one" the one of the two that sentence has not named
-    before it ("Blue one in front of the white bottle, the other one behind it": the red mug). Left as said where
-    the first sentence is not two references joined by "and" that name one object each, or where "the other one"
-    follows no object of the pair."""
-    toks = tokenize(text)
-    words = tuple(t.text for t in toks)
-    stop = next((k for k, w in enumerate(words) if w in _STOPS), None)
-    if stop is None:
-        return text
-    i = 0
-    while i < stop and words[i] in _PAIR_LEAD:
-        i += 1
-    head = words[i:stop]
-    try:
-        ms = [m for m in find(head) if getattr(m, "det", None) != "pronoun"]
-    except InputError:
-        return text
-    if len(ms) != 2 or ms[0].start != 0 or ms[1].end != len(head) or head[ms[0].end : ms[1].start] != ("and",):
-        return text
-    pair = [list(ids_of(m)) for m in ms]
-    if any(len(p) != 1 for p in pair) or pair[0] == pair[1]:
-        return text
-    ids = [pair[0][0], pair[1][0]]
-    end = next((k for k in range(stop + 1, len(words)) if words[k] in _STOPS), len(words))
-    out: list[str] = []
-    at = 0
-    named: set[int] = set()
-    k = stop + 1
-    while k < end:
-        lo = k - (words[k - 1] == "the")
-        if words[k] in ("first", "second") and words[k + 1 : k + 2] == ("one",):
-            said, hi = ids[words[k] == "second"], k + 2
-        elif words[k : k + 3] == ("the", "other", "one") or (words[k : k + 2] == ("the", "other") and (
-                k + 2 >= end or not words[k + 2].isalpha() or words[k + 2] in ("goes", "go", "on", "in", "to", "at"))):
-            lo, hi = k, k + 2 + (words[k + 2 : k + 3] == ("one",))
-            try:
-                named |= {x for m in find(words[stop + 1 : k]) for x in ids_of(m) if x in ids}
-            except InputError:
-                return text
-            if len(named) != 1:
-                return text  # none of the pair named before it, or both: which is "the other" is not guessed
-            said = next(x for x in ids if x not in named)
-        else:
-            k += 1
+def spelled(text: str, letters: set[str]) -> str:
+    """"stack the letters so that, read from the bottom up, they spell RATE": the
+    stack of those letters in that order. Without the direction the reading is
+    open (a word on a stack reads either way), so it is refused."""
+    parts = re.split(r"(?<=[.;!?])\s+", text)
+    for k, sent in enumerate(parts):
+        m = re.search(r"\b(?i:spell|spells|spelling|spelt|reads?|reading|say|says)(?i: out)?(?i: the word)?\s*:?\s*"
+                      r"([A-Z](?:\s+[A-Z]){1,9}|[A-Z]{2,10})\b", sent)
+        if m is None:
             continue
-        named.add(said)
-        out.append(text[at : toks[lo].pos] + f"object {said}")
-        at = _end(text, toks[hi - 1])
-        k = hi
-    out.append(text[at:])
-    return "".join(out)
-
-
-#: Words that put one object on or under another in a stack, said between two colours ("blue under red").
-_STACKED_ON = {("on",): "on", ("onto",): "on", ("over",): "on", ("above",): "on", ("on", "top", "of"): "on",
-               ("under",): "under", ("beneath",): "under", ("below",): "under", ("underneath",): "under"}
-
-
-def _colour_pairs(words: tuple[str, ...], k: int) -> tuple[list[tuple[str, str, str]], int]:
-    """The pairs "HUE on/under HUE" joined by ",", "and", "then" from ``k``, and the end of the last."""
-    pairs: list[tuple[str, str, str]] = []
-    while k < len(words) and words[k] in lexicon.HUES:
-        rel = next(((seq, r) for seq, r in _STACKED_ON.items() if words[k + 1 : k + 1 + len(seq)] == seq), None)
-        if rel is None:
-            break
-        j = k + 1 + len(rel[0])
-        if j >= len(words) or words[j] not in lexicon.HUES:
-            break
-        pairs.append((words[k], rel[1], words[j]))
-        k = j + 1
-        nxt = k
-        while nxt < len(words) and words[nxt] in (",", "and", "then"):
-            nxt += 1
-        if nxt == k or nxt >= len(words) or words[nxt] not in lexicon.HUES:
-            break
-        k = nxt
-    return pairs, k
-
-
-def stack_by_colours(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
-    """``text`` with a stack of a group ordered by its colours in pairs ("stack the bowls with blue under red and
-    red under white", "stack the cans: white on green, red on white") said with each object named ("put the blue
-    bowl under the red bowl and the red bowl under the white bowl"), where the pairs name every object of the group
-    once, one object each, and chain into one stack; left as said otherwise."""
-    toks = tokenize(text)
-    words = tuple(t.text for t in toks)
-    for k, w in enumerate(words):
-        if w != "stack":
+        word = "".join(m.group(1).split()).upper()
+        if not (len(set(word)) == len(word) and set(word) <= letters):
             continue
-        j = k + 1
-        while j < len(words) and words[j] in ("up", "all", "the"):
-            j += 1
-        if j + 2 >= len(words) or not words[j].endswith("s") or words[j + 1] not in ("with", ":", ","):
+        if not re.search(r"(?i)\b(?:stack|stacked|tower|pile|piled)\b", sent):
+            parts[k] = _spelled_in_line(sent, m.start(), m.end(), word)
             continue
-        noun = words[j][:-1]
-        pairs, end = _colour_pairs(words, j + 2)
-        if len(pairs) < 2 or any(a[2] != b[0] and a[0] != b[2] for a, b in zip(pairs, pairs[1:])):
-            continue  # one pair, or pairs that do not chain into one stack: left to be read or refused as said
-        group = _ids(("the", words[j]), find, ids_of)
-        each = [_ids(("the", c, noun), find, ids_of) for c in dict.fromkeys(c for a, _, b in pairs for c in (a, b))]
-        if group is None or any(e is None or len(e) != 1 for e in each) or sorted(
-                e[0] for e in each if e is not None) != sorted(group):
-            continue
-        said = " and ".join(f"the {a} {noun} {rel} the {b} {noun}" for a, rel, b in pairs)
-        return text[: toks[k].pos] + "put " + said + text[_end(text, toks[end - 1]) :]
-    return text
+        up = re.search(r"(?i)\b(?:bottom up|bottom upwards?|from (?:the )?bottom|bottom to top|upwards?|going up)\b", sent)
+        down = re.search(r"(?i)\b(?:top down|top downwards?|from (?:the )?top|top to bottom|downwards?|going down)\b", sent)
+        if bool(up) == bool(down):
+            raise InputError(f"'{sent.strip()}': say whether '{word}' reads from the bottom up or from the top down")
+        order = word if up else word[::-1]
+        named = [f"the letter {c}" for c in order]
+        parts[k] = "stack " + ", ".join(named[:-1]) + f" and {named[-1]}, from the bottom up."
+    return " ".join(parts)
+
+def _spelled_in_line(sent: str, start: int, end: int, word: str) -> str:
+    """"Spell RATE with the letters, across the middle row", said as the request: those letters in a
+    line (a line's order is not part of its goal). Left as said where "spell" is not the request."""
+    lead = sent[:start].strip().lower().rstrip(",")
+    if lead not in _SPELL_LEADS:
+        return sent
+    tail = sent[end:]
+    low = tail.lower().lstrip()
+    said = next((w for w in _SPELL_WITH if low.startswith(w)), None)
+    if said is not None:
+        tail = tail.lstrip()[len(said) :]
+    named = [f"the letter {c}" for c in word]
+    return f"{sent[:start]}put {', '.join(named[:-1])} and {named[-1]} in a line{tail}"

@@ -232,3 +232,12 @@ def test_orders_corrections_units_and_pairs(said, goals):
 def test_pairs_by_colour_refused_when_unclear(said, why):
     with pytest.raises(InputError, match=why):
         _goals(said)
+
+
+@pytest.mark.slow
+def test_a_kind_said_bare_is_the_one_of_it_named_before():
+    assert _goals("put the red block behind the white bowl, then the blue block in front of the bowl") == [
+        {"pattern": "behind", "objects": [4], "anchor": 2}, {"pattern": "front", "objects": [5], "anchor": 2}]
+    with pytest.raises(InputError, match="ambiguous"):
+        _goals("put the red block behind the white bowl and the blue block behind the black bowl, "
+               "then the green block in front of the bowl")
