@@ -61,6 +61,9 @@ def _goals(said: str, scene=None) -> list[dict]:
      [{"pattern": "front", "objects": [3], "anchor": 8}]),
     ("Gonna want the orange and purple blocks stacked, purple on top, before the glue sets.",
      [{"pattern": "tower", "objects": [11, 12]}]),
+    # a place from the table's centre said in two distances and a turn said after it in a sentence of its own
+    ("Box: 250 mm right of centre, 100 mm toward me. Give it a quarter turn counterclockwise.",
+     [{"pattern": "pose", "objects": [10], "pose": (0.25, -0.1, 1.5707963267948966)}]),
     # a side left to the robot: either does what was asked, the left is taken
     ("Spoon next to the box. Either side, don't matter.", [{"pattern": "left", "objects": [7], "anchor": 10}]),
 ])
