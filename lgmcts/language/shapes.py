@@ -339,7 +339,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         if i in protected:
             end = protected[i]
             if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
-                blocked = not own_list  # "a line of the cups and the box at the back": still the line's own list
+                blocked = True
             own_list = own_list or (seen_pattern and i > 0 and words[i - 1] == "of")
             run = _region_run(words, end) if end < n else None
             if seen_pattern and i > 0 and words[i - 1] == "with" and run is not None \
@@ -375,7 +375,10 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         if blocked and got is not None and free is None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
-            got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
+            if own_list and not any(words[x] in ("middle", "centre", "center") for x in range(i, got[2])):
+                blocked = False  # "a line of the cups and the box at the back (in the middle)": the line's own list
+            else:
+                got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
         if got is not None:

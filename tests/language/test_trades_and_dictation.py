@@ -137,6 +137,8 @@ def test_references_by_a_pair_a_side_and_any(said, goals):
     ("Red mug and blue mug. The mug goes in front of the box, the other one behind it.", "ambiguous"),
     # one colour pair for three bowls: which goes where is not guessed
     ("stack the bowls with blue under red", "named twice"),
+    # the middle after the last of an arrangement's list may be that object's place (inside the circle): not guessed
+    ("make a circle of the bowls and the spoon in the middle", "'the middle' names nothing"),
     # "square them up" with no arrangement named stays unread
     ("the bowls and the plate, square them up", "refers to nothing"),
 ])
