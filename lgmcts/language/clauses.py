@@ -223,8 +223,11 @@ def _ordered_set(part: list[str], nouns: frozenset[str]) -> bool:
 
 def _of_it(part: list[str], nouns: frozenset[str]) -> bool:
     """Whether ``part`` is an object put on one side of "it"/"them" ("the letter A back right of it")."""
-    return (len(part) >= 4 and part[-2:] in (["of", "it"], ["of", "them"]) and _asks_after_object(part, nouns, start=True)
-            and any(w in _DIR_WORDS for w in part[:-2]))
+    if len(part) < 4:
+        return False
+    named = _asks_after_object(part, nouns, start=True) or (part[0] in nouns and _asks_after_object(["the", *part], nouns))
+    return part[-2:] in (["of", "it"], ["of", "them"]) and named and any(
+        w in _DIR_WORDS for w in part[:-2])  # ("letter A back right of it": a noun said without its article)
 
 
 _FACING_AFTER = frozenset({("facing",), ("pointing",), ("turned",), ("oriented",), ("angled",)})

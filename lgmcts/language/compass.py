@@ -34,6 +34,8 @@ _MOST = {"north": "backmost", "south": "frontmost", "east": "rightmost", "west":
 SIDE_OF = {0: "behind", 45: "back right of", 90: "to the right of", 135: "front right of", 180: "in front of",
            225: "front left of", 270: "to the left of", 315: "back left of"}
 
+_DIGITS = {"zero": 0, "oh": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
+           "nine": 9, "niner": 9}
 _HOURS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
           "ten": 10, "eleven": 11, "twelve": 12}
 
@@ -128,8 +130,11 @@ def _clock_of_object(m: re.Match[str]) -> str:
 def _heading(m: re.Match[str]) -> str:
     """"heading 000", "on a heading of 270", "pointing 090" -> "facing north/west/east"; left as said
     between the four points (refused later as a facing it cannot read)."""
-    facing = heading_facing(int(m.group(1)))
-    return f"facing {facing}" if facing else m.group(0)
+    said = m.group(1).lower()
+    if not said.isdigit():  # "zero nine zero": one digit a word
+        said = "".join(str(_DIGITS[w]) for w in said.replace("-", " ").split())
+    facing = heading_facing(int(said))
+    return f"facing {facing}" if facing else f"heading {said}"  # refused later, quoted, as a facing not read
 
 
 @replacer("port-starboard")

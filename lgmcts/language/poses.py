@@ -129,6 +129,7 @@ _MOVES = frozenset({"move", "slide", "shift", "nudge", "push", "pull", "scoot", 
                     "position", "reposition", "relocate", "displace", "translate", "offset"})
 #: Directions of a move, as unit steps in the table frame (+x right, +y away from the viewer).
 _STEPS = {"left": (-1.0, 0.0), "right": (1.0, 0.0), "back": (0.0, 1.0), "rightward": (1.0, 0.0),
+          "east": (1.0, 0.0), "west": (-1.0, 0.0), "north": (0.0, 1.0), "south": (0.0, -1.0),
           "leftward": (-1.0, 0.0), "rightwards": (1.0, 0.0), "leftwards": (-1.0, 0.0)}
 _TOWARD_FRONT = frozenset({"me", "us", "you", "viewer", "front", "near"})
 _FILL = ("further", "farther", "more", "over", "to", "the", "toward", "towards", "in", "a", "bit", "its", "direction")
@@ -217,6 +218,28 @@ def _turn_after(ws: list[str], k: int) -> tuple[float, int] | None:
     return yaw, j
 
 
+#: A side of "it" said after a distance from the table's centre ("and 10 cm behind it").
+_OF_IT = {("behind", "it"): (0.0, 1.0), ("in", "front", "of", "it"): (0.0, -1.0), ("left", "of", "it"): (-1.0, 0.0),
+          ("right", "of", "it"): (1.0, 0.0), ("to", "the", "left", "of", "it"): (-1.0, 0.0),
+          ("to", "the", "right", "of", "it"): (1.0, 0.0), ("north", "of", "it"): (0.0, 1.0),
+          ("south", "of", "it"): (0.0, -1.0), ("east", "of", "it"): (1.0, 0.0), ("west", "of", "it"): (-1.0, 0.0)}
+
+
+def _step_of_it(ws: list[str], i: int) -> tuple[float, float, int, bool] | None:
+    """A distance to one side of "it" at ``i`` ("10 cm behind it"), said after a distance from the centre."""
+    got = _number_at(ws, i)
+    unit = _unit(ws, got[1]) if got is not None else None
+    if got is None or unit is None:
+        return None
+    k = unit[1]
+    side = next((s for s in _OF_IT if tuple(ws[k : k + len(s)]) == s), None)
+    if side is None:
+        return None
+    dx, dy = _OF_IT[side]
+    metres = got[0] * unit[0]
+    return dx * metres, dy * metres, k + len(side), True
+
+
 def find_offsets(text: str) -> list[SaidPose]:
     """Every move said as a distance in ``text``, left to right: after a verb of moving in the same
     sentence, from where the object stands ("slide the black bowl 10 cm further back", "move the star 8 cm
@@ -249,8 +272,9 @@ def find_offsets(text: str) -> list[SaidPose]:
         dx, dy, k, centre = got
         join = k + (ws[k : k + 1] == [","])
         join += ws[join : join + 1] == ["and"]
-        if join > k:  # "... and 5 cm toward the back", "250 mm right of centre, 100 mm toward me"
-            more = _step(ws, join)
+        if join > k:
+            # "... and 5 cm toward the back", ", 100 mm toward me", "... and 10 cm behind it" (it: the centre)
+            more = _step(ws, join) or (_step_of_it(ws, join) if centre else None)
             if more is not None and (more[0] == 0.0) != (dx == 0.0):
                 dx, dy, k, centre = dx + more[0], dy + more[1], more[2], centre or more[3]
         here = next((h for h in _HERE if tuple(ws[k : k + len(h)]) == h), None)

@@ -153,7 +153,10 @@ def _near_far(ws: tuple[str, ...], j: int, near: bool, anchor_ok: bool) -> tuple
     if not near:
         k = j + (j < len(ws) and ws[j] == "to")
         k += k < len(ws) and ws[k] == "the" and k > j
-        if k < len(ws) and ws[k] in _FORWARD and (ws[k] not in ("left", "right") or k > j or ws[j:j + 1] != ("the",)):
+        diagonal = (k == j and ws[k : k + 1] in (("front",), ("back",)) and ws[k + 1 : k + 2] in (("right",), ("left",))
+                    ) or (k > j and ws[k + 1 : k + 2] == ("of",) and ws[k + 2 : k + 4] not in (("the", "table"),))
+        if k < len(ws) and ws[k] in _FORWARD and (ws[k] not in ("left", "right") or k > j or ws[j:j + 1] != ("the",)) \
+                and not diagonal:  # "the farther cup front right of ...": a side of another object follows
             return _FORWARD[ws[k]], k + 1  # "furthest right", "furthest to the right", "furthest back"
     side = _side_key(ws, j)
     if side is not None and (near or ws[j] == "from"):
@@ -223,7 +226,9 @@ def _said_apart(ws: tuple[str, ...], k: int) -> bool:
 def _goal_after(ws: tuple[str, ...], k: int) -> bool:
     """Whether the clause goes on after ``k`` with where to put the object ("put the one farther from me to
     the left of the mug": the comparative picked the object)."""
-    for w in ws[k:]:
+    for x, w in enumerate(ws[k:], start=k):
+        if w == "and" and ws[x + 1 : x + 2] and ws[x + 1] in _PLACING and ws[x + 2 : x + 3] in (("it",), ("them",)):
+            return True  # "take the farther one and put it ...": the comparative picked the object
         if w in (",", ".", ";", ":", "!", "?", "and", "then"):
             return False
         if w in ("left", "right", "behind", "front", "on", "onto", "under", "beside", "next", "in", "into", "atop"):

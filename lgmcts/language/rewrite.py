@@ -577,3 +577,21 @@ def _not_the_other_one(m: re.Match[str]) -> str:
                                                                      and single.group(1)[-2] != "s"):
         return m.group(0)  # after "but", or a plural ("the blocks, not the purple one"): an exception
     return ""
+
+
+#: The word said after a measure for the length each noun names ("a quarter of a metre across").
+_MEASURED_AS = {"diameter": "in diameter", "width": "wide", "radius": "radius", "length": "long", "side": "each side",
+                "spacing": "apart", "gap": "apart"}
+
+
+@replacer("measure-said-as-noun")
+def _measure_said_as_noun(m: re.Match[str]) -> str:
+    """"; the diameter should come to a quarter of a metre" -> ", a quarter of a metre in diameter" (the
+    measure said after its noun); left as said where the words after the verb are not one measure."""
+    from .measures import find_measures
+
+    said = m.group(2).strip()
+    found = find_measures(said)
+    if len(found) != 1 or found[0].start != 0 or found[0].end != len(said):
+        return m.group(0)
+    return f", {said} {_MEASURED_AS[m.group(1).lower()]}"

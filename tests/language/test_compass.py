@@ -68,6 +68,11 @@ def _goals(said: str) -> list[dict]:
     ("the blocks in a row, heading 090", [{"pattern": "line", "objects": [4, 5, 6], "facing": "east"}]),
     ("the blocks in a row on a heading of 270", [{"pattern": "line", "objects": [4, 5, 6], "facing": "west"}]),
     ("every block save the red one in a line", [{"pattern": "line", "objects": [5, 6]}]),
+    ("the blocks in a row, heading zero nine zero", [{"pattern": "line", "objects": [4, 5, 6], "facing": "east"}]),
+    ("the blocks in a row, facing due south", [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
+    ("the red block at two o'clock to the plate", [{"pattern": "right_behind", "objects": [4], "anchor": 1}]),
+    ("Two bowls here. Put the red block at the white one's six o'clock",
+     [{"pattern": "front", "objects": [4], "anchor": 2}]),
 ])
 def test_compass_and_clock_words_read_end_to_end(said, goals):
     if goals is None:
@@ -85,3 +90,5 @@ def test_a_heading_between_the_four_points_is_refused_not_dropped():
 
     with pytest.raises(InputError, match="045"):
         _goals("the blocks in a row, heading 045")
+    with pytest.raises(InputError, match="135"):
+        _goals("the blocks in a row, heading one three five")

@@ -241,3 +241,34 @@ def test_a_kind_said_bare_is_the_one_of_it_named_before():
     with pytest.raises(InputError, match="ambiguous"):
         _goals("put the red block behind the white bowl and the blue block behind the black bowl, "
                "then the green block in front of the bowl")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # a pose said as distances from the table's centre, the second "behind it" (it: the centre) or after a comma
+    ("put the plate 15 cm right of the table centre and 10 cm behind it",
+     [{"pattern": "pose", "objects": [1], "pose": (0.15, 0.1, 0.0)}]),
+    ("put the plate 15 cm east of the table centre and 10 cm north of it",
+     [{"pattern": "pose", "objects": [1], "pose": (0.15, 0.1, 0.0)}]),
+    ("put the plate 250 mm right of centre, 100 mm toward me",
+     [{"pattern": "pose", "objects": [1], "pose": (0.25, -0.1, 0.0)}]),
+    # of two, the farther and the nearer, with a diagonal or a side of another object after them
+    ("of the two bottles, put the farther one front right of the nearer one",
+     [{"pattern": "right_front", "objects": [8], "anchor": 7}]),
+    ("of the two bottles, move the farther one to the right of the nearer one",
+     [{"pattern": "right", "objects": [8], "anchor": 7}]),
+    ("of the two bottles, take the farther one and put it behind the nearer one",
+     [{"pattern": "behind", "objects": [8], "anchor": 7}]),
+    # a measure said after the noun of what it measures
+    ("the blocks in a circle; the diameter should come to a quarter of a metre",
+     [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.125}]),
+    # a second relation on "it" whose object is said without its article
+    ("the red block front right of the black bowl, and plate back left of it",
+     [{"pattern": "right_front", "objects": [4], "anchor": 3}, {"pattern": "left_behind", "objects": [1], "anchor": 3}]),
+])
+def test_poses_from_the_centre_comparatives_and_measures_said_after_nouns(said, goals):
+    if goals is None:
+        with pytest.raises(InputError):
+            _goals(said)
+        return
+    assert _goals(said) == goals
