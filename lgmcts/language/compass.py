@@ -28,6 +28,7 @@ __all__ = ["SIDE_OF", "clock_side", "heading_facing"]
 
 #: The viewer's word for each compass point (as a place and as a side).
 _PLACE = {"north": "back", "south": "front", "east": "right", "west": "left"}
+_FARTHEST = {"north": "farthest back", "south": "nearest the front", "east": "farthest right", "west": "farthest left"}
 _MOST = {"north": "backmost", "south": "frontmost", "east": "rightmost", "west": "leftmost"}
 
 #: How each of the eight sides is said before an object ("... of the bowl").
@@ -86,8 +87,16 @@ def _compass_area(m: re.Match[str]) -> str:
 
 @replacer("compass-most")
 def _compass_most(m: re.Match[str]) -> str:
-    """"easternmost" -> "rightmost"."""
-    return _MOST[m.group(1).lower()]
+    """"easternmost" -> "rightmost"; "the western bowl" -> "the leftmost bowl"."""
+    return _MOST[m.group(1).lower()] + (" " if m.group(0).endswith(" ") else "")
+
+
+@replacer("compass-farthest")
+def _compass_farthest(m: re.Match[str]) -> str:
+    """"(the can) farthest north" -> "farthest back", "(the) most easterly (can)" -> "rightmost"."""
+    if m.group(1):
+        return _FARTHEST[m.group(1).lower()]
+    return _MOST[m.group(2).lower()]
 
 
 def _anchor(said: str) -> str:

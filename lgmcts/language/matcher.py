@@ -419,6 +419,11 @@ class PatternMatcher:
             # read past (the phrase as a whole may still match the other one well)
             return Match(None, c, self._keys[i][1], top, c, unexplained,
                          reason=f"'{named_shape}' names an arrangement the database does not have")
+        owners = {n for w in words for n in self._word_owner.get(w, ())}
+        if not unexplained and c < self.options.accept and owners and top not in owners:
+            # "put the bottles at the right end of the table": every word is known, the only ones that belong
+            # to a pattern belong to others, and the model's best key is near only as a sentence: not read
+            return Match(None, c, self._keys[i][1], top, c, unexplained, reason="no pattern in the database matches")
         if unexplained and c < self.options.accept:
             # Words no key contains: read each by its own embedding.
             named: set[str] = set()

@@ -71,6 +71,9 @@ def _goals(said: str) -> list[dict]:
     ("the blocks in a row, heading zero nine zero", [{"pattern": "line", "objects": [4, 5, 6], "facing": "east"}]),
     ("the blocks in a row, facing due south", [{"pattern": "line", "objects": [4, 5, 6], "facing": "south"}]),
     ("the red block at two o'clock to the plate", [{"pattern": "right_behind", "objects": [4], "anchor": 1}]),
+    ("the block farthest east goes behind the plate", [{"pattern": "behind", "objects": [6], "anchor": 1}]),
+    ("the most westerly block goes behind the plate", [{"pattern": "behind", "objects": [4], "anchor": 1}]),
+    ("the northern bowl goes behind the plate", [{"pattern": "behind", "objects": [2], "anchor": 1}]),
     ("Two bowls here. Put the red block at the white one's six o'clock",
      [{"pattern": "front", "objects": [4], "anchor": 2}]),
 ])

@@ -272,3 +272,10 @@ def test_poses_from_the_centre_comparatives_and_measures_said_after_nouns(said, 
             _goals(said)
         return
     assert _goals(said) == goals
+
+
+@pytest.mark.slow
+def test_a_place_alone_is_not_read_as_an_arrangement():
+    # every word known, the only pattern words another pattern's: the model's nearest key ("in a row") is not taken
+    with pytest.raises(InputError):
+        _goals("put the blocks at the right end of the table")
