@@ -87,8 +87,15 @@ def _idle(part: tuple[str, ...], object_word: Callable[[str], bool], request_wor
     timed = timed or any(w in _CLOCK for w in part)
     clock = _clock_words(part)
     owned = _owned(part)
-    return not any((object_word(w) or (request_word(w) and not (timed and w in _MEALS) and j not in owned))
+    return not any(((object_word(w) and not _article(part, j))
+                    or (request_word(w) and not (timed and w in _MEALS) and j not in owned))
                    and j not in clock for j, w in enumerate(part))
+
+
+def _article(part: Sequence[str], j: int) -> bool:
+    """Whether the word at ``j`` is the article "a" or the pronoun "i" rather than a letter of the scene ("a long
+    day" where the scene has a letter A; "the A", "letter A" stay the letter)."""
+    return part[j] in ("a", "an", "i") and not (j and part[j - 1] in ("the", "letter", "letters"))
 
 
 def _owned(part: Sequence[str]) -> set[int]:
@@ -100,6 +107,10 @@ def _owned(part: Sequence[str]) -> set[int]:
 
 
 _SHIFT_KINDS = frozenset({"night", "day", "late", "early", "double", "long", "morning", "evening", "graveyard"})
+_KEEP = frozenset({"keep", "keeps", "kept", "keeping"})
+#: Lengths of time a size word may qualify ("a long day", "a short week").
+_SPANS = frozenset({"day", "days", "week", "weeks", "night", "nights", "shift", "shifts", "morning", "evening",
+                    "afternoon", "year", "month", "while", "time", "one"})
 
 
 _POSSESSIVES = frozenset({"my", "our", "his", "her", "their", "your"})
@@ -165,8 +176,13 @@ def _event_clause(part: tuple[str, ...], object_word: Callable[[str], bool],
     """Whether ``part`` (without its comma) says when by an event of the house that names no object of the
     scene and asks nothing ("once the rice is on", "before my sister gets here"): a particle of chatter
     ("on", "over") is no request there (:func:`_asks_nothing`)."""
-    return (len(part) > 2 and part[0] in _EVENT_OPENERS and part[1] in _SUBJECT_START
-            and _asks_nothing(part[1:], object_word, request_word))
+    if not (len(part) > 2 and part[0] in _EVENT_OPENERS and part[1] in _SUBJECT_START):
+        return False
+    verb = 3 if part[1] in _OWNERS else 2  # "before the glue sets", "until it dries": the event's own verb
+    said = part[1:]
+    if verb < len(part) and part[verb].endswith("s") and not object_word(part[verb - 1]) and not object_word(part[verb]):
+        said = part[1:verb] + part[verb + 1 :]  # a verb of the event ("sets"), not a request to set something
+    return _asks_nothing(said, object_word, request_word)
 
 
 def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
@@ -208,7 +224,11 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
     for j, w in enumerate(part):
         if j in clock or (j in owned and not object_word(w)):
             continue
-        if object_word(w) and w not in ("everything", "anything"):
+        if w in _SHIFT_KINDS and part[j + 1 : j + 2] and part[j + 1] in _SPANS:
+            continue  # "it's been a long day", "a late night": a length of time, no size
+        if w in _KEEP and part[j + 1 : j + 2] and part[j + 1].endswith("ing"):
+            continue  # "i keep going back and forth": "keep" says it goes on, it keeps nothing in place
+        if object_word(w) and w not in ("everything", "anything") and not _article(part, j):
             return False
         if w in lexicon.DIRECTIONS:
             if _in_place(part, j):
@@ -244,7 +264,7 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
         opener = next((o for o in _OPENERS if sent[k : k + len(o)] == o), None)
         cut = opener is not None or sent[k] in _CHATTER_CUTS or sent[k] == ":" or (
             sent[k] == "," and k + 1 < n and sent[k + 1] in ("just", "please", "now", "so")) or (
-            sent[k] in (",", "and") and _told(sent[:k]))
+            sent[k] in (",", "and") and _told(sent[:k])) or (sent[k] == "but" and _conceded(sent[:k]))
         if not cut:
             continue
         head = [w for w in sent[:k] if w not in _LEAD]
@@ -281,6 +301,18 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
     return sent
 
 
+#: Words by which the part before "but" is about the objects after all ("everything but the red can").
+_GROUP_WORDS = frozenset({"everything", "anything", "all", "each", "every", "both", "any", "none", "nothing"})
+
+
+def _conceded(head: Sequence[str]) -> bool:
+    """Whether ``head``, said before "but", is a remark of its own ("honestly it looks fine", "i keep going back and
+    forth on this"): a clause of at least three words with no word of a group, so that "everything but the red
+    can" stays one reference. Whether it asks nothing is the caller's check."""
+    body = [w for w in head if w not in _LEAD]
+    return len(body) >= 3 and not any(w in _GROUP_WORDS for w in body)
+
+
 _NUMBER_WORDS = frozenset({"two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"})
 #: Verbs by which a clause tells what happened or happens in the house ("the groceries finally came", "i just got
 #: back from the store", "my daughter keeps knocking ..."), besides past forms in -ed.
@@ -300,12 +332,22 @@ def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word
     words = [w for w in body if w not in _LEAD]
     if not _subject_end(words) or not _told(words):
         return False
+    past = next((j for j, w in enumerate(words) if w in _PAST or (w.endswith("ed") and len(w) > 4)), len(words))
     for j, w in enumerate(words):
         if (w in _CTX["asking"] and not object_word(w)) or (w in lexicon.DIRECTIONS and _in_place(words, j)):
             return False
+        if j > past and w in _ARRANGEMENT_NOUNS:
+            continue  # "my daughter built a tower earlier and knocked it over": what was done, not asked for
         if request_word(w) and not object_word(w) and w not in _CHATTER_PARTICLES:
             return False
     return True
+
+
+#: Past forms of the verbs a story tells with, besides those in -ed ("my daughter built a tower").
+_PAST = frozenset({"built", "made", "came", "went", "got", "took", "brought", "broke", "fell", "did", "had", "left",
+                   "knocked", "played"})
+#: The nouns of the arrangements (:data:`.lexicon.SHAPE_NOUNS`).
+_ARRANGEMENT_NOUNS = frozenset(w for nouns in lexicon.SHAPE_NOUNS.values() for w in nouns)
 
 
 def _told(head: Sequence[str]) -> bool:
@@ -355,8 +397,8 @@ def _without_time(sent: tuple[str, ...], object_word: Callable[[str], bool],
         if sent[k] in TIME_OPENERS and sent[k] not in ("in", "at", "as", "this", "first", "while"):
             tail = sent[k:end]
             before = sent[:k]
-            if _time_clause(tail) and _idle(tail[1:], object_word, request_word, timed=True) and any(
-                    request_word(w) for w in before):
+            if ((_time_clause(tail) and _idle(tail[1:], object_word, request_word, timed=True))
+                    or _event_clause(tail, object_word, request_word)) and any(request_word(w) for w in before):
                 while before and before[-1] == ",":
                     before = before[:-1]
                 return before + sent[end:]

@@ -31,8 +31,8 @@ the mug behind the bowl"; not where ``disjoint`` is given).
 parameters ``region`` ("top left", "middle center": ``<row> <col>`` with
 row bottom|middle|top and col left|center|right), ``size``
 (small|medium|large) and ``facing`` (north|east|south|west) must be equal
-when either side names them (a size in metres to within half a millimetre, the precision to which measures
-are read; a pose's x and y likewise and its yaw to a thousandth of a radian, as labels write "1.5708"). A refusal case passes when the parser raises
+when either side names them (a size in metres to within half a millimetre: the parser keeps sizes to a tenth
+of a millimetre, labels write them to the millimetre or finer, "12 inches" as 0.305 or 0.3048; a pose's x and y likewise and its yaw to a thousandth of a radian, as labels write "1.5708"). A refusal case passes when the parser raises
 :class:`~lgmcts.errors.InputError` (and its message contains ``refuse``
 when that is a non-empty string).
 
@@ -313,7 +313,7 @@ def _goal_ok(exp: dict, got: dict, ordered: frozenset[str]) -> bool:
     for key in PARAMS:
         a, b = _norm_param(key, exp.get(key)), _norm_param(key, got.get(key))
         if isinstance(a, (int, float)) and isinstance(b, (int, float)) and abs(a - b) < 5e-4:
-            continue  # a size in metres, to the millimetre the parser reads ("12 inches": 0.3048 and 0.305)
+            continue  # a size in metres, to the millimetre labels write ("12 inches": 0.3048 and 0.305)
         if a != b:
             return False
     objs = list(got.get("objects", []))

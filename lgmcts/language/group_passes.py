@@ -1,14 +1,17 @@
 """Token passes over a group said by its size: "all but two of the blocks" (how many of it are taken), a
 sentence that only narrows the group of the sentence before ("line up the blocks. oh, only the blue and the
 green ones"), "the one ..." said again after one object ("the farther bottle, the one at the back, ...") and sides
-given to a list "respectively". Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
+given to a list "respectively", and a reference put first with a command about it by a pronoun after it ("all the
+bowls except the white one put those in a line"). Run by :meth:`.rules._Parser._command_words` with the other token passes (:mod:`.passes`)."""
 
 from __future__ import annotations
 
 from ..errors import InputError
-from .clauses import _sentences
+from .clauses import _COMMAND_VERBS, _GOAL_WORDS, _sentences
 from .grounding import NUMBERS
 from .host import ParserHost
+from .matcher import STOPWORDS, _stem
+from .passes import _NOT_JOIN
 from .positions import _SIDES
 
 
@@ -191,6 +194,45 @@ class _GroupPasses(ParserHost):
         while rest[:1] == [","]:
             rest = rest[1:]
         return tuple(out + rest)
+
+    def _topic_split(self, clause: tuple[str, ...]) -> list[tuple[str, ...]]:
+        """"the bowls, stack them with the white one at the bottom", "the green can
+        move it so ...": a reference put first, then a command about it by a pronoun."""
+        start = 2 if clause[:2] == ("you", "know") else 0
+        try:
+            ms = self._find(clause[start:])
+        except InputError:
+            return [clause]
+        if not ms or ms[0].start != 0 or ms[0].det == "pronoun":
+            return [clause]
+        end = ms[0].end
+        for m in ms[1:]:
+            # "the purple block and the green one stack them ...": a topic of several references
+            if m.start == end + 1 and clause[start + end] == "and" and m.det != "pronoun":
+                end = m.end
+            else:
+                break
+        j = start + end
+        while j < len(clause) and clause[j] in (",", "and", "so", "then"):
+            j += 1
+        while j < len(clause) and clause[j] in ("just", "please", "now", "then", "can", "could", "you"):
+            j += 1
+        rest = clause[j:]
+        # "those"/"these" standing alone are pronouns too ("... put those in a line"), not before a noun
+        said = tuple("them" if w in ("those", "these") and not (rest[k + 1 : k + 2] and (
+            rest[k + 1] in self._cat_words or _stem(rest[k + 1]) in self._cat_words)) else w
+            for k, w in enumerate(rest))
+        if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them") or (
+                rest[0].isalpha() and rest[0] not in STOPWORDS and rest[0] not in _GOAL_WORDS
+                and rest[0] not in _NOT_JOIN and said[1:2] in (("it",), ("them",))))
+                and any(w in ("it", "them", "they") for w in said[:6])):
+            return [clause[start : start + end], rest]
+        if (end == ms[0].end and clause[start + end : start + end + 1] == (",",) and rest
+                and any(w in ("it", "them", "they", "those", "these") for w in rest)):
+            # "the tiger pan, the star must be sitting on top of it", "the plate, you
+            # are putting the spoon next to it": a topic, then a sentence about it.
+            return [clause[start : start + end], rest]
+        return [clause]
 
 
 #: Words that say where an object stands ("the one at the back", "the one closest to me").

@@ -11,7 +11,9 @@ a relation has nothing to set and is refused with a line that quotes it, so
 that a size said is never dropped from the goals.
 
 Units: m, cm, mm, inches, feet (and their spellings); results are metres,
-rounded to the millimetre.
+kept to a tenth of a millimetre (:data:`PLACES`) and rounded once: a size computed from a measure (half a width,
+a spacing times the gaps) is computed from the measure as said, not from a rounded one ("9 inches across" is a
+radius of 0.1143 m, not half of 0.229).
 """
 
 from __future__ import annotations
@@ -24,7 +26,10 @@ from typing import Literal
 from ..errors import InputError
 from . import lexicon
 
-__all__ = ["APPROXIMATE", "UNITS", "Measure", "Role", "find_measures", "size_for"]
+__all__ = ["APPROXIMATE", "PLACES", "UNITS", "Measure", "Role", "find_measures", "size_for"]
+
+#: Decimal places of metres a measure and a size are kept to (a tenth of a millimetre: "4 1/2 in." is 0.1143).
+PLACES = 4
 
 Role = Literal["radius", "across", "side", "long_side", "length", "spacing", "plain", "circumference"]
 
@@ -103,9 +108,10 @@ class Measure:
     """One quantity said in a command.
 
     ``start``/``end`` are character offsets of the whole phrase in the text
-    (role words and hedges included); ``metres`` is the quantity (for "A by
-    B" the longer of the two), ``dims`` every number said, ``role`` what it
-    measures ("plain" where no word says: "a 25 cm row").
+    (role words and hedges included); ``metres`` is the quantity as said,
+    unrounded (for "A by B" the longer of the two), ``dims`` every number
+    said, ``role`` what it measures ("plain" where no word says: "a 25 cm
+    row"). :func:`size_for` rounds the size it gives to :data:`PLACES`.
     """
 
     start: int
@@ -140,6 +146,12 @@ def _number(ws: list[str], i: int) -> tuple[float, int] | None:
         return None
     w = ws[i]
     if re.fullmatch(r"\d+(?:\.\d+)?|\.\d+", w):
+        frac = _slash_fraction(ws, i + 1) if w.isdigit() else None
+        if frac is not None:
+            return float(w) + frac[0], frac[1]  # a whole number and a fraction: "4 1/2 in", "11 1/2"
+        frac = _slash_fraction(ws, i)
+        if frac is not None:
+            return frac  # "3/4 in"
         return float(w), i + 1
     if w in ("point", "nought", "oh", "zero") or (w in _NUMBER_WORDS and ws[i + 1 : i + 2] == ["point"]):
         # a decimal said aloud: "point three", "nought point two five", "one point five"
@@ -163,6 +175,16 @@ def _number(ws: list[str], i: int) -> tuple[float, int] | None:
         if w in _TENS and j < len(ws) and ws[j] in _NUMBER_WORDS and 0 < _NUMBER_WORDS[ws[j]] < 10:
             return v + _NUMBER_WORDS[ws[j]], j + 1
         return v, i + 1
+    return None
+
+
+def _slash_fraction(ws: list[str], i: int) -> tuple[float, int] | None:
+    """A fraction written with a slash at ``i`` ("1/2", "3 / 4": digits, "/", digits, the upper one smaller):
+    (value, end), or None."""
+    if i + 2 < len(ws) and ws[i].isdigit() and ws[i + 1] == "/" and ws[i + 2].isdigit():
+        top, bottom = int(ws[i]), int(ws[i + 2])
+        if 0 < top < bottom:
+            return top / bottom, i + 3
     return None
 
 
@@ -338,11 +360,10 @@ def find_measures(text: str) -> list[Measure]:
                     break
         if len(dims) == 2 and role == "plain":
             role = "long_side"
-        value = round(max(dims), 3)
+        value = max(dims)
         if value <= 0:
             raise InputError(f"'{text[toks[i][1]:toks[j - 1][2]]}': a size must be more than zero")
-        said = Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role,
-                       tuple(round(d, 3) for d in dims))
+        said = Measure(toks[lo][1], toks[hi - 1][2], text[toks[lo][1] : toks[hi - 1][2]], value, role, dims)
         if out and _two_sides(out[-1], said, text):
             # "30 cm wide and 15 cm deep", "0.2 m long and 0.12 m deep": the two sides of one rectangle
             first = out.pop()
@@ -368,7 +389,7 @@ def _unit_said_once(ws: list[str], toks: list[tuple[str, int, int]], text: str, 
     if got is None or first is None or not first[0] or got[1] >= len(ws) or ws[got[1]] not in _RECT_SIDES \
             or ws[got[1]] == last:
         return said, hi
-    other = round(got[0] * said.dims[0] / first[0], 3)
+    other = got[0] * said.dims[0] / first[0]
     end = got[1] + 1
     return Measure(said.start, toks[end - 1][2], text[said.start : toks[end - 1][2]], max(said.metres, other),
                    "long_side", (*said.dims, other)), end
@@ -405,23 +426,23 @@ def size_for(pattern: str, measure: Measure, n_objects: int) -> float:
     role, v = measure.role, measure.metres
     if pattern == "circle":
         if role == "radius":
-            return v
+            return round(v, PLACES)
         if role in ("across", "plain"):
-            return round(v / 2, 3)
+            return round(v / 2, PLACES)
         if role == "circumference":
-            return round(v / (2 * math.pi), 3)  # "a circumference of 60 cm": the radius it has
+            return round(v / (2 * math.pi), PLACES)  # "a circumference of 60 cm": the radius it has
         raise InputError(f"{said}: a circle's size is its radius or its width across; say one of them")
     if pattern == "line":
         if role in ("length", "plain"):
-            return v
+            return round(v, PLACES)
         if role == "spacing":
             if n_objects < 2:
                 raise InputError(f"{said}: a spacing needs at least two objects in the line")
-            return round(v * (n_objects - 1), 3)
+            return round(v * (n_objects - 1), PLACES)
         raise InputError(f"{said}: a line's size is its length from end to end; say how long it is")
     if pattern == "rectangle":
         if role in ("side", "long_side", "plain", "length"):
-            return v
+            return round(v, PLACES)
         raise InputError(f"{said}: a rectangle's size is its longer side; say how long a side is")
     if pattern in _TOWERS:
         raise InputError(f"{said}: a stack has no size in numbers (its footprint is its base object's)")

@@ -362,41 +362,6 @@ class _TokenPasses(ParserHost):
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
         return stages.spell(text, self.vocab, lexicon, nouns, protect)
 
-    def _topic_split(self, clause: tuple[str, ...]) -> list[tuple[str, ...]]:
-        """"the bowls, stack them with the white one at the bottom", "the green can
-        move it so ...": a reference put first, then a command about it by a pronoun."""
-        start = 2 if clause[:2] == ("you", "know") else 0
-        try:
-            ms = self._find(clause[start:])
-        except InputError:
-            return [clause]
-        if not ms or ms[0].start != 0 or ms[0].det == "pronoun":
-            return [clause]
-        end = ms[0].end
-        for m in ms[1:]:
-            # "the purple block and the green one stack them ...": a topic of several references
-            if m.start == end + 1 and clause[start + end] == "and" and m.det != "pronoun":
-                end = m.end
-            else:
-                break
-        j = start + end
-        while j < len(clause) and clause[j] in (",", "and", "so", "then"):
-            j += 1
-        while j < len(clause) and clause[j] in ("just", "please", "now", "then", "can", "could", "you"):
-            j += 1
-        rest = clause[j:]
-        if (rest and (rest[0] in _COMMAND_VERBS or rest[0] in ("it", "they", "them") or (
-                rest[0].isalpha() and rest[0] not in STOPWORDS and rest[0] not in _GOAL_WORDS
-                and rest[0] not in _NOT_JOIN and rest[1:2] in (("it",), ("them",))))
-                and any(w in ("it", "them", "they") for w in rest[:6])):
-            return [clause[start : start + end], rest]
-        if (end == ms[0].end and clause[start + end : start + end + 1] == (",",) and rest
-                and any(w in ("it", "them", "they", "those", "these") for w in rest)):
-            # "the tiger pan, the star must be sitting on top of it", "the plate, you
-            # are putting the spoon next to it": a topic, then a sentence about it.
-            return [clause[start : start + end], rest]
-        return [clause]
-
     def _remember(self, clause: tuple[str, ...]) -> None:
         """Let later pronouns and bare colours refer to what a dropped remark names."""
         try:

@@ -41,6 +41,9 @@ def _pose_goal(self: _Parser, words: tuple[str, ...], mark: str, text: str) -> l
     said = self._poses[ord(mark[-1]) - ord("a")]
     mentions = self._find(words)
     sel = self._select(mentions[0]) if len(mentions) == 1 else None
+    chosen = self.state.selection
+    if not mentions and chosen is not None and len(chosen) == 1 and isinstance(chosen[0], int):
+        sel, self.state.selection = [chosen[0]], None  # "Box: 250 mm right of centre, 100 mm toward me."
     if not isinstance(sel, list) or len(sel) != 1:
         raise InputError(f"'{text}': a pose said in numbers is for one object; name that object")
     oid = sel[0]

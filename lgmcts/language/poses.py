@@ -185,6 +185,39 @@ def _step(ws: list[str], i: int) -> tuple[float, float, int, bool] | None:
     return dx * metres, dy * metres, k, centre
 
 
+_TURN_WORDS = frozenset({"rotated", "turned", "yaw", "rotation", "heading", "angle"})
+_DEGREES = frozenset({"degrees", "degree", "deg", "\u00b0"})
+_RADIANS = frozenset({"rad", "rads", "radian", "radians"})
+
+
+def _turn_after(ws: list[str], k: int) -> tuple[float, int] | None:
+    """A yaw said right after a move ("..., rotated 90 degrees counterclockwise", "with a yaw of 1.57 rad"):
+    (radians, counter-clockwise; the end of its words), or None."""
+    j = k
+    while j < len(ws) and ws[j] in (",", "and", "with", "a", "then"):
+        j += 1
+    if j >= len(ws) or ws[j] not in _TURN_WORDS:
+        return None
+    j += 1
+    while j < len(ws) and ws[j] in ("by", "to", "of", "about", "approximately", "roughly", "exactly"):
+        j += 1
+    got = _number_at(ws, j)
+    if got is None:
+        return None
+    yaw, j = got
+    if j < len(ws) and ws[j] in _DEGREES:
+        yaw, j = math.radians(yaw), j + 1
+    elif j < len(ws) and ws[j] in _RADIANS:
+        j += 1
+    if j < len(ws) and ws[j] in ("clockwise", "cw"):
+        return -yaw, j + 1  # yaw is counter-clockwise: "90 degrees clockwise" is -pi/2
+    if j < len(ws) and ws[j] in ("counterclockwise", "anticlockwise", "ccw"):
+        return yaw, j + 1
+    if ws[j : j + 3] in (["counter", "-", "clockwise"], ["anti", "-", "clockwise"]):
+        return yaw, j + 3
+    return yaw, j
+
+
 #: A side of "it" said after a distance from the table's centre ("and 10 cm behind it").
 _OF_IT = {("behind", "it"): (0.0, 1.0), ("in", "front", "of", "it"): (0.0, -1.0), ("left", "of", "it"): (-1.0, 0.0),
           ("right", "of", "it"): (1.0, 0.0), ("to", "the", "left", "of", "it"): (-1.0, 0.0),
@@ -211,7 +244,7 @@ def find_offsets(text: str) -> list[SaidPose]:
     """Every move said as a distance in ``text``, left to right: after a verb of moving in the same
     sentence, from where the object stands ("slide the black bowl 10 cm further back", "move the star 8 cm
     to the left"); anywhere, from the table's centre ("the phone 10 cm right of the table centre and 5 cm
-    toward the back"). Two distances joined by "and" make one move.
+    toward the back"). Two distances joined by "and" or a comma make one move.
 
     >>> p = find_offsets("slide the bowl 10 cm further back from where it sits now")[0]
     >>> (p.frame, round(p.x, 3), round(p.y, 3))
@@ -248,7 +281,9 @@ def find_offsets(text: str) -> list[SaidPose]:
         if here is not None:
             k += len(here)
         if centre or moved:
-            out.append(SaidPose(toks[i][1], toks[k - 1][2], dx, dy, None, "centre" if centre else "offset"))
+            turn = _turn_after(ws, k)  # "..., rotated 90 degrees counterclockwise": the yaw, never read past
+            yaw, k = turn if turn is not None else (None, k)
+            out.append(SaidPose(toks[i][1], toks[k - 1][2], dx, dy, yaw, "centre" if centre else "offset"))
         i = k
     return out
 

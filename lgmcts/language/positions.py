@@ -314,6 +314,24 @@ def _middle_ref(ws: tuple[str, ...], i: int, j: int) -> PositionRef | None:
     return None
 
 
+#: Sides said before a head ("the front bowl", "the left can"): the one furthest that way.
+_SIDE_BEFORE = {"front": Key("y", 1), "back": Key("y", -1), "rear": Key("y", -1), "left": Key("x", 1),
+                "right": Key("x", -1)}
+#: Heads after a side that name a part of the table, not objects ("the front edge", "the back row").
+_PLACE_HEADS = lexicon.REGION_NOUNS | lexicon.TABLE_WORDS | {"row", "rows", "column", "columns", "wall", "band",
+                                                             "strip", "line", "of", "one", "ones", "hand", "cell"}
+
+
+def _side_before_ref(ws: tuple[str, ...], i: int, j: int) -> PositionRef | None:
+    """"the front bowl", "the left can": one object named with the side it stands furthest to, or None (a part
+    of the table: "the front edge", "the back left corner"; a plural: "the back cans")."""
+    end = _np(ws, j + 1, 3)
+    head = tuple(ws[j + 1 : end])
+    if not head or any(x in _PLACE_HEADS for x in head) or (head[-1].endswith("s") and not head[-1].endswith("ss")):
+        return None
+    return PositionRef(i, end, head, _SIDE_BEFORE[ws[j]])
+
+
 def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     """The phrase at ``i`` that picks objects by where they stand (:func:`find_position_refs`), or None."""
     w = ws[i]
@@ -339,6 +357,8 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
     # "the middle/centre one (of the three bowls)", "the middle bowl of the three"
     if ws[j] in ("middle", "centre", "center", "central") and j + 1 < len(ws):
         return _middle_ref(ws, i, j)
+    if w == "the" and ws[j] in _SIDE_BEFORE:
+        return _side_before_ref(ws, i, j)
     count = 1
     if ws[j] in _COUNTS:
         count, j = _COUNTS[ws[j]], j + 1

@@ -549,10 +549,21 @@ def _their_new_spot_place(m: re.Match[str]) -> str:
 
 @replacer("repairs-inside-reference-blue")
 def _repairs_inside_reference_blue(m: re.Match[str]) -> str:
-    """A request taken back ("..., no wait, ..."): dropped where it asked for an arrangement or a place setting."""
-    if says(m.group(2), "asks") or says(m.group(2), "setting"):
-        return m.group(1)
-    return m.group(0)
+    """A request taken back ("..., no wait, ..."): dropped where it asked for an arrangement or a place setting,
+    unless what follows only names again the object it ended on ("... in front of the yellow cup, no wait, the
+    orange cup": that object is corrected, by the rows after this one)."""
+    if _same_head_again(m) or not (says(m.group(2), "asks") or says(m.group(2), "setting")):
+        return m.group(0)
+    return m.group(1)
+
+
+def _same_head_again(m: re.Match[str]) -> bool:
+    """Whether the words after the repair ``m`` up to the next stop are one reference ("the orange cup", at most
+    four words) with the head noun that the words before the repair end on."""
+    tail = m.string[m.end() :]
+    stop = min((k for k in (tail.find(c) for c in ",.;!?") if k >= 0), default=len(tail))
+    said, before = lexicon.words(tail[:stop]), lexicon.words(m.group(2))
+    return 2 <= len(said) <= 4 and said[0] == "the" and bool(before) and said[-1] == before[-1]
 
 
 @replacer("not-the-other-one")

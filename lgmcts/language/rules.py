@@ -59,6 +59,7 @@ from .shapes import normalise
 from .arrangements import _Arrangements
 from .assembly import _Finishing
 from .framing import _Framing
+from .pairs import pair_named, stack_by_colours
 from .passes import _TokenPasses
 from .group_passes import _GroupPasses
 from .selection import _Selecting
@@ -270,6 +271,8 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
                                   dict(self.vocab.borrowed), group=self.state.group)
         text = stages.by_colour(text, self._find, self._every_match, {o.id: o.color for o in self.spec.objects})
         text = stages.same_again(text, self._find, self._every_match)
+        text = pair_named(text, self._find, self._every_match)
+        text = stack_by_colours(text, self._find, self._every_match)
         self._nearness(text)
         text = rewrite(self._articles(text))
         self._said = text

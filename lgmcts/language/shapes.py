@@ -320,6 +320,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
     _stack_orders(words, protected)
     seen_pattern = False
     blocked = False
+    own_list = False  # the objects said after the pattern noun and "of" ("a line of the cups and ...")
     band = False
     params: dict[str, str | int] = {}
     keep: list[str] = []
@@ -339,6 +340,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             end = protected[i]
             if seen_pattern and i > 0 and words[i - 1] in ("and", ",", "&", "while", "plus"):
                 blocked = True
+            own_list = own_list or (seen_pattern and i > 0 and words[i - 1] == "of")
             run = _region_run(words, end) if end < n else None
             if seen_pattern and i > 0 and words[i - 1] == "with" and run is not None \
                     and any(words[x] in ("middle", "center", "centre") for x in range(end, min(end + 4, n))) \
@@ -348,7 +350,7 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
             i = end
             continue
         if pattern_nouns(w):
-            seen_pattern, blocked = True, False
+            seen_pattern, blocked, own_list = True, False, False
         if w.startswith("sizemark") and len(w) == 9:
             put("measure", ord(w[-1]) - 97, " ".join(words))  # a measure in numbers (.stages.mark_measures)
             i += 1
@@ -373,7 +375,10 @@ def take_params(words: tuple[str, ...], pattern_nouns, protected: dict[int, int]
         if blocked and got is not None and free is None and not (
                 any(words[x] in _TABLE or words[x] in REGION_NOUNS for x in range(i, got[2]))
                 or sum(words[x] in ROWS or words[x] in COLS for x in range(i, got[2])) >= 2):
-            got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
+            if own_list and not any(words[x] in ("middle", "centre", "center") for x in range(i, got[2])):
+                blocked = False  # "a line of the cups and the box at the back (in the middle)": the line's own list
+            else:
+                got = None  # a place right after an object listed last is that object's ("..., the centre of the table" is not)
         if got is not None and any(k in protected for k in range(i, got[2])):
             got = None
         if got is not None:

@@ -66,9 +66,11 @@ SOUNDS_LIKE: dict[str, str] = {
     "mugg": "mug", "kup": "cup", "cerial": "cereal", "bottel": "bottle", "phon": "phone", "telephone": "phone",
     "cellphone": "phone", "smartphone": "phone", "boles": "bowls", "bole": "bowl", "lyne": "line",
 }
-#: Homophones read by the next word: "read" is "red" and "too"/"for" are "two"/"four" before a thing of
-#: the scene ("the read bowl", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".
-_BEFORE_A_THING = {"read": "red", "too": "two", "for": "four", "won": "one"}
+#: Homophones read by the next word: "read" is "red", "blew" "blue" and "too"/"for" are "two"/"four" before a
+#: thing of the scene ("the read bowl", "the blew can", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".
+_BEFORE_A_THING = {"read": "red", "blew": "blue", "too": "two", "for": "four", "won": "one"}
+#: Those of :data:`_BEFORE_A_THING` that sound like a colour ("the read bowl", "the blew can").
+_COLOUR_SOUNDS = frozenset({"red", "blue"})
 _SIDE_SOUNDS = {"write": "right", "rite": "right", "wright": "right"}
 #: Words after which a "2" said between words is "to" ("closest 2 me", "2 the right", "needs 2 be").
 _AFTER_TO = frozenset({"the", "me", "us", "be", "look", "you", "u", "my", "them", "its", "their", "face", "point",
@@ -278,7 +280,8 @@ class Corrector:
         nxt = self.word(nxt) if nxt and nxt not in self.known else nxt
         if w in _BEFORE_A_THING:
             want = _BEFORE_A_THING[w]
-            if want == "red" and "red" in self.scene and (nxt in self.scene - self.colours or nxt in ("one", "ones")):
+            if want in _COLOUR_SOUNDS and want in self.scene and (nxt in self.scene - self.colours
+                                                                  or nxt in ("one", "ones")):
                 return want
             if want in ("two", "four") and nxt.endswith("s") and nxt in self.scene - self.colours:
                 return want

@@ -79,12 +79,13 @@ _RESTATING = frozenset({"i", "mean", "yeah", "yes", "so", "or", "like", "that's"
 
 def _restated(text: str, before: Measure, m: Measure) -> bool:
     """Whether ``m`` says ``before`` again right after it ("half a metre long, fifty centimetres"): the same
-    quantity of the same role (or none said), only fillers between; or said again in other units, hedged, in
+    quantity to the millimetre, of the same role (or none said), only fillers between; or said again in other units, hedged, in
     brackets or after "i.e.", within 3 % ("8 inches long -- approximately 20 cm", "15 centimetres (6 inches)",
     "20 cm by 10 cm, i.e. the longer side 20 cm")."""
     between = text[before.end : m.start]
     restating = lexicon.says(between, "that_is")
-    same = abs(m.metres - before.metres) < 1e-9 or (
+    # the same quantity to the millimetre it is said to ("a foot across -- call it 30.5 cm": 0.3048 and 0.305)
+    same = abs(m.metres - before.metres) < 5e-4 or (
         (any(w in APPROXIMATE for w in lexicon.words(m.text)) or "(" in between or restating)
         and abs(m.metres - before.metres) <= 0.03 * before.metres)
     return (same and (m.role == before.role or "plain" in (m.role, before.role))

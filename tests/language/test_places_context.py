@@ -115,6 +115,11 @@ def _drop(text: str) -> str:
     ("quick one before lunch: stack the bowls", "stack the bowls"),                      # ... said inside chatter
     ("before my shift, stack the bowls", "stack the bowls"),            # "shift" after "my" is a noun, no verb
     ("ok quick one before meds round: stack the bowls", "stack the bowls"),
+    ("stack the bowls, before the glue sets", "stack the bowls"),       # an event said after, its own verb
+    ("it's been a long day haha. stack the bowls", "stack the bowls"),  # a long day: no size
+    ("honestly it looks fine but put the mug left of the plate", "put the mug left of the plate"),
+    ("i keep going back and forth on this but put the mug left of the plate", "put the mug left of the plate"),
+    ("my daughter built a circle earlier and knocked it over. stack the bowls", "stack the bowls"),  # what was built
 ])
 def test_context_that_asks_nothing_is_dropped(text, left):
     assert _drop(text) == left
@@ -134,6 +139,8 @@ def test_context_that_asks_nothing_is_dropped(text, left):
     "put the mug left of the plate",
     "before the red mug, stack the bowls",                          # an object after "before": kept
     "i want to see all my cans at a glance. stack them",            # "my cans" names objects
+    "everything but the red mug in a row",                          # "but" inside a reference: no remark
+    "my daughter built a circle earlier. put the mug in it",        # "it": what the story names
 ])
 def test_what_may_matter_is_kept(text):
     assert _drop(text) == " ".join(_ws(text))

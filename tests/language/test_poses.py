@@ -100,3 +100,19 @@ def test_a_place_from_the_table_centre_and_two_poses_in_one_clause(matcher):
 def test_a_distance_that_is_no_move_is_no_pose(text):
     assert all(p.frame == "table" for p in mark_poses(text)[1])
     assert mark_poses(text)[1] == []
+
+
+@pytest.mark.parametrize("text, x, y, yaw", [
+    # two distances joined by a comma make one move; a turn said right after it is its yaw (never read past)
+    ("box: 250 mm right of centre, 100 mm toward me", 0.25, -0.1, None),
+    ("the box 25 cm right of the table centre and 10 cm toward me, rotated 90 degrees counterclockwise",
+     0.25, -0.1, math.pi / 2),
+    ("the box 25 cm right of centre, 10 cm toward me, turned 90 degrees clockwise", 0.25, -0.1, -math.pi / 2),
+    ("slide the box 10 cm further back, rotated by 1.5 rad", 0.0, 0.1, 1.5),
+])
+def test_a_move_with_its_turn(text, x, y, yaw):
+    from lgmcts.language.poses import find_offsets
+
+    (p,) = find_offsets(text)
+    assert (round(p.x, 4), round(p.y, 4)) == (x, y)
+    assert (p.yaw is None and yaw is None) or abs(p.yaw - yaw) < 1e-9

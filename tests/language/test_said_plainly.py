@@ -168,8 +168,8 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
      [{"pattern": "tower", "objects": [6, 4, 5]}]),
     ("a tower where the top block is blue and the bottom block is green, with the red block between them",
      [{"pattern": "tower", "objects": [6, 4, 5]}]),
-    ("blocks in a circle with a circumference of 62.8 cm",
-     [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.1}]),
+    ("blocks in a circle with a circumference of 62.8 cm",     # 62.8 / 2 pi = 0.09995, to 0.1 mm
+     [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.0999}]),
 ])
 def test_lists_sides_and_facings_said_loosely(said, goals):
     assert _goals(said) == goals

@@ -42,6 +42,7 @@ def _fix(text: str) -> str:
     ("stack em", "stack them"),                                        # contractions without their apostrophe
     ("the mug left of the plait", "the mug left of the plate"),       # sounds like a name the scene has
     ("put the read mug write of the box", "put the red mug right of the box"),  # homophones read by their neighbours
+    ("stack the read mug on the blew mug", "stack the red mug on the blue mug"),
     ("put too mugs on the plate", "put two mugs on the plate"),
     ("put for cans in a row", "put four cans in a row"),
     ("the mug closest 2 me, n the box", "the mug closest to me, and the box"),   # texting
