@@ -52,7 +52,9 @@ def _goals(said: str) -> list[dict]:
 @pytest.mark.parametrize("said, goals", [
     ("put the red block at the plate's three o'clock", [{"pattern": "right", "objects": [4], "anchor": 1}]),
     ("put the red block at the plate's half past four", [{"pattern": "right_front", "objects": [4], "anchor": 1}]),
-    ("put the red block at its ten-thirty, the plate I mean", None),
+    # "its" said again as the object it stands for
+    ("put the red block at its ten-thirty, the plate I mean", [{"pattern": "left_behind", "objects": [4], "anchor": 1}]),
+    ("put the red block at its ten-thirty", None),
     ("the red block at three o'clock from the plate", [{"pattern": "right", "objects": [4], "anchor": 1}]),
     ("Look at the plate. The red block goes at its nine o'clock, the blue block at its three.",
      [{"pattern": "left", "objects": [4], "anchor": 1}, {"pattern": "right", "objects": [5], "anchor": 1}]),
