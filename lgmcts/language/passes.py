@@ -425,6 +425,8 @@ class _TokenPasses(ParserHost):
             for k, w in enumerate(clause))
         if goal or (lead in ("only", "just") and any(m is not None for m in named)):
             return False  # "oh, only the blue and the green ones": which objects, never a remark
+        if any(m is not None for m in named) and (clause[-1:] == ("too",) or clause[-2:] == ("as", "well")):
+            return False  # "hmm, and the green can as well": more objects for what was asked, never a remark
         try:
             ms = self._find(clause)
         except InputError:
