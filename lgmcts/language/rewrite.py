@@ -172,6 +172,10 @@ def _corrected(text: str, relations_only: bool = False) -> str:
         if m is None:
             return text
         dropped, rest = m.group(0), text[m.end():]
+        if not rest.strip(" ,.;!?"):
+            # "..., back right actually" at the end: the place said is the correction, nothing follows it
+            pos = m.end()
+            continue
         if relations_only and not _REL_START.match(rest):
             pos = m.end()
             continue
