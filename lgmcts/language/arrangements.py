@@ -288,6 +288,13 @@ class _Arrangements(ParserHost):
                 nm = next(n for i, n, _ in self.vocab.objects if i == x)
                 named["plate" if nm in plates else "bowl" if nm == "bowl" else "cut"].append(x)
         said = " ".join(rest)
+        for k, w in enumerate(rest):
+            but = rest.index("but", k) if "but" in rest[k:] else len(rest)
+            if w in ("not", "never", "don't", "dont") and any(x in ("left", "right") for x in rest[k + 1 : k + 9]) \
+                    and not any(x in ("left", "right") for x in rest[but:]):
+                # "set a place, but don't put the cutlery on the left of the plate": the side was taken as said
+                raise InputError(f"'{' '.join(x for x in rest[k:] if x.isalnum())}': a setting that something must "
+                                 f"not hold is not read; say on which side the cutlery goes")
         if re.search(r"\b(?:on|to) the left\b", said) and re.search(r"\b(?:on|to) the right\b", said) and not re.search(
                 r"\b(?:or|either|whichever|any|one|other)\b", said):
             raise InputError(f"contradiction: '{said}' puts the cutlery both left and right of the plate")

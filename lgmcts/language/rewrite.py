@@ -503,6 +503,11 @@ def _drop_cup_into_bowl(m: re.Match[str]) -> str:
 
 @replacer("blocks-too-but-separately")
 def _blocks_too_but_separately(m: re.Match[str]) -> str:
+    """", and the blocks too": the same again for them; but where "and" ends a list ("line up the mug, the cup
+    and the bottle as well") the last item is one of that list (it was split off as a line of its own)."""
+    last = lexicon.words(m.group(1).split(",")[-1])
+    if "," in m.group(1) and last[:1] == ["the"] and len(last) <= 4 and "separately" not in m.group(0).lower():
+        return f"{m.group(1)} and {m.group(2)}"
     return f'{m.group(1)}. the same for {m.group(2)}' if says(m.group(1), "asks") else m.group(0)
 
 

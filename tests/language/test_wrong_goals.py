@@ -156,3 +156,53 @@ def test_a_place_refined_at_the_end_with_actually():
 def test_a_count_of_the_non_coloured_group():
     (goal,) = _goals("put any three of the non-green blocks in a line")
     assert goal["pattern"] == "line" and len(goal["objects"]) == 3 and set(goal["objects"]) <= {7, 8, 10}
+
+
+@pytest.mark.slow
+def test_adjacent_to_an_object_on_its_left_is_left_of_that_object():
+    assert _goals("position the red block adjacent to the blue block on its left") == [
+        {"pattern": "left", "objects": [7], "anchor": 8}]
+
+
+@pytest.mark.slow
+def test_a_relation_to_any_of_them_takes_one_anchor():
+    goals = _goals("line up the blocks, and put the yellow cup in front of any of them")
+    fronts = [g for g in goals if g["pattern"] == "front"]
+    assert len(fronts) == 1 and fronts[0]["objects"] == [5] and fronts[0]["anchor"] in (7, 8, 9, 10)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, pattern", [
+    ("Put the three bowls in a circle. Actually, no, a straight line is better.", "line"),
+    ("put the three bowls in a line, no wait, a circle", "circle"),
+])
+def test_an_arrangement_corrected_keeps_only_the_second(said, pattern):
+    assert _goals(said) == [{"pattern": pattern, "objects": [2, 3, 4]}]
+
+
+@pytest.mark.slow
+def test_the_same_for_taken_back_leaves_those_objects():
+    goals = _goals("blocks in a line, bowls in a circle. The same for the cups? No, leave the cups where they are.")
+    assert [g["pattern"] for g in goals] == ["line", "circle"]
+
+
+@pytest.mark.slow
+def test_a_list_ending_in_as_well_is_one_list():
+    assert _goals("line up the white bottle, the blue bottle and the red block as well") == [
+        {"pattern": "line", "objects": [11, 12, 7]}]
+
+
+@pytest.mark.slow
+def test_a_setting_that_must_not_hold_is_refused():
+    from lgmcts.formats import parse_scene
+    from lgmcts.language import parse
+
+    scene = parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [0.2 * k - 0.4, 0.0, 0.0]}
+        for k, (n, c) in enumerate([("plate", "white"), ("bowl", "blue"), ("fork", "silver"), ("knife", "silver"),
+                                    ("spoon", "silver")])]})
+    with pytest.raises(InputError, match="must not hold"):
+        parse(scene, "Dinner time! Set a place, but don't put the cutlery on the left of the plate.")
+    goals = parse(scene, "set a place with the cutlery on the right").goals
+    assert [(g.pattern, g.anchor) for g in goals][-1] == ("right", 1)
