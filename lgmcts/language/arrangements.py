@@ -178,7 +178,6 @@ class _Arrangements(ParserHost):
             given = set(roles.values())
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
-            before = list(objs)
             objs = sorted(objs, key=lambda x: rank.get(roles.get(x), 3))
             if paired is not None:
                 _check_roles_keep_pairs(text, sels[:2] if paired == "under" else sels[1::-1], objs)

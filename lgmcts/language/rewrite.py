@@ -546,8 +546,8 @@ def _only_spoon_not_fork(m: re.Match[str]) -> str:
     before = lexicon.words(m.string[: m.start()])[-6:]
     plural = bool(said) and said[-1] not in ("one", "ones") and any(
         w in before for w in (said[-1] + "s", said[-1] + "es", said[-1][:-1] + "ies"))
-    if said and (plural or re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$",
-                                     m.string[: m.start()]) and said[-1] in ("one", "ones")):
+    if said and (plural or (re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$",
+                                      m.string[: m.start()]) is not None and said[-1] in ("one", "ones"))):
         return f" except the {' '.join(said)},"
     return ","
 

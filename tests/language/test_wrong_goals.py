@@ -206,3 +206,20 @@ def test_a_setting_that_must_not_hold_is_refused():
         parse(scene, "Dinner time! Set a place, but don't put the cutlery on the left of the plate.")
     goals = parse(scene, "set a place with the cutlery on the right").goals
     assert [(g.pattern, g.anchor) for g in goals][-1] == ("right", 1)
+
+
+@pytest.mark.slow
+def test_on_top_from_is_on_top_of():
+    assert _goals("put the white bowl on top from the red bowl") == [{"pattern": "tower", "objects": [3, 2]}]
+
+
+@pytest.mark.slow
+def test_from_the_group_take_a_count():
+    (goal,) = _goals("from the four blocks take only three and put them in a circle")
+    assert goal["pattern"] == "circle" and len(goal["objects"]) == 3 and set(goal["objects"]) <= {7, 8, 9, 10}
+
+
+@pytest.mark.slow
+def test_the_ones_after_a_topic_are_of_that_topic():
+    (goal,) = _goals("the blocks: take the ones that aren't green and put them in a row")
+    assert goal["pattern"] == "line" and sorted(goal["objects"]) == [7, 8, 10]
