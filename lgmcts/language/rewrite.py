@@ -533,6 +533,15 @@ def _highest_topmost_stack_roles(m: re.Match[str]) -> str:
     return m.group(1).split()[0].replace('top', 'highest').replace('bottom', 'lowest')
 
 
+_EDGE_POINT = {"left": "west", "right": "east", "back": "north", "far": "north", "front": "south", "near": "south"}
+
+
+@replacer("facing-restated-by-edge")
+def _facing_restated_by_edge(m: re.Match[str]) -> str:
+    """"faces west, toward the left edge": the edge names the same direction, the facing once; else as said."""
+    return m.group(1) if _EDGE_POINT[m.group(3).lower()] == m.group(2).lower() else m.group(0)
+
+
 @replacer("only-spoon-not-fork")
 def _only_spoon_not_fork(m: re.Match[str]) -> str:
     """", not the white one," after a plural ("the bowls, but not the white one,"): an exception; else nothing.

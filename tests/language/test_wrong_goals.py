@@ -223,3 +223,15 @@ def test_from_the_group_take_a_count():
 def test_the_ones_after_a_topic_are_of_that_topic():
     (goal,) = _goals("the blocks: take the ones that aren't green and put them in a row")
     assert goal["pattern"] == "line" and sorted(goal["objects"]) == [7, 8, 10]
+
+
+@pytest.mark.slow
+def test_a_facing_said_again_by_its_edge_is_no_place():
+    assert _goals("arrange the two bottles in a line that faces west, toward the left edge") == [
+        {"pattern": "line", "objects": [11, 12], "facing": "west"}]
+
+
+@pytest.mark.slow
+def test_it_named_after_a_dash_with_i_mean():
+    goals = _goals("put the yellow cup behind the orange cup, then put the red bowl right of it \u2014 of the yellow cup I mean")
+    assert goals[-1] == {"pattern": "right", "objects": [3], "anchor": 5}
