@@ -137,10 +137,15 @@ class _Arrangements(ParserHost):
                 if len(head) > 1 and all(isinstance(x, int) for x in rest) and sorted(rest) == sorted(head):
                     sels = [sels[0][1:], *sels[1:]]
         order = list(range(len(sels)))
+        # "A on B" said between the first two references: A above B (or below, said "under")
+        paired = vertical if info.ordered and len(sels) > 1 else None
         if info.ordered and len(sels) > 1:
             if vertical == "on" or (vertical is None and any(
                     any(tuple(words[lo:hi])[-n:] in _ON_WORDS for n in (1, 2, 3)) for lo, hi in gaps[1:-1] if hi > lo)):
                 order.reverse()
+                if vertical is None and len(gaps) > 2 and gaps[1][1] > gaps[1][0] and any(
+                        tuple(words[gaps[1][0]:gaps[1][1]])[-n:] in _ON_WORDS for n in (1, 2, 3)):
+                    paired = "on"
         objs: list[int | Choice] = []
         for g in order:
             for s in sels[g]:
@@ -174,6 +179,8 @@ class _Arrangements(ParserHost):
             if "middle" in given and "bottom" not in given:
                 rank[None] = 1.5  # "B in the middle and C on top": the one left is at the bottom
             objs = sorted(objs, key=lambda x: rank.get(roles.get(x), 3))
+            if paired is not None:
+                _check_roles_keep_pairs(text, sels[:2] if paired == "under" else sels[1::-1], objs)
             if given == {"middle"}:
                 # "stack the three bowls with the white one in the middle": as many below it as above it
                 free = [x for x in objs if x not in roles]
@@ -280,6 +287,13 @@ class _Arrangements(ParserHost):
                 nm = next(n for i, n, _ in self.vocab.objects if i == x)
                 named["plate" if nm in plates else "bowl" if nm == "bowl" else "cut"].append(x)
         said = " ".join(rest)
+        for k, w in enumerate(rest):
+            but = rest.index("but", k) if "but" in rest[k:] else len(rest)
+            if w in ("not", "never", "don't", "dont") and any(x in ("left", "right") for x in rest[k + 1 : k + 9]) \
+                    and not any(x in ("left", "right") for x in rest[but:]):
+                # "set a place, but don't put the cutlery on the left of the plate": the side was taken as said
+                raise InputError(f"'{' '.join(x for x in rest[k:] if x.isalnum())}': a setting that something must "
+                                 f"not hold is not read; say on which side the cutlery goes")
         if re.search(r"\b(?:on|to) the left\b", said) and re.search(r"\b(?:on|to) the right\b", said) and not re.search(
                 r"\b(?:or|either|whichever|any|one|other)\b", said):
             raise InputError(f"contradiction: '{said}' puts the cutlery both left and right of the plate")
@@ -316,3 +330,16 @@ class _Arrangements(ParserHost):
         out.append(_Pending("line", list(cut), None, None, text, {} if bowls else dict(params)))
         out.append(_Pending(side, list(cut), plate, None, text))
         return out
+
+
+def _check_roles_keep_pairs(text: str, pair, objs: list) -> None:
+    """Refuse roles that turn round a pair said with "on" or "under" (``pair``: the references below, then
+    those above): "stack the plate on the bowl with the bowl on top" asks for both orders (before, the role
+    won and the plate went under the bowl)."""
+    flat = [[x for s in sel for x in (s if isinstance(s, list) else [s])] for sel in pair]
+    for a in flat[0]:
+        for b in flat[1]:
+            if a != b and a in objs and b in objs and objs.index(a) > objs.index(b):
+                plain = " ".join(w for w in text.split() if w != "|")
+                raise InputError(f"'{plain}': the stack's order said by the pair and by the roles disagree; "
+                                 f"say which goes on top once")

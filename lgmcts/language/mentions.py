@@ -192,6 +192,10 @@ def _quantity(vocab: Vocabulary, words: tuple[str, ...], i: int,
             got_n = _number(words, j)
             if got_n is not None:  # "two of the three cans"
                 of_count, j = got_n
+            if non is None and j + 1 < n and words[j] == "non":
+                got_c = _colors(vocab, words, j + 1)
+                if got_c is not None:  # "any four of the non-green blocks"
+                    non, j = got_c
         elif det == "the" and not nested:
             of_count = count  # "the three cans" presupposes exactly three: refused when four match
         det = "count" if det in ("", "the", "one") else det

@@ -407,6 +407,13 @@ class _TokenPasses(ParserHost):
         object, pattern, direction, place, size or order ("ok robot", "here is
         the plan", "if it is not too much trouble", "could you do that")."""
         if self._remark(clause):
+            if clause[-1:] == ("too",) or clause[-2:] == ("as", "well"):
+                # "hmm, and the green can as well": objects added to what was asked; where no goal then uses
+                # them (no "them" later takes them), the command is refused, never answered without them
+                try:
+                    self._named_in.append((clause, self._find(clause)))
+                except InputError:
+                    pass
             if "," in clause and self._names_objects(list(clause)):
                 # "A, R, T, E, by the window": a list of objects with an aside that says where is no remark
                 for k, w in enumerate(clause):

@@ -172,6 +172,10 @@ def _corrected(text: str, relations_only: bool = False) -> str:
         if m is None:
             return text
         dropped, rest = m.group(0), text[m.end():]
+        if not rest.strip(" ,.;!?"):
+            # "..., back right actually" at the end: the place said is the correction, nothing follows it
+            pos = m.end()
+            continue
         if relations_only and not _REL_START.match(rest):
             pos = m.end()
             continue
@@ -259,9 +263,11 @@ _SIZE_SAID = ((re.compile(r"(?i),?\s*\b(?:nice and|good and|really|nice|small an
                "small"))
 
 
-#: A size said on its own after the arrangement: ", a big one", ", medium size".
-_SIZE_AFTER = re.compile(r"(?i),\s*(?:(?:a|an) (small|little|tiny|medium|medium-sized|mid-sized|large|big|huge) one|"
-                         r"(small|medium|large|big)[- ]?(?:size|sized))\b(?=\s*(?:[,;.!?]|$))")
+#: A size said on its own after the arrangement: ", a big one", ", medium size", a bare ", small" that ends the
+#: clause, "(a rectangle) of medium size".
+_SIZE_AFTER = re.compile(r"(?i)(?:,\s*(?:(?:a|an) (small|little|tiny|medium|medium-sized|mid-sized|large|big|huge) one|"
+                         r"(small|medium|large|big)[- ]?(?:size|sized)|(small|medium|large|big))|"
+                         r"\s+of (?:a )?(small|medium|large|big) size)\b(?=\s*(?:[,;.!?]|$))")
 _SIZE_NAMES = {"little": "small", "tiny": "small", "medium-sized": "medium", "mid-sized": "medium", "big": "large",
                "huge": "large"}
 _BARE_SHAPE = re.compile(rf"(?i)\b()({MACROS['SHAPE']})\b")
@@ -279,7 +285,7 @@ def _size_words(text: str) -> str:
     a = shapes[0]
     if after is not None and after.start() >= a.end() and not says(
             text[a.end() : after.end()], "repair"):
-        size = (after.group(1) or after.group(2)).lower()
+        size = next(g for g in after.groups() if g).lower()
         text = text[: after.start()] + text[after.end():]
         return text[: a.start()] + (f"{a.group(1)} " if a.group(1) else "") + \
             f"{_SIZE_NAMES.get(size, size)} {a.group(2)}" + text[a.end():]
@@ -497,6 +503,11 @@ def _drop_cup_into_bowl(m: re.Match[str]) -> str:
 
 @replacer("blocks-too-but-separately")
 def _blocks_too_but_separately(m: re.Match[str]) -> str:
+    """", and the blocks too": the same again for them; but where "and" ends a list ("line up the mug, the cup
+    and the bottle as well") the last item is one of that list (it was split off as a line of its own)."""
+    last = lexicon.words(m.group(1).split(",")[-1])
+    if "," in m.group(1) and last[:1] == ["the"] and len(last) <= 4 and "separately" not in m.group(0).lower():
+        return f"{m.group(1)} and {m.group(2)}"
     return f'{m.group(1)}. the same for {m.group(2)}' if says(m.group(1), "asks") else m.group(0)
 
 
@@ -522,13 +533,31 @@ def _highest_topmost_stack_roles(m: re.Match[str]) -> str:
     return m.group(1).split()[0].replace('top', 'highest').replace('bottom', 'lowest')
 
 
+_EDGE_POINT = {"left": "west", "right": "east", "back": "north", "far": "north", "front": "south", "near": "south"}
+
+
+@replacer("facing-restated-by-edge")
+def _facing_restated_by_edge(m: re.Match[str]) -> str:
+    """"faces west, toward the left edge": the edge names the same direction, the facing once; else as said."""
+    return m.group(1) if _EDGE_POINT[m.group(3).lower()] == m.group(2).lower() else m.group(0)
+
+
 @replacer("only-spoon-not-fork")
 def _only_spoon_not_fork(m: re.Match[str]) -> str:
-    """", not the white one," after a plural ("the bowls, but not the white one,"): an exception; else nothing."""
-    said = m.group(2)
-    if re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$", m.string[: m.start()]) \
-            and said[-1:].isalpha() and lexicon.words(said)[-1:] in (["one"], ["ones"]):
-        return f" except the {m.group(2)},"
+    """", not the white one," after a plural ("the bowls, but not the white one,"): an exception; else nothing.
+
+    "the cups and the bowls, but not the red bowl (though)," and "all of the bowls and cups, but not the red
+    bowl,": a noun said in the plural just before is an exception from that group too (it was dropped, and the
+    red bowl kept in the group)."""
+    said = lexicon.words(m.group(2))
+    if said[-1:] == ["though"]:
+        said = said[:-1]
+    before = lexicon.words(m.string[: m.start()])[-6:]
+    plural = bool(said) and said[-1] not in ("one", "ones") and any(
+        w in before for w in (said[-1] + "s", said[-1] + "es", said[-1][:-1] + "ies"))
+    if said and (plural or (re.search(r"(?i)\b(?:the|all|all the|every) (?:[a-z]+ )?[a-z]+s\s*$",
+                                      m.string[: m.start()]) is not None and said[-1] in ("one", "ones"))):
+        return f" except the {' '.join(said)},"
     return ","
 
 

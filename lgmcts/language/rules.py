@@ -231,6 +231,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         # lowest is not fixed by the words read here; refused below if a stack results.
         text = plain_words(self._spelled_right(text))
         self._tilt(text)
+        _taken_back(text)
         self._order_inside(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
@@ -487,6 +488,27 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
             if self.state.selection is not None:
                 raise InputError("the instruction selects objects but does not say how to arrange them")
             raise InputError("the instruction names nothing to arrange")
+
+
+#: Words that may follow a request taken back ("..., never mind, thanks").
+_AFTER_CANCEL = frozenset({"thanks", "thank", "you", "cheers", "ta", "please", "sorry", "then", "ok", "okay", "after",
+                           "all", "actually", "lol", "just", "i", "guess", "robot", "mate"})
+
+
+def _taken_back(text: str) -> None:
+    """Refuse a command whose end takes the request back ("stack the bottles, wait no, never mind, don't do
+    anything, thanks"; the cue list ``cancel`` of the lexicon): the request before it is not asked (before, the
+    stack was answered and the words after it dropped)."""
+    ws = lexicon.words(text)
+    spans = sorted(lexicon.phrase_spans(ws, "cancel"))
+    if not spans or not all(w in _AFTER_CANCEL for w in ws[max(e for _, e, _ in spans):]):
+        return
+    start = spans[-1][0]
+    for s, e, _ in reversed(spans[:-1]):
+        if e <= start and all(w in _AFTER_CANCEL or w in ("no", "wait") for w in ws[e:start]):
+            start = s  # the run of cancelling words that ends the command
+    said = text[text.lower().rfind(ws[start]):].strip(" ,.!")
+    raise InputError(f"'{said}': the request is taken back; nothing is asked")
 
 
 def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: RulesOptions | None = None) -> list[dict]:

@@ -269,8 +269,10 @@ def _size_at(words: tuple[str, ...], i: int, pattern_nouns, put: Callable[[str, 
     if j < n and (pattern_nouns(words[j]) or (
             words[j] in ("shape", "formation", "pattern", "arrangement") and pattern_nouns(words[j - 1]))):
         # "a big circle"; "a big round shape" (the shape named by the word before the generic noun)
-        if not (w in ("little", "tiny") and words[j] in ("tower", "stack", "pile", "column")):
-            put("size", SIZES[w], " ".join(words))  # a tower has no size: "a little tower" is a short one
+        if not (w in ("little", "tiny", "big", "large", "huge", "giant", "tall")
+                and words[j] in ("tower", "stack", "pile", "column")):
+            # a tower has no size: "a little tower" is a short one, "one big pile" all the objects in one
+            put("size", SIZES[w], " ".join(words))
         return i + 1
     return None
 
