@@ -112,6 +112,12 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
             i += 2
             continue
+        if (w == "," and words[i + 1 : i + 2] and words[i + 1] in _HUES and words[i + 2 : i + 3] in _LIST_END
+                and _stack_role_said(parts[-1])):
+            # "orange on the bottom, purple, then green": the next of a stack said colour by colour
+            parts.append([])
+            i += 1
+            continue
         if (w == "and" and "of" in parts[-1] and parts[-1][-1] not in ("it", "them", "its", "their")
                 and "so" not in parts[-1] and "such" not in parts[-1] and _asks_after_object(parts[-1], nouns)) and _of_it(
                 list(words[i + 1 : _next_stop(words, i + 1, comma=True)]), nouns):
@@ -209,6 +215,17 @@ def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), sta
     return any(w in _GOAL_WORDS and w not in nouns for w in part[first + 1 :])
 
 
+def _stack_role_said(part: list[str]) -> bool:
+    """Whether ``part`` gives an object its place in a stack ("orange on the bottom", "red at the base"), not an
+    order along it ("top to bottom", "from red at the bottom through orange ...")."""
+    if "through" in part or "to" in part:
+        return False
+    return any(part[k] in ("bottom", "base", "top") and part[k - 1] == "the" and part[k - 2] in ("on", "at")
+               for k in range(2, len(part)))
+
+
+#: What may follow a bare colour said as the next of a stack ("..., purple, then green").
+_LIST_END = frozenset({(",",), ("then",), (".",), (";",), ("and",)})
 #: Verbs of stacking, after which a group of objects may be followed by its order.
 _STACKING = frozenset({"stack", "pile", "tower"})
 

@@ -187,8 +187,10 @@ def _at(ws: tuple[str, ...], i: int) -> ColourRef | None:
             while noun_end < len(ws) and noun_end - j < 3 and ws[noun_end] not in _STOP:
                 noun_end += 1
             tail = _seq(ws, noun_end, (("of", "the", "same", "colour"), ("of", "the", "same", "color"),
-                                       ("in", "the", "same", "colour"), ("of", "its", "colour"), ("of", "their", "colour"),
-                                       ("the", "same", "colour")))
+                                       ("in", "the", "same", "colour"), ("of", "its", "own", "colour"),
+                                       ("of", "its", "own", "color"), ("of", "their", "own", "colour"),
+                                       ("of", "its", "colour"), ("of", "their", "colour"), ("the", "same", "colour"),
+                                       ("of", "its", "color"), ("in", "its", "colour"), ("in", "its", "own", "colour")))
             if noun_end == j or tail == noun_end:
                 return None
             last = ws[noun_end - 1]

@@ -106,7 +106,9 @@ def _anchor(said: str) -> str:
         return "it"
     if low in ("their", "them"):
         return "them"
-    return said[:-2] if low.endswith("'s") else said
+    if low.endswith("'s"):
+        return said[:-2]
+    return said[:-1] if low.endswith("s'") or low.endswith("s") else said  # "the white bowls 9 oclock"
 
 
 @replacer("compass-of-object")

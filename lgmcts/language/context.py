@@ -166,7 +166,9 @@ def _time_clause(part: tuple[str, ...]) -> bool:
 
 #: Openers of a clause that says when by an event ("once the rice is on", "until the guests have gone"), and
 #: the words a subject of such an event starts with.
-_EVENT_OPENERS = frozenset({"once", "after", "before", "until", "till"})
+_EVENT_OPENERS = frozenset({"once", "after", "before", "until", "till", "while", "when", "whenever"})
+#: Subjects of an event that the speaker does ("while I put the kettle on"): its verb is theirs, no request.
+_SPEAKER = frozenset({"i", "we", "i'm", "we're", "i've", "we've"})
 _SUBJECT_START = frozenset({"the", "my", "our", "his", "her", "your", "their", "we", "i", "you", "he", "she", "they",
                             "we've", "i've", "everyone", "everybody"})
 
@@ -180,7 +182,8 @@ def _event_clause(part: tuple[str, ...], object_word: Callable[[str], bool],
         return False
     verb = 3 if part[1] in _OWNERS else 2  # "before the glue sets", "until it dries": the event's own verb
     said = part[1:]
-    if verb < len(part) and part[verb].endswith("s") and not object_word(part[verb - 1]) and not object_word(part[verb]):
+    if verb < len(part) and (part[verb].endswith("s") or part[1] in _SPEAKER) and not object_word(
+            part[verb - 1]) and not object_word(part[verb]):
         said = part[1:verb] + part[verb + 1 :]  # a verb of the event ("sets"), not a request to set something
     return _asks_nothing(said, object_word, request_word)
 

@@ -168,6 +168,13 @@ def _number(ws: list[str], i: int) -> tuple[float, int] | None:
         if w in ("point", "nought", "oh"):
             return None
     if w in _NUMBER_WORDS:
+        if 0 < _NUMBER_WORDS[w] < 10 and ws[i + 1 : i + 2] == ["hundred"]:
+            # "three hundred", "one hundred and fifty", "two hundred twenty five"
+            k = i + 2 + (ws[i + 2 : i + 3] == ["and"])
+            rest = _number(ws, k) if k < len(ws) and ws[k] in _NUMBER_WORDS and ws[k] != "zero" else None
+            if rest is not None and rest[0] < 100:
+                return 100 * _NUMBER_WORDS[w] + rest[0], rest[1]
+            return 100.0 * _NUMBER_WORDS[w], i + 2
         v = float(_NUMBER_WORDS[w])
         j = i + 1
         if w in _TENS and j < len(ws) and ws[j] == "-":
@@ -189,7 +196,10 @@ def _slash_fraction(ws: list[str], i: int) -> tuple[float, int] | None:
 
 
 def _unit(ws: list[str], i: int) -> tuple[float, int] | None:
-    """A unit word at ``i``: (metres per unit, end). "in" counts only where no phrase follows it."""
+    """A unit word at ``i``: (metres per unit, end). "in" counts only where no phrase follows it; a unit joined
+    to its number by a hyphen ("a two-foot line", "a 30-cm row") counts as said."""
+    if ws[i : i + 1] == ["-"] and i + 1 < len(ws) and ws[i + 1] in UNITS and ws[i + 1] != "in":
+        i += 1
     if i >= len(ws) or ws[i] not in UNITS:
         return None
     if ws[i] == "in" and i + 1 < len(ws) and ws[i + 1] not in (",", ".", ";", "!", "?", "long", "wide", "across",

@@ -174,6 +174,9 @@ def _step(ws: list[str], i: int) -> tuple[float, float, int, bool] | None:
         rest = ws[k + 1 : k + 6]
         if rest[:1] == ["the"]:
             rest = rest[1:]
+        if rest[:1] in (["dead"], ["exact"], ["very"]) and rest[1:2] and rest[1] in _CENTRE_WORDS:
+            # "6 inches left of (the) dead centre"
+            return dx * metres, dy * metres, k + 1 + (ws[k + 1] == "the") + 2, True
         if rest[:2] in (["table", "centre"], ["table", "center"], ["table's", "centre"], ["table's", "center"]):
             centre, k = True, k + 1 + (ws[k + 1] == "the") + 2
         elif rest[:1] and rest[0] in _CENTRE_WORDS:

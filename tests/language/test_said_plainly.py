@@ -291,3 +291,33 @@ def test_a_place_alone_is_not_read_as_an_arrangement():
 ])
 def test_it_said_again_after_it(said, goals):
     assert _goals(said) == goals
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("said, goals", [
+    # numbers in hundreds, and a unit joined to its number by a hyphen (both were dropped: wrong goals)
+    ("the blocks and the plate in a rectangle three hundred by two hundred millimetres",
+     [{"pattern": "rectangle", "objects": [4, 5, 6, 1], "size": 0.3}]),
+    ("a two-foot line of the blocks", [{"pattern": "line", "objects": [4, 5, 6], "size": 0.6096}]),
+    ("the blocks in a line one hundred and fifty mm long", [{"pattern": "line", "objects": [4, 5, 6], "size": 0.15}]),
+    # a stack said colour by colour after a role, the top said by "caps it off" (both were dropped: wrong goals)
+    ("Tower: the blue block on the bottom, green, then red.", [{"pattern": "tower", "objects": [5, 6, 4]}]),
+    ("Tower: red on the bottom, green, the blue block caps it off.", [{"pattern": "tower", "objects": [4, 6, 5]}]),
+    # a corner corrected without commas; a facing by "the wall at the back"; a ring's radius said per object
+    ("the blocks in a line in the near left corner I mean near right",
+     [{"pattern": "line", "objects": [4, 5, 6], "region": "bottom right"}]),
+    ("the blocks in a circle facing the wall at the back", [{"pattern": "circle", "objects": [4, 5, 6], "facing": "north"}]),
+    ("the blocks in a ring with each one twelve centimetres out from the middle of it",
+     [{"pattern": "circle", "objects": [4, 5, 6], "size": 0.12}]),
+    # a time said by what the speaker does meanwhile; a pose from "dead centre"
+    ("While I put the kettle on, put the blocks in a row.", [{"pattern": "line", "objects": [4, 5, 6]}]),
+    ("put the plate 10 cm left of dead centre and 5 cm back", [{"pattern": "pose", "objects": [1], "pose": (-0.1, 0.05, 0.0)}]),
+    # the objects picked before a colon, then "those <noun>"
+    ("Each block that has a bottle of its own colour: line those blocks up.", [{"pattern": "line", "objects": [5]}]),
+])
+def test_numbers_stacks_corrections_and_times_said_freely(said, goals):
+    if len(goals[0]["objects"]) < 2 and goals[0]["pattern"] == "line":
+        with pytest.raises(InputError):
+            _goals(said)  # one block has a bottle of its colour: a line of one is refused, never all the blocks
+        return
+    assert _goals(said) == goals
