@@ -108,7 +108,7 @@ def _anchor(said: str) -> str:
         return "them"
     if low.endswith("'s"):
         return said[:-2]
-    return said[:-1] if low.endswith("s'") or low.endswith("s") else said  # "the white bowls 9 oclock"
+    return said[:-1] if low.endswith(("s'", "s")) else said  # "the white bowls 9 oclock"
 
 
 @replacer("compass-of-object")
