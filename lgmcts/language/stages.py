@@ -552,6 +552,8 @@ def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Cal
         if words[k - 1] != "the" or words[k - 2] not in _BEFORE_BARE or (
                 k + 1 < len(words) and words[k + 1] not in _AFTER_BARE) or _CONTRASTED & set(words[max(0, k - 4) : k - 2]):
             continue  # "..., rather than on the bowl": the words that contrast read it as said
+        if words[k] in COLOUR_WORDS:
+            continue  # "of the green and blue stripe block": a colour, not a kind
         kind = _ids(("every", words[k]), find, ids_of)
         if not kind or len(kind) < 2 or words[k].endswith("s"):
             continue
