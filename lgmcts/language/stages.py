@@ -539,6 +539,16 @@ _BEFORE_BARE = frozenset({"of", "on", "onto", "behind", "under", "beside", "near
                           "above", "below", "beneath", "atop"})
 
 
+def _longer_mention(words: tuple[str, ...], find: Callable[[tuple[str, ...]], list]) -> bool:
+    """Whether the grounding reads ``words`` ("the green and blue stripe block") as one reference longer than
+    its first two words."""
+    try:
+        found = find(words)
+    except InputError:
+        return False
+    return bool(found) and found[0].start == 0 and found[0].end > 2
+
+
 def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
     """``text`` with "the bowl" (a kind the scene has several of, said bare as the object of a relation or at
     the end of its clause) replaced by the one object of that kind the command named before it ("the can
@@ -552,8 +562,8 @@ def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Cal
         if words[k - 1] != "the" or words[k - 2] not in _BEFORE_BARE or (
                 k + 1 < len(words) and words[k + 1] not in _AFTER_BARE) or _CONTRASTED & set(words[max(0, k - 4) : k - 2]):
             continue  # "..., rather than on the bowl": the words that contrast read it as said
-        if words[k] in COLOUR_WORDS:
-            continue  # "of the green and blue stripe block": a colour, not a kind
+        if words[k] in COLOUR_WORDS and _longer_mention(words[k - 1 : k + 6], find):
+            continue  # "of the green and blue stripe block": a colour of a longer name, not a kind
         kind = _ids(("every", words[k]), find, ids_of)
         if not kind or len(kind) < 2 or words[k].endswith("s"):
             continue
