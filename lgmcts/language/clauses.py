@@ -210,7 +210,7 @@ def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), sta
     if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns \
             and part[first] not in _HUES:
         return False  # ", the row facing west": the arrangement itself, not objects
-    if start and part[first] in ("both", "all", "each") and tuple(part[first + 1 : first + 2]) in _FACING_AFTER:
+    if start and part[first] in ("both", "all", "each") and part[first + 1 : first + 2] and part[first + 1] in _FACING_AFTER:
         return False  # ", both pointing right": a facing of the objects just named
     return any(w in _GOAL_WORDS and w not in nouns for w in part[first + 1 :])
 
@@ -247,7 +247,7 @@ def _of_it(part: list[str], nouns: frozenset[str]) -> bool:
         w in _DIR_WORDS for w in part[:-2])  # ("letter A back right of it": a noun said without its article)
 
 
-_FACING_AFTER = frozenset({("facing",), ("pointing",), ("turned",), ("oriented",), ("angled",)})
+_FACING_AFTER = frozenset({"facing", "pointing", "turned", "oriented", "angled"})
 
 
 _LIST_WORDS = frozenset({"then", "and", "on", "at", "under", "below", "above", "goes", "is", "last", "first", "next",

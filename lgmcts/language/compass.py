@@ -22,23 +22,25 @@ from __future__ import annotations
 
 import re
 
+from .lexicon import COMPASS
+from .measures import _NUMBER_WORDS
 from .normalise import replacer
 
 __all__ = ["SIDE_OF", "clock_side", "heading_facing"]
 
-#: The viewer's word for each compass point (as a place and as a side).
-_PLACE = {"north": "back", "south": "front", "east": "right", "west": "left"}
-_FARTHEST = {"north": "farthest back", "south": "nearest the front", "east": "farthest right", "west": "farthest left"}
-_MOST = {"north": "backmost", "south": "frontmost", "east": "rightmost", "west": "leftmost"}
+#: The viewer's word for each compass point (as a place and as a side: the lexicon's).
+_PLACE = {p: COMPASS[p] for p in ("north", "south", "east", "west")}
+#: "(the can) farthest north": the same key said after the noun; the front is said by nearness.
+_FARTHEST = {p: "nearest the front" if side == "front" else f"farthest {side}" for p, side in _PLACE.items()}
+_MOST = {p: f"{side}most" for p, side in _PLACE.items()}
 
 #: How each of the eight sides is said before an object ("... of the bowl").
 SIDE_OF = {0: "behind", 45: "back right of", 90: "to the right of", 135: "front right of", 180: "in front of",
            225: "front left of", 270: "to the left of", 315: "back left of"}
 
-_DIGITS = {"zero": 0, "oh": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
-           "nine": 9, "niner": 9}
-_HOURS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
-          "ten": 10, "eleven": 11, "twelve": 12}
+#: Digits said one by one in a heading ("zero nine zero"), radio words included; the hours of a clock.
+_DIGITS = {w: v for w, v in _NUMBER_WORDS.items() if v < 10} | {"oh": 0, "niner": 9}
+_HOURS = {w: v for w, v in _NUMBER_WORDS.items() if 1 <= v <= 12}
 
 
 def _hour(word: str) -> int | None:

@@ -98,6 +98,10 @@ def _angle(s: str, unit: str | None) -> float:
     return math.radians(value) if unit and unit.lower()[0] in "d°" else value
 
 
+#: A turn said clockwise: its yaw is negative (yaw is counter-clockwise).
+_CLOCKWISE = frozenset({"clockwise", "cw"})
+
+
 def _pose(m: re.Match) -> SaidPose:
     g = m.groupdict()
     p = "" if g["x"] is not None else "p"
@@ -107,7 +111,7 @@ def _pose(m: re.Match) -> SaidPose:
     yaw_u = g.get("yu" + p) or g.get("yu2")
     yaw = _angle(yaw_s, yaw_u) if yaw_s else None
     turn = (g.get("yd") or g.get("yd2") or "").lower()
-    if yaw is not None and turn in ("clockwise", "cw"):
+    if yaw is not None and turn in _CLOCKWISE:
         yaw = -yaw  # yaw is counter-clockwise: "90 degrees clockwise" is -pi/2
     return SaidPose(m.start(), m.end(), _number(g["x" + p]) * xs, _number(g["y" + p]) * ys, yaw)
 
@@ -212,7 +216,7 @@ def _turn_after(ws: list[str], k: int) -> tuple[float, int] | None:
         yaw, j = math.radians(yaw), j + 1
     elif j < len(ws) and ws[j] in _RADIANS:
         j += 1
-    if j < len(ws) and ws[j] in ("clockwise", "cw"):
+    if j < len(ws) and ws[j] in _CLOCKWISE:
         return -yaw, j + 1  # yaw is counter-clockwise: "90 degrees clockwise" is -pi/2
     if j < len(ws) and ws[j] in ("counterclockwise", "anticlockwise", "ccw"):
         return yaw, j + 1

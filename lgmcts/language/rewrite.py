@@ -16,6 +16,7 @@ import re
 
 from . import compass, lexicon  # compass registers replacers of the table
 from .lexicon import HUES, MACROS, says
+from .measures import find_measures
 from .normalise import apply, replacer, step
 from .stages import is_mark
 
@@ -533,7 +534,9 @@ def _highest_topmost_stack_roles(m: re.Match[str]) -> str:
     return m.group(1).split()[0].replace('top', 'highest').replace('bottom', 'lowest')
 
 
-_EDGE_POINT = {"left": "west", "right": "east", "back": "north", "far": "north", "front": "south", "near": "south"}
+#: The compass point each edge word names (the lexicon's compass, turned round; "far" and "near" the back and front).
+_EDGE_POINT = {side: point for point, side in _COMPASS.items() if point in ("north", "south", "east", "west")} | {
+    "far": "north", "near": "south"}
 
 
 @replacer("facing-restated-by-edge")
@@ -617,8 +620,6 @@ _MEASURED_AS = {"diameter": "in diameter", "width": "wide", "radius": "radius", 
 def _measure_said_as_noun(m: re.Match[str]) -> str:
     """"; the diameter should come to a quarter of a metre" -> ", a quarter of a metre in diameter" (the
     measure said after its noun); left as said where the words after the verb are not one measure."""
-    from .measures import find_measures
-
     said = m.group(2).strip()
     found = find_measures(said)
     if len(found) != 1 or found[0].start != 0 or found[0].end != len(said):

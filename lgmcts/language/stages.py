@@ -549,6 +549,19 @@ def _longer_mention(words: tuple[str, ...], find: Callable[[tuple[str, ...]], li
     return bool(found) and found[0].start == 0 and found[0].end > 2
 
 
+def _one_named(words: tuple[str, ...], kind: list[int], find: Callable[[tuple[str, ...]], list],
+               ids_of: Callable[[Any], list[int]], single: bool = False) -> int | None:
+    """The one object of ``kind`` that the references of ``words`` name (with ``single``, counting only
+    references to one object each), or None where they name none or several."""
+    try:
+        before = [m for m in find(words) if getattr(m, "det", None) != "pronoun"]
+    except InputError:
+        return None
+    named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) and (not single or len(ids) == 1)
+             for i in ids}
+    return named.pop() if len(named) == 1 else None
+
+
 def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callable[[Any], list[int]]) -> str:
     """``text`` with "the bowl" (a kind the scene has several of, said bare as the object of a relation or at
     the end of its clause) replaced by the one object of that kind the command named before it ("the can
@@ -567,14 +580,10 @@ def named_before(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Cal
         kind = _ids(("every", words[k]), find, ids_of)
         if not kind or len(kind) < 2 or words[k].endswith("s"):
             continue
-        try:
-            before = [m for m in find(words[: k - 1]) if getattr(m, "det", None) != "pronoun"]
-        except InputError:
-            continue
-        named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) and len(ids) == 1 for i in ids}
-        if len(named) != 1:
+        named = _one_named(words[: k - 1], kind, find, ids_of, single=True)
+        if named is None:
             continue  # none, or two bowls named before: which one is "the bowl" is not guessed
-        out.append(text[at : toks[k - 1].pos] + f"object {named.pop()}")
+        out.append(text[at : toks[k - 1].pos] + f"object {named}")
         at = _end(text, toks[k])
     out.append(text[at:])
     return "".join(out)
@@ -595,14 +604,10 @@ def same_again(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Calla
         kind = _ids(("the", words[k + 1]), find, ids_of) if words[k + 2 : k + 3] != ("as",) else None
         if not kind:
             continue
-        try:
-            before = [m for m in find(words[: k - 1]) if getattr(m, "det", None) != "pronoun"]
-        except InputError:
-            continue
-        named = {i for m in before if set(ids := list(ids_of(m))) <= set(kind) for i in ids}
-        if len(named) != 1:
+        named = _one_named(words[: k - 1], kind, find, ids_of)
+        if named is None:
             continue  # none, or two plates named before: which one is "that same plate" is not guessed
-        out.append(text[at : toks[k - 1].pos] + f"object {named.pop()}")
+        out.append(text[at : toks[k - 1].pos] + f"object {named}")
         at = _end(text, toks[k + 1])
     out.append(text[at:])
     return "".join(out)
@@ -690,7 +695,8 @@ _SPELL_WITH = ("with the letters", "using the letters", "with the four letters",
 def spelled(text: str, letters: set[str]) -> str:
     """"stack the letters so that, read from the bottom up, they spell RATE": the
     stack of those letters in that order. Without the direction the reading is
-    open (a word on a stack reads either way), so it is refused."""
+    open (a word on a stack reads either way), so it is refused. Said with no stack
+    ("Spell RATE with the letters"), those letters in a line (:func:`_spelled_in_line`)."""
     parts = re.split(r"(?<=[.;!?])\s+", text)
     for k, sent in enumerate(parts):
         m = re.search(r"\b(?i:spell|spells|spelling|spelt|reads?|reading|say|says)(?i: out)?(?i: the word)?\s*:?\s*"
@@ -711,6 +717,7 @@ def spelled(text: str, letters: set[str]) -> str:
         named = [f"the letter {c}" for c in order]
         parts[k] = "stack " + ", ".join(named[:-1]) + f" and {named[-1]}, from the bottom up."
     return " ".join(parts)
+
 
 def _spelled_in_line(sent: str, start: int, end: int, word: str) -> str:
     """"Spell RATE with the letters, across the middle row", said as the request: those letters in a
