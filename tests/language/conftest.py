@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
@@ -9,6 +10,7 @@ import pytest
 from lgmcts.formats import load_scene, parse_scene
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(Path(__file__).parent))  # tables.py, the small tables of the end-to-end tests
 CASES = ROOT / "data" / "parse_cases.jsonl"
 
 

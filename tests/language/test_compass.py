@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 from lgmcts.language.compass import SIDE_OF, clock_side, heading_facing
+from tables import cylinders, goals_of
 
 
 @pytest.mark.parametrize("hour, half, side", [
@@ -32,20 +33,13 @@ def test_headings_are_facings_only_at_the_four_points():
     assert heading_facing(45) is None and heading_facing(100) is None
 
 
-def _table():
-    from lgmcts.formats import parse_scene
-
-    objects = [("plate", "white", 0.25, -0.2), ("bowl", "white", -0.25, 0.2), ("bowl", "black", -0.1, -0.05),
-               ("block", "red", -0.3, -0.25), ("block", "blue", 0.0, -0.15), ("block", "green", 0.2, 0.05)]
-    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
+#: 1 plate, 2-3 bowls (white at the back left, black in front), 4-6 blocks (red, blue, green from left to right).
+_SCENE = [("plate", "white", 0.25, -0.2), ("bowl", "white", -0.25, 0.2), ("bowl", "black", -0.1, -0.05),
+          ("block", "red", -0.3, -0.25), ("block", "blue", 0.0, -0.15), ("block", "green", 0.2, 0.05)]
 
 
 def _goals(said: str) -> list[dict]:
-    from lgmcts.language import parse
-
-    return [g.model_dump(exclude_none=True) for g in parse(_table(), said).goals]
+    return goals_of(cylinders(_SCENE), said)
 
 
 @pytest.mark.slow

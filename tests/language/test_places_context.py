@@ -10,6 +10,7 @@ from lgmcts.language.context import drop_context, person_remark
 from lgmcts.language.grounding import tokenize
 from lgmcts.language.places import Place, read_facing, read_place
 from lgmcts.language.stages import pronoun_facings
+from tables import cylinders as _table
 
 
 def _ws(text: str) -> tuple[str, ...]:
@@ -146,13 +147,6 @@ def test_what_may_matter_is_kept(text):
     assert _drop(text) == " ".join(_ws(text))
 
 
-def _table(objects: list[tuple[str, str, float, float]]):
-    """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
-    from lgmcts.formats import parse_scene
-
-    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
 
 
 def _plate_and_cans():

@@ -9,15 +9,9 @@ from __future__ import annotations
 import pytest
 
 from lgmcts.errors import InputError
+from tables import cylinders as _table, goals_of
 
 
-def _table(objects: list[tuple[str, str, float, float]]):
-    """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
-    from lgmcts.formats import parse_scene
-
-    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
-        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
-         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
 
 
 #: 1 plate, 2-4 bowls (white, red, blue), 5-6 cups (yellow, orange), 7-10 blocks (red, blue, green, yellow),
@@ -29,9 +23,7 @@ _SCENE = [("plate", "white", 0.3, -0.2), ("bowl", "white", -0.3, 0.2), ("bowl", 
 
 
 def _goals(said: str) -> list[dict]:
-    from lgmcts.language import parse
-
-    return [g.model_dump(exclude_none=True) for g in parse(_table(_SCENE), said).goals]
+    return goals_of(_table(_SCENE), said)
 
 
 def _refusal(said: str) -> str:

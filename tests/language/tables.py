@@ -1,0 +1,20 @@
+"""Small tables for end-to-end parser tests: cylinders named and coloured as said, and the goals a command
+gives on one (imported by the test modules of this folder; ``conftest.py`` puts the folder on the path)."""
+
+from __future__ import annotations
+
+
+def cylinders(objects: list[tuple[str, str, float, float]]):
+    """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
+    from lgmcts.formats import parse_scene
+
+    return parse_scene({"workspace": {"x": [-0.4, 0.4], "y": [-0.3, 0.3]}, "objects": [
+        {"id": k + 1, "name": n, "color": c, "shape": {"type": "cylinder", "radius": 0.03, "height": 0.05},
+         "pose": [x, y, 0.0]} for k, (n, c, x, y) in enumerate(objects)]})
+
+
+def goals_of(scene, said: str) -> list[dict]:
+    """The goals the default parser reads from ``said`` on ``scene``, as dicts without empty fields."""
+    from lgmcts.language import parse
+
+    return [g.model_dump(exclude_none=True) for g in parse(scene, said).goals]
