@@ -199,13 +199,40 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
         if body and (_idle(body, object_word, request_word) or (
                 k < len(sentences) - 1 and _asks_nothing(body, object_word, request_word))):
             continue  # a background sentence ("it's been raining all week and the cat's been under my feet.")
-        if k < len(sentences) - 1 and _story(body, object_word, request_word) and not any(
-                w in _PRONOUNS for s in sentences[k + 1 :] for w in s):
-            continue  # "i used to play with blocks like these as a little girl." before the request
+        if k < len(sentences) - 1 and _story(body, object_word, request_word):
+            if not any(w in _PRONOUNS for s in sentences[k + 1 :] for w in s):
+                continue  # "i used to play with blocks like these as a little girl." before the request
+            named = _story_objects(body, object_word)
+            if named:  # "my granddaughter set these letters out last week. ... them in a circle": what "them" means
+                kept.append(named + (".",))
+                continue
         kept.append(_without_time(sent, object_word, request_word))
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
     return tuple(w for s in kept for w in s)
+
+
+def _open_end(lead: Sequence[str]) -> bool:
+    """Whether ``lead`` stops where its own clause goes on: after a verb, a preposition or an article ("my
+    daughter keeps knocking" goes on with its object), so the words after it are not a request of their own."""
+    last = lead[-1]
+    return (last in _TELLING or last in _PAST or last.endswith(("ing", "ed")) or last in ("the", "a", "an", "of")
+            or last in _CTX["place_prepositions"] or last in _CHATTER_PARTICLES)
+
+
+def _story_objects(body: Sequence[str], object_word: Callable[[str], bool]) -> tuple[str, ...]:
+    """The one noun phrase of the objects a story names ("my granddaughter set these letters out": "these
+    letters"), for a pronoun after it; nothing where it names none or more than one phrase."""
+    said = [j for j, w in enumerate(body) if object_word(w) and not _article(body, j)]
+    if not said:
+        return ()
+    start = said[0]
+    while start and body[start - 1] in ("the", "these", "those", "all", "both", "my", "our"):
+        start -= 1
+    start = _phrase_start(tuple(body), start, object_word) if body[start] not in ("these", "those") else start
+    if any(j != said[0] + n for n, j in enumerate(said)):
+        return ()
+    return tuple(body[start : said[-1] + 1])
 
 
 def _in_place(part: Sequence[str], j: int) -> bool:
@@ -237,6 +264,9 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             if _in_place(part, j):
                 return False
             continue
+        if (w == "table" and not (j and part[j - 1] in ("the", "this"))) or (w in ("top", "tops") and j and (
+                part[j - 1].isdigit() or part[j - 1] in _NUMBER_WORDS)):
+            continue  # "table six, two-top, mains", "12-top coming in at eight": a party of guests, no place
         if part[j + 1 : j + 2] and part[j + 1] in _POSSESSIVES:
             continue  # "under my feet", "on her way": of a person, not of the table
         if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and timed):
@@ -252,6 +282,8 @@ _DAY_WORDS = frozenset({"morning", "evening", "afternoon", "night", "tonight", "
                         "noon", "midnight", "lunchtime", "dinnertime"})
 _OPENERS = tuple(sorted((tuple(p.split()) for p in _CTX["request_openers"]), key=len, reverse=True))
 _CHATTER_CUTS = frozenset(_CTX["chatter_cuts"])
+#: Words that join chatter to the request said after it in the same breath.
+_JOINS = frozenset({"and", "so", "um", "uh", "umm", "uhh", "er", "erm"})
 _LEAD = frozenset({"okay", "ok", "so", "um", "uh", "umm", "uhh", "er", "erm", "well", "and", "like", "yeah", ",", ":"})
 
 
@@ -283,15 +315,19 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
             return tail
         if any(object_word(w) for w in sent[:k]):
             break
-    first = next((k for k, w in enumerate(sent) if object_word(w)), None)
+    first = next((k for k, w in enumerate(sent) if object_word(w) and not _article(sent, k)), None)
     if first and "," not in sent[:first]:
         # "its almost noon and lunch is at one the cans all stacked up" (the wish's frame read before): chatter
-        # about the time or the people of the house, then the request from its first object on
+        # about the time or the people of the house, then the request from its first object on; a story of
+        # the people of the house runs on into it without a joining word ("my nephew made a mess again uh the
+        # letters ...")
         start = _phrase_start(sent, first, object_word)
         lead_cut = [w for w in sent[:start] if w not in _LEAD]
         told = any(w in _DAY_WORDS or w in _CLOCK or w in _MEALS or w in _CTX["people"] for w in lead_cut)
-        if len(lead_cut) >= 3 and told and ("and" in sent[:start] or "so" in sent[:start]) and _asks_nothing(
-                lead_cut, object_word, request_word):
+        joined = any(w in _JOINS for w in sent[:start]) or (
+            _story(lead_cut, object_word, request_word) and not _open_end(lead_cut)
+            and any(request_word(w) for w in sent[start:]))
+        if len(lead_cut) >= 3 and told and joined and _asks_nothing(lead_cut, object_word, request_word):
             return sent[start:]
     if sent and sent[0] in TIME_OPENERS:
         first = next((k for k, w in enumerate(sent) if object_word(w)), None)
@@ -336,7 +372,13 @@ def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word
     if not _subject_end(words) or not _told(words):
         return False
     past = next((j for j, w in enumerate(words) if w in _PAST or (w.endswith("ed") and len(w) > 4)), len(words))
+    subject = _subject_end(words)
     for j, w in enumerate(words):
+        if j == subject and subject == 2 and words[1] in _CTX["people"]:
+            past = min(past, j)
+            continue  # "my granddaughter set these letters out": the verb of a person named, told, never asked
+        if w == "left" and j and words[j - 1] in _LEAVERS:
+            continue  # "my nephew left his stuff everywhere"
         if (w in _CTX["asking"] and not object_word(w)) or (w in lexicon.DIRECTIONS and _in_place(words, j)):
             return False
         if j > past and w in _ARRANGEMENT_NOUNS:
@@ -358,14 +400,17 @@ def _told(head: Sequence[str]) -> bool:
     four words ("the groceries finally came"), not a list of objects ("the saucer and the red can")."""
     body = [w for w in head if w not in _LEAD]
     if any(w in lexicon.DIRECTIONS and not (w == "back" and j and body[j - 1] in _BACK_FROM)
-           for j, w in enumerate(body)):
+           and not (w == "left" and j and body[j - 1] in _LEAVERS) for j, w in enumerate(body)):
         return False  # "the teapot is to be placed diagonally behind": where, not a story ("i just got back" is)
     if any(w in _WISHING or (w in _CTX["place_prepositions"] and j + 1 < len(body) and body[j + 1] in ("the", "a", "an"))
            for j, w in enumerate(body)):
         return False  # "the teapot should go on the tray": a request about an object the scene lacks
-    return len(body) >= 4 and any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:])
+    return len(body) >= 4 and (any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:]) or (
+        _subject_end(body) == 2 and body[1] in _CTX["people"]))  # "my granddaughter set these letters out"
 
 
+#: Words after which "left" is the verb ("my nephew left his stuff out", "she just left").
+_LEAVERS = frozenset(_CTX["people"]) | frozenset(_CTX["person_pronouns"]) | {"just", "already", "they", "you"}
 _WISHING = frozenset({"should", "must", "need", "needs", "want", "wants", "would", "could", "please", "gotta",
                       "gonna", "has to", "have to", "let's"})
 _BACK_FROM = frozenset({"got", "get", "gets", "came", "come", "comes", "went", "go", "be", "been", "am", "i'm", "is",

@@ -118,6 +118,37 @@ class RulesOptions:
 
 
 #: A stacking order given by an attribute or a sort, which the parser does not read.
+#: A stack ordered by where its objects stand now: "from the one closest to me at the bottom to the one
+#: furthest away at the top", "the leftmost at the bottom and the rightmost on top".
+_STACK_BY_PLACE = re.compile(
+    r"(?i),?\s*\b(?:from |with |starting with )?(?:the )?(?:one |block |object |thing )?(?:(closest|nearest|furthest|farthest)"
+    r"(?: to| from)? (?:me|you|us|the front|the viewer|the back|away|back)(?: edge)?|(left|right|front|back)most)(?: one)? "
+    r"(?:at|on|as) the (bottom|base)(?:,? (?:(?:all the way |right )?(?:up )?to|through to|and) the (?:one |block |object |thing )?"
+    r"(?:(?:closest|nearest|furthest|farthest)(?: to| from)? (?:me|you|us|the front|the viewer|the back|away|back)(?: edge)?|"
+    r"(?:left|right|front|back)most)(?: one)?(?: (?:at|on) (?:the )?top)?)?")
+
+
+def _stack_by_place(text: str) -> tuple[str, tuple[int, float] | None]:
+    """The text without a stacking order said by where the objects stand now, and that order as
+    :func:`_stack_axis` gives it (pose index, sign; the first place at the bottom)."""
+    m = _STACK_BY_PLACE.search(text)
+    if m is None:
+        return text, None
+    near, side = (m.group(1) or "").lower(), (m.group(2) or "").lower()
+    if near:
+        said = m.group(0).lower().split()
+        first = said[: min((k for k, w in enumerate(said) if w in ("at", "on", "as")), default=len(said))]
+        to_front = any(w in ("me", "you", "us", "front", "viewer") for w in first)
+        if near in ("closest", "nearest"):
+            bottom_front = to_front
+        else:  # "furthest from me" or "furthest away"/"furthest back" at the bottom: the back one
+            bottom_front = "from" in first and not to_front
+        key = (1, 1.0) if bottom_front else (1, -1.0)
+    else:
+        key = {"left": (0, 1.0), "right": (0, -1.0), "front": (1, 1.0), "back": (1, -1.0)}[side]
+    return text[: m.start()] + text[m.end() :], key
+
+
 _ORDER_BY = re.compile(
     r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
     r"in (size|height|colou?r|alphabetical|rainbow|reverse alphabetical|reverse) order|(in|by) the order of the (rainbow|alphabet)|by (size|height|colou?r|volume|weight)|"
@@ -237,8 +268,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         text, self._measures = stages.mark_measures(text)
         text = stages.other_side(stages.said_places(stages.pronoun_facings(stages.said_facings(text))))
         text = unframe(text)
+        text, by_place = _stack_by_place(text)
         order_by = _ORDER_BY.search(text)
-        self._stack_axis = _stack_axis(lexicon.words(text))
+        self._stack_axis = by_place or _stack_axis(lexicon.words(text))
         # The order along a line ("from left to right") is not part of any goal.
         # "the third block from the left to the right of the bowl" is a reference and a side, no order.
         text = re.sub(r"(?i)\b(from )?(the )?(left to( the)? right|right to( the)? left|front to( the)? back|back to( the)? front)"

@@ -55,7 +55,9 @@ INFORMAL: dict[str, str] = {
     "n": "and", "ur": "your", "plz": "please", "rn": "now", "tho": "though", "thre": "three",
     # ordinals in figures: "the 2nd can from the left"
     # shorthand for "except": "all the letters exc the T"
-    "exc": "except", "excl": "except", "xcept": "except",
+    "exc": "except", "excl": "except", "xcept": "except", "exept": "except", "excpet": "except", "excpt": "except",
+    "exsept": "except", "eksept": "except", "smal": "small", "smol": "small", "smll": "small", "larg": "large",
+    "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }

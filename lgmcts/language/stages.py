@@ -493,23 +493,72 @@ def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     while i < len(words) and words[i] in ("ok", "okay", "so", "now", "right", "well", ","):
         i += 1
     i += words[i : i + 2] == ("out", "of")
-    if words[i : i + 1] != ("of",) or i + 1 >= len(words):
-        return text, []
-    j = i + 1 + (words[i + 1] in ("the", "these"))
-    if j == i + 1 and words[j] not in _COUNT_WORDS:
+    ends: tuple[str, ...] = (",",)
+    if words[i : i + 2] in (("there", "is"), ("there", "are"), ("there", "'s")) and i + 3 < len(words):
+        # "there are two bowls; the white one ...", "there is two mugs. red one ... the other one ..."
+        ends, lead = (",", ".", ";", ":"), i + 2
+    elif i + 1 < len(words) and (words[i] in _COUNT_WORDS or (words[i] == "the" and words[i + 1] in _COUNT_WORDS)):
+        ends, lead = (".", ";", ":"), i  # "Two mugs. The one closer to me goes ...": a group said as a sentence
+    elif words[i : i + 1] != ("of",) or i + 1 >= len(words):
+        return _listed_group(text, toks, i, find, ids_of)
+    else:
+        lead = i + 1
+    j = lead + (words[lead] in ("the", "these"))
+    if j == lead and words[j] not in _COUNT_WORDS:
         return text, []  # "of two green things" (said without an article) is one too
-    comma = next((k for k in range(j, min(len(words), i + 8)) if words[k] == ","), None)
-    if comma is None:
+    comma = next((k for k in range(j, min(len(words), i + 8)) if words[k] in ends), None)
+    if comma is None or comma + 1 >= len(words):
         return text, []
     count = _COUNT_WORDS.get(words[j])
-    ids = _ids(("the",) + tuple(w for w in words[j + (count is not None) : comma]), find, ids_of)
+    said = ("the",) + tuple(w for w in words[j + (count is not None) : comma])
+    ids = _ids(said, find, ids_of)
     if not ids or (count is not None and len(ids) != count):
         return text, []
     rest = text[_end(text, toks[comma]) :]
     noun = words[comma - 1]
     one = noun[:-1] if noun.endswith("s") and _ids(("the", noun[:-1]), find, ids_of) else noun
+    if ends != (",",):
+        # "there are two bowls; ...", "Two mugs. The one closer to me ...": the group said as a sentence of its
+        # own stays (later stages read it as before); it only gives "the other one" and "red one" their group
+        after = words[comma + 1 :]
+        if not _reads_whole(said, find) or not ("other" in after or any(
+                a == "the" and b == "one" and c != "of" for a, b, c in zip(after, after[1:], after[2:] + ("",)))):
+            return text, []
+        return _one_of(rest.lstrip(), one, ids, find, ids_of), ids
     return text[: toks[i - (words[i - 1 : i] == ("out",))].pos if i else 0] + _one_of(rest, one, ids, find,
                                                                                      ids_of), ids
+
+
+#: Words after which a clause starts ("... two mugs. red one put left of the plate").
+_CLAUSE_EDGE = frozenset({".", ",", ";", ":", "and", "then", "!"})
+
+
+_ORDINAL_ONES = {"first": 0, "second": 1, "third": 2, "last": -1}
+
+
+def _listed_group(text: str, toks: Sequence[Token], i: int, find: Callable[[tuple[str, ...]], list],
+                  ids_of: Callable[[Any], list[int]]) -> tuple[str, list[int]]:
+    """A list said first, before a colon ("red can and blue can: the first one ..., the other one ..."): the text
+    after the colon with "the first one" (the second, the last) said as that object of the list, and the list's
+    objects as the group "the other one" chooses among. Left as said where nothing after it picks among them."""
+    words = tuple(t.text for t in toks)
+    colon = next((k for k in range(i + 1, min(len(words), i + 10)) if words[k] == ":"), None)
+    if colon is None or colon + 2 >= len(words):
+        return text, []
+    said = words[i:colon]
+    ids = _ids(said if said[0] == "the" else ("the",) + said, find, ids_of, several=True)
+    after = words[colon + 1 :]
+    picks = [(a, c) for a, b, c in zip(after, after[1:], after[2:]) if a == "the" and c == "one"
+             and (b == "other" or b in _ORDINAL_ONES)]
+    if not ids or len(ids) < 2 or len(set(ids)) != len(ids) or not picks:
+        return text, []  # "the yellow block and the red one: stack one on the other" keeps its list
+    out, at = [], _end(text, toks[colon])
+    for k in range(colon + 1, len(toks) - 2):
+        pick = _ORDINAL_ONES.get(words[k + 1])
+        if words[k] == "the" and words[k + 2] == "one" and pick is not None and pick < len(ids):
+            out.append(text[at : toks[k].pos] + _said_ids([ids[pick]]))
+            at = _end(text, toks[k + 2])
+    return ("".join(out) + text[at:]).lstrip(), ids
 
 
 def _one_of(text: str, noun: str, group: Sequence[int], find: Callable[[tuple[str, ...]], list],
@@ -520,13 +569,22 @@ def _one_of(text: str, noun: str, group: Sequence[int], find: Callable[[tuple[st
     out: list[str] = []
     at = 0
     for k, t in enumerate(toks):
-        if t.text != "one" or k < 2 or toks[k - 2].text != "the" or not toks[k - 1].text.isalpha():
+        if t.text != "one" or k < 1 or not toks[k - 1].text.isalpha() or (
+                k >= 2 and toks[k - 2].text != "the" and toks[k - 2].text not in _CLAUSE_EDGE) or (
+                k == 1 and toks[0].text == "the"):
+            continue  # "the blue one", or "red one" said without the article at the start of a clause
+        if toks[k - 1].text in ("other", "same"):
             continue
         got = _ids(("the", toks[k - 1].text, noun), find, ids_of)
-        if toks[k - 1].text in ("other", "same") or got is None or len(got) != 1 or got[0] not in group:
+        if got is not None and len(got) == 1 and got[0] in group:
+            out.append(text[at : t.pos] + noun)
+            at = _end(text, t)
             continue
-        out.append(text[at : t.pos] + noun)
-        at = _end(text, t)
+        kind = [i for i in _ids(("the", toks[k - 1].text), find, ids_of) or () if i in group]
+        if len(kind) == 1 and k >= 2 and toks[k - 2].text == "the":
+            # "there are two blue pieces. put the letter one ...": the one letter of the group
+            out.append(text[at : toks[k - 2].pos] + _said_ids(kind))
+            at = _end(text, t)
     out.append(text[at:])
     return "".join(out)
 
