@@ -151,7 +151,7 @@ def _stack_by_place(text: str) -> tuple[str, tuple[int, float] | None]:
 
 _ORDER_BY = re.compile(
     r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
-    r"in (size|height|colou?r|alphabetical|rainbow|reverse alphabetical|reverse) order|(in|by) the order of the (rainbow|alphabet)|by (size|height|colou?r|volume|weight)|"
+    r"in (size|height|colou?r|alphabetical|rainbow|reverse alphabetical|reverse) order|(rainbow|alphabetical) order|(in|by) the order of the (rainbow|alphabet)|by (size|height|colou?r|volume|weight)|"
     r"(from|by) (the )?(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest) to (the )?"
     r"(shortest|smallest|tallest|largest|biggest|lightest|darkest|heaviest))\b")
 
