@@ -1,9 +1,11 @@
 """Which arrangement classes the corner search reaches on TRLB's undecided dense pairs.
 
-Example (the figures in docs/benchmarks.md, "What the searches show at n = 6 and 9", come from these)::
+Example (the figures in docs/benchmarks.md, "What the searches show at n = 6 and 9", come from these, the first two
+from the search before its depth term, as ``--depth 0`` runs it)::
 
     python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 6 --states 8000
     python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 9 --states 3000
+    python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 6,7,9 --depth 2
 
 For each start/goal pair (files ``2k`` and ``2k+1`` of the cell, as ``planner.py trlb`` pairs them) it runs the
 corner search of :mod:`lgmcts.planner.dense` forwards from the start and backwards from the goals, each for
@@ -70,6 +72,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--pairs", type=int, default=5)
     ap.add_argument("--states", type=int, default=3000, help="states each search expands")
     ap.add_argument("--weight", type=float, default=dense.WEIGHT)
+    ap.add_argument("--depth", type=float, default=dense.DEPTH,
+                    help="weight of the depth term in the goal count (0: the search before it had one)")
     ap.add_argument("--inner", type=float, default=0.2, help="how near the middle a disc counts as inside (m)")
     a = ap.parse_args(argv)
     try:
@@ -88,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
         for reverse in (False, True):
             t = dense._Discs(problem, reverse=reverse)
             middle = (t.lo[0] + t.hi[0]) / 2
-            search = dense._Search(t, a.weight)
+            search = dense._Search(t, a.weight, depth=a.depth)
             t0 = time.process_time()
             plan, expanded = search.run(a.states, None)
             ring: Counter[str] = Counter()
