@@ -67,8 +67,7 @@ GAP = CLEARANCE
 #: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
 #: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight) each.
-MORE: tuple[tuple[float, bool, float], ...] = ((3.0, False, DEPTH), (3.0, True, DEPTH), (3.0, True, 2 * DEPTH),
-                                               (4.0, False, DEPTH), (4.0, True, DEPTH))
+MORE: tuple[tuple[float, bool, float], ...] = ((3.0, False, DEPTH), (3.0, True, 2 * DEPTH))
 #: Budget of each search of :data:`MORE`, in multiples of the first ones'.
 MORE_FACTOR = 5
 #: States a search expands in one turn (:func:`search`).
