@@ -129,7 +129,15 @@ class _Discs:
 
     def corners(self, pos: np.ndarray) -> list[np.ndarray]:
         """Per disc, the corners of its free space among the others at ``pos``: an ``(m, 2)`` array each."""
-        out: list[np.ndarray] = [np.zeros((0, 2))] * self.n
+        mi, mp = self.corner_moves(pos)
+        bounds = np.searchsorted(mi, np.arange(self.n + 1))
+        return [mp[bounds[i]:bounds[i + 1]] for i in range(self.n)]
+
+    def corner_moves(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Every move to a corner at ``pos``: the discs (in order) and their new centres (each disc's corners in the
+        order found), as :meth:`corners` lists them."""
+        discs: list[np.ndarray] = []
+        places: list[np.ndarray] = []
         for members in self.groups.values():
             i0 = members[0]
             rad = self.far[i0]
@@ -166,9 +174,14 @@ class _Discs:
             # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
             mem = np.asarray(members)
             keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
-            for k, i in enumerate(members):
-                out[i] = p[keep[:, k]]
-        return out
+            k, m = np.nonzero(keep.T)
+            discs.append(mem[k])
+            places.append(p[m])
+        if len(discs) == 1:
+            return discs[0], places[0]
+        mi = np.concatenate(discs)
+        order = np.argsort(mi, kind="stable")
+        return mi[order], np.concatenate(places)[order]
 
 
 def dense_plan(problem: Problem, *, max_expansions: int | None = None, deadline: float | None = None,
@@ -302,28 +315,25 @@ class _Search:
         done = self.at_goal(pos, yok)
         pen = self.depths(pos)
         cov = pen > 0
-        corners = t.corners(pos)
-        # Goal moves: disc i's goal disc clear of every other disc.
-        to_goal = t.has_goal & ~done & ~cov.any(axis=1)
-        pts: list[np.ndarray] = []
-        for i in range(t.n):
-            if to_goal[i]:
-                pts.append(t.goal[i:i + 1])
-            pts.append(corners[i])
-        counts = np.array([len(c) for c in corners]) + to_goal
-        if not counts.any():
+        # Goal moves: disc i's goal disc clear of every other disc; each before the disc's corner moves.
+        gi = np.flatnonzero(t.has_goal & ~done & ~cov.any(axis=1))
+        ci, cp = t.corner_moves(pos)
+        mi = np.concatenate([gi, ci])
+        if not len(mi):
             return None
-        mi = np.repeat(np.arange(t.n), counts)
-        mp = np.concatenate(pts)
-        mg = np.zeros(len(mi), dtype=bool)
-        mg[(np.cumsum(counts) - counts)[to_goal]] = True
+        by_disc = np.argsort(mi, kind="stable")
+        mi = mi[by_disc]
+        mp = np.concatenate([t.goal[gi], cp])[by_disc]
+        mg = by_disc < len(gi)
         # Only moves to states not seen before (to GRID), in the order above.
         key = np.round(pos / GRID).astype(np.int64)
         keys = np.repeat(key[None], len(mi), axis=0)
         keys[np.arange(len(mi)), mi] = np.round(mp / GRID).astype(np.int64)
+        raw, size = keys.tobytes(), key.nbytes
         fresh = []
         seen = self.seen
-        for m, b in enumerate(map(bytes, keys)):
+        for m in range(len(mi)):
+            b = raw[m * size:(m + 1) * size]
             if b not in seen:
                 seen.add(b)
                 fresh.append(m)
