@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -244,6 +245,27 @@ def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, r
         h = open_.sum() + 0.5 * ((pen > 0).any(axis=1) & open_).sum() \
             + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean())
         assert rank == pytest.approx(moves + 3.0 * h, abs=1e-9)
+
+
+def _one_goal_dropped(seed: int):
+    """A seven-disc square at 58 % whose last disc has no goal: it cannot be searched backwards."""
+    c = _packed(seed, 7, 0.58)
+    return dataclasses.replace(c, goals=c.goals.model_copy(update={"goals": c.goals.goals[:-1]}))
+
+
+def test_without_a_goal_for_every_disc_only_forward_searches_run():
+    forwards = sum(not backwards for _, backwards, _ in dense.MORE)
+    # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
+    pr = disc_problem(_one_goal_dropped(22))
+    assert not dense._reversible(dense._Discs(pr))
+    assert dense.search(pr, 40, None) == (None, 40 + forwards * dense.MORE_FACTOR * 40)
+    # A plan the forward search misses in 40 states, found by a further forward search; valid.
+    c = _one_goal_dropped(5)
+    pr = disc_problem(c)
+    assert dense._Search(dense._Discs(pr)).run(40, None)[0] is None
+    actions, expanded = dense.search(pr, 40, None)
+    assert actions is not None and 40 < expanded <= 40 + forwards * dense.MORE_FACTOR * 40
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
 
 
 def test_a_search_run_on_in_turns_finds_what_one_run_finds():
