@@ -1,9 +1,11 @@
 """Which arrangement classes the corner search reaches on TRLB's undecided dense pairs.
 
-Example (the figures in docs/benchmarks.md, "What the searches show at n = 6 and 9", come from these)::
+Example (the figures in docs/benchmarks.md, "What the searches show at n = 6 and 9", come from these, the first two
+from the search before its depth term, as ``--depth 0`` runs it)::
 
     python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 6 --states 8000
     python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 9 --states 3000
+    python benchmarks/dense_classes.py --instances PATH/TRLB/disk_experiments/arrangements --ns 6,7,9 --depth 2
 
 For each start/goal pair (files ``2k`` and ``2k+1`` of the cell, as ``planner.py trlb`` pairs them) it runs the
 corner search of :mod:`lgmcts.planner.dense` forwards from the start and backwards from the goals, each for
@@ -70,7 +72,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--pairs", type=int, default=5)
     ap.add_argument("--states", type=int, default=3000, help="states each search expands")
     ap.add_argument("--weight", type=float, default=dense.WEIGHT)
+    ap.add_argument("--depth", type=float, default=dense.DEPTH,
+                    help="weight of the depth term in the goal count (0: the search before it had one)")
     ap.add_argument("--inner", type=float, default=0.2, help="how near the middle a disc counts as inside (m)")
+    ap.add_argument("--plan", action="store_true",
+                    help="also run the planner's corner search (its budget, no time limit) and label its plan's states")
     a = ap.parse_args(argv)
     try:
         ns = {int(x) for x in a.ns.split(",") if x.strip()}
@@ -88,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
         for reverse in (False, True):
             t = dense._Discs(problem, reverse=reverse)
             middle = (t.lo[0] + t.hi[0]) / 2
-            search = dense._Search(t, a.weight)
+            search = dense._Search(t, a.weight, depth=a.depth)
             t0 = time.process_time()
             plan, expanded = search.run(a.states, None)
             ring: Counter[str] = Counter()
@@ -111,7 +117,36 @@ def main(argv: list[str] | None = None) -> int:
                     print(f"    {kind}: {len(labels)} labels: {top}{more}")
         shared = {kind: len(set(v[0]) & set(v[1])) for kind, v in seen.items() if v[0]}
         print("    labels both directions reach: " + ", ".join(f"{k} {v}" for k, v in shared.items()))
+        if a.plan:
+            print("    " + plan_labels(problem, a.inner))
     return 0
+
+
+def plan_labels(problem: Problem, inner: float) -> str:
+    """The labels the states of the corner search's plan pass through (each label once, in order), or why none."""
+    t = dense._Discs(problem)
+    middle = (t.lo[0] + t.hi[0]) / 2
+    actions, expanded = dense.search(problem, dense.budget(t.n), None)
+    if actions is None:
+        return f"corner search: no plan in {expanded} states"
+    pos = t.start.copy()
+    states = [pos.copy()]
+    index = {o: i for i, o in enumerate(t.ids)}
+    for x in actions:
+        pos[index[x.object]] = x.to[:2]
+        states.append(pos.copy())
+    out = [f"corner search: plan of {len(actions)} moves after {expanded} states"]
+    for kind, label in (("ring", lambda q: ring_label(q, middle, inner)), ("grid", grid_label)):
+        path: list[str] = []
+        for q in states:
+            lab = label(q)
+            if lab is not None and (not path or path[-1] != lab):
+                path.append(lab)
+        if path:
+            out.append(f"{kind}: {len(set(path))} labels along it: " + ", ".join(path))
+        else:
+            out.append(f"{kind}: none")
+    return "; ".join(out)
 
 
 if __name__ == "__main__":

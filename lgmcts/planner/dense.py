@@ -17,12 +17,17 @@ over whole table states, best first, with two kinds of moves per disc:
   centre must stay in), where these are free.
 
 States are ranked by ``moves + W * (open goals + 1/2 * covered open
-goals)`` with ``W =`` :data:`WEIGHT` (ties: the shallowest, then the first
-generated) and merged when every centre agrees to :data:`GRID` m. The
-search stops at the first state where every disc meets its goal, after
-``max_expansions`` states (:func:`budget`), or at ``deadline``. When it
-finds nothing it runs again backwards, from the goals to the start, and
-then the searches of :data:`MORE`, with other weights and tie orders, take
+goals + E * depth)`` with ``W =`` :data:`WEIGHT` and ``E =`` :data:`DEPTH`,
+where ``depth`` sums, over the open goals, how far the other discs reach
+into the goal disc (past contact), in mean diameters: among the many moves
+that uncover no goal, it ranks first those that push discs out of the
+goals they block, the progress the goal count alone does not see (ties:
+the shallowest, then the first generated). States are merged when every
+centre agrees to :data:`GRID` m. A search stops at the first state where
+every disc meets its goal, after ``max_expansions`` states
+(:func:`budget`), or at ``deadline``. It runs forwards and, taking turns
+with it, backwards, from the goals to the start; when both find nothing
+the searches of :data:`MORE`, with other weights and depth terms, take
 turns (:func:`search`). It uses no
 random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
@@ -53,18 +58,19 @@ _SIDE_AXIS = np.array([0, 0, 1, 1])
 MAX_DISCS = 40
 #: Weight of the goal count against the moves made (greedier above 1).
 WEIGHT = 2.0
+#: Weight, in the goal count, of how deep other discs stand in the open goal discs (summed, in diameters).
+DEPTH = 1.0
 #: States whose centres agree to this many metres are one state.
 GRID = 5e-4
 #: Gap (m) kept between a parked disc and the others.
 GAP = CLEARANCE
 #: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
-#: Further searches, taking turns when the first two find nothing: (weight, backwards, deepest first) each.
-MORE: tuple[tuple[float, bool, bool], ...] = ((2.0, False, True), (3.0, False, False), (3.0, True, False),
-                                              (4.0, True, False))
+#: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight) each.
+MORE: tuple[tuple[float, bool, float], ...] = ((3.0, False, DEPTH), (3.0, True, 2 * DEPTH))
 #: Budget of each search of :data:`MORE`, in multiples of the first ones'.
 MORE_FACTOR = 5
-#: States a search of :data:`MORE` expands in one turn.
+#: States a search expands in one turn (:func:`search`).
 SLICE = 250
 
 
@@ -111,6 +117,8 @@ class _Discs:
         rr = self.r[:, None] + self.r[None, :]
         self.far = rr + GAP
         self.touch = rr - TOUCH
+        #: The length that counts as one in the depth term: the mean diameter.
+        self.unit = 2.0 * float(self.r.mean()) if self.n else 1.0
         self.yaw_ok = np.abs(wrap_angle(self.yaw0 - self.goal_yaw)) <= YAW_TOL
 
         self.pairs = np.triu_indices(self.n, 1)
@@ -121,7 +129,15 @@ class _Discs:
 
     def corners(self, pos: np.ndarray) -> list[np.ndarray]:
         """Per disc, the corners of its free space among the others at ``pos``: an ``(m, 2)`` array each."""
-        out: list[np.ndarray] = [np.zeros((0, 2))] * self.n
+        mi, mp = self.corner_moves(pos)
+        bounds = np.searchsorted(mi, np.arange(self.n + 1))
+        return [mp[bounds[i]:bounds[i + 1]] for i in range(self.n)]
+
+    def corner_moves(self, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Every move to a corner at ``pos``: the discs (in order) and their new centres (each disc's corners in the
+        order found), as :meth:`corners` lists them."""
+        discs: list[np.ndarray] = []
+        places: list[np.ndarray] = []
         for members in self.groups.values():
             i0 = members[0]
             rad = self.far[i0]
@@ -158,9 +174,14 @@ class _Discs:
             # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
             mem = np.asarray(members)
             keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
-            for k, i in enumerate(members):
-                out[i] = p[keep[:, k]]
-        return out
+            k, m = np.nonzero(keep.T)
+            discs.append(mem[k])
+            places.append(p[m])
+        if len(discs) == 1:
+            return discs[0], places[0]
+        mi = np.concatenate(discs)
+        order = np.argsort(mi, kind="stable")
+        return mi[order], np.concatenate(places)[order]
 
 
 def dense_plan(problem: Problem, *, max_expansions: int | None = None, deadline: float | None = None,
@@ -177,27 +198,33 @@ def dense_plan(problem: Problem, *, max_expansions: int | None = None, deadline:
 def search(problem: Problem, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
     """:func:`dense_plan`'s search on an eligible problem: the plan or ``None``, and the states expanded.
 
-    Forwards from the start first; when that finds nothing and the problem can be run backwards (every disc has
-    a goal, at its start yaw), backwards from the goals with the same budget: a move's inverse is a move (the
-    disc goes back where it stood, which was free of the same others), so the states found from the goals to the
-    start, read in reverse, are a plan. Some tables are easier to unpack from one end than the other. When both
-    find nothing, the searches of :data:`MORE` (other weights, directions and orders among equal ranks) take
-    turns of :data:`SLICE` states each, up to :data:`MORE_FACTOR` times ``max_expansions`` states each, or until
-    ``deadline``: which of them finds a plan, and after how many states, varies from table to table, and taking
-    turns finds the first plan at most ``len(MORE)`` times later than the luckiest search alone would."""
+    Forwards from the start and, when the problem can be run backwards (every disc has a goal, at its start yaw),
+    backwards from the goals, the two taking turns of :data:`SLICE` states, each up to ``max_expansions``: a
+    move's inverse is a move (the disc goes back where it stood, which was free of the same others), so the
+    states found from the goals to the start, read in reverse, are a plan. Some tables are much easier to unpack
+    from one end than the other, and taking turns finds the plan of the easier end at most twice later than
+    that search alone, instead of after the whole budget of the other. When both find nothing, the searches of
+    :data:`MORE` (other weights and depth terms) take turns the same way, up to :data:`MORE_FACTOR` times
+    ``max_expansions`` states each, or until ``deadline``: which of them finds a plan, and after how many
+    states, varies from table to table, and taking turns finds the first plan at most ``len(MORE)`` times later
+    than the luckiest search alone would."""
     t = _Discs(problem)
-    plan, expanded = _Search(t).run(max_expansions, deadline)
+    back = _Discs(problem, reverse=True) if _reversible(t) else None
+    first = [_Search(t)] + ([] if back is None else [_Search(back)])
+    plan, expanded = _take_turns(first, max_expansions, deadline)
     if plan is not None:
         return plan, expanded
-    back = _Discs(problem, reverse=True) if _reversible(t) else None
-    if back is not None:
-        plan, more = _Search(back).run(max_expansions, deadline)
-        expanded += more
-        if plan is not None:
-            return plan, expanded
-    cap = MORE_FACTOR * max_expansions
-    runs = [_Search(t if back is None or not reverse else back, weight, deep) for weight, reverse, deep in MORE
-            if back is not None or not reverse]
+    more = [_Search(back if reverse and back is not None else t, weight, depth=depth)
+            for weight, reverse, depth in MORE if back is not None or not reverse]
+    plan, further = _take_turns(more, MORE_FACTOR * max_expansions, deadline)
+    return plan, expanded + further
+
+
+def _take_turns(runs: list[_Search], cap: int, deadline: float | None) -> tuple[list[Action] | None, int]:
+    """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to ``cap`` states, until one finds a
+    plan, all are spent or ``deadline`` passes; the plan or ``None``, and the states they expanded."""
+    expanded = 0
+    runs = list(runs)
     while runs and (deadline is None or time.perf_counter() <= deadline):
         for run in list(runs):
             before = run.expanded
@@ -222,12 +249,14 @@ _State = tuple[np.ndarray, np.ndarray, int, int, bool]
 class _Search:
     """Best-first search state: the states generated, the open list, the merged keys."""
 
-    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False) -> None:
+    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH) -> None:
         self.t = t
         #: The weight of the goals in a state's rank; among states of equal rank, the deepest first when ``deep``
         #: (else the shallowest), then the first generated.
         self.weight = weight
         self.deep = deep
+        #: The weight of the depth term in the goal count (:data:`DEPTH`).
+        self.depth = depth
         self.states: list[_State] = [(t.start.copy(), t.yaw_ok.copy(), -1, -1, False)]
         #: Open states: (rank, depth or minus depth when ``deep``, index).
         self.heap: list[tuple[float, int, int]] = []
@@ -237,20 +266,24 @@ class _Search:
         done0 = self.at_goal(t.start, t.yaw_ok)
         self.solved_at_start = bool(done0.all())
         if not self.solved_at_start:
-            blocked0 = self.covered(t.start).any(axis=1)
-            self.heap.append((weight * float((~done0).sum() + 0.5 * (blocked0 & ~done0).sum()), 0, 0))
+            pen0 = self.depths(t.start)
+            blocked0 = (pen0 > 0).any(axis=1)
+            h0 = (~done0).sum() + 0.5 * (blocked0 & ~done0).sum() + depth * (pen0.sum(axis=1) * ~done0).sum() / t.unit
+            self.heap.append((weight * float(h0), 0, 0))
 
     def at_goal(self, pos: np.ndarray, yaw_ok: np.ndarray) -> np.ndarray:
         t = self.t
         return np.asarray(~t.has_goal | ((np.hypot(*(pos - t.goal).T) <= t.tol) & yaw_ok))
 
-    def covered(self, pos: np.ndarray) -> np.ndarray:
-        """``cov[k, j]``: disc j, where it stands, covers the goal disc of k."""
+    def depths(self, pos: np.ndarray) -> np.ndarray:
+        """``pen[k, j]``: how deep disc j, where it stands, reaches into the goal disc of k (0 where it does not
+        cover it; past contact, the least centre distance at a goal, less their distance)."""
         t = self.t
-        cov = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1]) < t.touch
-        cov[np.arange(t.n), np.arange(t.n)] = False
-        cov[~t.has_goal] = False
-        return cov
+        dist = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1])
+        pen = np.maximum(t.touch - dist, 0.0)
+        pen[np.arange(t.n), np.arange(t.n)] = 0.0
+        pen[~t.has_goal] = 0.0
+        return pen
 
     def run(self, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
         """Expand states until a plan is found, ``max_expansions`` states in all have been expanded, the open list
@@ -275,35 +308,32 @@ class _Search:
 
         The moves, in order: for each disc, straight to its goal when no other disc covers the goal disc, then to
         each corner of its free space. Each new state is ranked by moves plus the search's weight times (open
-        goals + half the open goals covered); all moves of the state are judged at once."""
+        goals + half the open goals covered + the depth term: the search's ``depth`` times how deep, in mean
+        diameters, the discs reach into open goal discs, summed); all moves of the state are judged at once."""
         t = self.t
         pos, yok = self.states[s][0], self.states[s][1]
         done = self.at_goal(pos, yok)
-        cov = self.covered(pos)
-        corners = t.corners(pos)
-        # Goal moves: disc i's goal disc clear of every other disc.
-        clear = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1]) >= t.touch
-        clear[np.arange(t.n), np.arange(t.n)] = True
-        to_goal = t.has_goal & ~done & clear.all(axis=1)
-        pts: list[np.ndarray] = []
-        for i in range(t.n):
-            if to_goal[i]:
-                pts.append(t.goal[i:i + 1])
-            pts.append(corners[i])
-        counts = np.array([len(c) for c in corners]) + to_goal
-        if not counts.any():
+        pen = self.depths(pos)
+        cov = pen > 0
+        # Goal moves: disc i's goal disc clear of every other disc; each before the disc's corner moves.
+        gi = np.flatnonzero(t.has_goal & ~done & ~cov.any(axis=1))
+        ci, cp = t.corner_moves(pos)
+        mi = np.concatenate([gi, ci])
+        if not len(mi):
             return None
-        mi = np.repeat(np.arange(t.n), counts)
-        mp = np.concatenate(pts)
-        mg = np.zeros(len(mi), dtype=bool)
-        mg[(np.cumsum(counts) - counts)[to_goal]] = True
+        by_disc = np.argsort(mi, kind="stable")
+        mi = mi[by_disc]
+        mp = np.concatenate([t.goal[gi], cp])[by_disc]
+        mg = by_disc < len(gi)
         # Only moves to states not seen before (to GRID), in the order above.
         key = np.round(pos / GRID).astype(np.int64)
         keys = np.repeat(key[None], len(mi), axis=0)
         keys[np.arange(len(mi)), mi] = np.round(mp / GRID).astype(np.int64)
+        raw, size = keys.tobytes(), key.nbytes
         fresh = []
         seen = self.seen
-        for m, b in enumerate(map(bytes, keys)):
+        for m in range(len(mi)):
+            b = raw[m * size:(m + 1) * size]
             if b not in seen:
                 seen.add(b)
                 fresh.append(m)
@@ -314,30 +344,38 @@ class _Search:
         # Open goals covered by the others than the moved disc, and by the moved disc from its new place.
         count = cov.sum(axis=1)
         blocked_rest = (count[None, :] - cov.T[mi]) > 0
-        col = np.hypot(t.goal[None, :, 0] - mp[:, None, 0], t.goal[None, :, 1] - mp[:, None, 1]) < t.touch[:, mi].T
-        col[np.arange(len(mi)), mi] = False
-        col[:, ~t.has_goal] = False
+        rows = np.arange(len(mi))
+        # newcol[m, k]: how deep the moved disc reaches into goal disc k from its new place.
+        newcol = np.maximum(t.touch[:, mi].T - np.hypot(t.goal[None, :, 0] - mp[:, None, 0],
+                                                        t.goal[None, :, 1] - mp[:, None, 1]), 0.0)
+        newcol[rows, mi] = 0.0
+        newcol[:, ~t.has_goal] = 0.0
+        col = newcol > 0
         open_ = np.repeat((~done)[None], len(mi), axis=0)
-        open_[np.arange(len(mi)), mi] = True
+        open_[rows, mi] = True
         blocked = (blocked_rest | col) & open_
         ok_yaw = mg | t.yaw_ok[mi]
         meets = ~t.has_goal[mi] | ((np.hypot(*(mp - t.goal[mi]).T) <= t.tol) & ok_yaw)
         others_open = float((~done).sum()) - ~done[mi]
-        h = others_open + ~meets + 0.5 * (blocked.sum(axis=1) - (meets & blocked[np.arange(len(mi)), mi]))
+        h = others_open + ~meets + 0.5 * (blocked.sum(axis=1) - (meets & blocked[rows, mi]))
+        if self.depth:
+            # Each goal's depth summed over the discs: the parent's, less the moved disc's old, plus its new.
+            reach = pen.sum(axis=1)[None, :] - pen.T[mi] + newcol
+            open_[rows, mi] = ~meets
+            h = h + self.depth * (reach * open_).sum(axis=1) / t.unit
         rank = (g + 1) + self.weight * h
         # The new states, in one block each for the centres and the yaw flags.
-        rows = np.arange(len(mi))
         npos = np.repeat(pos[None], len(mi), axis=0)
         npos[rows, mi] = mp
         nyok = np.repeat(yok[None], len(mi), axis=0)
         nyok[rows, mi] = ok_yaw
         last = (meets & (others_open == 0)).tolist()
-        depth = -(g + 1) if self.deep else g + 1
+        order = -(g + 1) if self.deep else g + 1
         for m, (i, home, r, end) in enumerate(zip(mi.tolist(), mg.tolist(), rank.tolist(), last)):
             self.states.append((npos[m], nyok[m], s, i, home))
             if end:
                 return len(self.states) - 1
-            heapq.heappush(self.heap, (r, depth, len(self.states) - 1))
+            heapq.heappush(self.heap, (r, order, len(self.states) - 1))
         return None
 
 

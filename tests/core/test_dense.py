@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -188,18 +189,83 @@ def test_a_backward_search_read_in_reverse_is_a_valid_plan(n, r, box, seed):
 
 
 def test_further_searches_take_turns_where_the_first_two_find_nothing():
-    # Four discs in a 50 x 40 cm box: neither the first search nor the backward one finds a plan in 10 states.
-    c = _random_case(4, 80.0, (500.0, 400.0), 2)
+    # Seven discs at 58 % of a 1 m square: neither the first search nor the backward one finds a plan in 20 states.
+    c = _packed(22, 7, 0.58)
     pr = disc_problem(c)
-    assert dense._Search(dense._Discs(pr)).run(10, None)[0] is None
-    assert dense._Search(dense._Discs(pr, reverse=True)).run(10, None)[0] is None
+    assert dense._Search(dense._Discs(pr)).run(20, None)[0] is None
+    assert dense._Search(dense._Discs(pr, reverse=True)).run(20, None)[0] is None
     # One of the further searches does, within their budget; the plan is valid and the same each time.
-    actions, expanded = dense.search(pr, 10, None)
-    assert actions is not None and 20 < expanded <= (2 + dense.MORE_FACTOR * len(dense.MORE)) * 10
+    actions, expanded = dense.search(pr, 20, None)
+    assert actions is not None and 2 * 20 < expanded <= (2 + dense.MORE_FACTOR * len(dense.MORE)) * 20
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     assert confined(Scene.from_spec(c.scene), c.goals) is None
-    again, _ = dense.search(pr, 10, None)
+    again, _ = dense.search(pr, 20, None)
     assert again is not None and [x.model_dump() for x in again] == [x.model_dump() for x in actions]
+
+
+def test_forwards_and_backwards_take_turns_from_the_start():
+    # Seven discs at 60 %: forwards finds nothing in 1000 states, backwards plans in 565. Taking turns of SLICE
+    # states, the backward plan comes after three turns each (not after the forward search's whole budget).
+    pr = disc_problem(_packed(36, 7, 0.60))
+    assert dense._Search(dense._Discs(pr)).run(1000, None)[0] is None
+    back, b = dense._Search(dense._Discs(pr, reverse=True)).run(1000, None)
+    assert back is not None and dense.SLICE < b <= 1000
+    actions, expanded = dense.search(pr, 1000, None)
+    turns = -(-b // dense.SLICE)
+    assert expanded == turns * dense.SLICE + b < 1000 + b
+    assert actions is not None and [x.model_dump() for x in actions] == [x.model_dump() for x in back]
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(4, 7), st.sampled_from([0.5, 0.55, 0.6]), st.integers(0, 10_000), st.booleans(),
+       st.sampled_from([0.0, 1.0, 2.0]))
+def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, reverse, depth):
+    # The ranks a search pushes, updated move by move, equal the goal count computed afresh for each state: open
+    # goals, half the open goals another disc covers, and the depth term (how deep the discs reach into open goal
+    # discs, in mean diameters).
+    try:
+        pr = disc_problem(_packed(seed, n, density))
+    except AssertionError:
+        return
+    t = dense._Discs(pr, reverse=reverse)
+    run = dense._Search(t, 3.0, False, depth)
+    if run.run(15, None)[0] is not None:
+        return
+    for rank, _, k in run.heap:
+        pos, yok = run.states[k][0], run.states[k][1]
+        moves, s = 0, k
+        while run.states[s][2] >= 0:
+            moves, s = moves + 1, run.states[s][2]
+        open_ = ~(~t.has_goal | ((np.hypot(*(pos - t.goal).T) <= t.tol) & yok))
+        pen = np.zeros((t.n, t.n))
+        for g in range(t.n):
+            for j in range(t.n):
+                if g != j and t.has_goal[g]:
+                    pen[g, j] = max(t.r[g] + t.r[j] - dense.TOUCH - math.hypot(*(t.goal[g] - pos[j])), 0.0)
+        h = open_.sum() + 0.5 * ((pen > 0).any(axis=1) & open_).sum() \
+            + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean())
+        assert rank == pytest.approx(moves + 3.0 * h, abs=1e-9)
+
+
+def _one_goal_dropped(seed: int):
+    """A seven-disc square at 58 % whose last disc has no goal: it cannot be searched backwards."""
+    c = _packed(seed, 7, 0.58)
+    return dataclasses.replace(c, goals=c.goals.model_copy(update={"goals": c.goals.goals[:-1]}))
+
+
+def test_without_a_goal_for_every_disc_only_forward_searches_run():
+    forwards = sum(not backwards for _, backwards, _ in dense.MORE)
+    # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
+    pr = disc_problem(_one_goal_dropped(22))
+    assert not dense._reversible(dense._Discs(pr))
+    assert dense.search(pr, 40, None) == (None, 40 + forwards * dense.MORE_FACTOR * 40)
+    # A plan the forward search misses in 40 states, found by a further forward search; valid.
+    c = _one_goal_dropped(5)
+    pr = disc_problem(c)
+    assert dense._Search(dense._Discs(pr)).run(40, None)[0] is None
+    actions, expanded = dense.search(pr, 40, None)
+    assert actions is not None and 40 < expanded <= 40 + forwards * dense.MORE_FACTOR * 40
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
 
 
 def test_a_search_run_on_in_turns_finds_what_one_run_finds():

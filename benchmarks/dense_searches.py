@@ -1,0 +1,88 @@
+"""How many table states each corner search needs on TRLB's dense pairs, alone and taking turns.
+
+Example (the figures of docs/benchmarks.md, "The corner search: a depth term, turns from the start")::
+
+    python benchmarks/dense_searches.py --instances PATH/TRLB/disk_experiments/arrangements --ns 7,8,10 \\
+        --searches 2F0,2B0,3F0,3B0,4B0,2F1,2B1,3F1,3B2 --states 7500
+
+For each start/goal pair (files ``2k`` and ``2k+1`` of a cell, as ``planner.py trlb`` pairs them) where the fast
+attempt of :mod:`lgmcts.planner.sequence` gets stuck, it runs each search of ``--searches`` alone, with no time
+limit, up to ``--states`` expanded states, and prints the states it expanded before its plan (or ``-``) and the
+plan's moves; then :func:`lgmcts.planner.dense.search` itself, the searches taking turns as the planner runs them,
+with the planner's budget. A search is named by its weight, its direction (``F`` forwards from the start, ``B``
+backwards from the goals) and the weight of its depth term (``0``: the goal count alone, as before the term).
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+import time
+from pathlib import Path
+
+from lgmcts.casegen import trlb_case, trlb_pairs
+from lgmcts.errors import InputError
+from lgmcts.planner import dense
+from lgmcts.planner.problem import Problem
+from lgmcts.planner.sequence import sequence_plan
+from lgmcts.scene import Scene
+
+_NAME = re.compile(r"^(\d+(?:\.\d+)?)([FB])(\d+(?:\.\d+)?)$")
+
+
+def parse_searches(spec: str) -> list[tuple[str, float, bool, float]]:
+    """``"2F1,3B2"`` -> ``[("2F1", 2.0, False, 1.0), ("3B2", 3.0, True, 2.0)]``; a bad name raises ValueError."""
+    out = []
+    for name in (x.strip() for x in spec.split(",") if x.strip()):
+        m = _NAME.match(name)
+        if m is None:
+            raise ValueError(f"bad search name {name!r} (weight, F or B, depth weight: e.g. 2F1)")
+        out.append((name, float(m.group(1)), m.group(2) == "B", float(m.group(3))))
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--instances", required=True, help="TRLB's disk_experiments/arrangements folder")
+    ap.add_argument("--density", type=float, default=0.6)
+    ap.add_argument("--ns", default="10", help="object counts, e.g. 7,8,10")
+    ap.add_argument("--pairs", type=int, default=5)
+    ap.add_argument("--searches", default="2F1,2B1,3F1,3B2", help="searches to run alone, e.g. 2F0,3B2")
+    ap.add_argument("--states", type=int, default=7500, help="states each search alone expands at most")
+    a = ap.parse_args(argv)
+    try:
+        searches = parse_searches(a.searches)
+        ns = {int(x) for x in a.ns.split(",") if x.strip()}
+        todo = [(d, n, f) for d, n, f in trlb_pairs(a.instances, a.pairs) if d == a.density and n in ns]
+    except (ValueError, InputError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    if not todo:
+        print(f"error: no pairs at D={a.density} for n in {sorted(ns)} under {a.instances}", file=sys.stderr)
+        return 2
+    for d, n, files in todo:
+        case = trlb_case(*files)
+        problem = Problem.build(Scene.from_spec(case.scene), case.goals)
+        pair = "/".join(Path(f).name.split("_")[0] for f in files)
+        if sequence_plan(problem) is not None:
+            print(f"D={d} n={n} files {pair}: planned by the fast attempt")
+            continue
+        cells = []
+        for name, weight, backwards, depth in searches:
+            run = dense._Search(dense._Discs(problem, reverse=backwards), weight, depth=depth)
+            t0 = time.process_time()
+            plan, expanded = run.run(a.states, None)
+            cpu = time.process_time() - t0
+            cells.append(f"{name} {expanded if plan is not None else '-'}"
+                         + (f" ({len(plan)} moves, {cpu:.2f} s)" if plan is not None else f" ({cpu:.2f} s)"))
+        t0 = time.process_time()
+        plan, expanded = dense.search(problem, dense.budget(n), None)
+        cpu = time.process_time() - t0
+        turns = f"{expanded} ({len(plan)} moves, {cpu:.2f} s)" if plan is not None else f"- after {expanded}"
+        print(f"D={d} n={n} files {pair}: " + "; ".join(cells) + f"; in turns: {turns}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
