@@ -785,6 +785,9 @@ def _read_arrangement(self: _Parser, f: Frame) -> list[_Pending] | None:
             if r is not None:
                 got = self._select(mm)
                 for x in got if isinstance(got, list) else [got]:
+                    if role_of.get(x, r) != r:
+                        raise InputError(f"'{text}': object {x} is given two places in the stack "
+                                         f"({role_of[x]} and {r}); list the objects from the bottom up")
                     role_of[x] = r
     # A tower may grow over the next clauses ("green at the bottom, then red"):
     # its size is checked once the command is read.

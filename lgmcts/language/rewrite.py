@@ -317,6 +317,21 @@ def _compass_relation(m: re.Match[str]) -> str:
     return f"{a} {_COMPASS[b.lower()]} of"
 
 
+@replacer("more-far-most-near")
+def _more_far_most_near(m: re.Match[str]) -> str:
+    """"more far" -> "farther", "most near" -> "nearest", "more close" -> "closer"."""
+    more, word = m.group(1).lower(), m.group(2).lower()
+    stem = {"far": "farth", "near": "near", "close": "clos"}[word]
+    return stem + ("er" if more == "more" else "est")
+
+
+@replacer("measure-in-width")
+def _measure_in_width(m: re.Match[str]) -> str:
+    """"40 cm in width" -> "40 cm wide", "in length" -> "long", "in diameter" -> "across", "in radius" -> "radius"."""
+    word = {"width": "wide", "length": "long", "diameter": "across", "radius": "radius"}[m.group(2).lower()]
+    return f"{m.group(1)} {word}"
+
+
 @replacer("and-its-side")
 def _and_its_side(m: re.Match[str]) -> str:
     """"behind the cup and to its right" -> "back right of the cup"; a contradiction is kept as said."""

@@ -57,7 +57,8 @@ INFORMAL: dict[str, str] = {
     # shorthand for "except": "all the letters exc the T"
     "exc": "except", "excl": "except", "xcept": "except", "exept": "except", "excpet": "except", "excpt": "except",
     "exsept": "except", "eksept": "except", "smal": "small", "smol": "small", "smll": "small", "larg": "large",
-    "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium",
+    "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
+    "bowlz": "bowls",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
@@ -66,7 +67,8 @@ INFORMAL: dict[str, str] = {
 SOUNDS_LIKE: dict[str, str] = {
     "plait": "plate", "plaits": "plates", "bowel": "bowl", "bowels": "bowls", "nife": "knife", "nives": "knives",
     "mugg": "mug", "kup": "cup", "cerial": "cereal", "bottel": "bottle", "phon": "phone", "telephone": "phone",
-    "cellphone": "phone", "smartphone": "phone", "boles": "bowls", "bole": "bowl", "lyne": "line",
+    "cellphone": "phone", "smartphone": "phone", "boles": "bowls", "bole": "bowl", "lyne": "line", "spun": "spoon",
+    "bol": "bowl", "bols": "bowls",
 }
 #: Homophones read by the next word: "read" is "red", "blew" "blue" and "too"/"for" are "two"/"four" before a
 #: thing of the scene ("the read bowl", "the blew can", "too cans", "for blocks"); "write" is "right" before "of" or after "the"/"to".

@@ -499,6 +499,9 @@ def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
         ends, lead = (",", ".", ";", ":"), i + 2
     elif i + 1 < len(words) and (words[i] in _COUNT_WORDS or (words[i] == "the" and words[i + 1] in _COUNT_WORDS)):
         ends, lead = (".", ";", ":"), i  # "Two mugs. The one closer to me goes ...": a group said as a sentence
+    elif i + 2 < len(words) and words[i] in ("from", "among") and (words[i + 1] in _COUNT_WORDS or (
+            words[i + 1] == "the" and words[i + 2] in _COUNT_WORDS)):
+        lead = i + 1  # "From two bottles, the one farther from me ..." (not "from the bottom up: ...")
     elif words[i : i + 1] != ("of",) or i + 1 >= len(words):
         return _listed_group(text, toks, i, find, ids_of)
     else:
