@@ -117,7 +117,6 @@ class RulesOptions:
     prefer_anchor_from_other_goal: bool = True
 
 
-#: A stacking order given by an attribute or a sort, which the parser does not read.
 #: A stack ordered by where its objects stand now: "from the one closest to me at the bottom to the one
 #: furthest away at the top", "the leftmost at the bottom and the rightmost on top".
 _STACK_BY_PLACE = re.compile(
@@ -149,6 +148,7 @@ def _stack_by_place(text: str) -> tuple[str, tuple[int, float] | None]:
     return text[: m.start()] + text[m.end() :], key
 
 
+#: A stacking order given by an attribute or a sort, which the parser does not read.
 _ORDER_BY = re.compile(
     r"(?i)\b(in (ascending |descending |increasing |decreasing )?order of|ordered by|sorted by|sort(ed)? them|"
     r"in (size|height|colou?r|alphabetical|rainbow|reverse alphabetical|reverse) order|(rainbow|alphabetical) order|(in|by) the order of the (rainbow|alphabet)|by (size|height|colou?r|volume|weight)|"
