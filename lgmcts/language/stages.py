@@ -522,7 +522,8 @@ def partitive(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Callab
     one = noun[:-1] if noun.endswith("s") and _ids(("the", noun[:-1]), find, ids_of) else noun
     if ends != (",",):
         # "there are two bowls; ...", "Two mugs. The one closer to me ...": the group said as a sentence of its
-        # own stays (later stages read it as before); it only gives "the other one" and "red one" their group
+        # own is taken out where something after it picks among it ("the other one", "red one", "the one ...");
+        # otherwise the sentence stays, for the stages after to read as before
         after = words[comma + 1 :]
         if not _reads_whole(said, find) or not ("other" in after or any(
                 a == "the" and b == "one" and c != "of" for a, b, c in zip(after, after[1:], after[2:] + ("",)))):
