@@ -64,6 +64,23 @@ def grid_label(pos: np.ndarray) -> str | None:
     return "|".join(" ".join(map(str, row)) for row in rows)
 
 
+def dense_pairs(instances: str, density: float, ns_said: str, pairs: int
+                ) -> list[tuple[float, int, str, Problem]]:
+    """TRLB's start/goal pairs at ``density`` for the object counts of ``ns_said`` ("6,9"): density, count, the
+    pair's file numbers ("2/3") and its planning problem. Raises ValueError (InputError) on what it cannot read,
+    or where no pair fits."""
+    ns = {int(x) for x in ns_said.split(",") if x.strip()}
+    todo = [(d, n, f) for d, n, f in trlb_pairs(instances, pairs) if d == density and n in ns]
+    if not todo:
+        raise ValueError(f"no pairs at D={density} for n in {sorted(ns)} under {instances}")
+    out = []
+    for d, n, files in todo:
+        case = trlb_case(*files)
+        pair = "/".join(Path(f).name.split("_")[0] for f in files)
+        out.append((d, n, pair, Problem.build(Scene.from_spec(case.scene), case.goals)))
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--instances", required=True, help="TRLB's disk_experiments/arrangements folder")
@@ -79,17 +96,11 @@ def main(argv: list[str] | None = None) -> int:
                     help="also run the planner's corner search (its budget, no time limit) and label its plan's states")
     a = ap.parse_args(argv)
     try:
-        ns = {int(x) for x in a.ns.split(",") if x.strip()}
-        todo = [(d, n, f) for d, n, f in trlb_pairs(a.instances, a.pairs) if d == a.density and n in ns]
+        todo = dense_pairs(a.instances, a.density, a.ns, a.pairs)
     except (ValueError, InputError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    if not todo:
-        print(f"error: no pairs at D={a.density} for n in {sorted(ns)} under {a.instances}", file=sys.stderr)
-        return 2
-    for d, n, files in todo:
-        case = trlb_case(*files)
-        problem = Problem.build(Scene.from_spec(case.scene), case.goals)
+    for d, n, pair, problem in todo:
         seen: dict[str, list[Counter[str]]] = {"ring": [], "grid": []}
         for reverse in (False, True):
             t = dense._Discs(problem, reverse=reverse)
@@ -107,7 +118,6 @@ def main(argv: list[str] | None = None) -> int:
             seen["ring"].append(ring)
             seen["grid"].append(grid)
             where = "backwards" if reverse else "forwards"
-            pair = "/".join(Path(f).name.split("_")[0] for f in files)
             print(f"D={d} n={n} files {pair} {where}: {expanded} expanded, {len(search.states)} states, "
                   f"plan {'found' if plan is not None else 'none'}, {time.process_time() - t0:.1f} s CPU")
             for kind, labels in (("ring", ring), ("grid", grid)):

@@ -19,14 +19,12 @@ import argparse
 import re
 import sys
 import time
-from pathlib import Path
 
-from lgmcts.casegen import trlb_case, trlb_pairs
+from dense_classes import dense_pairs  # this folder: run as python benchmarks/dense_searches.py
+
 from lgmcts.errors import InputError
 from lgmcts.planner import dense
-from lgmcts.planner.problem import Problem
 from lgmcts.planner.sequence import sequence_plan
-from lgmcts.scene import Scene
 
 _NAME = re.compile(r"^(\d+(?:\.\d+)?)([FB])(\d+(?:\.\d+)?)$")
 
@@ -53,18 +51,11 @@ def main(argv: list[str] | None = None) -> int:
     a = ap.parse_args(argv)
     try:
         searches = parse_searches(a.searches)
-        ns = {int(x) for x in a.ns.split(",") if x.strip()}
-        todo = [(d, n, f) for d, n, f in trlb_pairs(a.instances, a.pairs) if d == a.density and n in ns]
+        todo = dense_pairs(a.instances, a.density, a.ns, a.pairs)
     except (ValueError, InputError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    if not todo:
-        print(f"error: no pairs at D={a.density} for n in {sorted(ns)} under {a.instances}", file=sys.stderr)
-        return 2
-    for d, n, files in todo:
-        case = trlb_case(*files)
-        problem = Problem.build(Scene.from_spec(case.scene), case.goals)
-        pair = "/".join(Path(f).name.split("_")[0] for f in files)
+    for d, n, pair, problem in todo:
         if sequence_plan(problem) is not None:
             print(f"D={d} n={n} files {pair}: planned by the fast attempt")
             continue
