@@ -28,15 +28,20 @@ __all__ = [
     "COMMAND_VERBS",
     "COMPASS",
     "DIRECTIONS",
+    "ECHO_NEUTRAL",
     "FACE_VERBS",
     "FACINGS",
     "FILLER_WORDS",
+    "HESITATIONS",
     "HUES",
     "MACROS",
     "NUMBERS",
+    "QUESTION_TAGS",
     "REGION_NOUNS",
+    "REPAIR_MARKERS",
     "ROLE_WORDS",
     "ROWS",
+    "SAME_WORD",
     "SHAPE_NOUNS",
     "SIDE_FACINGS",
     "SIZES",
@@ -93,6 +98,15 @@ STOPWORDS: frozenset[str] = frozenset(_W["stopwords"])
 FILLER_WORDS: tuple[str, ...] = tuple(_W["fillers"])
 COMMAND_VERBS: frozenset[str] = frozenset(_W["commands"])
 ROLE_WORDS: frozenset[str] = frozenset(_W["roles"])
+_P = _DATA["repairs"]
+#: Spoken repairs and echoes (:mod:`.repairs`): the marker phrases (as word tuples, longest first), the hesitations
+#: around them, the words an echo may add, the question tags and the words an echo reads as another.
+REPAIR_MARKERS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in _P["markers"]), key=len,
+                                                           reverse=True))
+HESITATIONS: frozenset[str] = frozenset(_P["hesitations"])
+ECHO_NEUTRAL: frozenset[str] = frozenset(_P["echo_neutral"])
+QUESTION_TAGS: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _P["tags"])
+SAME_WORD: dict[str, str] = dict(_P["same"])
 _WORD = re.compile(r"\w+")
 
 

@@ -372,9 +372,20 @@ def _qualified(vocab: Vocabulary, words: tuple[str, ...], i: int, end: int, m: M
             q = next((s for s in _EXCEPT if s not in (("but",), ("without",)) and _starts(words, end + 1, s)), None)
             if q is not None:
                 end += 1
+        if q is None and m.excluding:
+            # a further exception joined to the first: "except the red one, and except the white one too"
+            k = end
+            while k < n and words[k] in (",", "and", "also", "hmm", "um", "uh", "or"):
+                k += 1
+            q = next((s for s in (*_EXCEPT, ("not",), ("nor",)) if s not in (("but",), ("without",))
+                      and _starts(words, k, s)), None)
+            if q is not None:
+                end = k
         if q is not None:
             k = end + len(q)
             excl, k = _excepted(vocab, words, k, m, pattern_words)
+            if excl and k < n and words[k] in ("too", "either"):
+                k += 1
             if not excl:
                 if q[0] in ("but", "without"):
                     break

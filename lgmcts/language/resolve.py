@@ -86,6 +86,13 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         out = [i for i in out if i not in ex]
     if m.det in ("other", "another", "fresh"):
         out = [i for i in out if i not in named]
+        if m.det == "other" and names is None and m.count and named and len(out) > m.count:
+            # "the red can and the white can ... the other two": of the kinds named before, where that leaves
+            # exactly the number said (the blue and the green can)
+            kinds = {n for i, n, _ in vocab.objects if i in named}
+            same = [i for i in out if any(n in kinds for j, n, _ in vocab.objects if j == i)]
+            if len(same) == m.count:
+                out = same
     if m.color_order and len(m.color_order) > 1:
         rank = {c: k for k, c in enumerate(m.color_order)}
         color = {i: c for i, _, c in vocab.objects}
@@ -158,7 +165,7 @@ def select(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozenset()
     if m.det in ("all", "ids"):
         return ids
     if m.det == "other":
-        if m.plural:
+        if m.plural or (m.count is not None and len(ids) == m.count > 1):
             return ids
         if len(ids) > 1:
             raise InputError(f"'{m.text}' is ambiguous: it matches objects {describe(vocab, ids)}")

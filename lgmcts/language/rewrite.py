@@ -615,12 +615,15 @@ def _same_head_again(m: re.Match[str]) -> bool:
 
 @replacer("not-the-other-one")
 def _not_the_other_one(m: re.Match[str]) -> str:
-    """"on the red mug, not the blue one": a contrast with the object named right before, dropped; after
-    anything else ("the blocks in a circle, not the purple one") the words are kept for the parser, which
+    """"on the red mug, not the blue one": a contrast with the object named right before, dropped; after an
+    exception, a plural or "but" ("the blocks in a circle, not the purple one") the words are kept for the parser, which
     reads them as an exception or refuses them (:meth:`.rules._Parser._trailing_not`)."""
     before = m.string[: m.start()]
     single = re.search(r"(?i)\bthe(?: [a-z]+){0,2} ([a-z]+)\s*,?\s*$", before)
-    if re.search(r"(?i)\bbut\s*,?\s*$", before) or single is None or (len(single.group(1)) >= 2 and single.group(1)[-1] == "s"
+    # after an exception in the same sentence ("all the bowls except the white one and not the green one"):
+    # one more exception, kept for the parser
+    if re.search(r"(?i)\bbut\s*,?\s*$|\b(?:except|excluding|other than|apart from|aside from|besides)\b[^.;!?]*$",
+                 before) or single is None or (len(single.group(1)) >= 2 and single.group(1)[-1] == "s"
                                                                      and single.group(1)[-2] != "s"):
         return m.group(0)  # after "but", or a plural ("the blocks, not the purple one"): an exception
     return ""

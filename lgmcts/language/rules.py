@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import lexicon, poses, stages
+from . import lexicon, poses, repairs, stages
 from .positions import TOO_CLOSE
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
@@ -260,7 +260,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = plain_words(self._spelled_right(text))
+        text = plain_words(repairs.repaired(self._spelled_right(text)))
         self._tilt(text)
         _taken_back(text)
         self._order_inside(text)
