@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import replace
 import re
 
-from . import stages
+from . import repairs, stages
 from ..errors import InputError
 from .assembly import _CUES, _add_params
 from .clauses import (
@@ -80,6 +80,10 @@ _GENERIC_KEY_WORDS = frozenset({"arrange", "form", "formation", "shape", "put", 
 _SAME = re.compile(r"^(?:then |now |and |also )*(?:(?:please |you )?(?:do|repeat|apply) (?:the same|that|this)(?: thing)?"
                    r"(?: again)?|(?:and )?(?:the )?same(?: thing)?(?: goes)?) (?:for|with|to) (.+?)(?: too| as well)?$")
 
+
+#: Words said with "the same for X" that ask for nothing more ("same for the cups too, please").
+_SAME_JOINS = frozenset({",", "and", "too", "also", "please", "but", "as", "well", "though", "only", "this", "time",
+                         "again", "then"})
 
 #: Words by which a sentence asks for something, so it does not only describe.
 _DESCRIBES_NOT = re.compile(r"\b(should|must|need|needs|has to|have to|is to|are to|want|wants|would|'d|like|to be|"
@@ -488,11 +492,24 @@ class _TokenPasses(ParserHost):
                              f"arrangement the parser knows; say it with the table's sides and corners or an object "
                              f"on it, or leave it out")
 
+    def _same_said_after(self, clause: tuple[str, ...]) -> tuple[str, ...]:
+        """"the cups, same thing (but front left)": "same for the cups (but front left)"."""
+        k = next((k for k in range(2, len(clause)) if clause[k] == "same" and clause[k - 1] in (",", "the")), 0)
+        head = tuple(w for w in clause[: k - 1] if w != ",")
+        if not k or clause[k + 1 : k + 2] not in ((), ("thing",), ("but",), (",",), ("again",), ("too",)):
+            return clause
+        refs = self._find(head)
+        # only where the words before it are references and nothing else ("the cups, same thing")
+        if not refs or {i for m in refs for i in range(m.start, m.end)} != set(range(len(head))):
+            return clause
+        return ("same", "for", *head, *clause[k + 1 + (clause[k + 1 : k + 2] == ("thing",)) :])
+
     def _same_as_before(self, clause: tuple[str, ...], last: tuple[str, ...]) -> tuple[str, ...]:
         """"do the same with the yellow letter and the yellow block", "same for the
         mugs": the clause before, its first references replaced by the new ones
         (all of them where as many are named; else the objects placed, so the
         reference object stays)."""
+        clause = self._same_said_after(clause)
         m = _SAME.match(" ".join(clause))
         if m is None:
             return clause
@@ -506,7 +523,22 @@ class _TokenPasses(ParserHost):
         out = list(last)
         for a, b in reversed(list(zip(old, new))):
             out[a.start : a.end] = rest[b.start : b.end]
-        return tuple(out)
+        inside = {i for b in new for i in range(b.start, b.end)}
+        more = [w for i, w in enumerate(rest) if i not in inside]
+        while more and more[0] in _SAME_JOINS:
+            more.pop(0)
+        if not more or all(w in _SAME_JOINS for w in more):
+            return tuple(out)
+        # "same for the cups but front left": a place, a facing or a measure said with it replaces the clause's
+        # own (or joins it); anything else is refused, never dropped
+        joined = f"{' '.join(out)} , no wait , {' '.join(more)}"
+        changed = repairs.typed_repairs(joined)
+        if changed != joined:
+            return tuple(changed.split())
+        kind = repairs.fragment_kind(more)
+        if kind in ("place", "facing"):
+            return (*out, *(("in", "the") if kind == "place" and more[0] not in ("in", "at", "on") else ()), *more)
+        raise InputError(f"'{' '.join(clause)}': '{' '.join(more)}' is not read with 'the same'; say the request in full")
 
     def _parentheses(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """Parentheses that add nothing are dropped ("(which one is immaterial)",

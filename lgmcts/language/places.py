@@ -30,7 +30,7 @@ from . import lexicon
 #: The words for the table ("of the table", "of the workspace").
 _TABLE = lexicon.TABLE_WORDS
 
-__all__ = ["BAND_MARKS", "FACE_VERBS", "POINTING_PARTS", "Place", "read_facing", "read_place"]
+__all__ = ["BAND_MARKS", "FACE_VERBS", "POINTING_PARTS", "Place", "read_facing", "read_place", "side_anchor"]
 
 #: The lexicon's facing verbs and their other forms.
 FACE_VERBS = lexicon.FACE_VERBS | {"point", "points", "turn", "aim", "aiming", "directed"}
@@ -236,3 +236,17 @@ def _of_table(words: tuple[str, ...], k: int) -> int:
     if words[k : k + 1] == ("of",) and words[k + 1 : k + 2] and words[k + 1] in _TABLE:
         return k + 2
     return k
+
+
+def side_anchor(words: tuple[str, ...], i: int) -> tuple[int, int] | None:
+    """The reference object of a side said at ``i`` ("right of the bowl", "to the left of the red mug"): the token
+    range of "the bowl", or None where no "of the ..." follows the side word (a place, or a pronoun: "left of it")."""
+    j = i + 1 + (words[i + 1 : i + 2] == ("hand",)) + (words[i + 1 : i + 3] == ("side", "of"))
+    if words[j : j + 1] != ("of",) or words[j + 1 : j + 2] not in (("the",), ("that",), ("this",)):
+        return None
+    k = j + 2
+    while k < len(words) and k < j + 6 and words[k].isalpha() and words[k] not in ("and", "then", "but", "so"):
+        k += 1
+    if k < len(words) and words[k].isalpha() and words[k] not in ("and", "then", "but", "so"):
+        return None  # a longer reference ("the bowl nearest the phone"): left to "it"
+    return (j + 1, k) if k > j + 2 else None

@@ -41,7 +41,7 @@ from .ir import Token
 from .measures import _number, find_measures
 from .vocabulary import tokenize
 
-__all__ = ["echoes", "repaired", "restarts", "typed_repairs"]
+__all__ = ["echoes", "fragment_kind", "repaired", "restarts", "typed_repairs"]
 
 _STOPS = frozenset({".", "!", "?", ";"})
 #: Tokens after which a repair marker may start.
@@ -94,7 +94,7 @@ def _marker_at(words: Sequence[str], k: int) -> int:
     return j
 
 
-def _fragment_kind(words: Sequence[str]) -> str | None:
+def fragment_kind(words: Sequence[str]) -> str | None:
     """The kind of a repair's fragment (its filler words taken out): facing, place, measure, number, or None."""
     if not words or len(words) > 8:
         return None
@@ -188,7 +188,7 @@ def typed_repairs(text: str) -> str:
             while e < len(words) and words[e] not in _STOPS and words[e] != ",":
                 e += 1
             frag = [w for w in words[j:e] if w not in _FILLERS]
-            kind = _fragment_kind(frag)
+            kind = fragment_kind(frag)
             if kind is None or e == j:
                 continue
             cut = k - 1 if k else k  # the stop or comma before the marker goes with it
@@ -348,7 +348,12 @@ def _echo(words: list[str], question: bool, seen: Sequence[Sequence[str]]) -> bo
             break
     if any(w in _VERBS for w in words) or len(words) > 12:
         return False
-    content = [w for w in _canonical(words) if w not in lexicon.ECHO_NEUTRAL and w not in lexicon.TABLE_WORDS]
+    canon = _canonical(words)
+    # a preposition that leads a place says nothing of its own ("anywhere on the left side is fine")
+    lead = {n for n, w in enumerate(canon) if w in _PLACE_LEAD and any(
+        x in _PLACE_WORDS for x in canon[n + 1 : n + 3])}
+    content = [w for n, w in enumerate(canon) if n not in lead and w not in lexicon.ECHO_NEUTRAL
+               and w not in lexicon.TABLE_WORDS]
     if not content:
         return bool(words) and all(w in lexicon.ECHO_NEUTRAL for w in words)
     return any(_said_again(content, before) for before in seen)

@@ -643,3 +643,12 @@ def _measure_said_as_noun(m: re.Match[str]) -> str:
     if len(found) != 1 or found[0].start != 0 or found[0].end != len(said):
         return m.group(0)
     return f", {said} {_MEASURED_AS[m.group(1).lower()]}"
+
+
+@replacer("either-side")
+def _either_side(m: re.Match[str]) -> str:
+    """"the fork and the knife on either side of the plate" (both sides, one on each side): one object left of
+    the reference and the other right of it (which goes where is left open by the command; left to right as
+    named)."""
+    first, second, anchor = m.group("a"), m.group("b"), m.group("z")
+    return f"{first} to the left of {anchor} and {second} to the right of {anchor}"

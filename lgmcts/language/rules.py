@@ -45,6 +45,7 @@ import re
 
 from . import lexicon, poses, repairs, stages
 from .positions import TOO_CLOSE
+from .stack_order import stack_orders
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
 from .assembly import _Pending
@@ -260,7 +261,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = plain_words(repairs.repaired(self._spelled_right(text)))
+        text = plain_words(stack_orders(repairs.repaired(self._spelled_right(text))))
         self._tilt(text)
         _taken_back(text)
         self._order_inside(text)
@@ -454,6 +455,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         """Read the clauses into ``pending``, without their asides and the parts that only leave an order open
         or leave objects alone, a topic said first cut from the command about it, each clause cut where it
         states two goals and "the same for ..." read as the clause before."""
+        clauses = [self._same_said_after(c) for c in clauses]
         kept = [c for c in (c if _SAME.match(" ".join(c)) else self._without_asides(c) for c in clauses)
                 if c and not self._free_order(c) and not self._left_alone(c)]
         if clauses and not kept:

@@ -180,6 +180,10 @@ def _sound(w: str) -> str:
     return w[:-2] + "le" if w.endswith("el") else w
 
 
+#: Words of a side that a preposition may be typed onto ("frontof", "nextto").
+_SIDE_WORDS = frozenset({"front", "left", "right", "back", "next", "top", "behind", "close", "near"})
+
+
 class Corrector:
     """Corrections against a fixed vocabulary.
 
@@ -246,7 +250,9 @@ class Corrector:
             elif d == best_d:
                 best.append(t)
         if best_d > cap:
-            return w
+            # "frontof", "leftof", "nextto": a side and its preposition typed without the space
+            cut = next((n for n in range(2, len(w) - 1) if w[:n] in _SIDE_WORDS and w[n:] in ("of", "to")), 0)
+            return f"{w[:cut]} {w[cut:]}" if cut else w
         if len(best) > 1:
             # A letter left out is the commonest slip ("stak" is "stack" before "star"), then a letter typed
             # twice ("bowll" is "bowl" before "bowls"), then the scene's own word ("forc" is "fork" on a table

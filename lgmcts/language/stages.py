@@ -31,7 +31,7 @@ from .grounding import COLOUR_WORDS, Token, tokenize
 from .measures import APPROXIMATE, Measure, find_measures, size_for
 from . import lexicon
 from .lexicon import TABLE_WORDS
-from .places import POINTING_PARTS, read_facing
+from .places import POINTING_PARTS, read_facing, side_anchor
 from .positions import find_position_refs, pick
 from .spelling import Corrector
 
@@ -314,10 +314,13 @@ def other_side(text: str) -> str:
                 j += 1
             owner = text[toks[hi + 1].pos : _end(text, toks[j - 1])]
             hi = j
-        said = [w for w in words[:lo] if w in _OPPOSITE]
+        said = [n for n, w in enumerate(words[:lo]) if w in _OPPOSITE]
         if not said or lo < at:
             continue
-        out.append(text[at : toks[lo].pos] + f"{_OPPOSITE[said[-1]]} {owner}")
+        ref = side_anchor(words, said[-1]) if owner == "it" and any(  # "right of the bowl. ... its other side"
+            w in (".", "!", "?") for w in words[said[-1] : lo]) else None
+        owner = text[toks[ref[0]].pos : _end(text, toks[ref[1] - 1])] if ref else owner
+        out.append(text[at : toks[lo].pos] + f"{_OPPOSITE[words[said[-1]]]} {owner}")
         at = _end(text, toks[hi - 1])
     out.append(text[at:])
     return "".join(out)

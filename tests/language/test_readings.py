@@ -27,7 +27,7 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     "no-object": ("tests/language/fresh_cases.jsonl:freshC-pattern-words-003",),
     "selection-verb": ("tests/language/issue9_cases.jsonl:peer_selection-012",),
     "roles-in-last-stack": ("tests/language/fresh_cases.jsonl:fresh3c-stack-order-005",),
-    "next-in-last-stack": ("tests/language/fresh_cases.jsonl:freshF-stack-order-002",),
+    "next-in-last-stack": ("tests/language/fresh_cases.jsonl:freshA-stack-order-004",),
     "roles-make-a-stack": ("tests/language/fresh_cases.jsonl:fresh3g-pattern-words-006",),
     "order-makes-a-stack": ("tests/language/fresh_cases.jsonl:freshB-stack-order-003",),
     "each-other-line": ("tests/language/fresh_cases.jsonl:fresh5d-pattern-words-001",),
