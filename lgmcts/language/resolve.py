@@ -79,8 +79,16 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
             # "everything else with the bottle's colour", "the other things of its colour": "else"
             # and "other" leave the reference object out.
             out = [i for i in out if i not in ref]
+        elif m.det == "the" and not m.plural and len([i for i in out if i not in ref]) == 1:
+            # "the one matching the T": one object, never the one it is compared with
+            out = [i for i in out if i not in ref]
     for f in m.filters:
         out = _apply_filter(vocab, f, out, named)
+    if m.det == "the" and not m.plural and len(out) > 1 and any(a == "color" and op == "eq" for a, op, _ in m.filters):
+        # "the one matching the T": one object, never the one it is compared with
+        refs = {i for a, op, r in m.filters if a == "color" and op == "eq" for i in candidates(vocab, r, named=named)}
+        if len([i for i in out if i not in refs]) == 1:
+            out = [i for i in out if i not in refs]
     for e in m.excluding:
         ex = candidates(vocab, e, named=named, inherit=names)
         out = [i for i in out if i not in ex]

@@ -109,6 +109,9 @@ def test_one_sentence_without_a_marker_is_unchanged(words: list[str]) -> None:
      [{"pattern": "left", "objects": [3], "anchor": 1}, {"pattern": "right", "objects": [4], "anchor": 1}]),
     ("blocks", "Flank the white bowl with the red block and the blue block, one each side.",
      [{"pattern": "left", "objects": [1], "anchor": 7}, {"pattern": "right", "objects": [2], "anchor": 7}]),
+    # "the one matching the T": one object, never the T itself; a plural takes the T along, as labelled before
+    ("toys", "put the one matching the T behind the pan", [{"pattern": "behind", "objects": [7], "anchor": 12}]),
+    ("toys", "put the things matching the T behind the pan", [{"pattern": "behind", "objects": [3, 7], "anchor": 12}]),
     # a second exception joined by "and ... too" (it was dropped: a wrong goal)
     ("home", "Put all the bowls except the white one, and except the green one too, in a row.", None),
 ])
