@@ -40,11 +40,12 @@ from __future__ import annotations
 import heapq
 import math
 import time
+from typing import cast
 
 import numpy as np
 
 from ..formats import Action
-from ..geometry import circle_crossings, wrap_angle
+from ..geometry import wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from .problem import Problem
@@ -53,6 +54,8 @@ from .sequence import TOUCH, eligible
 __all__ = ["MAX_DISCS", "budget", "dense_plan"]
 
 _SIDE_AXIS = np.array([0, 0, 1, 1])
+#: A vector (u, v) times this, read backwards, is (-v, u): turned a quarter counter-clockwise.
+_TURN = np.array([-1.0, 1.0])
 
 #: Most discs on the table for which :func:`dense_plan` is tried.
 MAX_DISCS = 40
@@ -126,6 +129,17 @@ class _Discs:
         self.groups: dict[tuple[float, ...], list[int]] = {}
         for i in range(self.n):
             self.groups.setdefault((float(self.r[i]), *self.lo[i].tolist(), *self.hi[i].tolist()), []).append(i)
+        # Per group, what its corners need: members, the least centre distances to every disc (and a hair less, for
+        # the test of a point being too near), the box, its corners and sides, the radii of each pair's circles.
+        self._group_data = []
+        for members in self.groups.values():
+            i0 = members[0]
+            rad = self.far[i0]
+            lo, hi = self.lo[i0], self.hi[i0]
+            box = np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
+            side = np.array([lo[0], hi[0], lo[1], hi[1]])
+            self._group_data.append((np.asarray(members), rad, rad * (1 - 1e-12), lo, hi, box, side,
+                                     rad[self.pairs[0]], rad[self.pairs[1]]))
 
     def corners(self, pos: np.ndarray) -> list[np.ndarray]:
         """Per disc, the corners of its free space among the others at ``pos``: an ``(m, 2)`` array each."""
@@ -138,44 +152,54 @@ class _Discs:
         order found), as :meth:`corners` lists them."""
         discs: list[np.ndarray] = []
         places: list[np.ndarray] = []
-        for members in self.groups.values():
-            i0 = members[0]
-            rad = self.far[i0]
-            lo, hi = self.lo[i0], self.hi[i0]
-            pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
-            tags = [np.full((4, 2), -1)]
-            # Circles with the box's sides: x = lo, x = hi, y = lo, y = hi.
-            axis = _SIDE_AXIS
-            side = np.array([lo[0], hi[0], lo[1], hi[1]])
-            off = side[:, None] - pos[:, axis].T  # (side, disc)
-            e, j = np.nonzero(np.abs(off) <= rad[None, :])
+        a, b = self.pairs
+        pos_t = pos.T
+        for mem, rad, inner, lo, hi, box, side, ra, rb in self._group_data:
+            # Circles with the box's sides (x = lo, x = hi, y = lo, y = hi): the side's coordinate on the side's axis,
+            # the centre's other coordinate plus and minus the half chord.
+            off = side[:, None] - pos_t[_SIDE_AXIS]  # (side, disc)
+            e, j = np.nonzero(np.abs(off) <= rad)
             h = np.sqrt(np.maximum(rad[j] ** 2 - off[e, j] ** 2, 0.0))
-            ax = axis[e]
+            ax = _SIDE_AXIS[e]
             along = pos[j, 1 - ax]
+            k = len(e)
+            # Circles with each other (as geometry.circle_crossings, inlined: the radii are the group's).
+            v = pos[b] - pos[a]
+            dd = np.hypot(v[:, 0], v[:, 1])
+            ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
+            ca, cb, v, dd, rao, rbo = a[ok], b[ok], v[ok], dd[ok], ra[ok], rb[ok]
+            x = (dd * dd + rao * rao - rbo * rbo) / (2 * dd)
+            hc = np.sqrt(np.maximum(rao * rao - x * x, 0.0))
+            u = v / dd[:, None]
+            nrm = u[:, ::-1] * _TURN * hc[:, None]
+            base = pos[ca] + u * x[:, None]
+            c = len(ca)
+            # The points in the order: box corners, sides (+, then -), crossings (+, then -); tags: the discs whose
+            # circles make the point (-1: a side).
+            p = np.empty((4 + 2 * k + 2 * c, 2))
+            tag = np.full((len(p), 2), -1)
+            p[:4] = box
+            rows = np.arange(4, 4 + k)
             at = side[e]
-            side_tag = np.stack([j, np.full(len(j), -1)], axis=1)
-            for sgn in (1.0, -1.0):
-                q = along + sgn * h
-                pts.append(np.stack([np.where(ax == 0, at, q), np.where(ax == 1, at, q)], axis=1))
-                tags.append(side_tag)
-            # Circles with each other.
-            plus, minus, a, b = circle_crossings(pos, rad, *self.pairs)
-            pts += [plus, minus]
-            tags += [np.stack([a, b], axis=1)] * 2
-            p = np.concatenate(pts)
-            tag = np.concatenate(tags)
+            p[rows, ax] = at
+            p[rows, 1 - ax] = along + h
+            p[rows + k, ax] = at
+            p[rows + k, 1 - ax] = along + (-1.0 * h)
+            tag[4:4 + 2 * k, 0] = np.concatenate([j, j])
+            p[4 + 2 * k:4 + 2 * k + c] = base + nrm
+            p[4 + 2 * k + c:] = base - nrm
+            tag[4 + 2 * k:, 0] = np.concatenate([ca, ca])
+            tag[4 + 2 * k:, 1] = np.concatenate([cb, cb])
             x, y = p[:, 0], p[:, 1]
             inside = (x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)
             p, tag = np.minimum(np.maximum(p[inside], lo), hi), tag[inside]
             # bad[m, j]: point m is too close to disc j (rounding lets a point on j's circle count as on it).
-            bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) \
-                < rad[None, :] * (1 - 1e-12)
+            bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) < inner
             nbad = bad.sum(axis=1)
             # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
-            mem = np.asarray(members)
             keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
-            k, m = np.nonzero(keep.T)
-            discs.append(mem[k])
+            kk, m = np.nonzero(keep.T)
+            discs.append(mem[kk])
             places.append(p[m])
         if len(discs) == 1:
             return discs[0], places[0]
@@ -249,8 +273,10 @@ _State = tuple[np.ndarray, np.ndarray, int, int, bool]
 class _Search:
     """Best-first search state: the states generated, the open list, the merged keys."""
 
-    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH) -> None:
+    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH,
+                 dist: float = 0.0) -> None:
         self.t = t
+        self.dist = dist
         #: The weight of the goals in a state's rank; among states of equal rank, the deepest first when ``deep``
         #: (else the shallowest), then the first generated.
         self.weight = weight
@@ -269,6 +295,7 @@ class _Search:
             pen0 = self.depths(t.start)
             blocked0 = (pen0 > 0).any(axis=1)
             h0 = (~done0).sum() + 0.5 * (blocked0 & ~done0).sum() + depth * (pen0.sum(axis=1) * ~done0).sum() / t.unit
+            h0 += dist * float((np.hypot(*(t.start - t.goal).T) * (t.has_goal & ~done0)).sum()) / t.unit
             self.heap.append((weight * float(h0), 0, 0))
 
     def at_goal(self, pos: np.ndarray, yaw_ok: np.ndarray) -> np.ndarray:
@@ -329,14 +356,11 @@ class _Search:
         key = np.round(pos / GRID).astype(np.int64)
         keys = np.repeat(key[None], len(mi), axis=0)
         keys[np.arange(len(mi)), mi] = np.round(mp / GRID).astype(np.int64)
-        raw, size = keys.tobytes(), key.nbytes
-        fresh = []
+        # Each state's key as one bytes object (a row read as a single opaque item).
+        rows_b = cast(list[bytes], keys.reshape(len(mi), -1).view(np.dtype((np.void, key.nbytes))).ravel().tolist())
         seen = self.seen
-        for m in range(len(mi)):
-            b = raw[m * size:(m + 1) * size]
-            if b not in seen:
-                seen.add(b)
-                fresh.append(m)
+        add = seen.add
+        fresh = [m for m, b in enumerate(rows_b) if not (b in seen or add(b))]
         if not fresh:
             return None
         f = np.asarray(fresh)
@@ -363,6 +387,10 @@ class _Search:
             reach = pen.sum(axis=1)[None, :] - pen.T[mi] + newcol
             open_[rows, mi] = ~meets
             h = h + self.depth * (reach * open_).sum(axis=1) / t.unit
+        if self.dist:
+            d0 = np.hypot(*(pos - t.goal).T) * (t.has_goal & ~done)
+            dn = np.hypot(*(mp - t.goal[mi]).T) * (t.has_goal[mi] & ~meets)
+            h = h + self.dist * (d0.sum() - d0[mi] + dn) / t.unit
         rank = (g + 1) + self.weight * h
         # The new states, in one block each for the centres and the yaw flags.
         npos = np.repeat(pos[None], len(mi), axis=0)
