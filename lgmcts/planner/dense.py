@@ -27,8 +27,9 @@ centre agrees to :data:`GRID` m. A search stops at the first state where
 every disc meets its goal, after ``max_expansions`` states
 (:func:`budget`), or at ``deadline``. It runs forwards and, taking turns
 with it, backwards, from the goals to the start; when both find nothing
-the searches of :data:`MORE`, with other weights and depth terms, take
-turns (:func:`search`). It uses no
+the searches of :data:`MORE`, with other weights and depth terms, and
+one with a distance term (how far the discs stand from their open goals,
+summed, in mean diameters, :data:`DIST`), take turns (:func:`search`). It uses no
 random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
 found, and a disc slid into a corner leaves the most room elsewhere. The
@@ -69,8 +70,13 @@ GRID = 5e-4
 GAP = CLEARANCE
 #: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
-#: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight) each.
-MORE: tuple[tuple[float, bool, float], ...] = ((3.0, False, DEPTH), (3.0, True, 2 * DEPTH))
+#: Weight, in the goal count of the last search of :data:`MORE`, of how far the discs stand from their open goals
+#: (summed, in mean diameters).
+DIST = 1.0
+#: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight, distance weight)
+#: each.
+MORE: tuple[tuple[float, bool, float, float], ...] = (
+    (3.0, False, DEPTH, 0.0), (3.0, True, 2 * DEPTH, 0.0), (WEIGHT, False, DEPTH, DIST))
 #: Budget of each search of :data:`MORE`, in multiples of the first ones'.
 MORE_FACTOR = 5
 #: States a search expands in one turn (:func:`search`).
@@ -228,18 +234,18 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     states found from the goals to the start, read in reverse, are a plan. Some tables are much easier to unpack
     from one end than the other, and taking turns finds the plan of the easier end at most twice later than
     that search alone, instead of after the whole budget of the other. When both find nothing, the searches of
-    :data:`MORE` (other weights and depth terms) take turns the same way, up to :data:`MORE_FACTOR` times
-    ``max_expansions`` states each, or until ``deadline``: which of them finds a plan, and after how many
-    states, varies from table to table, and taking turns finds the first plan at most ``len(MORE)`` times later
-    than the luckiest search alone would."""
+    :data:`MORE` (other weights and depth terms, a distance term) take turns the same way, up to
+    :data:`MORE_FACTOR` times ``max_expansions`` states each, or until ``deadline``: which of them finds a plan,
+    and after how many states, varies from table to table, and taking turns finds the first plan at most
+    ``len(MORE)`` times later than the luckiest search alone would."""
     t = _Discs(problem)
     back = _Discs(problem, reverse=True) if _reversible(t) else None
     first = [_Search(t)] + ([] if back is None else [_Search(back)])
     plan, expanded = _take_turns(first, max_expansions, deadline)
     if plan is not None:
         return plan, expanded
-    more = [_Search(back if reverse and back is not None else t, weight, depth=depth)
-            for weight, reverse, depth in MORE if back is not None or not reverse]
+    more = [_Search(back if reverse and back is not None else t, weight, depth=depth, dist=dist)
+            for weight, reverse, depth, dist in MORE if back is not None or not reverse]
     plan, further = _take_turns(more, MORE_FACTOR * max_expansions, deadline)
     return plan, expanded + further
 
@@ -276,13 +282,15 @@ class _Search:
     def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH,
                  dist: float = 0.0) -> None:
         self.t = t
-        self.dist = dist
         #: The weight of the goals in a state's rank; among states of equal rank, the deepest first when ``deep``
         #: (else the shallowest), then the first generated.
         self.weight = weight
         self.deep = deep
         #: The weight of the depth term in the goal count (:data:`DEPTH`).
         self.depth = depth
+        #: The weight of the distance term in the goal count: how far the discs stand from their open goals, summed,
+        #: in mean diameters (0 in the first two searches, :data:`DIST` in the last of :data:`MORE`).
+        self.dist = dist
         self.states: list[_State] = [(t.start.copy(), t.yaw_ok.copy(), -1, -1, False)]
         #: Open states: (rank, depth or minus depth when ``deep``, index).
         self.heap: list[tuple[float, int, int]] = []
@@ -336,7 +344,9 @@ class _Search:
         The moves, in order: for each disc, straight to its goal when no other disc covers the goal disc, then to
         each corner of its free space. Each new state is ranked by moves plus the search's weight times (open
         goals + half the open goals covered + the depth term: the search's ``depth`` times how deep, in mean
-        diameters, the discs reach into open goal discs, summed); all moves of the state are judged at once."""
+        diameters, the discs reach into open goal discs, summed + the distance term: the search's ``dist`` times
+        how far, in mean diameters, the discs of open goals stand from them, summed); all moves of the state are
+        judged at once."""
         t = self.t
         pos, yok = self.states[s][0], self.states[s][1]
         done = self.at_goal(pos, yok)
@@ -388,6 +398,7 @@ class _Search:
             open_[rows, mi] = ~meets
             h = h + self.depth * (reach * open_).sum(axis=1) / t.unit
         if self.dist:
+            # Each open goal's distance to its disc: the parent's, less the moved disc's old, plus its new.
             d0 = np.hypot(*(pos - t.goal).T) * (t.has_goal & ~done)
             dn = np.hypot(*(mp - t.goal[mi]).T) * (t.has_goal[mi] & ~meets)
             h = h + self.dist * (d0.sum() - d0[mi] + dn) / t.unit

@@ -218,17 +218,17 @@ def test_forwards_and_backwards_take_turns_from_the_start():
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.integers(4, 7), st.sampled_from([0.5, 0.55, 0.6]), st.integers(0, 10_000), st.booleans(),
-       st.sampled_from([0.0, 1.0, 2.0]))
-def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, reverse, depth):
+       st.sampled_from([0.0, 1.0, 2.0]), st.sampled_from([0.0, 1.0, 2.5]))
+def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, reverse, depth, dist):
     # The ranks a search pushes, updated move by move, equal the goal count computed afresh for each state: open
-    # goals, half the open goals another disc covers, and the depth term (how deep the discs reach into open goal
-    # discs, in mean diameters).
+    # goals, half the open goals another disc covers, the depth term (how deep the discs reach into open goal
+    # discs, in mean diameters) and the distance term (how far the discs of open goals stand from them).
     try:
         pr = disc_problem(_packed(seed, n, density))
     except AssertionError:
         return
     t = dense._Discs(pr, reverse=reverse)
-    run = dense._Search(t, 3.0, False, depth)
+    run = dense._Search(t, 3.0, False, depth, dist)
     if run.run(15, None)[0] is not None:
         return
     for rank, _, k in run.heap:
@@ -243,7 +243,8 @@ def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, r
                 if g != j and t.has_goal[g]:
                     pen[g, j] = max(t.r[g] + t.r[j] - dense.TOUCH - math.hypot(*(t.goal[g] - pos[j])), 0.0)
         h = open_.sum() + 0.5 * ((pen > 0).any(axis=1) & open_).sum() \
-            + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean())
+            + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean()) \
+            + dist * sum(math.hypot(*(pos[g] - t.goal[g])) for g in range(t.n) if open_[g]) / (2 * t.r.mean())
         assert rank == pytest.approx(moves + 3.0 * h, abs=1e-9)
 
 
@@ -254,7 +255,7 @@ def _one_goal_dropped(seed: int):
 
 
 def test_without_a_goal_for_every_disc_only_forward_searches_run():
-    forwards = sum(not backwards for _, backwards, _ in dense.MORE)
+    forwards = sum(not backwards for _, backwards, _, _ in dense.MORE)
     # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
     pr = disc_problem(_one_goal_dropped(22))
     assert not dense._reversible(dense._Discs(pr))
