@@ -109,6 +109,8 @@ class _Discs:
         #: How near its goal a disc counts as there: the pose rule's tolerance, or exactly when searching backwards
         #: (the states found become the plan's, so the last must be the start itself).
         self.tol = XY_TOL
+        self.all_goals = bool(self.has_goal.all())
+        self.diag = (np.arange(self.n), np.arange(self.n))
         self.reverse = reverse
         if reverse:
             self.start, self.goal = self.goal, self.start
@@ -316,8 +318,9 @@ class _Search:
         t = self.t
         dist = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1])
         pen = np.maximum(t.touch - dist, 0.0)
-        pen[np.arange(t.n), np.arange(t.n)] = 0.0
-        pen[~t.has_goal] = 0.0
+        pen[t.diag] = 0.0
+        if not t.all_goals:
+            pen[~t.has_goal] = 0.0
         return pen
 
     def run(self, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
@@ -379,17 +382,19 @@ class _Search:
         count = cov.sum(axis=1)
         blocked_rest = (count[None, :] - cov.T[mi]) > 0
         rows = np.arange(len(mi))
-        # newcol[m, k]: how deep the moved disc reaches into goal disc k from its new place.
-        newcol = np.maximum(t.touch[:, mi].T - np.hypot(t.goal[None, :, 0] - mp[:, None, 0],
-                                                        t.goal[None, :, 1] - mp[:, None, 1]), 0.0)
+        # newcol[m, k]: how deep the moved disc reaches into goal disc k from its new place (touch is symmetric).
+        gap = np.hypot(t.goal[None, :, 0] - mp[:, None, 0], t.goal[None, :, 1] - mp[:, None, 1])
+        home_gap = gap[rows, mi]  # the moved disc's distance to its own goal
+        newcol = np.maximum(t.touch[mi] - gap, 0.0)
         newcol[rows, mi] = 0.0
-        newcol[:, ~t.has_goal] = 0.0
+        if not t.all_goals:
+            newcol[:, ~t.has_goal] = 0.0
         col = newcol > 0
         open_ = np.repeat((~done)[None], len(mi), axis=0)
         open_[rows, mi] = True
         blocked = (blocked_rest | col) & open_
         ok_yaw = mg | t.yaw_ok[mi]
-        meets = ~t.has_goal[mi] | ((np.hypot(*(mp - t.goal[mi]).T) <= t.tol) & ok_yaw)
+        meets = ~t.has_goal[mi] | ((home_gap <= t.tol) & ok_yaw)
         others_open = float((~done).sum()) - ~done[mi]
         h = others_open + ~meets + 0.5 * (blocked.sum(axis=1) - (meets & blocked[rows, mi]))
         if self.depth:
@@ -400,7 +405,7 @@ class _Search:
         if self.dist:
             # Each open goal's distance to its disc: the parent's, less the moved disc's old, plus its new.
             d0 = np.hypot(*(pos - t.goal).T) * (t.has_goal & ~done)
-            dn = np.hypot(*(mp - t.goal[mi]).T) * (t.has_goal[mi] & ~meets)
+            dn = home_gap * (t.has_goal[mi] & ~meets)
             h = h + self.dist * (d0.sum() - d0[mi] + dn) / t.unit
         rank = (g + 1) + self.weight * h
         # The new states, in one block each for the centres and the yaw flags.
