@@ -146,8 +146,9 @@ class _Discs:
             lo, hi = self.lo[i0], self.hi[i0]
             box = np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
             side = np.array([lo[0], hi[0], lo[1], hi[1]])
-            self._group_data.append((np.asarray(members), rad, rad * (1 - 1e-12), lo, hi, box, side,
-                                     rad[self.pairs[0]], rad[self.pairs[1]]))
+            every = len(members) == self.n  # then the members are all discs, in order: no gather needed
+            self._group_data.append((np.asarray(members), None if every else np.asarray(members), rad,
+                                     rad * (1 - 1e-12), lo, hi, box, side, rad[self.pairs[0]], rad[self.pairs[1]]))
 
     def corners(self, pos: np.ndarray) -> list[np.ndarray]:
         """Per disc, the corners of its free space among the others at ``pos``: an ``(m, 2)`` array each."""
@@ -162,7 +163,7 @@ class _Discs:
         places: list[np.ndarray] = []
         a, b = self.pairs
         pos_t = pos.T
-        for mem, rad, inner, lo, hi, box, side, ra, rb in self._group_data:
+        for members, mem, rad, inner, lo, hi, box, side, ra, rb in self._group_data:
             # Circles with the box's sides (x = lo, x = hi, y = lo, y = hi): the side's coordinate on the side's axis,
             # the centre's other coordinate plus and minus the half chord.
             off = side[:, None] - pos_t[_SIDE_AXIS]  # (side, disc)
@@ -204,10 +205,14 @@ class _Discs:
             # bad[m, j]: point m is too close to disc j (rounding lets a point on j's circle count as on it).
             bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) < inner
             nbad = bad.sum(axis=1)
+            # A point too close to two discs or more is no member's corner.
+            few = nbad <= 1
+            p, tag, bad, nbad = p[few], tag[few], bad[few], nbad[few]
             # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
-            keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
+            keep = (nbad[:, None] - (bad if mem is None else bad[:, mem]) == 0) \
+                & (tag[:, :1] != members[None, :]) & (tag[:, 1:] != members[None, :])
             kk, m = np.nonzero(keep.T)
-            discs.append(mem[kk])
+            discs.append(members[kk])
             places.append(p[m])
         if len(discs) == 1:
             return discs[0], places[0]
