@@ -196,7 +196,7 @@ def test_further_searches_take_turns_where_the_first_two_find_nothing():
     assert dense._Search(dense._Discs(pr, reverse=True)).run(20, None)[0] is None
     # One of the further searches does, within their budget; the plan is valid and the same each time.
     actions, expanded = dense.search(pr, 20, None)
-    assert actions is not None and 2 * 20 < expanded <= (2 + dense.MORE_FACTOR * len(dense.MORE)) * 20
+    assert actions is not None and 2 * 20 < expanded <= (2 + sum(m[-1] for m in dense.MORE)) * 20
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     assert confined(Scene.from_spec(c.scene), c.goals) is None
     again, _ = dense.search(pr, 20, None)
@@ -255,17 +255,17 @@ def _one_goal_dropped(seed: int):
 
 
 def test_without_a_goal_for_every_disc_only_forward_searches_run():
-    forwards = sum(not backwards for _, backwards, _, _ in dense.MORE)
+    forwards = sum(factor for _, backwards, _, _, factor in dense.MORE if not backwards)
     # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
     pr = disc_problem(_one_goal_dropped(22))
     assert not dense._reversible(dense._Discs(pr))
-    assert dense.search(pr, 40, None) == (None, 40 + forwards * dense.MORE_FACTOR * 40)
+    assert dense.search(pr, 40, None) == (None, 40 + forwards * 40)
     # A plan the forward search misses in 40 states, found by a further forward search; valid.
     c = _one_goal_dropped(5)
     pr = disc_problem(c)
     assert dense._Search(dense._Discs(pr)).run(40, None)[0] is None
     actions, expanded = dense.search(pr, 40, None)
-    assert actions is not None and 40 < expanded <= 40 + forwards * dense.MORE_FACTOR * 40
+    assert actions is not None and 40 < expanded <= 40 + forwards * 40
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
 
 
@@ -326,3 +326,18 @@ def test_where_the_proof_refuses_the_corner_search_finds_nothing():
     c = _packed(12, 5, 0.59)
     assert confined(Scene.from_spec(c.scene), c.goals) is not None
     assert dense.search(disc_problem(c), 30, None)[0] is None
+
+
+def test_each_further_search_stops_at_its_own_budget():
+    # Five discs at 59 %, no plan: the first two searches spend their budget, then each further search its own
+    # multiple of it (the backward one of MORE stops at one budget, the others go on), all states counted once.
+    c = _packed(12, 5, 0.59)
+    pr = disc_problem(c)
+    assert dense._reversible(dense._Discs(pr))
+    assert [m[-1] for m in dense.MORE] == [dense.MORE_FACTOR, 1, dense.MORE_FACTOR]
+    assert dense.search(pr, 30, None) == (None, 2 * 30 + sum(m[-1] for m in dense.MORE) * 30)
+    # The turns of one search of several caps: each run ends at its own cap.
+    t, back = dense._Discs(pr), dense._Discs(pr, reverse=True)
+    runs = [dense._Search(t), dense._Search(back), dense._Search(t, 3.0)]
+    assert dense._take_turns(runs, [40, 7, 300], None) == (None, 347)
+    assert [r.expanded for r in runs] == [40, 7, 300]
