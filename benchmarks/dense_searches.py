@@ -10,7 +10,9 @@ attempt of :mod:`lgmcts.planner.sequence` gets stuck, it runs each search of ``-
 limit, up to ``--states`` expanded states, and prints the states it expanded before its plan (or ``-``) and the
 plan's moves; then :func:`lgmcts.planner.dense.search` itself, the searches taking turns as the planner runs them,
 with the planner's budget. A search is named by its weight, its direction (``F`` forwards from the start, ``B``
-backwards from the goals) and the weight of its depth term (``0``: the goal count alone, as before the term).
+backwards from the goals) and the weight of its depth term (``0``: the goal count alone, as before the term),
+then optionally ``d`` and the weight of its distance term (``2F1d1``: weight 2 forwards, depth and distance
+weights 1, the last search of :data:`lgmcts.planner.dense.MORE`).
 """
 
 from __future__ import annotations
@@ -26,17 +28,19 @@ from lgmcts.errors import InputError
 from lgmcts.planner import dense
 from lgmcts.planner.sequence import sequence_plan
 
-_NAME = re.compile(r"^(\d+(?:\.\d+)?)([FB])(\d+(?:\.\d+)?)$")
+_NAME = re.compile(r"^(\d+(?:\.\d+)?)([FB])(\d+(?:\.\d+)?)(?:d(\d+(?:\.\d+)?))?$")
 
 
-def parse_searches(spec: str) -> list[tuple[str, float, bool, float]]:
-    """``"2F1,3B2"`` -> ``[("2F1", 2.0, False, 1.0), ("3B2", 3.0, True, 2.0)]``; a bad name raises ValueError."""
+def parse_searches(spec: str) -> list[tuple[str, float, bool, float, float]]:
+    """``"2F1,3B2d1"`` -> ``[("2F1", 2.0, False, 1.0, 0.0), ("3B2d1", 3.0, True, 2.0, 1.0)]``; a bad name raises
+    ValueError."""
     out = []
     for name in (x.strip() for x in spec.split(",") if x.strip()):
         m = _NAME.match(name)
         if m is None:
-            raise ValueError(f"bad search name {name!r} (weight, F or B, depth weight: e.g. 2F1)")
-        out.append((name, float(m.group(1)), m.group(2) == "B", float(m.group(3))))
+            raise ValueError(f"bad search name {name!r} (weight, F or B, depth weight, optionally d and a distance "
+                             "weight: e.g. 2F1 or 2F1d1)")
+        out.append((name, float(m.group(1)), m.group(2) == "B", float(m.group(3)), float(m.group(4) or 0.0)))
     return out
 
 
@@ -60,8 +64,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"D={d} n={n} files {pair}: planned by the fast attempt")
             continue
         cells = []
-        for name, weight, backwards, depth in searches:
-            run = dense._Search(dense._Discs(problem, reverse=backwards), weight, depth=depth)
+        for name, weight, backwards, depth, dist in searches:
+            run = dense._Search(dense._Discs(problem, reverse=backwards), weight, depth=depth, dist=dist)
             t0 = time.process_time()
             plan, expanded = run.run(a.states, None)
             cpu = time.process_time() - t0

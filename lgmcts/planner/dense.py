@@ -27,8 +27,9 @@ centre agrees to :data:`GRID` m. A search stops at the first state where
 every disc meets its goal, after ``max_expansions`` states
 (:func:`budget`), or at ``deadline``. It runs forwards and, taking turns
 with it, backwards, from the goals to the start; when both find nothing
-the searches of :data:`MORE`, with other weights and depth terms, take
-turns (:func:`search`). It uses no
+the searches of :data:`MORE`, with other weights and depth terms, and
+one with a distance term (how far the discs stand from their open goals,
+summed, in mean diameters, :data:`DIST`), take turns (:func:`search`). It uses no
 random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
 found, and a disc slid into a corner leaves the most room elsewhere. The
@@ -40,11 +41,12 @@ from __future__ import annotations
 import heapq
 import math
 import time
+from typing import cast
 
 import numpy as np
 
 from ..formats import Action
-from ..geometry import circle_crossings, wrap_angle
+from ..geometry import wrap_angle
 from ..patterns import CLEARANCE
 from ..patterns.pose import XY_TOL, YAW_TOL
 from .problem import Problem
@@ -53,6 +55,8 @@ from .sequence import TOUCH, eligible
 __all__ = ["MAX_DISCS", "budget", "dense_plan"]
 
 _SIDE_AXIS = np.array([0, 0, 1, 1])
+#: A vector (u, v) times this, read backwards, is (-v, u): turned a quarter counter-clockwise.
+_TURN = np.array([-1.0, 1.0])
 
 #: Most discs on the table for which :func:`dense_plan` is tried.
 MAX_DISCS = 40
@@ -66,10 +70,17 @@ GRID = 5e-4
 GAP = CLEARANCE
 #: States expanded before giving up, on ten discs or fewer (see :func:`budget`).
 EXPANSIONS = 1500
-#: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight) each.
-MORE: tuple[tuple[float, bool, float], ...] = ((3.0, False, DEPTH), (3.0, True, 2 * DEPTH))
-#: Budget of each search of :data:`MORE`, in multiples of the first ones'.
+#: Weight, in the goal count of the last search of :data:`MORE`, of how far the discs stand from their open goals
+#: (summed, in mean diameters).
+DIST = 1.0
+#: Budget of a search of :data:`MORE`, in multiples of the first ones', unless it says otherwise.
 MORE_FACTOR = 5
+#: Further searches, taking turns when the first two find nothing: (weight, backwards, depth weight, distance weight,
+#: budget in multiples of the first searches') each. The backward one, where it is the first to plan (TRLB's D = 0.6,
+#: n = 10 files 6/7 and 8/9), plans early (after 294 and 740 states alone), so it stops at the first searches' budget
+#: and leaves the rest of the turns to the other two.
+MORE: tuple[tuple[float, bool, float, float, int], ...] = (
+    (3.0, False, DEPTH, 0.0, MORE_FACTOR), (3.0, True, 2 * DEPTH, 0.0, 1), (WEIGHT, False, DEPTH, DIST, MORE_FACTOR))
 #: States a search expands in one turn (:func:`search`).
 SLICE = 250
 
@@ -100,6 +111,8 @@ class _Discs:
         #: How near its goal a disc counts as there: the pose rule's tolerance, or exactly when searching backwards
         #: (the states found become the plan's, so the last must be the start itself).
         self.tol = XY_TOL
+        self.all_goals = bool(self.has_goal.all())
+        self.diag = (np.arange(self.n), np.arange(self.n))
         self.reverse = reverse
         if reverse:
             self.start, self.goal = self.goal, self.start
@@ -126,6 +139,18 @@ class _Discs:
         self.groups: dict[tuple[float, ...], list[int]] = {}
         for i in range(self.n):
             self.groups.setdefault((float(self.r[i]), *self.lo[i].tolist(), *self.hi[i].tolist()), []).append(i)
+        # Per group, what its corners need: members, the least centre distances to every disc (and a hair less, for
+        # the test of a point being too near), the box, its corners and sides, the radii of each pair's circles.
+        self._group_data = []
+        for members in self.groups.values():
+            i0 = members[0]
+            rad = self.far[i0]
+            lo, hi = self.lo[i0], self.hi[i0]
+            box = np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])
+            side = np.array([lo[0], hi[0], lo[1], hi[1]])
+            every = len(members) == self.n  # then the members are all discs, in order: no gather needed
+            self._group_data.append((np.asarray(members), None if every else np.asarray(members), rad,
+                                     rad * (1 - 1e-12), lo, hi, box, side, rad[self.pairs[0]], rad[self.pairs[1]]))
 
     def corners(self, pos: np.ndarray) -> list[np.ndarray]:
         """Per disc, the corners of its free space among the others at ``pos``: an ``(m, 2)`` array each."""
@@ -138,44 +163,58 @@ class _Discs:
         order found), as :meth:`corners` lists them."""
         discs: list[np.ndarray] = []
         places: list[np.ndarray] = []
-        for members in self.groups.values():
-            i0 = members[0]
-            rad = self.far[i0]
-            lo, hi = self.lo[i0], self.hi[i0]
-            pts = [np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]])]
-            tags = [np.full((4, 2), -1)]
-            # Circles with the box's sides: x = lo, x = hi, y = lo, y = hi.
-            axis = _SIDE_AXIS
-            side = np.array([lo[0], hi[0], lo[1], hi[1]])
-            off = side[:, None] - pos[:, axis].T  # (side, disc)
-            e, j = np.nonzero(np.abs(off) <= rad[None, :])
+        a, b = self.pairs
+        pos_t = pos.T
+        for members, mem, rad, inner, lo, hi, box, side, ra, rb in self._group_data:
+            # Circles with the box's sides (x = lo, x = hi, y = lo, y = hi): the side's coordinate on the side's axis,
+            # the centre's other coordinate plus and minus the half chord.
+            off = side[:, None] - pos_t[_SIDE_AXIS]  # (side, disc)
+            e, j = np.nonzero(np.abs(off) <= rad)
             h = np.sqrt(np.maximum(rad[j] ** 2 - off[e, j] ** 2, 0.0))
-            ax = axis[e]
+            ax = _SIDE_AXIS[e]
             along = pos[j, 1 - ax]
+            k = len(e)
+            # Circles with each other (as geometry.circle_crossings, inlined: the radii are the group's).
+            v = pos[b] - pos[a]
+            dd = np.hypot(v[:, 0], v[:, 1])
+            ok = (dd > 1e-12) & (dd < ra + rb) & (dd > np.abs(ra - rb))
+            ca, cb, v, dd, rao, rbo = a[ok], b[ok], v[ok], dd[ok], ra[ok], rb[ok]
+            x = (dd * dd + rao * rao - rbo * rbo) / (2 * dd)
+            hc = np.sqrt(np.maximum(rao * rao - x * x, 0.0))
+            u = v / dd[:, None]
+            nrm = u[:, ::-1] * _TURN * hc[:, None]
+            base = pos[ca] + u * x[:, None]
+            c = len(ca)
+            # The points in the order: box corners, sides (+, then -), crossings (+, then -); tags: the discs whose
+            # circles make the point (-1: a side).
+            p = np.empty((4 + 2 * k + 2 * c, 2))
+            tag = np.full((len(p), 2), -1)
+            p[:4] = box
+            rows = np.arange(4, 4 + k)
             at = side[e]
-            side_tag = np.stack([j, np.full(len(j), -1)], axis=1)
-            for sgn in (1.0, -1.0):
-                q = along + sgn * h
-                pts.append(np.stack([np.where(ax == 0, at, q), np.where(ax == 1, at, q)], axis=1))
-                tags.append(side_tag)
-            # Circles with each other.
-            plus, minus, a, b = circle_crossings(pos, rad, *self.pairs)
-            pts += [plus, minus]
-            tags += [np.stack([a, b], axis=1)] * 2
-            p = np.concatenate(pts)
-            tag = np.concatenate(tags)
+            p[rows, ax] = at
+            p[rows, 1 - ax] = along + h
+            p[rows + k, ax] = at
+            p[rows + k, 1 - ax] = along + (-1.0 * h)
+            tag[4:4 + 2 * k, 0] = np.concatenate([j, j])
+            p[4 + 2 * k:4 + 2 * k + c] = base + nrm
+            p[4 + 2 * k + c:] = base - nrm
+            tag[4 + 2 * k:, 0] = np.concatenate([ca, ca])
+            tag[4 + 2 * k:, 1] = np.concatenate([cb, cb])
             x, y = p[:, 0], p[:, 1]
             inside = (x >= lo[0] - 1e-12) & (y >= lo[1] - 1e-12) & (x <= hi[0] + 1e-12) & (y <= hi[1] + 1e-12)
             p, tag = np.minimum(np.maximum(p[inside], lo), hi), tag[inside]
             # bad[m, j]: point m is too close to disc j (rounding lets a point on j's circle count as on it).
-            bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) \
-                < rad[None, :] * (1 - 1e-12)
+            bad = np.hypot(p[:, None, 0] - pos[None, :, 0], p[:, None, 1] - pos[None, :, 1]) < inner
             nbad = bad.sum(axis=1)
+            # A point too close to two discs or more is no member's corner.
+            few = nbad <= 1
+            p, tag, bad, nbad = p[few], tag[few], bad[few], nbad[few]
             # keep[m, k]: point m is a corner of member k (no other disc too close, not on its own circle).
-            mem = np.asarray(members)
-            keep = (nbad[:, None] - bad[:, mem] == 0) & (tag[:, :1] != mem[None, :]) & (tag[:, 1:] != mem[None, :])
-            k, m = np.nonzero(keep.T)
-            discs.append(mem[k])
+            keep = (nbad[:, None] - (bad if mem is None else bad[:, mem]) == 0) \
+                & (tag[:, :1] != members[None, :]) & (tag[:, 1:] != members[None, :])
+            kk, m = np.nonzero(keep.T)
+            discs.append(members[kk])
             places.append(p[m])
         if len(discs) == 1:
             return discs[0], places[0]
@@ -204,8 +243,8 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     states found from the goals to the start, read in reverse, are a plan. Some tables are much easier to unpack
     from one end than the other, and taking turns finds the plan of the easier end at most twice later than
     that search alone, instead of after the whole budget of the other. When both find nothing, the searches of
-    :data:`MORE` (other weights and depth terms) take turns the same way, up to :data:`MORE_FACTOR` times
-    ``max_expansions`` states each, or until ``deadline``: which of them finds a plan, and after how many
+    :data:`MORE` (other weights and depth terms, a distance term) take turns the same way, each up to its
+    multiple of ``max_expansions`` states, or until ``deadline``: which of them finds a plan, and after how many
     states, varies from table to table, and taking turns finds the first plan at most ``len(MORE)`` times later
     than the luckiest search alone would."""
     t = _Discs(problem)
@@ -214,26 +253,30 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     plan, expanded = _take_turns(first, max_expansions, deadline)
     if plan is not None:
         return plan, expanded
-    more = [_Search(back if reverse and back is not None else t, weight, depth=depth)
-            for weight, reverse, depth in MORE if back is not None or not reverse]
-    plan, further = _take_turns(more, MORE_FACTOR * max_expansions, deadline)
+    chosen = [m for m in MORE if back is not None or not m[1]]
+    more = [_Search(back if reverse and back is not None else t, weight, depth=depth, dist=dist)
+            for weight, reverse, depth, dist, _ in chosen]
+    plan, further = _take_turns(more, [factor * max_expansions for *_, factor in chosen], deadline)
     return plan, expanded + further
 
 
-def _take_turns(runs: list[_Search], cap: int, deadline: float | None) -> tuple[list[Action] | None, int]:
-    """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to ``cap`` states, until one finds a
-    plan, all are spent or ``deadline`` passes; the plan or ``None``, and the states they expanded."""
+def _take_turns(runs: list[_Search], cap: int | list[int], deadline: float | None
+                ) -> tuple[list[Action] | None, int]:
+    """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to ``cap`` states (one number for all, or
+    one for each), until one finds a plan, all are spent or ``deadline`` passes; the plan or ``None``, and the
+    states they expanded."""
     expanded = 0
-    runs = list(runs)
-    while runs and (deadline is None or time.perf_counter() <= deadline):
-        for run in list(runs):
+    caps = cap if isinstance(cap, list) else [cap] * len(runs)
+    left = list(zip(runs, caps))
+    while left and (deadline is None or time.perf_counter() <= deadline):
+        for run, most in list(left):
             before = run.expanded
-            plan, _ = run.run(min(before + SLICE, cap), deadline)
+            plan, _ = run.run(min(before + SLICE, most), deadline)
             expanded += run.expanded - before
             if plan is not None:
                 return plan, expanded
-            if run.expanded >= cap or not run.heap:
-                runs.remove(run)
+            if run.expanded >= most or not run.heap:
+                left.remove((run, most))
     return None, expanded
 
 
@@ -249,7 +292,8 @@ _State = tuple[np.ndarray, np.ndarray, int, int, bool]
 class _Search:
     """Best-first search state: the states generated, the open list, the merged keys."""
 
-    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH) -> None:
+    def __init__(self, t: _Discs, weight: float = WEIGHT, deep: bool = False, depth: float = DEPTH,
+                 dist: float = 0.0) -> None:
         self.t = t
         #: The weight of the goals in a state's rank; among states of equal rank, the deepest first when ``deep``
         #: (else the shallowest), then the first generated.
@@ -257,6 +301,9 @@ class _Search:
         self.deep = deep
         #: The weight of the depth term in the goal count (:data:`DEPTH`).
         self.depth = depth
+        #: The weight of the distance term in the goal count: how far the discs stand from their open goals, summed,
+        #: in mean diameters (0 in the first two searches, :data:`DIST` in the last of :data:`MORE`).
+        self.dist = dist
         self.states: list[_State] = [(t.start.copy(), t.yaw_ok.copy(), -1, -1, False)]
         #: Open states: (rank, depth or minus depth when ``deep``, index).
         self.heap: list[tuple[float, int, int]] = []
@@ -269,6 +316,7 @@ class _Search:
             pen0 = self.depths(t.start)
             blocked0 = (pen0 > 0).any(axis=1)
             h0 = (~done0).sum() + 0.5 * (blocked0 & ~done0).sum() + depth * (pen0.sum(axis=1) * ~done0).sum() / t.unit
+            h0 += dist * float((np.hypot(*(t.start - t.goal).T) * (t.has_goal & ~done0)).sum()) / t.unit
             self.heap.append((weight * float(h0), 0, 0))
 
     def at_goal(self, pos: np.ndarray, yaw_ok: np.ndarray) -> np.ndarray:
@@ -281,8 +329,9 @@ class _Search:
         t = self.t
         dist = np.hypot(t.goal[:, None, 0] - pos[None, :, 0], t.goal[:, None, 1] - pos[None, :, 1])
         pen = np.maximum(t.touch - dist, 0.0)
-        pen[np.arange(t.n), np.arange(t.n)] = 0.0
-        pen[~t.has_goal] = 0.0
+        pen[t.diag] = 0.0
+        if not t.all_goals:
+            pen[~t.has_goal] = 0.0
         return pen
 
     def run(self, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
@@ -309,7 +358,9 @@ class _Search:
         The moves, in order: for each disc, straight to its goal when no other disc covers the goal disc, then to
         each corner of its free space. Each new state is ranked by moves plus the search's weight times (open
         goals + half the open goals covered + the depth term: the search's ``depth`` times how deep, in mean
-        diameters, the discs reach into open goal discs, summed); all moves of the state are judged at once."""
+        diameters, the discs reach into open goal discs, summed + the distance term: the search's ``dist`` times
+        how far, in mean diameters, the discs of open goals stand from them, summed); all moves of the state are
+        judged at once."""
         t = self.t
         pos, yok = self.states[s][0], self.states[s][1]
         done = self.at_goal(pos, yok)
@@ -329,14 +380,11 @@ class _Search:
         key = np.round(pos / GRID).astype(np.int64)
         keys = np.repeat(key[None], len(mi), axis=0)
         keys[np.arange(len(mi)), mi] = np.round(mp / GRID).astype(np.int64)
-        raw, size = keys.tobytes(), key.nbytes
-        fresh = []
+        # Each state's key as one bytes object (a row read as a single opaque item).
+        rows_b = cast(list[bytes], keys.reshape(len(mi), -1).view(np.dtype((np.void, key.nbytes))).ravel().tolist())
         seen = self.seen
-        for m in range(len(mi)):
-            b = raw[m * size:(m + 1) * size]
-            if b not in seen:
-                seen.add(b)
-                fresh.append(m)
+        add = seen.add
+        fresh = [m for m, b in enumerate(rows_b) if not (b in seen or add(b))]
         if not fresh:
             return None
         f = np.asarray(fresh)
@@ -345,17 +393,19 @@ class _Search:
         count = cov.sum(axis=1)
         blocked_rest = (count[None, :] - cov.T[mi]) > 0
         rows = np.arange(len(mi))
-        # newcol[m, k]: how deep the moved disc reaches into goal disc k from its new place.
-        newcol = np.maximum(t.touch[:, mi].T - np.hypot(t.goal[None, :, 0] - mp[:, None, 0],
-                                                        t.goal[None, :, 1] - mp[:, None, 1]), 0.0)
+        # newcol[m, k]: how deep the moved disc reaches into goal disc k from its new place (touch is symmetric).
+        gap = np.hypot(t.goal[None, :, 0] - mp[:, None, 0], t.goal[None, :, 1] - mp[:, None, 1])
+        home_gap = gap[rows, mi]  # the moved disc's distance to its own goal
+        newcol = np.maximum(t.touch[mi] - gap, 0.0)
         newcol[rows, mi] = 0.0
-        newcol[:, ~t.has_goal] = 0.0
+        if not t.all_goals:
+            newcol[:, ~t.has_goal] = 0.0
         col = newcol > 0
         open_ = np.repeat((~done)[None], len(mi), axis=0)
         open_[rows, mi] = True
         blocked = (blocked_rest | col) & open_
         ok_yaw = mg | t.yaw_ok[mi]
-        meets = ~t.has_goal[mi] | ((np.hypot(*(mp - t.goal[mi]).T) <= t.tol) & ok_yaw)
+        meets = ~t.has_goal[mi] | ((home_gap <= t.tol) & ok_yaw)
         others_open = float((~done).sum()) - ~done[mi]
         h = others_open + ~meets + 0.5 * (blocked.sum(axis=1) - (meets & blocked[rows, mi]))
         if self.depth:
@@ -363,6 +413,11 @@ class _Search:
             reach = pen.sum(axis=1)[None, :] - pen.T[mi] + newcol
             open_[rows, mi] = ~meets
             h = h + self.depth * (reach * open_).sum(axis=1) / t.unit
+        if self.dist:
+            # Each open goal's distance to its disc: the parent's, less the moved disc's old, plus its new.
+            d0 = np.hypot(*(pos - t.goal).T) * (t.has_goal & ~done)
+            dn = home_gap * (t.has_goal[mi] & ~meets)
+            h = h + self.dist * (d0.sum() - d0[mi] + dn) / t.unit
         rank = (g + 1) + self.weight * h
         # The new states, in one block each for the centres and the yaw flags.
         npos = np.repeat(pos[None], len(mi), axis=0)

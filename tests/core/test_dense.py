@@ -196,7 +196,7 @@ def test_further_searches_take_turns_where_the_first_two_find_nothing():
     assert dense._Search(dense._Discs(pr, reverse=True)).run(20, None)[0] is None
     # One of the further searches does, within their budget; the plan is valid and the same each time.
     actions, expanded = dense.search(pr, 20, None)
-    assert actions is not None and 2 * 20 < expanded <= (2 + dense.MORE_FACTOR * len(dense.MORE)) * 20
+    assert actions is not None and 2 * 20 < expanded <= (2 + sum(m[-1] for m in dense.MORE)) * 20
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
     assert confined(Scene.from_spec(c.scene), c.goals) is None
     again, _ = dense.search(pr, 20, None)
@@ -218,17 +218,17 @@ def test_forwards_and_backwards_take_turns_from_the_start():
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.integers(4, 7), st.sampled_from([0.5, 0.55, 0.6]), st.integers(0, 10_000), st.booleans(),
-       st.sampled_from([0.0, 1.0, 2.0]))
-def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, reverse, depth):
+       st.sampled_from([0.0, 1.0, 2.0]), st.sampled_from([0.0, 1.0, 2.5]))
+def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, reverse, depth, dist):
     # The ranks a search pushes, updated move by move, equal the goal count computed afresh for each state: open
-    # goals, half the open goals another disc covers, and the depth term (how deep the discs reach into open goal
-    # discs, in mean diameters).
+    # goals, half the open goals another disc covers, the depth term (how deep the discs reach into open goal
+    # discs, in mean diameters) and the distance term (how far the discs of open goals stand from them).
     try:
         pr = disc_problem(_packed(seed, n, density))
     except AssertionError:
         return
     t = dense._Discs(pr, reverse=reverse)
-    run = dense._Search(t, 3.0, False, depth)
+    run = dense._Search(t, 3.0, False, depth, dist)
     if run.run(15, None)[0] is not None:
         return
     for rank, _, k in run.heap:
@@ -243,7 +243,8 @@ def test_each_rank_is_moves_plus_weight_times_the_goal_count(n, density, seed, r
                 if g != j and t.has_goal[g]:
                     pen[g, j] = max(t.r[g] + t.r[j] - dense.TOUCH - math.hypot(*(t.goal[g] - pos[j])), 0.0)
         h = open_.sum() + 0.5 * ((pen > 0).any(axis=1) & open_).sum() \
-            + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean())
+            + depth * (pen.sum(axis=1) * open_).sum() / (2 * t.r.mean()) \
+            + dist * sum(math.hypot(*(pos[g] - t.goal[g])) for g in range(t.n) if open_[g]) / (2 * t.r.mean())
         assert rank == pytest.approx(moves + 3.0 * h, abs=1e-9)
 
 
@@ -254,17 +255,17 @@ def _one_goal_dropped(seed: int):
 
 
 def test_without_a_goal_for_every_disc_only_forward_searches_run():
-    forwards = sum(not backwards for _, backwards, _ in dense.MORE)
+    forwards = sum(factor for _, backwards, _, _, factor in dense.MORE if not backwards)
     # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
     pr = disc_problem(_one_goal_dropped(22))
     assert not dense._reversible(dense._Discs(pr))
-    assert dense.search(pr, 40, None) == (None, 40 + forwards * dense.MORE_FACTOR * 40)
+    assert dense.search(pr, 40, None) == (None, 40 + forwards * 40)
     # A plan the forward search misses in 40 states, found by a further forward search; valid.
     c = _one_goal_dropped(5)
     pr = disc_problem(c)
     assert dense._Search(dense._Discs(pr)).run(40, None)[0] is None
     actions, expanded = dense.search(pr, 40, None)
-    assert actions is not None and 40 < expanded <= 40 + forwards * dense.MORE_FACTOR * 40
+    assert actions is not None and 40 < expanded <= 40 + forwards * 40
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
 
 
@@ -325,3 +326,18 @@ def test_where_the_proof_refuses_the_corner_search_finds_nothing():
     c = _packed(12, 5, 0.59)
     assert confined(Scene.from_spec(c.scene), c.goals) is not None
     assert dense.search(disc_problem(c), 30, None)[0] is None
+
+
+def test_each_further_search_stops_at_its_own_budget():
+    # Five discs at 59 %, no plan: the first two searches spend their budget, then each further search its own
+    # multiple of it (the backward one of MORE stops at one budget, the others go on), all states counted once.
+    c = _packed(12, 5, 0.59)
+    pr = disc_problem(c)
+    assert dense._reversible(dense._Discs(pr))
+    assert [m[-1] for m in dense.MORE] == [dense.MORE_FACTOR, 1, dense.MORE_FACTOR]
+    assert dense.search(pr, 30, None) == (None, 2 * 30 + sum(m[-1] for m in dense.MORE) * 30)
+    # The turns of one search of several caps: each run ends at its own cap.
+    t, back = dense._Discs(pr), dense._Discs(pr, reverse=True)
+    runs = [dense._Search(t), dense._Search(back), dense._Search(t, 3.0)]
+    assert dense._take_turns(runs, [40, 7, 300], None) == (None, 347)
+    assert [r.expanded for r in runs] == [40, 7, 300]
