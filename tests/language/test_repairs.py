@@ -112,6 +112,8 @@ def test_one_sentence_without_a_marker_is_unchanged(words: list[str]) -> None:
     # "the one matching the T": one object, never the T itself; a plural takes the T along, as labelled before
     ("toys", "put the one matching the T behind the pan", [{"pattern": "behind", "objects": [7], "anchor": 12}]),
     ("toys", "put the things matching the T behind the pan", [{"pattern": "behind", "objects": [3, 7], "anchor": 12}]),
+    # "in the same colour as": the comparison is read (it was read past, every object lined up: a wrong goal)
+    ("blocks", "The blocks in the same colour as the white bowl, line them up.", None),
     # a second exception joined by "and ... too" (it was dropped: a wrong goal)
     ("home", "Put all the bowls except the white one, and except the green one too, in a row.", None),
 ])
