@@ -136,6 +136,15 @@ def english_rank(word: str) -> int | None:
     return None
 
 
+def _consonants(word: str) -> str:
+    """The consonants of ``word`` in order, a doubled one once ("yellow": "ylw"; "bloo": "bl")."""
+    out = ""
+    for ch in word:
+        if ch not in "aeiou" and not out.endswith(ch):
+            out += ch
+    return out
+
+
 def _vowels_dropped(short: str, long: str) -> bool:
     """Whether ``short`` is ``long`` with some of its vowels left out, its first letter kept ("orng", "prpl")."""
     if len(short) < 3 or len(short) >= len(long) or short[0] != long[0]:
@@ -230,6 +239,11 @@ class Corrector:
         skeleton = [t for t in self.scene | self.colours | self.nouns if _vowels_dropped(w, t)]
         if len(skeleton) == 1:
             return skeleton[0]  # "orng", "prpl", "grn": a scene word or colour with its vowels left out
+        sounds_as = [t for t in self.colours if t[0] == w[0] and abs(len(t) - len(w)) <= 2
+                     and len(_consonants(t)) >= 2 and _consonants(t) == _consonants(w)
+                     and (len(w) > 3 or sorted(w) == sorted(t))]  # three letters: only two swapped ("rde", not "rad")
+        if len(sounds_as) == 1:
+            return sounds_as[0]  # "bloo", "yelo", "rde": a colour with its vowels spelt otherwise
         if len(w) == 3:
             hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
             if not hits:  # "cip": a neighbouring key struck for one letter of a three-letter name ("cup")

@@ -55,6 +55,8 @@ def _fix(text: str) -> str:
     ("cans in a sirkle", "cans in a circle"),                            # spelt as it sounds
     ("the mugs in a cirkel", "the mugs in a circle"),
     ("all the letters exc the box", "all the letters except the box"),  # shorthand
+    ("the bloo mug on the rde box", "the blue mug on the red box"),     # a colour's vowels spelt otherwise
+    ("turn the mug 1.5 rad", "turn the mug 1.5 rad"),                  # three letters: only two swapped
     ("the heart in frontof the box", "the heart in front of the box"),   # two known words without the space
     ("the mug leftof the plate", "the mug left of the plate"),
 ])
