@@ -508,8 +508,8 @@ class _TokenPasses(ParserHost):
         """"do the same with the yellow letter and the yellow block", "same for the
         mugs": the clause before, its first references replaced by the new ones
         (all of them where as many are named; else the objects placed, so the
-        reference object stays)."""
-        clause = self._same_said_after(clause)
+        reference object stays). "the cups, same thing" is said as "same for the cups" before
+        (:meth:`_same_said_after`, in :meth:`.rules._Parser._read_clauses`)."""
         m = _SAME.match(" ".join(clause))
         if m is None:
             return clause

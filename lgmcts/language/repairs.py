@@ -173,12 +173,10 @@ def _last_number(text: str, end: int) -> tuple[int, int, int, int] | None:
 def typed_repairs(text: str) -> str:
     """``text`` with each repair whose fragment is a facing, a place, a measure or a measure's number made: the
     fragment replaces the last thing of its kind before the marker; the marker and the fragment go."""
-    start = 0
     for _ in range(8):
         toks = tokenize(text)
         words = [t.text for t in toks]
-        done = True
-        for k in range(start, len(words)):
+        for k in range(len(words)):
             if k and words[k - 1] not in _BREAKS:
                 continue
             j = _marker_at(words, k)
@@ -214,11 +212,9 @@ def typed_repairs(text: str) -> str:
             if old is None or old[1] > cut_at:
                 continue
             text = text[: old[0]] + new + text[old[1] : cut_at] + text[toks[e - 1].end :]
-            start = 0
-            done = False
-            break
-        if done:
-            break
+            break  # one repair made: read the text again
+        else:
+            break  # no repair left
     return text
 
 

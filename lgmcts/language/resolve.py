@@ -64,6 +64,7 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
             i for i, n, c in vocab.objects
             if (names is None or n in names) and any(w <= set(colour_words(c)) for w in wanted)
         ]
+    compared: set[int] = set()  # the objects whose colour the mention is compared with
     if m.same_color_as is not None:
         ref = select(vocab, m.same_color_as, named=named)
         if isinstance(ref, Choice):
@@ -79,16 +80,16 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
             # "everything else with the bottle's colour", "the other things of its colour": "else"
             # and "other" leave the reference object out.
             out = [i for i in out if i not in ref]
-        elif m.det == "the" and not m.plural and len([i for i in out if i not in ref]) == 1:
-            # "the one matching the T": one object, never the one it is compared with
-            out = [i for i in out if i not in ref]
+        compared = set(ref)
     for f in m.filters:
         out = _apply_filter(vocab, f, out, named)
-    if m.det == "the" and not m.plural and len(out) > 1 and any(a == "color" and op == "eq" for a, op, _ in m.filters):
+    if m.det == "the" and not m.plural and len(out) > 1:
         # "the one matching the T": one object, never the one it is compared with
-        refs = {i for a, op, r in m.filters if a == "color" and op == "eq" for i in candidates(vocab, r, named=named)}
-        if len([i for i in out if i not in refs]) == 1:
-            out = [i for i in out if i not in refs]
+        compared |= {i for a, op, r in m.filters if a == "color" and op == "eq"
+                     for i in candidates(vocab, r, named=named)}
+        rest = [i for i in out if i not in compared]
+        if len(rest) == 1:
+            out = rest
     for e in m.excluding:
         ex = candidates(vocab, e, named=named, inherit=names)
         out = [i for i in out if i not in ex]
@@ -97,8 +98,9 @@ def candidates(vocab: Vocabulary, m: Mention, *, named: frozenset[int] = frozens
         if m.det == "other" and names is None and m.count and named and len(out) > m.count:
             # "the red can and the white can ... the other two": of the kinds named before, where that leaves
             # exactly the number said (the blue and the green can)
-            kinds = {n for i, n, _ in vocab.objects if i in named}
-            same = [i for i in out if any(n in kinds for j, n, _ in vocab.objects if j == i)]
+            name_of = {i: n for i, n, _ in vocab.objects}
+            kinds = {name_of[i] for i in named if i in name_of}
+            same = [i for i in out if name_of[i] in kinds]
             if len(same) == m.count:
                 out = same
     if m.color_order and len(m.color_order) > 1:

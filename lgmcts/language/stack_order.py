@@ -4,9 +4,10 @@
 blue at the bottom" says no order in one phrase: each item places one colour
 at the bottom, at the top, in the middle, or right on or right under another
 colour ("it" and "that one" are the colour of the item before). This stage
-reads such a list after a stack word (``stack``, ``tower``, ``pile``, "on
-top of each other"), finds every order of the colours it names that keeps
-every item, and:
+reads such a list after a stack word (``stack``, ``stacked``, ``tower``,
+``pile``, ``piled``), or as a sentence of its own where the command has no
+stack word, finds every order of the colours it names that keeps every item,
+and:
 
 * where exactly one order does, says it plainly ("from the bottom up: blue,
   red, green, yellow"), which the later stages read;
@@ -116,11 +117,15 @@ def _item(words: list[str], i: int, prev: str | None, then: str = ""
     return None
 
 
+def _colours(items: list[tuple[str, str, str | int]]) -> tuple[str, ...]:
+    """The colours a list names, in the order said: the items' own and those they are placed on or under."""
+    return tuple(dict.fromkeys([c for c, _, _ in items] + [str(w)[:-1] for _, k, w in items if k != "place"]))
+
+
 def _orders(items: list[tuple[str, str, str | int]]) -> list[tuple[str, ...]]:
     """Every bottom-up order of the items' colours that keeps every item."""
-    colours = tuple(dict.fromkeys([c for c, _, _ in items] + [str(w)[:-1] for _, k, w in items if k != "place"]))
     out: list[tuple[str, ...]] = []
-    for order in permutations(colours):
+    for order in permutations(_colours(items)):
         pos = {c: n for n, c in enumerate(order)}
         ok = True
         for c, kind, what in items:
@@ -179,9 +184,8 @@ def _said_alone(text: str, toks: tuple[Token, ...], words: list[str]) -> str:
         while i < len(words) and words[i] in _OPENING:
             i += 1
         items, end = _list_at(words, i)
-        colours = {c for c, _, _ in items} | {str(x)[:-1] for _, k, x in items if k == "rel"}
         stop = next((e for e in range(i, len(words)) if words[e] in (".", "!", "?", ";")), len(words))
-        if len(items) >= 2 and len(colours) >= 2 and end == stop and any(k == "rel" for _, k, _ in items):
+        if len(items) >= 2 and len(_colours(items)) >= 2 and end == stop and any(k == "rel" for _, k, _ in items):
             kinds = {n for k in range(i, end) if words[k] in lexicon.HUES and (n := _noun_at(words, k))}
             orders = _orders(items)
             if len(kinds) == 1 and len(orders) == 1:
@@ -203,17 +207,16 @@ def stack_orders(text: str) -> str:
     if not any(w in _HEADS for w in words):
         return _said_alone(text, toks, words)
     for h, w in enumerate(words):
-        if w not in _HEADS and not (w == "other" and words[h - 1 : h] == ["each"] and "top" in words[max(0, h - 4) : h]):
+        if w not in _HEADS:
             continue
         for s in range(h + 1, min(len(words), h + 8)):
             if words[s] in (".", "!", "?"):
                 break
-            if words[s] not in _OPENERS and not (words[s] == "/" and words[s - 1 : s] == ["w"]):
-                continue
-            start = s + 1 + (words[s + 1 : s + 2] == ["/"])
+            if words[s] not in _OPENERS:
+                continue  # "w/" is read as "w": the tokens keep no slash
+            start = s + 1
             items, end = _list_at(words, start)
-            colours = {c for c, _, _ in items} | {str(x)[:-1] for _, k, x in items if k != "place"}
-            if len(items) < 2 or len(colours) < 2 or not any(kind == "rel" for _, kind, _ in items):
+            if len(items) < 2 or len(_colours(items)) < 2 or not any(kind == "rel" for _, kind, _ in items):
                 continue  # places and "then" alone are read by the readings after
             orders = _orders(items)
             said = text[toks[s].start : toks[end - 1].end]
