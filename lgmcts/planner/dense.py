@@ -250,7 +250,7 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     t = _Discs(problem)
     back = _Discs(problem, reverse=True) if _reversible(t) else None
     first = [_Search(t)] + ([] if back is None else [_Search(back)])
-    plan, expanded = _take_turns(first, max_expansions, deadline)
+    plan, expanded = _take_turns(first, [max_expansions] * len(first), deadline)
     if plan is not None:
         return plan, expanded
     chosen = [m for m in MORE if back is not None or not m[1]]
@@ -260,13 +260,10 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     return plan, expanded + further
 
 
-def _take_turns(runs: list[_Search], cap: int | list[int], deadline: float | None
-                ) -> tuple[list[Action] | None, int]:
-    """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to ``cap`` states (one number for all, or
-    one for each), until one finds a plan, all are spent or ``deadline`` passes; the plan or ``None``, and the
-    states they expanded."""
+def _take_turns(runs: list[_Search], caps: list[int], deadline: float | None) -> tuple[list[Action] | None, int]:
+    """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to its number of ``caps`` states, until
+    one finds a plan, all are spent or ``deadline`` passes; the plan or ``None``, and the states they expanded."""
     expanded = 0
-    caps = cap if isinstance(cap, list) else [cap] * len(runs)
     left = list(zip(runs, caps))
     while left and (deadline is None or time.perf_counter() <= deadline):
         for run, most in list(left):
