@@ -64,6 +64,14 @@ def grid_label(pos: np.ndarray) -> str | None:
     return "|".join(" ".join(map(str, row)) for row in rows)
 
 
+def pair_arguments(ap: argparse.ArgumentParser, ns: str) -> None:
+    """The arguments that choose TRLB's pairs (read by :func:`dense_pairs`); ``ns``: the default object counts."""
+    ap.add_argument("--instances", required=True, help="TRLB's disk_experiments/arrangements folder")
+    ap.add_argument("--density", type=float, default=0.6)
+    ap.add_argument("--ns", default=ns, help="object counts, e.g. 6,9")
+    ap.add_argument("--pairs", type=int, default=5)
+
+
 def dense_pairs(instances: str, density: float, ns_said: str, pairs: int
                 ) -> list[tuple[float, int, str, Problem]]:
     """TRLB's start/goal pairs at ``density`` for the object counts of ``ns_said`` ("6,9"): density, count, the
@@ -83,10 +91,7 @@ def dense_pairs(instances: str, density: float, ns_said: str, pairs: int
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--instances", required=True, help="TRLB's disk_experiments/arrangements folder")
-    ap.add_argument("--density", type=float, default=0.6)
-    ap.add_argument("--ns", default="6", help="object counts, e.g. 6,9")
-    ap.add_argument("--pairs", type=int, default=5)
+    pair_arguments(ap, "6")
     ap.add_argument("--states", type=int, default=3000, help="states each search expands")
     ap.add_argument("--weight", type=float, default=dense.WEIGHT)
     ap.add_argument("--depth", type=float, default=dense.DEPTH,

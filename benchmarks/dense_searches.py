@@ -22,7 +22,7 @@ import re
 import sys
 import time
 
-from dense_classes import dense_pairs  # this folder: run as python benchmarks/dense_searches.py
+from dense_classes import dense_pairs, pair_arguments  # this folder: run as python benchmarks/dense_searches.py
 
 from lgmcts.errors import InputError
 from lgmcts.planner import dense
@@ -46,10 +46,7 @@ def parse_searches(spec: str) -> list[tuple[str, float, bool, float, float]]:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--instances", required=True, help="TRLB's disk_experiments/arrangements folder")
-    ap.add_argument("--density", type=float, default=0.6)
-    ap.add_argument("--ns", default="10", help="object counts, e.g. 7,8,10")
-    ap.add_argument("--pairs", type=int, default=5)
+    pair_arguments(ap, "10")
     ap.add_argument("--searches", default="2F1,2B1,3F1,3B2", help="searches to run alone, e.g. 2F0,3B2")
     ap.add_argument("--states", type=int, default=7500, help="states each search alone expands at most")
     a = ap.parse_args(argv)
