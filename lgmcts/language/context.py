@@ -199,6 +199,8 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
         if body and (_idle(body, object_word, request_word) or (
                 k < len(sentences) - 1 and _asks_nothing(body, object_word, request_word))):
             continue  # a background sentence ("it's been raining all week and the cat's been under my feet.")
+        if k < len(sentences) - 1 and _reported(body):
+            continue  # "my mum always said a proper table has the knife on the right." before the request
         if k < len(sentences) - 1 and _story(body, object_word, request_word):
             if not any(w in _PRONOUNS for s in sentences[k + 1 :] for w in s):
                 continue  # "i used to play with blocks like these as a little girl." before the request
@@ -210,6 +212,31 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
     return tuple(w for s in kept for w in s)
+
+
+def _reported(body: Sequence[str]) -> bool:
+    """Whether ``body`` reports what a person says or thinks ("my mum always said a proper table has the knife
+    on the right", "our jamie reckons you can't do a ring"): a person's subject (or a name after "my" / "our"),
+    a verb of the lexicon's ``reporting`` list after it (adverbs between), and no word by which it relays a wish
+    ("my wife says the cans should go in a line" is kept).
+
+    >>> _reported("my mum always said a proper table has the knife on the right of the plate".split())
+    True
+    >>> _reported("our jamie reckons you can't do a ring".split()), _reported("my wife says the cans should go left".split())
+    (True, False)
+    >>> _reported("the cans said to be red".split())
+    False
+    """
+    words = [w for w in body if w not in _LEAD]
+    k = _subject_end(words)
+    if not k and len(words) > 3 and words[0] in _CTX["person_possessives"] and words[0] != "the":
+        k = 2  # "our jamie reckons": a name after a possessive
+    j = k
+    while k and j < len(words) and words[j] in _CTX["reporting_adverbs"]:
+        j += 1
+    if not k or j >= len(words) - 1 or words[j] not in _CTX["reporting"]:
+        return False
+    return not any(w in _WISHING for w in words[j + 1 :])
 
 
 def _open_end(lead: Sequence[str]) -> bool:
@@ -264,6 +291,8 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             if _in_place(part, j):
                 return False
             continue
+        if w in ("round", "around") and j and part[j - 1] in _COMING:
+            continue  # "our lass is coming round for her tea": a visit, no circle
         if (w == "table" and not (j and part[j - 1] in ("the", "this"))) or (w in ("top", "tops") and j and (
                 part[j - 1].isdigit() or part[j - 1] in _NUMBER_WORDS)):
             continue  # "table six, two-top, mains", "12-top coming in at eight": a party of guests, no place
@@ -277,6 +306,9 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
 #: Words of a request that chatter uses too ("coming over", "at like seven", "knocked everything over").
 _CHATTER_PARTICLES = frozenset({"over", "on", "at", "in", "up", "off", "out", "down", "back", "get", "gets", "go",
                                 "goes", "everything", "anything", "first", "last", "next", "end"})
+#: Verbs of a visit, after which "round" is a particle ("coming round", "popped round").
+_COMING = frozenset({"come", "comes", "coming", "came", "pop", "pops", "popping", "popped", "drop", "dropping",
+                     "dropped", "swing", "swinging", "bring", "bringing", "going", "go", "goes", "went"})
 #: Words of a time of day or a day, by which chatter before a request is told apart ("it's almost noon and ...").
 _DAY_WORDS = frozenset({"morning", "evening", "afternoon", "night", "tonight", "tomorrow", "today", "weekend",
                         "noon", "midnight", "lunchtime", "dinnertime"})

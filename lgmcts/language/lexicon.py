@@ -107,6 +107,13 @@ HESITATIONS: frozenset[str] = frozenset(_P["hesitations"])
 ECHO_NEUTRAL: frozenset[str] = frozenset(_P["echo_neutral"])
 QUESTION_TAGS: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _P["tags"])
 SAME_WORD: dict[str, str] = dict(_P["same"])
+#: The colour of things of the world ("a banana": yellow), for a colour said by comparison (:mod:`.rewrite`).
+WORLD_COLOURS: dict[str, str] = {k.replace("_", " "): v for k, v in _DATA["world_colours"].items()}
+#: Verbs of a step that only picks objects out (:mod:`.steps`), as word tuples, longest first.
+FINDING_VERBS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for p in _DATA["steps"]["selecting"]),
+                                                          key=len, reverse=True))
+#: Words that open a bracketed aside explaining what was said (:mod:`.asides`), as word tuples.
+ASIDE_EXPLAINING: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _DATA["asides"]["explaining"])
 _WORD = re.compile(r"\w+")
 
 

@@ -407,6 +407,9 @@ def _mention_at(
     early = _standalone(words, i, nested)
     if early is not None:
         return early
+    if i + 1 < n and words[i] == "them" and (words[i + 1] in NUMBERS or vocab.longest(vocab.categories, words, i + 1)):
+        # "them three cans", "them cups" (said for "those" in many dialects): a determiner, not a pronoun
+        words = words[:i] + ("those",) + words[i + 1 :]
     det, j, non, count, of_count = _quantity(vocab, words, i, nested)
     if det == "" and j < n and words[j] in _PRONOUNS and not nested:
         return Mention(i, j + 1, words[j], "pronoun", True)

@@ -71,6 +71,9 @@ class PositionRef:
     count: int = 1
     rank: int = 0
     of: int | None = None
+    #: Said as a count and the side of the table they stand on ("the two cans on the left"): a place instead
+    #: where the count takes every object of the kind.
+    side_said: bool = False
 
 
 _COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5, "2": 2, "3": 3, "4": 4, "5": 5}
@@ -433,6 +436,14 @@ def _ref_at(ws: tuple[str, ...], i: int) -> PositionRef | None:
         side = _side_key(ws, k2 + 2)
         if side is not None and side[0].kind in ("x", "y"):
             return PositionRef(i, side[1], head, side[0], 1, _ORDINALS[ws[k2]])
+    if count > 1 and not (i and ws[i - 1] == "of") and ws[k : k + 2] in (("on", "the"), ("at", "the")) and k + 2 < len(ws) and ws[k + 2] in _FORWARD:
+        # "the two cans on the left", "the three blocks at the back": a count of a kind said with the side of the
+        # table they stand on (a count is never a place's: "put the two cans on the left" with four cans)
+        e = k + 3
+        while e < len(ws) and ws[e] in ("hand", "side", "end", "edge"):
+            e += 1
+        if not (ws[e : e + 1] == ("of",) and ws[e + 1 : e + 3] != ("the", "table")):
+            return PositionRef(i, e, head, _FORWARD[ws[k + 2]], count, rank, side_said=True)
     got = _after_head(ws, k)
     if got is None or got[0].kind in ("middle",):
         return None

@@ -212,8 +212,8 @@ def _read_params_of_last_arrangement(self: _Parser, f: Frame) -> list[_Pending] 
         return []
     shape = self.state.last_shape
     meaningful = [w for w in meaningful if w not in _HEDGE_WORDS]  # "..., middle right i guess"
-    if (len(mentions) == 1 and mentions[0].text in ("it", "them") and params and shape is not None
-            and len(shape.objects) > 1 and set(self.state.last) == set(shape.objects)
+    if (len(mentions) == 1 and params and shape is not None and len(shape.objects) > 1
+            and self._names_shape(mentions[0], shape)
             and all(_restates(w, shape.pattern) or w in _MOVE_VERBS
                     or (w in _COMMAND_VERBS and not any(w in nouns for nouns in SHAPE_NOUNS.values()))
                     for w in meaningful)):

@@ -122,8 +122,10 @@ def _apply_filter(vocab: Vocabulary, f: tuple, out: list[int], named: frozenset[
         if not refs:
             raise InputError(f"nothing in the scene matches '{ref.text}'")
         values = {o[col] for o in vocab.objects if o[0] in refs}
-        if len(values) != 1 and ref.text.split()[:1] in (["any"], ["one"], ["either"], ["some"], ["a"], ["an"]):
-            # "the blocks sharing a colour with any of the letters", "... with a bowl": any one of their values.
+        if len(values) != 1 and (ref.text.split()[:1] in (["any"], ["one"], ["either"], ["some"], ["a"], ["an"])
+                                 or (ref.plural and ref.det in ("the", "all"))):
+            # "the blocks sharing a colour with any of the letters", "... with a bowl": any one of their values;
+            # "the cans that are the same colour as the bowls": each the colour of one of them
             same = {o[0] for o in vocab.objects if o[col] in values}
             if op == "eqx":
                 return [i for i in out if i in same and i not in refs]

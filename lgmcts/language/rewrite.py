@@ -652,3 +652,42 @@ def _either_side(m: re.Match[str]) -> str:
     named)."""
     first, second, anchor = m.group("a"), m.group("b"), m.group("z")
     return f"{first} to the left of {anchor} and {second} to the right of {anchor}"
+
+
+@replacer("next-to-one-side")
+def _next_to_one_side(m: re.Match[str]) -> str:
+    """"put the star next to the pan" (no side said): to the left of it, as "either side" is read; left as said
+    after a shape in the same sentence ("the blocks in a heart shape next to the heart"), which the parser refuses
+    for the shape."""
+    before = m.string[: m.start()]
+    sentence = before[max(before.rfind(c) for c in ".;!?") + 1 :]
+    after = lexicon.words(m.string[m.end() :])[:6]
+    if "shape" in lexicon.words(sentence) or m.group(1).lower() in ("the other", "the next", "the last") or (
+            {"left", "right", "side", "either"} & set(after)):
+        return m.group(0)  # a shape, "one beside the other", or a side said after ("left side or right side")
+    return f"to the left of {m.group(1)}"
+
+
+@replacer("round-the-back")
+def _round_the_back(m: re.Match[str]) -> str:
+    """"round the back of the bowl": behind it; "round the front of": in front of it."""
+    return "behind" if m.group(1).lower() == "back" else "in front of"
+
+
+#: Things of the world said with "the" because there is one of them ("coloured like the sky").
+_ONLY_ONE = frozenset({"sky", "sea", "sun", "ocean", "night", "snow", "grass"})
+
+
+@replacer("world-colour")
+def _world_colour(m: re.Match[str]) -> str:
+    """"the same colour as a banana": yellow (lexicon ``[world_colours]``); "coloured like the sky": that are blue
+    (said after a plural noun) or that is blue."""
+    thing = m.group(2).lower()
+    colour = lexicon.WORLD_COLOURS.get(thing)
+    if colour is None or (m.group(1).lower() == "the" and thing not in _ONLY_ONE):
+        return m.group(0)
+    if m.group(0).lower().startswith("colo"):
+        noun = lexicon.words(m.string[: m.start()])[-1:]
+        plural = bool(noun) and noun[0].endswith("s") and not noun[0].endswith("ss")
+        return f"that {'are' if plural else 'is'} {colour}"
+    return colour

@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import lexicon, poses, repairs, stages
+from . import asides, lexicon, poses, repairs, stages, steps
 from .positions import TOO_CLOSE
 from .stack_order import stack_orders
 from ..errors import InputError
@@ -261,9 +261,12 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = plain_words(stack_orders(repairs.repaired(self._spelled_right(text))))
+        text = self._spelled_right(text)
+        text = plain_words(stack_orders(repairs.repaired(steps.finding_steps(asides.bracketed(text, self._object_word, self._request_word),
+                                                                   self._object_word))))
         self._tilt(text)
         _taken_back(text)
+        text = _restarted(text)
         self._order_inside(text)
         text, self._poses = poses.mark_poses(text)
         text, self._measures = stages.mark_measures(text)
@@ -529,13 +532,44 @@ _AFTER_CANCEL = frozenset({"thanks", "thank", "you", "cheers", "ta", "please", "
                            "all", "actually", "lol", "just", "i", "guess", "robot", "mate"})
 
 
+def _restarted(text: str) -> str:
+    """The request said after one taken back ("the letters in a row facing north... oh no, forget it. Put the
+    letters in a circle."): a phrase of the lexicon's ``restart`` list said between stops, with a request after
+    it, ends what came before."""
+    toks = tokenize(text)
+    words = [k for k, t in enumerate(toks) if t.text[:1].isalnum() or t.text[1:2].isalnum()]
+    for s, e, _ in sorted(lexicon.phrase_spans([toks[k].text for k in words], "restart"), reverse=True):
+        first, last = words[s], words[e - 1]
+        if last + 2 < len(toks) and toks[last + 1].text in ".!?;," and (first == 0 or toks[first - 1].text in
+                                                                          ".!?;,-\u2026\u2014" or toks[first - 1].text == "no"):
+            rest = text[toks[last + 1].end :].lstrip(" .,;!?")
+            if not {"it", "them", "they", "those", "these", "em"} & set(lexicon.words(rest)):
+                return rest  # what is said after names its own objects
+    return text
+
+
+def _leaves_all(words: list[str]) -> bool:
+    """Whether the words after a cancelling phrase ask for nothing: thanks and the like, or a request to leave
+    things be ("forget it. leave the letters alone today, please.", "... just leave them where they are")."""
+    rest = [w for w in words if w not in _AFTER_CANCEL and w not in ("today", "now", "for", "the", "time", "being")]
+    if rest[:1] != ["leave"] or len(rest) > 8:
+        return not rest
+    tail = rest[1:]
+    return any(tail[k:k + len(p)] == list(p) for p in _LEFT_BE for k in range(len(tail)))
+
+
+#: How "leave ..." ends when it asks that nothing moves ("leave them alone", "... where they are", "... be").
+_LEFT_BE = (("alone",), ("be",), ("where", "they", "are"), ("where", "it", "is"), ("as", "they", "are"),
+            ("as", "it", "is"), ("untouched",))
+
+
 def _taken_back(text: str) -> None:
     """Refuse a command whose end takes the request back ("stack the bottles, wait no, never mind, don't do
     anything, thanks"; the cue list ``cancel`` of the lexicon): the request before it is not asked (before, the
     stack was answered and the words after it dropped)."""
     ws = lexicon.words(text)
     spans = sorted(lexicon.phrase_spans(ws, "cancel"))
-    if not spans or not all(w in _AFTER_CANCEL for w in ws[max(e for _, e, _ in spans):]):
+    if not spans or not _leaves_all(ws[max(e for _, e, _ in spans):]):
         return
     start = spans[-1][0]
     for s, e, _ in reversed(spans[:-1]):

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .host import ParserHost
+    from .assembly import _Pending
 else:
     ParserHost = object
 
@@ -241,6 +242,19 @@ class _Selecting(ParserHost):
     def _centre(self) -> tuple[float, float]:
         ws = self.spec.workspace
         return ((ws.x[0] + ws.x[1]) / 2, (ws.y[0] + ws.y[1]) / 2)
+
+    def _names_shape(self, m: Mention, shape: _Pending) -> bool:
+        """Whether ``m`` names every object of the arrangement ``shape`` just read and only them: "it" / "them" /
+        "they" for what was named last, or "every block", "all of the blocks", "each can" that select them."""
+        objs = set(shape.objects)
+        if m.det == "pronoun":
+            return m.text in ("it", "them", "they") and set(self.state.last) == objs
+        if m.det != "all" or m.excluding:
+            return False
+        try:
+            return set(candidates(self.vocab, m)) == objs
+        except InputError:
+            return False
 
     def _object_word(self, w: str) -> bool:
         """Whether ``w`` names objects of the scene (a name, a colour, a group, an id)."""

@@ -40,14 +40,14 @@ _ABBREV = {
 #: arrangement or an object (dropped anywhere in the command).
 _CHATTER = frozenset(
     """hey hi hello yo hiya howdy ok okay alright basically thanks thank cheers please kindly robot buddy mate pal
-    um uh hmm er erm oh great awesome cool nice-to-have lol appreciated sir""".split()
+    um uh hmm er erm oh great awesome cool nice-to-have lol appreciated sir ta""".split()
 )
 _CHATTER_SEQ = (
     ("would", "it", "be", "possible", "to"), ("i'd", "love", "it", "if"), ("i'd", "like", "it", "if"),
     ("it", "would", "be", "great", "if"), ("it", "would", "be", "nice", "if"),
     ("would", "you", "mind"), ("do", "you", "mind"), ("thank", "you"), ("if", "you", "can"), ("if", "you", "could"),
     ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),
-    ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("how", "about"),
+    ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("be", "a", "love", "and"), ("how", "about"),
     ("is", "it", "possible", "to"), ("are", "you", "able", "to"), ("you", "should"), ("let's",), ("we", "need", "to"),
     ("ok", "so"), ("so", "basically"), ("much", "appreciated"), ("good", "morning"), ("good", "afternoon"),
     ("good", "evening"), ("quick", "one"), ("if", "that", "is", "ok"), ("if", "that", "is", "okay"),

@@ -392,8 +392,8 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         while head[:1] in (("piece",), ("pieces",), ("item",), ("items",), ("bit",), ("bits",)) and head[1:2] == ("of",):
             head = head[2:]  # "the leftmost piece of silverware"
         ids = _ids(("the",) + head if head else ("everything",), find, ids_of)
-        if ids is None:
-            continue  # names nothing: left for the parser to refuse
+        if ids is None or (ref.side_said and ref.count >= len(ids)):
+            continue  # names nothing (left for the parser to refuse), or all of them: a place ("the two mugs on the left")
         single = len(ids) == 1 and ref.count == 1 and ref.of is None
         if single and ref.key.anchor is None:
             continue  # one object already: "the side of the white bowl nearest me"

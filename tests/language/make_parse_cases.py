@@ -446,6 +446,8 @@ RELABELLED: dict[str, dict] = {
     # "into the bowl": one object inside the other is a stack (as the free-form writers label it).
     "grounding-045": {"goals": [_g("tower", [9, 12])]},
     "grounding-023": {"goals": [_g("front", [1], 4), _g("behind", [2], 4)]},
+    # "next to the bowl" with no side: either side of it (as the later free-form writers label it), not a refusal.
+    "refusal-007": {"any_of": [{"goals": [_g("left", [7], 6)]}, {"goals": [_g("right", [7], 6)]}]},
 }
 
 #: Cases that became refusals (none left). "it" after "A in front of B" was read
