@@ -100,9 +100,8 @@ def bracketed(text: str, object_word: Callable[[str], bool], request_word: Calla
         inner = _words(toks[k + 1 : end])
         said = set(_words(toks[:k]))
         cut_from = toks[k].start
-        named = [w for w in inner if object_word(w)]
-        if named:
-            plain = _without_mean(inner)
+        plain = _without_mean(inner)
+        if any(object_word(w) for w in plain):
             p = _pronoun_before(toks, k)
             if p is None or not plain or plain[0] not in ("the", "that", "this") or len(plain) > 5:
                 continue

@@ -406,7 +406,7 @@ def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word
     past = next((j for j, w in enumerate(words) if w in _PAST or (w.endswith("ed") and len(w) > 4)), len(words))
     subject = _subject_end(words)
     for j, w in enumerate(words):
-        if j == subject and subject == 2 and words[1] in _CTX["people"]:
+        if j == subject and subject >= 2 and words[subject - 1] in _CTX["people"]:
             past = min(past, j)
             continue  # "my granddaughter set these letters out": the verb of a person named, told, never asked
         if w == "left" and j and words[j - 1] in _LEAVERS:
@@ -438,7 +438,7 @@ def _told(head: Sequence[str]) -> bool:
            for j, w in enumerate(body)):
         return False  # "the teapot should go on the tray": a request about an object the scene lacks
     return len(body) >= 4 and (any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:]) or (
-        _subject_end(body) == 2 and body[1] in _CTX["people"]))  # "my granddaughter set these letters out"
+        _subject_end(body) >= 2 and body[_subject_end(body) - 1] in _CTX["people"]))  # "my granddaughter set these"
 
 
 #: Words after which "left" is the verb ("my nephew left his stuff out", "she just left").
@@ -497,7 +497,14 @@ def _subject_end(body: Sequence[str]) -> int:
         noun = body[1][:-2] if body[1].endswith("'s") else body[1]
         if noun in _CTX["people"]:
             return 2
+        if len(body) > 2 and body[1] in _PERSON_ADJECTIVES and body[2] in _CTX["people"]:
+            return 3  # "the previous operator", "the cleaning staff"
     return 0
+
+
+#: Words said before a person's noun in a subject ("the previous operator", "the cleaning staff").
+_PERSON_ADJECTIVES = frozenset({"previous", "last", "other", "new", "old", "night", "day", "cleaning", "morning",
+                                "evening", "late", "early", "visiting", "lab", "test", "little", "eldest", "youngest"})
 
 
 def person_remark(body: Sequence[str], object_word: Callable[[str], bool],

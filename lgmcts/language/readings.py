@@ -356,6 +356,9 @@ def _read_roles_in_last_stack(self: _Parser, f: Frame) -> list[_Pending] | None:
                 w in ("and", ",") for w in mm.text.split())
             for k, x in enumerate(xs):
                 r = None if listed and k < len(xs) - 1 else role
+                if {r, self.state.tower.said.get(x)} == {"bottom", "top"}:
+                    raise InputError(f"'{text.replace(_ROLE_MARK, '').strip()}': object {x} is given two places in "
+                                     f"the stack (bottom and top)")
                 if x in tower:
                     tower.remove(x)
                 # "white at the bottom, then green": one without a role goes right above the one before.
