@@ -32,6 +32,7 @@ __all__ = [
     "FACE_VERBS",
     "FACINGS",
     "FILLER_WORDS",
+    "FORMAL",
     "HESITATIONS",
     "HUES",
     "MACROS",
@@ -107,6 +108,14 @@ HESITATIONS: frozenset[str] = frozenset(_P["hesitations"])
 ECHO_NEUTRAL: frozenset[str] = frozenset(_P["echo_neutral"])
 QUESTION_TAGS: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _P["tags"])
 SAME_WORD: dict[str, str] = dict(_P["same"])
+_L = _DATA["formal"]
+#: A specification's words (:mod:`.formal`): each list of ``[formal]`` as word tuples (longest first), and ``verbs``
+#: as participle words -> the verb the parser reads.
+FORMAL: dict[str, Any] = {
+    **{name: tuple(sorted((tuple(p.split()) for p in ps), key=len, reverse=True))
+       for name, ps in _L.items() if isinstance(ps, list)},
+    "verbs": {tuple(k.split()): v for k, v in _L["verbs"].items()},
+}
 _WORD = re.compile(r"\w+")
 
 
