@@ -26,7 +26,8 @@ something:
 * **a pick-up**: a step that only picks up ("shall be picked up", "taken from
   its present position") is "pick up NP", which the parser reads as naming the
   object for the pronoun after it ("It is then to be placed ...");
-* **"the aforementioned N"** (``anaphors``) is "the N";
+* **"the aforementioned N"** (``anaphors``) is "the N", and "the aforementioned two" said without a noun is
+  "them"; "is located" (``states``: a participle that says only where a thing is) is "is";
 * **a role said of "the former" or "the latter"** after a comma (``roles``, before a word of
   ``role_relations``) is given with "with": "X and Y shall be stacked, the former on top of the latter" is
   "..., with the former on top of the latter", as a role said after a stack's list is read.
@@ -84,15 +85,23 @@ def roles_with(text: str) -> str:
 
 
 def without_anaphors(text: str) -> str:
-    """"the aforementioned bowl" is "the bowl": a word of ``anaphors`` after a determiner goes."""
+    """"the aforementioned bowl" is "the bowl": a word of ``anaphors`` after a determiner goes; "the aforementioned
+    two" said without a noun is "them". "is located" (``states``) is "is"."""
     toks = tokenize(text)
     words = [t.text for t in toks]
-    cuts: list[tuple[int, int]] = []
+    edits: list[tuple[int, int, str]] = []
     for i in range(1, len(words)):
         end = _at(words, i, _F["anaphors"])
-        if end is not None and words[i - 1] in _DETERMINERS and end < len(words) and words[end].isalpha():
-            cuts.append((toks[i - 1].end, toks[end - 1].end))
-    return _edited(text, [(a, b, "") for a, b in cuts])
+        if end is None or words[i - 1] not in _DETERMINERS or end >= len(words) or not words[end].isalpha():
+            if words[i - 1] in ("is", "are") and _at(words, i, _F["states"]) is not None:
+                edits.append((toks[i - 1].end, toks[i].end, ""))
+            continue
+        if (words[end] in lexicon.NUMBERS or words[end] == "both") and (
+                end + 1 == len(words) or not words[end + 1].isalpha()):
+            edits.append((toks[i - 1].start, toks[end].end, "them"))
+        else:
+            edits.append((toks[i - 1].end, toks[end - 1].end, ""))
+    return _edited(text, edits)
 
 
 def active(text: str) -> str:

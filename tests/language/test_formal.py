@@ -76,6 +76,9 @@ def test_anaphors_and_roles() -> None:
     assert without_anaphors("in front of the aforementioned bowl") == "in front of the bowl"
     assert without_anaphors("between the above-mentioned blocks") == "between the blocks"
     assert without_anaphors("the aforementioned.") == "the aforementioned."          # no noun after it
+    assert without_anaphors("is located between the aforementioned two.") == "is between them."
+    assert without_anaphors("the aforementioned two bowls") == "the two bowls"
+    assert without_anaphors("the located bowl") == "the located bowl"                # not after "is"
     assert roles_with("X and Y shall be stacked, the former on top of the latter.") == (
         "X and Y shall be stacked, with the former on top of the latter.")
     assert roles_with("the former goes on top") == "the former goes on top"          # no comma before it
@@ -107,6 +110,9 @@ def test_anaphors_and_roles() -> None:
      [{"pattern": "left", "objects": [1], "anchor": 9}, {"pattern": "right", "objects": [3], "anchor": 9}]),
     ("pantry", "The four cans must be positioned on a circle, all of them facing away from the operator.",
      [{"pattern": "circle", "objects": [1, 2, 3, 4], "facing": "north"}]),
+    ("home", "The three bowls shall be stacked such that the blue bowl forms the base, the white bowl the top, and "
+             "the green bowl is located between the aforementioned two.",
+     [{"pattern": "tower", "objects": [5, 4, 3]}]),
     # a step the parser cannot do is still refused
     ("blocks", "The yellow block is to be removed from the workspace and disposed of.", None),
 ])
