@@ -32,6 +32,7 @@ __all__ = [
     "FACE_VERBS",
     "FACINGS",
     "FILLER_WORDS",
+    "FORMAL",
     "HESITATIONS",
     "HUES",
     "MACROS",
@@ -114,6 +115,14 @@ FINDING_VERBS: tuple[tuple[str, ...], ...] = tuple(sorted((tuple(p.split()) for 
                                                           key=len, reverse=True))
 #: Words that open a bracketed aside explaining what was said (:mod:`.asides`), as word tuples.
 ASIDE_EXPLAINING: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _DATA["asides"]["explaining"])
+_L = _DATA["formal"]
+#: A specification's words (:mod:`.formal`): each list of ``[formal]`` as word tuples (longest first), and ``verbs``
+#: as participle words -> the verb the parser reads.
+FORMAL: dict[str, Any] = {
+    **{name: tuple(sorted((tuple(p.split()) for p in ps), key=len, reverse=True))
+       for name, ps in _L.items() if isinstance(ps, list)},
+    "verbs": {tuple(k.split()): v for k, v in _L["verbs"].items()},
+}
 _WORD = re.compile(r"\w+")
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import replace
 import re
 
-from . import repairs, stages
+from . import formal, repairs, stages
 from ..errors import InputError
 from .assembly import _CUES, _add_params
 from .clauses import (
@@ -319,6 +319,8 @@ class _TokenPasses(ParserHost):
             named = [m for m in self._find(words[: at[0]]) if m.det not in ("pronoun",)]
         except InputError:
             return words
+        if len(named) == 1:
+            named = self._excepted(words, named[0]) or named
         if len(named) < 2:
             return words
         # "..., and then the purple block on the right of the latter": the two named before the part that
@@ -339,6 +341,18 @@ class _TokenPasses(ParserHost):
             out.append(words[k])
             k += 1
         return tuple(out)
+
+    def _excepted(self, words: tuple[str, ...], m: Mention) -> list[Mention]:
+        """The references of the exception inside ``m`` ("all items other than the plate and the knife": the plate,
+        the knife), at their places in ``words``; none where ``m`` says no exception."""
+        at = next((k + 1 for k in range(m.start, m.end) if words[k] in ("than", "except", "excluding", "but")), None)
+        if at is None:
+            return []
+        try:
+            found = self._find(words[at : m.end])
+        except InputError:
+            return []
+        return [replace(x, start=x.start + at, end=x.end + at) for x in found]
 
     def _put_in(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"drop the red block in the white bowl", "red block in the white bowl, blue one in the black bowl":
@@ -379,7 +393,7 @@ class _TokenPasses(ParserHost):
         lexicon = (set(self.key_vocab) | _COMMAND_VERBS | set(_DIR_WORDS) | set(ROWS) | set(COLS) | set(FACINGS)
                    | REGION_NOUNS | set(SIZES) | COLOUR_WORDS | set(GROUPS) | _ROLE_WORDS | _SUPERLATIVE
                    | _MEASURE_WORDS | _FACING_CUES | POINTING_PARTS | frozenset(UNITS) | _PLACE_WORDS | TABLE_WORDS
-                   | VIEWER_WORDS | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
+                   | VIEWER_WORDS | formal.SPELLED | {"behind", "between", "beside", "next", "above", "below", "under", "onto",
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()

@@ -45,7 +45,7 @@ _SIDE_NOUNS = frozenset({"edge", "side", "wall", "end", "border", "rim"})
 _EDGES = {"back": "north", "far": "north", "rear": "north", "top": "north", "north": "north",
           "front": "south", "near": "south", "bottom": "south", "south": "south",
           "left": "west", "west": "west", "right": "east", "east": "east"}
-_VIEWER = lexicon.VIEWER_WORDS | {"person", "operator"}
+_VIEWER = lexicon.VIEWER_WORDS | {"person"}
 
 
 def read_facing(words: tuple[str, ...], i: int) -> tuple[str, int] | None:

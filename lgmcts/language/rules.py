@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import asides, lexicon, poses, repairs, stages, steps
+from . import asides, formal, lexicon, poses, repairs, stages, steps
 from .positions import TOO_CLOSE
 from .stack_order import stack_orders
 from ..errors import InputError
@@ -261,9 +261,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = self._spelled_right(text)
-        text = plain_words(stack_orders(repairs.repaired(steps.finding_steps(asides.bracketed(text, self._object_word, self._request_word),
-                                                                   self._object_word))))
+        text = formal.said_actively(self._spelled_right(text))
+        text = steps.finding_steps(asides.bracketed(text, self._object_word, self._request_word), self._object_word)
+        text = plain_words(stack_orders(repairs.repaired(text)))
         self._tilt(text)
         _taken_back(text)
         text = _restarted(text)
