@@ -304,7 +304,7 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
 
 
 #: Words of a request that chatter uses too ("coming over", "at like seven", "knocked everything over").
-_CHATTER_PARTICLES = frozenset({"over", "on", "at", "in", "up", "off", "out", "down", "back", "get", "gets", "go",
+_CHATTER_PARTICLES = frozenset({"over", "on", "at", "in", "up", "off", "out", "down", "back", "get", "gets", "go", "around",
                                 "goes", "everything", "anything", "first", "last", "next", "end"})
 #: Verbs of a visit, after which "round" is a particle ("coming round", "popped round").
 _COMING = frozenset({"come", "comes", "coming", "came", "pop", "pops", "popping", "popped", "drop", "dropping",
@@ -405,12 +405,15 @@ def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word
         return False
     past = next((j for j, w in enumerate(words) if w in _PAST or (w.endswith("ed") and len(w) > 4)), len(words))
     subject = _subject_end(words)
+    wishing = any(w in _WISHING or w in _CTX["asking"] for w in words)
     for j, w in enumerate(words):
         if j == subject and subject >= 2 and words[subject - 1] in _CTX["people"]:
             past = min(past, j)
             continue  # "my granddaughter set these letters out": the verb of a person named, told, never asked
         if w == "left" and j and words[j - 1] in _LEAVERS:
             continue  # "my nephew left his stuff everywhere"
+        if j > past and not wishing:
+            continue  # "the previous operator left the star close to the front edge": what was done, told
         if (w in _CTX["asking"] and not object_word(w)) or (w in lexicon.DIRECTIONS and _in_place(words, j)):
             return False
         if j > past and w in _ARRANGEMENT_NOUNS:
@@ -431,8 +434,13 @@ def _told(head: Sequence[str]) -> bool:
     """Whether ``head`` tells something rather than names things: a subject and a verb of telling in at least
     four words ("the groceries finally came"), not a list of objects ("the saucer and the red can")."""
     body = [w for w in head if w not in _LEAD]
+    told = _subject_end(body) and not any(w in _WISHING or w in _CTX["asking"] for w in body)
+    past = next((j for j, w in enumerate(body) if told and (w in _PAST or (w.endswith("ed") and len(w) > 4))),
+                len(body))  # "the previous operator left the star close to the front edge": where it was
+    if told and _subject_end(body) >= 2 and body[_subject_end(body) - 1] in _CTX["people"]:
+        past = min(past, _subject_end(body))  # "my son put the star on the left yesterday"
     if any(w in lexicon.DIRECTIONS and not (w == "back" and j and body[j - 1] in _BACK_FROM)
-           and not (w == "left" and j and body[j - 1] in _LEAVERS) for j, w in enumerate(body)):
+           and not (w == "left" and j and body[j - 1] in _LEAVERS) and j <= past for j, w in enumerate(body)):
         return False  # "the teapot is to be placed diagonally behind": where, not a story ("i just got back" is)
     if any(w in _WISHING or (w in _CTX["place_prepositions"] and j + 1 < len(body) and body[j + 1] in ("the", "a", "an"))
            for j, w in enumerate(body)):

@@ -275,8 +275,9 @@ _FIRST_TO_LAST = (("from",), _AT_ONE, ("first", "1st", "leftmost", "one"), ("to"
 
 
 def _first_to_last(ws: list[str], j: int) -> int | None:
-    """The end of "from the first (noun) to the last (noun)" said at ``j`` (a line's length), or None."""
-    k = j
+    """The end of "(, measured) from the first (noun) to the last (noun)" said at ``j`` (a line's length), or None."""
+    k = j + (ws[j : j + 1] == [","])
+    k += ws[k : k + 1] in (["measured"], ["taken"])
     for step, words in enumerate(_FIRST_TO_LAST):
         optional = words[0] in ("the",)
         while k < len(ws) and optional and ws[k] in words:

@@ -691,3 +691,9 @@ def _world_colour(m: re.Match[str]) -> str:
         plural = bool(noun) and noun[0].endswith("s") and not noun[0].endswith("ss")
         return f"that {'are' if plural else 'is'} {colour}"
     return colour
+
+
+@replacer("whose-colour")
+def _whose_colour(m: re.Match[str]) -> str:
+    """"whose colour matches that of": that is the same colour as ("whose colours ...": that are)."""
+    return f"that {'are' if m.group(1) else 'is'} the same colour as"

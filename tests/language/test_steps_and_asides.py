@@ -122,6 +122,12 @@ def test_reported_speech() -> None:
                                            {"pattern": "left", "objects": [9], "anchor": 6}]),
     ("pantry", "Put the yellow cup behind the red bowl. Now do the same with the orange cup, but in front.",
      [{"pattern": "behind", "objects": [8], "anchor": 6}, {"pattern": "front", "objects": [9], "anchor": 6}]),
+    ("home", "Put the can of the same colour as the green bowl behind the bowl whose colour matches that of the "
+             "plate.", [{"pattern": "behind", "objects": [14], "anchor": 3}]),
+    ("pantry", "Those cans whose colours correspond to the colours of the bowls shall be arranged on a circle.",
+     [{"pattern": "circle", "objects": [1, 2, 3]}]),
+    ("pantry", "Stack the three bowls with the red bowl at the bottom, then the blue bowl, the white bowl on top.",
+     [{"pattern": "tower", "objects": [6, 7, 5]}]),
     ("dinner", "First, find the middle one of the three silver things (counting from left to right). Next, put it "
                "on the right of the mug.", [{"pattern": "right", "objects": [5], "anchor": 6}]),
 ])
@@ -137,6 +143,8 @@ def test_reads(scene: str, text: str, expected: list[dict]) -> None:
     ("home", "Put the mugs in a line. The red mug should face north."),  # a facing for one object of a line
     ("toys", "Put the letters in a row facing north... oh no, forget it. Leave the letters alone today, please."),
     ("blocks", "Put the block that is the same colour as the banana to the right of the black bowl."),  # no banana
+    # the bottom, then the top in a later sentence: a contradiction, never the last one said
+    ("pantry", "Stack the three bowls with the red bowl at the bottom. The red bowl must be on top."),
 ])
 def test_refuses(scene: str, text: str) -> None:
     with pytest.raises(InputError):
