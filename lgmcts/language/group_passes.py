@@ -10,7 +10,7 @@ from ..errors import InputError
 from .clauses import _COMMAND_VERBS, _GOAL_WORDS, _sentences
 from .grounding import NUMBERS
 from .host import ParserHost
-from .matcher import STOPWORDS, _stem
+from .matcher import FILLERS, STOPWORDS, _stem
 from .passes import _NOT_JOIN
 from .positions import _SIDES
 
@@ -157,8 +157,9 @@ class _GroupPasses(ParserHost):
 
     def _respectively(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """"place the red and blue blocks to the left and right of the white bowl, respectively": each object
-        of the list to its side, in the order said (one relation each). Refused where the list and the sides
-        are not as many."""
+        of the list to its side, in the order said (one relation each; "the letters A and T shall be positioned
+        to the left and to the right of the bowl" too, a verb said of the list being only stopwords and
+        fillers). Refused where the list and the sides are not as many."""
         if "respectively" not in words:
             return words
         k = words.index("respectively")
@@ -171,6 +172,9 @@ class _GroupPasses(ParserHost):
             return words
         anchor, subjects = found[-1], found[:-1]
         said = words[s + subjects[-1].end : s + anchor.start - (words[s + anchor.start - 1] == "of")]
+        # "... shall be positioned to the left and to the right of ...": the verb before the sides goes
+        lead = next((n for n, w in enumerate(said) if w in _SIDE_OF or w not in STOPWORDS | FILLERS), len(said))
+        said = said[lead:]
         sides = [_SIDE_OF[w] for w in said if w in _SIDE_OF]
         if not sides or any(w not in _SIDE_OF and w not in ("to", "the", "and", ",", "in", "on", "its") for w in said):
             return words

@@ -181,3 +181,26 @@ def trace(text: str, table: str = "rewrite") -> list[tuple[str, str]]:
             out.append((rule.id, new))
         text = new
     return out
+
+
+@lru_cache(maxsize=1)
+def pattern_words(shortest: int = 5) -> frozenset[str]:
+    """The words the rows of every table read, taken from their patterns ("required" from "it is
+    (?:necessary|needed|required) that"): runs of lower-case letters of ``shortest`` letters or more, a
+    letter after a backslash (``\\b``, ``\\s``) and a macro's name (``{HUE}``) being no word. The spelling
+    stage may correct a slip into one of them."""
+    out: set[str] = set()
+    for table in TABLES:
+        for row in _raw().get(table, ()):
+            for key in ("pattern", "when", "unless"):
+                said = row.get(key, ())
+                for text in [said] if isinstance(said, str) else said:
+                    run = ""
+                    for k, ch in enumerate(text + " "):
+                        if "a" <= ch <= "z" and not (k and text[k - 1] == "\\"):
+                            run += ch
+                            continue
+                        if len(run) >= shortest:
+                            out.add(run)
+                        run = ""
+    return frozenset(out)

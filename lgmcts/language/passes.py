@@ -7,6 +7,7 @@ only leave an order open or leave objects alone, and "the same for ..." (:class:
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 import re
 
 from . import formal, repairs, stages
@@ -29,7 +30,9 @@ from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
 from .places import POINTING_PARTS
+from .normalise import pattern_words
 from .rewrite import FREE_ORDER
+from .spelling import english_rank
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, take_params
 from typing import TYPE_CHECKING
@@ -135,6 +138,13 @@ _PLACE_WORDS = frozenset({"strip", "band", "partway", "halfway", "midway", "dead
 _SHAPES_PROTECT = frozenset({"lol", "haha", "ok", "okay", "thanks", "thank", "hey", "hi", "hello", "yeah", "yes", "no",
                              "nope", "sure", "cheers", "please", "pls", "plz", "thx", "wanna", "gonna", "gimme",
                              "lemme", "btw", "asap", "thru", "obj", "objs"})
+
+
+@lru_cache(maxsize=1)
+def _table_words() -> frozenset[str]:
+    """The English words the rewrite tables read ("required", "aforementioned"), which a slip may stand for;
+    not the stems a pattern spells its endings after ("arrang(?:e|ed)")."""
+    return frozenset(w for w in pattern_words() if english_rank(w) is not None)
 
 
 #: Superlatives of a side, words the spelling corrector knows (read by :mod:`.positions`).
@@ -397,7 +407,7 @@ class _TokenPasses(ParserHost):
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
-        return stages.spell(text, self.vocab, lexicon, nouns, protect)
+        return stages.spell(text, self.vocab, lexicon, nouns, protect, _table_words() | {"respectively"})
 
     def _remember(self, clause: tuple[str, ...]) -> None:
         """Let later pronouns and bare colours refer to what a dropped remark names."""

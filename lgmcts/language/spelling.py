@@ -25,9 +25,24 @@ purpose, since a wrong correction is a wrong goal:
   colour or a pattern noun;
 * a word that is no English word and is exactly one of the scene's words, colours or
   pattern nouns with some of its vowels left out is that word ("orng" orange, "prpl"
-  purple, "bwl" bowl); a plural said with a final z is the plural ("bowlz").
+  purple, "bwl" bowl); a plural said with a final z is the plural ("bowlz");
+* a correction by a letter struck for another or one letter too many, into no word of the
+  scene and no pattern noun, is not made where a common English word the parser does not know
+  is one slip away too ("leter" is no "meter": it may be "later"; on a table with letters it is
+  "letter", a letter left out);
+* a three-letter word is a word of the parser with a letter left out ("sde": side) where no
+  commoner English word is, or a three-letter name of the scene with two letters swapped ("mgu": mug);
+* a word no nearer to any of those is one of the words the parser reads in its tables, or a
+  protected word of four letters or more, by the commonest slips only: a letter left out, a
+  letter typed twice or two neighbouring letters swapped ("requred", "respectivly", "shal",
+  "positoned"), and not where a commoner English word is the same kind of slip away;
+* else two words typed without the space, where exactly one cut gives two words the parser knows
+  of three letters or more, one of them the scene's or the parser's own ("redcan", "frontedge",
+  "putthe"), or a side and "of"/"to" ("frontof", "nextto").
 
-Words of one or two letters and numbers are left alone.
+An inflection read by :func:`english_rank` doubles the last consonant of a base of one syllable
+("letter", never "leter"), and a word with "re" or "un" before an English word is English
+("repositioned"). Words of one or two letters and numbers are left alone.
 """
 
 from __future__ import annotations
@@ -47,7 +62,7 @@ INFORMAL: dict[str, str] = {
     "lft": "left", "rght": "right", "cntr": "centre", "ctr": "centre", "rite": "right", "cud": "could",
     "wud": "would", "shud": "should", "thx": "thanks", "thnx": "thanks", "bhind": "behind", "frnt": "front",
     # contractions typed (or transcribed) without their apostrophe, and "em" for "them"
-    "doesnt": "doesn't", "dont": "don't", "thats": "that's", "itd": "it'd", "itll": "it'll", "shes": "she's",
+    "doesnt": "doesn't", "dont": "don't", "thats": "that's", "itd": "it'd", "thatd": "that'd", "itll": "it'll", "shes": "she's",
     "im": "i'm", "ive": "i've", "youre": "you're", "theyre": "they're", "isnt": "isn't", "wont": "won't",
     "whats": "what's", "theres": "there's", "wouldnt": "wouldn't", "couldnt": "couldn't", "shouldnt": "shouldn't",
     "didnt": "didn't", "arent": "aren't", "hasnt": "hasn't", "havent": "haven't", "em": "them", "ya": "you",
@@ -59,7 +74,7 @@ INFORMAL: dict[str, str] = {
     "exsept": "except", "eksept": "except", "smal": "small", "smol": "small", "smll": "small", "larg": "large",
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
     "bowlz": "bowls",
-    "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks",
+    "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
@@ -120,18 +135,31 @@ _SUFFIXES = (("ies", "y"), ("ied", "y"), ("ing", ""), ("ing", "e"), ("ed", ""), 
              ("er", ""), ("er", "e"), ("est", ""), ("est", "e"), ("ly", ""), ("'s", ""), ("y", ""))
 
 
+def _doubles_its_end(base: str) -> bool:
+    """Whether ``base`` is one syllable ending in one vowel and one consonant ("let", "stop", "put"), whose last
+    letter is doubled before an ending that starts with a vowel ("letter", "stopped"; never "leter")."""
+    vowels = [k for k, ch in enumerate(base) if ch in "aeiou"]
+    return len(base) >= 3 and len(vowels) == 1 and vowels[0] == len(base) - 2 and base[-1] not in "wxy"
+
+
 def english_rank(word: str) -> int | None:
     """The word's rank in the English vocabulary (smaller: more common), or None if it is none.
 
-    An inflected form ("crowding", "stacked", "tidier") has the rank of its base word."""
+    An inflected form ("crowding", "stacked", "tidier") has the rank of its base word, and so has the word
+    said again or undone ("repositioned", "unstacked"); a base of one syllable ending in a vowel and a
+    consonant doubles that consonant before an ending with a vowel ("letter", "putting"), so "leter" is no
+    form of "let"."""
     eng = _english()
     if word in eng:
         return eng[word]
+    again = english_rank(word[2:]) if word[:2] in ("re", "un") and len(word) > 6 else None
+    if again is not None:
+        return again  # "repositioned", "unstacked": a word said again or undone
     for suffix, repl in _SUFFIXES:
         if len(word) > len(suffix) + 2 and word.endswith(suffix):
             base = word[: -len(suffix)]
             for b in (base + repl, base[:-1] if len(base) > 3 and base[-1] == base[-2] else None):
-                if b and b in eng:
+                if b and b in eng and not (b == base and suffix[0] in "aeiouy" and _doubles_its_end(base)):
                     return eng[b]
     return None
 
@@ -189,8 +217,26 @@ def _sound(w: str) -> str:
     return w[:-2] + "le" if w.endswith("el") else w
 
 
+def _swapped(w: str, t: str) -> bool:
+    """Whether ``w`` is ``t`` with two neighbouring letters swapped ("mgu": mug)."""
+    return len(w) == len(t) and any(w == t[:k] + t[k + 1] + t[k] + t[k + 2 :] for k in range(len(t) - 1)) and w != t
+
+
+def _one_edit(w: str) -> set[str]:
+    """The strings one insertion, deletion, substitution or swap of neighbouring letters from ``w``."""
+    letters = "abcdefghijklmnopqrstuvwxyz"
+    cuts = [(w[:k], w[k:]) for k in range(len(w) + 1)]
+    out = {a + b[1:] for a, b in cuts if b}
+    out |= {a + b[1] + b[0] + b[2:] for a, b in cuts if len(b) > 1}
+    out |= {a + c + b[1:] for a, b in cuts if b for c in letters}
+    out |= {a + c + b for a, b in cuts for c in letters}
+    return out - {w}
+
+
 #: Words of a side that a preposition may be typed onto ("frontof", "nextto").
 _SIDE_WORDS = frozenset({"front", "left", "right", "back", "next", "top", "behind", "close", "near"})
+#: The words of :attr:`Corrector.read` (and the protected ones) have this many letters or more.
+_READ_LETTERS = 4
 
 
 class Corrector:
@@ -198,20 +244,26 @@ class Corrector:
 
     ``scene``: the scene's own words (names with their plurals, colours);
     ``lexicon``: the other words a misspelling may stand for (pattern words, directions,
-    command verbs, measure words); ``protect``: words that are never changed and never
-    a correction (fillers, chatter); ``nouns``: the pattern nouns, which with the
+    command verbs, measure words); ``protect``: words that are never changed (fillers, chatter),
+    and a correction only as the words of ``read`` are; ``nouns``: the pattern nouns, which with the
     scene's words are the only targets of a rare real word; ``colours``: colour
     words, which with the pattern nouns are the only targets of a three-letter
     non-word ("blu", "lin"; never an object's name: "ish" is not "dish"); ``rank``: the English
-    rank of a word or None (:func:`english_rank` by default).
+    rank of a word or None (:func:`english_rank` by default); ``read``: more words the parser reads (those
+    of its rewrite tables, "required", "respectively"), which with the protected words of four letters or
+    more ("shall", "placed") a word is only by the commonest slips (:meth:`_slip_of_read`).
     """
 
     def __init__(self, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
                  rank: Callable[[str], int | None] = english_rank, protect: Collection[str] = (),
-                 colours: Collection[str] = ()) -> None:
+                 colours: Collection[str] = (), read: Collection[str] = ()) -> None:
         self.scene = frozenset(w for w in scene if w.isalpha())
         self.targets = frozenset(w for w in lexicon if w.isalpha()) - self.scene
         self.known = self.scene | self.targets | frozenset(protect)
+        # A protected word of four letters or more may be what a slip meant; a shorter one ("the", "its",
+        # "lol") is too near too many slips to be one's correction.
+        self.read = frozenset(w for w in (*read, *protect) if w.isalpha() and len(w) >= _READ_LETTERS) - self.targets \
+            - self.scene
         self.nouns = frozenset(nouns) | self.scene
         self.colours = frozenset(colours)
         self.rank = rank
@@ -245,10 +297,7 @@ class Corrector:
         if len(sounds_as) == 1:
             return sounds_as[0]  # "bloo", "yelo", "rde": a colour with its vowels spelt otherwise
         if len(w) == 3:
-            hits = [t for t in self.nouns - self.scene | self.colours if _dropped_letter(w, t)]
-            if not hits:  # "cip": a neighbouring key struck for one letter of a three-letter name ("cup")
-                hits = [t for t in self.scene if len(t) == 3 and _key_slip(w, t)]
-            return hits[0] if len(hits) == 1 else w
+            return self._three_letters(w)
         sounds = {t for t in self.nouns | self.colours if len(t) > 3 and _sound(t) == _sound(w)}
         if len(sounds) == 1:
             return sounds.pop()  # "sirkle", "cirkel": spelt as it sounds
@@ -264,18 +313,75 @@ class Corrector:
             elif d == best_d:
                 best.append(t)
         if best_d > cap:
-            # "frontof", "leftof", "nextto": a side and its preposition typed without the space
-            cut = next((n for n in range(2, len(w) - 1) if w[:n] in _SIDE_WORDS and w[n:] in ("of", "to")), 0)
-            return f"{w[:cut]} {w[cut:]}" if cut else w
+            return self._slip_of_read(w) or self._run_together(w) or w
+        fixed = w
         if len(best) > 1:
             # A letter left out is the commonest slip ("stak" is "stack" before "star"), then a letter typed
             # twice ("bowll" is "bowl" before "bowls"), then the scene's own word ("forc" is "fork" on a table
             # with a fork, before "form").
             for prefer in (lambda t: _dropped_letter(w, t), lambda t: _doubled(w, t), lambda t: t in self.scene):
                 if sum(map(prefer, best)) == 1:
-                    return next(t for t in best if prefer(t))
-            return w
-        return best[0]
+                    fixed = next(t for t in best if prefer(t))
+                    break
+        else:
+            fixed = best[0]
+        return fixed if best_d > 1 or self._beats_english(w, fixed) else w
+
+    def _beats_english(self, w: str, fixed: str) -> bool:
+        """Whether ``fixed``, one slip from ``w``, stands against the common English words (:data:`RARE_RANK`)
+        the parser does not know one slip from ``w`` too: the scene's own word or a pattern noun does ("leter"
+        is "letter" on a table with letters, "lyne" a line), and so does a word ``w`` is with a letter left out,
+        typed twice or two neighbouring letters swapped, the commonest slips ("stck" is "stack", though "stick"
+        is as near; "lien" a line); a letter struck for another or one too many only where no such English
+        word is near ("leter" is no "meter" on a table without letters: it may be "later")."""
+        if fixed == w or fixed in self.nouns or _dropped_letter(w, fixed) or _doubled(w, fixed) or _swapped(w, fixed):
+            return True
+        eng = _english()
+        return not any(eng.get(c, RARE_RANK) < RARE_RANK and c not in self.known for c in _one_edit(w))
+
+    def _slip_of_read(self, w: str) -> str | None:
+        """The one word of :attr:`read` that ``w`` is with a letter left out, a letter typed twice or two
+        neighbouring letters swapped ("requred": required, "shal": shall, "plcaed": placed), where no commoner
+        English word the parser does not know is so near ("ples" is no "piles": it may be "poles"; "shal" is
+        "shall", not the rarer "shale"), or None."""
+        def slip(t: str) -> bool:
+            return _dropped_letter(w, t) or _doubled(w, t) or _swapped(w, t)
+
+        hits = [t for t in self.read if abs(len(t) - len(w)) <= 1 and slip(t)]
+        return hits[0] if len(hits) == 1 and not self._commoner(w, hits[0], slip) else None
+
+    def _commoner(self, w: str, hit: str, slip: Callable[[str], bool]) -> bool:
+        """Whether an English word the parser does not know, commoner than ``hit``, is the same kind of
+        ``slip`` from ``w``."""
+        eng = _english()
+        rank = self.rank(hit)
+        return any(c in eng and c not in self.known and c != hit and slip(c) and (rank is None or eng[c] < rank)
+                   for c in _one_edit(w))
+
+    def _three_letters(self, w: str) -> str:
+        """A three-letter word that is no English word: a letter left out of a colour, a pattern noun or a word
+        of the parser other than an object's name ("blu", "lin", "sde": side, no commoner English word being
+        a letter longer; "ish" never "dish"); else one
+        slip in a three-letter name of the scene, a neighbouring key struck ("cip": cup) or two neighbouring
+        letters swapped ("mgu": mug). Only where exactly one word is so near."""
+        hits = [t for t in (self.nouns | self.targets | self.colours) - self.scene | self.colours
+                if _dropped_letter(w, t)]
+        if len(hits) == 1 and hits[0] in self.targets - self.nouns - self.colours and self._commoner(
+                w, hits[0], lambda t: _dropped_letter(w, t)):
+            return w  # a word of the parser's only where no commoner English word is as near
+        if not hits:
+            hits = [t for t in self.scene if len(t) == 3 and (_key_slip(w, t) or _swapped(w, t))]
+        return hits[0] if len(hits) == 1 else w
+
+    def _run_together(self, w: str) -> str | None:
+        """Two words typed without the space between them ("redcan", "frontedge", "putthe"), or None: the one way
+        to cut ``w`` into two words the parser knows, of three letters or more each, one of them the scene's or
+        the parser's own (not only a filler or a stopword); a word of two letters only as "of" or "to" after a
+        side ("frontof", "nextto"), since "in", "on", "up" begin and end too many words ("inlay", "headin")."""
+        cuts = [(w[:n], w[n:]) for n in range(3, len(w) - 2) if w[:n] in self.known and w[n:] in self.known
+                and (w[:n] in self.scene or w[:n] in self.targets or w[n:] in self.scene or w[n:] in self.targets)]
+        cuts += [(w[:-2], w[-2:])] if w[:-2] in _SIDE_WORDS and w[-2:] in ("of", "to") else []
+        return " ".join(cuts[0]) if len(cuts) == 1 else None
 
     def text(self, text: str) -> str:
         """``text`` with each misspelt word replaced (case kept for the first letter), the rest as it was."""
@@ -321,6 +427,6 @@ class Corrector:
 
 
 def correct_text(text: str, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
-                 protect: Collection[str] = (), colours: Collection[str] = ()) -> str:
+                 protect: Collection[str] = (), colours: Collection[str] = (), read: Collection[str] = ()) -> str:
     """:meth:`Corrector.text` with a corrector built for this call."""
-    return Corrector(scene, lexicon, nouns, protect=protect, colours=colours).text(text)
+    return Corrector(scene, lexicon, nouns, protect=protect, colours=colours, read=read).text(text)

@@ -116,6 +116,8 @@ def test_a_reference_a_step_and_a_measure_read_whole(said, goals):
      [{"pattern": "left", "objects": [4], "anchor": 2}, {"pattern": "right", "objects": [5], "anchor": 2}]),
     ("place the red block and the blue block in front and behind the white bowl respectively",
      [{"pattern": "front", "objects": [4], "anchor": 2}, {"pattern": "behind", "objects": [5], "anchor": 2}]),
+    ("The red and blue blocks are to be placed to the left and to the right of the white bowl, respectively.",
+     [{"pattern": "left", "objects": [4], "anchor": 2}, {"pattern": "right", "objects": [5], "anchor": 2}]),
     # the other side of the same object, its name left out
     ("put the red block on the right of the plate, the blue block on the left",
      [{"pattern": "right", "objects": [4], "anchor": 1}, {"pattern": "left", "objects": [5], "anchor": 1}]),
@@ -170,6 +172,7 @@ def test_lists_sides_and_facings_said_loosely(said, goals):
 @pytest.mark.slow
 @pytest.mark.parametrize("said, why", [
     ("place the red and blue blocks to the left of the white bowl, respectively", "2 objects and 1 sides"),
+    ("the red and blue blocks must not be left and right of the white bowl, respectively", "must not hold"),
     ("line up the blocks, tallest in the middle", "an order of the objects inside an arrangement"),
     ("stack the red and blue blocks with the blue one in the middle", "no middle of the stack"),
     ("Put the red block fourth from the bottom in a stack on the plate.", "the stack read has 2 objects"),

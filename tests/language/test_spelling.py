@@ -2,23 +2,30 @@
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from lgmcts.language.spelling import Corrector, edit_distance
+from lgmcts.formats import parse_scene
+from lgmcts.language.rules import goal_dicts
+from lgmcts.language.spelling import Corrector, edit_distance, english_rank
 
 _SCENE = {"dish", "mug", "mugs", "bowl", "bowls", "box", "boxes", "heart", "hearts", "fork", "forks", "plate", "plates",
           "red", "blue", "green", "purple", "orange", "yellow", "white", "star", "stars", "can", "cans", "letter",
           "letters"}
 _LEX = {"behind", "front", "left", "right", "stack", "circle", "rectangle", "line", "row", "radius", "put", "place",
-        "the", "in", "on", "of", "top", "bottom", "next", "square", "ring", "centre", "center", "move", "between"}
+        "the", "in", "on", "of", "top", "bottom", "next", "square", "ring", "centre", "center", "move", "between",
+        "side", "edge", "meter", "lay"}
 _NOUNS = {"circle", "line", "row", "ring", "rectangle", "square"}
 
 
 def _fix(text: str) -> str:
-    return Corrector(_SCENE, _LEX, _NOUNS, protect={"great", "please"},
-                     colours={"red", "blue", "green", "purple", "orange", "yellow", "white"}).text(text)
+    return Corrector(_SCENE, _LEX, _NOUNS, protect={"great", "please", "shall", "placed"},
+                     colours={"red", "blue", "green", "purple", "orange", "yellow", "white"},
+                     read={"required", "respectively", "piles"}).text(text)
 
 
 @pytest.mark.parametrize("text, fixed", [
@@ -59,6 +66,17 @@ def _fix(text: str) -> str:
     ("turn the mug 1.5 rad", "turn the mug 1.5 rad"),                  # three letters: only two swapped
     ("the heart in frontof the box", "the heart in front of the box"),   # two known words without the space
     ("the mug leftof the plate", "the mug left of the plate"),
+    # two words without the space: one cut into two words the parser knows, one of them its own
+    ("putthe redmug on the box", "put the red mug on the box"),
+    ("the mugs along the frontedge", "the mugs along the front edge"),
+    ("the leter A next to the box", "the letter A next to the box"),    # a letter left out: never 'leter' of 'let'
+    ("the red mgu on the box", "the red mug on the box"),             # two letters swapped in a three-letter name
+    ("the mugs either sde of the box", "the mugs either side of the box"),   # a letter left out of a word of three
+    # the parser's words read by the commonest slips only
+    ("it is requred that the mug is behind the box", "it is required that the mug is behind the box"),
+    ("the mug and the box left and right of the plate, respectivly",
+     "the mug and the box left and right of the plate, respectively"),
+    ("the mug shal be plcaed on the box", "the mug shall be placed on the box"),
 ])
 def test_a_misspelt_word_is_corrected(text, fixed):
     assert _fix(text) == fixed
@@ -83,9 +101,35 @@ def test_a_misspelt_word_is_corrected(text, fixed):
     "1) stack the mugs 2) put the box on the dish",   # a numbered step is no "to"
     "the mugs in a row w/ the box",                   # "w/" is read by the rewrite table
     "put the mug in the mux",                         # 'x' is no neighbour of 'g' on the keyboard
+    "the mug like the inlay on the box",              # a cut into a word of two letters ('in lay') is no reading
+    "put the gmu on the box",                         # no two neighbouring letters of 'mug' swapped
+    "ples put the mug on the box",                    # 'piles' is read, but the commoner 'poles' is as near
+    "the ish on the box",                             # three letters: never an object's name ('dish')
 ])
 def test_what_is_not_sure_is_left_as_it_is(text):
     assert _fix(text) == text
+
+
+def test_a_struck_letter_is_no_correction_where_a_common_word_is_as_near():
+    # Without letters on the table 'leter' is one letter from the unit 'meter' and from 'later' alike.
+    no_letters = Corrector({"mug", "mugs", "box"}, _LEX, _NOUNS)
+    assert no_letters.text("put the mug on the box, the rest leter") == "put the mug on the box, the rest leter"
+    assert _fix("put the leter A on the box") == "put the letter A on the box"   # the scene's word, a letter left out
+
+
+def test_an_inflection_doubles_the_end_of_a_short_base():
+    assert english_rank("leter") is None and english_rank("letter") is not None
+    assert english_rank("putting") is not None and english_rank("puting") is None
+    assert english_rank("repositioned") is not None   # a word said again is English
+
+
+def test_a_command_typed_fast_is_read_end_to_end(matcher):
+    rows = map(json.loads, Path(__file__).with_name("fresh_cases.jsonl").read_text().splitlines())
+    scenes = {r["scene_id"]: parse_scene(r["scene"]) for r in rows if "scene_id" in r}
+    said = "putthe greencan infront of the whitebowl"
+    assert goal_dicts(scenes["home"], said, matcher=matcher) == [{"pattern": "front", "objects": [14], "anchor": 3}]
+    said = "it is requred that the leter R shal be plcaed behnid the granite bowl"
+    assert goal_dicts(scenes["toys"], said, matcher=matcher) == [{"pattern": "behind", "objects": [2], "anchor": 9}]
 
 
 def test_a_word_is_never_corrected_into_another_object_of_the_scene():
