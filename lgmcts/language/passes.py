@@ -29,6 +29,7 @@ from .lexicon import HUES as _HUES, TABLE_WORDS, VIEWER_WORDS, context_words
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
 from .context import person_remark
+from .same_change import other_side
 from .places import POINTING_PARTS
 from .normalise import pattern_words
 from .rewrite import FREE_ORDER
@@ -87,25 +88,6 @@ _SAME = re.compile(r"^(?:then |now |and |also )*(?:(?:please |you )?(?:do|repeat
 #: Words said with "the same for X" that ask for nothing more ("same for the cups too, please").
 _SAME_JOINS = frozenset({",", "and", "too", "also", "please", "but", "as", "well", "though", "only", "this", "time",
                          "again", "then"})
-
-def _other_side(out: list[str], more: list[str]) -> tuple[str, ...] | None:
-    """"the same with the orange cup, but (put it) on the left" after a relation on the right: the relation's side
-    said anew (left for right, front for behind and back), None where ``more`` is not one side or the clause
-    before names no side of that axis once."""
-    words = [w for w in more if w not in _SAME_JOINS]
-    if words[:2] in (["put", "it"], ["put", "them"], ["place", "it"], ["place", "them"], ["move", "it"]):
-        words = words[2:]
-    words = [w for w in words if w not in ("on", "to", "the", "its", "their", "side", "hand", "of", "it", "in")]
-    side = {"left": "left", "right": "right", "front": "front", "behind": "behind", "back": "behind"}.get(
-        words[0]) if len(words) == 1 else None
-    if side is None:
-        return None
-    axis = ("left", "right") if side in ("left", "right") else ("front", "behind")
-    at = [k for k, w in enumerate(out) if w in axis]
-    if len(at) != 1:
-        return None
-    return (*out[: at[0]], side, *out[at[0] + 1 :])
-
 
 #: Words by which a sentence asks for something, so it does not only describe.
 _DESCRIBES_NOT = re.compile(r"\b(should|must|need|needs|has to|have to|is to|are to|want|wants|would|'d|like|to be|"
@@ -572,7 +554,7 @@ class _TokenPasses(ParserHost):
             more.pop(0)
         if not more or all(w in _SAME_JOINS for w in more):
             return tuple(out)
-        sided = _other_side(out, more)
+        sided = other_side(out, more, _SAME_JOINS)
         if sided is not None:
             return sided
         # "same for the cups but front left": a place, a facing or a measure said with it replaces the clause's
