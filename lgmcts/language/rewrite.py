@@ -96,15 +96,16 @@ _ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move
 _PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since) "
                             r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|people|everyone|nobody|no one|"
                             r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
-                            r"they don't|they do not|they can|they won't|they take|it takes|there's|there is|everything's|"
+                            r"they don't|they do not|they can|they could|they won't|they take|it takes|there's|there is|everything's|"
                             r"everything is|everything will|nothing|the (?:[a-z]+ ){1,2}?(?:is|are|isn't|aren't|won't|doesn't|"
                             r"don't|will|stays|stay|gets|get))\b[^.;!?,]*"
                             # up to a comma before a part that says where, which way or how big
                             r"(?:,(?!\s*(?:in|at|on|along|near|toward|towards|facing|pointing|turned|oriented|"
                             r"over on|up at|halfway|dead|by|next|beside|around|inside|under|about|spanning|\d)\b)"
                             r"[^.;!?,]*)*)")
-_PURPOSE_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?:so that|so|in order to|to|in order that|because|since)\s+"
-                             rf"(?P<c>[^,;.!?]+),\s*(?={_ACT})")
+_PURPOSE_BEFORE = re.compile(rf"(?i)(^|[.;!?:]\s+)(?P<c>(?:(?:and\s+)?(?:so that|so|in order to|to|in order that|because|"
+                             rf"since|given that|in preparation for|prior to|subsequent to|following|in view of|owing to|"
+                             rf"due to|as part of|pending)\s+[^,;.!?]+,\s*)+)(?={_ACT})")
 _REASON_BEFORE = re.compile(rf"(?i)(^|[.;!?]\s+)(?P<c>(?:i need|we need|i want|i have to|i must|i'd like|i'm|i am|i'll|i will|we're|we are|i've|we've|i have|we have|"
                             rf"it's|there's|the [a-z]+ (?:is|are)) [^,;.!?]+),\s*so\s+(?={_ACT})")
 
@@ -147,14 +148,37 @@ def _restatements(text: str) -> str:
     return " ".join(kept)
 
 
+def _asks(clause: str) -> bool:
+    """Whether a clause said as a reason has a word by which it would ask for a goal, "left" after a verb of
+    having or a subject not counted ("the cleaning staff have left the items scattered")."""
+    ws = lexicon.words(clause)
+    kept = [w for k, w in enumerate(ws) if not (w == "left" and k and ws[k - 1] in _LEFT_AS_VERB)]
+    return says(" ".join(kept), "goal")
+
+
+#: Words after which "left" is a verb ("have left", "she left", "staff left").
+_LEFT_AS_VERB = frozenset({"have", "has", "had", "having", "was", "were", "been", "just", "they", "we", "i", "he",
+                           "she", "you", "staff", "someone", "somebody", "everyone", "kids", "operator", "cleaner"})
+
+
+def _perceived(clause: str) -> bool:
+    """Whether a purpose clause is what someone will see or learn ("they can see that they match", "the kids can
+    tell which one is bigger"): a perception with its own clause, which asks for nothing whatever words it has."""
+    ws = lexicon.words(clause)
+    k = next((j for j, w in enumerate(ws) if w in ("can", "could", "will", "may", "might")), None)
+    return k is not None and ws[k + 1 : k + 2] in (["see"], ["tell"], ["notice"], ["learn"], ["check"], ["spot"]) \
+        and ws[k + 2 : k + 3] in (["that"], ["how"], ["which"], ["what"], ["whether"], ["if"])
+
+
 def _purposes(text: str) -> str:
     """The reasons people give with a request, which ask for nothing: "... so I
     can read the labels", "so the T is hidden from the camera", "to get the
     drinks ready, put ...", "I'm going to sort the shopping later, so ...".
     Only a clause with no word that could ask for a goal is dropped ("so that
     the blue mug ends up on its left" is a goal)."""
-    text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if says(m.group("c"), "goal") else "", text)
-    text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if says(m.group("c"), "goal") else m.group(1), text)
+    text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if says(m.group("c"), "goal") and not _perceived(m.group("c"))
+                              else "", text)
+    text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if _asks(m.group("c")) else m.group(1), text)
     # Kept where the request after it says "them" / "it": its subject may be what they mean ("the cans are
     # everywhere, so put them in a row").
     return _REASON_BEFORE.sub(

@@ -128,6 +128,21 @@ def test_reported_speech() -> None:
      [{"pattern": "circle", "objects": [1, 2, 3]}]),
     ("pantry", "Stack the three bowls with the red bowl at the bottom, then the blue bowl, the white bowl on top.",
      [{"pattern": "tower", "objects": [6, 7, 5]}]),
+    ("pantry", "Put the red bowl next to the red can so they can see that they match.",
+     [{"pattern": "left", "objects": [6], "anchor": 1}]),
+    ("home", "In preparation for this afternoon's inspection, and given that the cleaning staff have left the items "
+             "somewhat scattered, the two mugs are to be placed side by side in a line.",
+     [{"pattern": "line", "objects": [1, 2]}]),
+    ("pantry", "All containers on the table, with the exception of the cans and the brown box, are to be positioned "
+               "on a circle.", [{"pattern": "circle", "objects": [5, 6, 7, 8, 9]}]),
+    ("dinner", "The fork, the knife and the spoon are to be arranged in a line such that adjacent items are 80 mm "
+               "apart.", [{"pattern": "line", "objects": [3, 4, 5], "size": 0.16}]),
+    ("home", "The three cans shall be arranged in a line having a length of 0.3 m, measured from the centre of the "
+             "first can to the centre of the last.", [{"pattern": "line", "objects": [12, 13, 14], "size": 0.3}]),
+    ("blocks", "A rectangle measuring 30 cm by 20 cm shall be formed by the red, yellow, orange and purple blocks, "
+               "one block at each corner.", [{"pattern": "rectangle", "objects": [1, 4, 5, 6], "size": 0.3}]),
+    ("blocks", "Make a tower with all six blocks. Reading from the top down it should go: red, orange, yellow, green, "
+               "blue, purple.", [{"pattern": "tower", "objects": [6, 2, 3, 4, 5, 1]}]),
     ("dinner", "First, find the middle one of the three silver things (counting from left to right). Next, put it "
                "on the right of the mug.", [{"pattern": "right", "objects": [5], "anchor": 6}]),
 ])
