@@ -27,6 +27,12 @@ else:
 _EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", "things", "stuff"})
 
 
+#: Words after "dinner" that make it no request for a place setting ("the dinner ladies want everything tidy",
+#: "a dinner party"); "dinner time!" still asks for one.
+_NOT_A_SETTING = frozenset({("party",), ("parties",), ("guests",), ("ladies",), ("lady",), ("bell",),
+                            ("money",), ("queue",), ("staff",), ("break",), ("hall",)})
+
+
 class _Arrangements(ParserHost):
     """Pattern choice, shape goals and the place setting."""
 
@@ -232,8 +238,7 @@ class _Arrangements(ParserHost):
         """Where a place setting is asked for ("set the table", "dinner"), if it is."""
         return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s
                      and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))
-                     and not (s == ("dinner",) and words[i + 1 : i + 2] in (("party",), ("parties",), ("guests",))
-                              )),
+                     and not (s == ("dinner",) and words[i + 1 : i + 2] in _NOT_A_SETTING)),
                     None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:

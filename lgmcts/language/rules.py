@@ -552,6 +552,9 @@ def _leaves_all(words: list[str]) -> bool:
     """Whether the words after a cancelling phrase ask for nothing: thanks and the like, or a request to leave
     things be ("forget it. leave the letters alone today, please.", "... just leave them where they are")."""
     rest = [w for w in words if w not in _AFTER_CANCEL and w not in ("today", "now", "for", "the", "time", "being")]
+    if words[:2] in (["i", "ll"], ["i", "will"]) or words[:1] == ["i'll"]:
+        # "..., never mind, I'll sort it meself": the person will do it, nothing is asked
+        return len(words) <= 7 and not {"put", "move", "place", "stack", "line", "arrange"} & set(words)
     if rest[:1] != ["leave"] or len(rest) > 8:
         return not rest
     tail = rest[1:]

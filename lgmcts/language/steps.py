@@ -129,6 +129,13 @@ def _read_step(text: str, toks: Sequence[Token], got: tuple[int, int], end: int,
                                                              or words[j + 2] == ","):
             at = toks[nxt_first + j + 1].end
             return text[: toks[verb_at].start] + text[toks[nxt_first].start : at] + f" as {ref}" + text[at:]
+    heads = {t.text for t in toks[k + 1 : stop]}
+    for j in range(len(words) - 2):
+        if words[j : j + 2] == ["same", "colour" if "colour" in words else "color"] and words[j + 2] == "as" and \
+                j + 4 < len(words) and words[j + 3] in ("that", "this") and words[j + 4] in heads:
+            # "find the bottle furthest back. then find the mug ... the same colour as that bottle": only looked at
+            a, b = toks[nxt_first + j + 3].start, toks[nxt_first + j + 4].end
+            return text[: toks[verb_at].start] + text[toks[nxt_first].start : a] + ref + text[b:]
     if not _PICKS & set(words):
         return text  # "find every red thing. put them all in a row": "them" reads its antecedent as it is
     after = _enumerator_end(toks, nxt_first, nxt_end)

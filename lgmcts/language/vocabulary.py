@@ -57,6 +57,8 @@ GROUPS: dict[str, tuple[str, ...]] = {
 
 
 _PLURAL_ONLY = frozenset({"shape", "letter", "toy"})
+#: Group nouns that name all their objects said in the singular ("the silverware", "the cutlery").
+_MASS = frozenset({"silverware", "cutlery", "flatware", "dishware", "crockery", "tableware", "drinkware"})
 
 
 #: Words that name an object without a category.
@@ -234,7 +236,8 @@ class Vocabulary:
             forms = (gw[:-1] + (_plural(gw[-1]),),) if group in _PLURAL_ONLY else (gw, gw[:-1] + (_plural(gw[-1]),))
             for form in forms:
                 if form not in real:
-                    add(form, next(iter(hit)), True)
+                    # "the container matching the cup" is one object; "the silverware" (a mass noun) all of it
+                    add(form, next(iter(hit)), form != gw or group in _MASS)
                     cats[form][0].update(hit)
         frozen = {k: (frozenset(v[0]), v[1]) for k, v in cats.items()}
         heads = {k[0] for k in frozen}

@@ -143,6 +143,20 @@ def test_reported_speech() -> None:
                "one block at each corner.", [{"pattern": "rectangle", "objects": [1, 4, 5, 6], "size": 0.3}]),
     ("blocks", "Make a tower with all six blocks. Reading from the top down it should go: red, orange, yellow, green, "
                "blue, purple.", [{"pattern": "tower", "objects": [6, 2, 3, 4, 5, 1]}]),
+    ("dinner", "Lunchtime is nearly over and the dinner ladies want everything tidy. Stack the bowl on the plate "
+               "(it saves space!) and put the mug right behind the cup.",
+     [{"pattern": "tower", "objects": [1, 2]}, {"pattern": "behind", "objects": [6], "anchor": 7}]),
+    ("blocks", "Build a tower: purple first, then orange, then green, and finish off with the yellow.",
+     [{"pattern": "tower", "objects": [6, 5, 3, 4]}]),
+    ("home", "The fork, the knife and the spoon are to be arranged in a row, such row to be situated at the middle "
+             "of the right-hand side of the table.", [{"pattern": "line", "objects": [9, 10, 11],
+                                                     "region": "middle right"}]),
+    ("home", "The white objects, the plate excepted, must be arranged in a line.",
+     [{"pattern": "line", "objects": [3, 6, 13]}]),
+    ("home", "Of the two bottles, the one nearer to the right-hand edge shall be placed in front of the leftmost mug.",
+     [{"pattern": "front", "objects": [7], "anchor": 1}]),
+    ("dinner", "The container matching the cup in colour shall be placed to the left of the mug.",
+     [{"pattern": "left", "objects": [8], "anchor": 6}]),
     ("dinner", "First, find the middle one of the three silver things (counting from left to right). Next, put it "
                "on the right of the mug.", [{"pattern": "right", "objects": [5], "anchor": 6}]),
 ])
@@ -158,6 +172,10 @@ def test_reads(scene: str, text: str, expected: list[dict]) -> None:
     ("home", "Put the mugs in a line. The red mug should face north."),  # a facing for one object of a line
     ("toys", "Put the letters in a row facing north... oh no, forget it. Leave the letters alone today, please."),
     ("blocks", "Put the block that is the same colour as the banana to the right of the black bowl."),  # no banana
+    ("home", "Pop the two mugs in a line facing west... actually no, leave it, never mind, I'll sort it meself."),
+    ("dinner", "As discussed at this morning's review, the two bottles were to be placed behind the plate. On "
+               "reflection, however, this requirement is hereby withdrawn in its entirety and no action is to be "
+               "taken."),
     # the bottom, then the top in a later sentence: a contradiction, never the last one said
     ("pantry", "Stack the three bowls with the red bowl at the bottom. The red bowl must be on top."),
 ])
