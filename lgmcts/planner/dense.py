@@ -268,6 +268,9 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     plan, expanded = _take_turns(first, [max_expansions] * len(first), deadline)
     if plan is not None:
         return plan, expanded
+    # Searches done with are let go at once: freeing tens of thousands of states takes a tenth of a second or more,
+    # which at the end would run past the deadline.
+    first.clear()
     shaken = [_Shaken(t, max_expansions)]
     if t.n <= SHAKE_FIRST:
         plan, more_states = _take_turns(shaken, [SHAKES * max_expansions], deadline)
@@ -282,6 +285,7 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     expanded += further
     if plan is not None or not shaken:
         return plan, expanded
+    more.clear()
     plan, more_states = _take_turns(shaken, [SHAKES * max_expansions], deadline)
     return plan, expanded + more_states
 
