@@ -29,8 +29,10 @@ every disc meets its goal, after ``max_expansions`` states
 with it, backwards, from the goals to the start; when both find nothing
 the searches of :data:`MORE`, with other weights and depth terms, and
 one with a distance term (how far the discs stand from their open goals,
-summed, in mean diameters, :data:`DIST`), take turns (:func:`search`). It uses no
-random numbers, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
+summed, in mean diameters, :data:`DIST`), take turns (:func:`search`); and
+restarts from tables shaken by a random walk of the start (:class:`_Shaken`),
+before those searches on a few discs, after them on more. The walks draw from
+generators of fixed seeds, so the same problem gives the same plan. Free-space corners are where a disc packs tightest
 against its neighbours, so pockets too small to notice on a grid are
 found, and a disc slid into a corner leaves the most room elsewhere. The
 plan is validated like any found plan by the caller.
@@ -38,9 +40,11 @@ plan is validated like any found plan by the caller.
 
 from __future__ import annotations
 
+import copy
 import heapq
 import math
 import time
+from collections.abc import Sequence
 from typing import cast
 
 import numpy as np
@@ -83,6 +87,15 @@ MORE: tuple[tuple[float, bool, float, float, int], ...] = (
     (3.0, False, DEPTH, 0.0, MORE_FACTOR), (3.0, True, 2 * DEPTH, 0.0, 1), (WEIGHT, False, DEPTH, DIST, MORE_FACTOR))
 #: States a search expands in one turn (:func:`search`).
 SLICE = 250
+#: Shaken restarts (:class:`_Shaken`), when the first two searches find nothing: how many (each expands up to the
+#: first searches' budget), and the moves of each walk from the start.
+SHAKES = 8
+WALK = 400
+#: On at most this many discs the shaken restarts come before the searches of :data:`MORE`, else after them. On
+#: TRLB's D = 0.6 tables of seven discs, random walks rearrange the discs freely (37-64 arrangements, by the ring
+#: label of ``benchmarks/dense_classes.py``, in one walk of 200 000 moves); on those of nine they keep one, also
+#: where a plan exists, and there the plans of the further searches (n = 9 and 10) would only come later.
+SHAKE_FIRST = 8
 
 
 def budget(n: int) -> int:
@@ -246,21 +259,39 @@ def search(problem: Problem, max_expansions: int, deadline: float | None) -> tup
     :data:`MORE` (other weights and depth terms, a distance term) take turns the same way, each up to its
     multiple of ``max_expansions`` states, or until ``deadline``: which of them finds a plan, and after how many
     states, varies from table to table, and taking turns finds the first plan at most ``len(MORE)`` times later
-    than the luckiest search alone would."""
+    than the luckiest search alone would. The shaken restarts (:class:`_Shaken`, :data:`SHAKES` of them, each up
+    to ``max_expansions`` states) come before the searches of :data:`MORE` on at most :data:`SHAKE_FIRST` discs,
+    after them on more."""
     t = _Discs(problem)
     back = _Discs(problem, reverse=True) if _reversible(t) else None
     first = [_Search(t)] + ([] if back is None else [_Search(back)])
     plan, expanded = _take_turns(first, [max_expansions] * len(first), deadline)
     if plan is not None:
         return plan, expanded
+    # Searches done with are let go at once: freeing tens of thousands of states takes a tenth of a second or more,
+    # which at the end would run past the deadline.
+    first.clear()
+    shaken = [_Shaken(t, max_expansions)]
+    if t.n <= SHAKE_FIRST:
+        plan, more_states = _take_turns(shaken, [SHAKES * max_expansions], deadline)
+        expanded += more_states
+        if plan is not None:
+            return plan, expanded
+        shaken = []
     chosen = [m for m in MORE if back is not None or not m[1]]
     more = [_Search(back if reverse and back is not None else t, weight, depth=depth, dist=dist)
             for weight, reverse, depth, dist, _ in chosen]
     plan, further = _take_turns(more, [factor * max_expansions for *_, factor in chosen], deadline)
-    return plan, expanded + further
+    expanded += further
+    if plan is not None or not shaken:
+        return plan, expanded
+    more.clear()
+    plan, more_states = _take_turns(shaken, [SHAKES * max_expansions], deadline)
+    return plan, expanded + more_states
 
 
-def _take_turns(runs: list[_Search], caps: list[int], deadline: float | None) -> tuple[list[Action] | None, int]:
+def _take_turns(runs: Sequence[_Search | _Shaken], caps: list[int], deadline: float | None
+                ) -> tuple[list[Action] | None, int]:
     """Run the searches ``runs`` in turns of :data:`SLICE` states, each up to its number of ``caps`` states, until
     one finds a plan, all are spent or ``deadline`` passes; the plan or ``None``, and the states they expanded."""
     expanded = 0
@@ -429,6 +460,71 @@ class _Search:
                 return len(self.states) - 1
             heapq.heappush(self.heap, (r, order, len(self.states) - 1))
         return None
+
+
+class _Shaken:
+    """Restarts from shaken tables: each walks :data:`WALK` moves from the start, a disc chosen at random put at
+    a random free place of its box (the corner search's gap to every other disc), then runs the forward search
+    from there for ``each`` states; a plan is the walk's moves followed by the search's. A walk that moves no disc
+    (none has a free place) is skipped: its search would be the first one again. Some tables
+    the corner search cannot unpack from their start (TRLB's D = 0.6, n = 7, files 2/3), where the best-ranked
+    states all keep one arrangement of the discs about one another, a random walk leaves: the discs there change
+    places freely under random moves. The walks draw from a generator seeded by the restart's number, so a
+    problem gets the same plan each time. Runs like a :class:`_Search` in :func:`_take_turns`."""
+
+    def __init__(self, t: _Discs, each: int) -> None:
+        self.t = t
+        self.each = each
+        #: States expanded by the restarts' searches so far.
+        self.expanded = 0
+        #: The restarts still to come (empty when all are spent): ``_take_turns`` reads it as a search's open list.
+        self.heap = list(range(SHAKES))[::-1]
+        self._run: _Search | None = None
+        self._walk: list[Action] = []
+        self._base = 0
+
+    def run(self, max_expansions: int, deadline: float | None) -> tuple[list[Action] | None, int]:
+        """Go on with the restarts until a plan is found, ``max_expansions`` states in all have been expanded,
+        every restart is spent or ``deadline`` passes; the plan or ``None``, and the states expanded in all."""
+        while self.expanded < max_expansions and (deadline is None or time.perf_counter() <= deadline):
+            if self._run is None:
+                if not self.heap:
+                    break
+                self._start(self.heap.pop(), deadline)
+                if not self._walk:
+                    self._run = None
+                    continue
+            run = cast(_Search, self._run)
+            plan, done = run.run(min(self.each, max_expansions - self._base), deadline)
+            self.expanded = self._base + done
+            if plan is not None:
+                return self._walk + plan, self.expanded
+            if done >= self.each or not run.heap:
+                self._base, self._run = self.expanded, None
+        return None, self.expanded
+
+    def _start(self, seed: int, deadline: float | None) -> None:
+        """The walk of restart ``seed`` and a search from where it ends; the walk stops short at ``deadline``."""
+        t = self.t
+        rng = np.random.default_rng(seed)
+        pos = t.start.copy()
+        walk: list[Action] = []
+        for k in range(4 * WALK):
+            if len(walk) >= WALK or (k % 64 == 0 and deadline is not None and time.perf_counter() > deadline):
+                break
+            i = int(rng.integers(t.n))
+            c = t.lo[i] + rng.random((64, 2)) * np.maximum(t.hi[i] - t.lo[i], 0.0)
+            near = np.hypot(c[:, None, 0] - pos[None, :, 0], c[:, None, 1] - pos[None, :, 1]) < t.far[i][None, :]
+            near[:, i] = False
+            free = np.flatnonzero(~near.any(axis=1))
+            if len(free):
+                pos[i] = c[free[0]]
+                walk.append(Action.model_construct(object=t.ids[i], to=(float(pos[i, 0]), float(pos[i, 1]),
+                                                                        float(t.yaw0[i])), on=None, purpose="relocate"))
+        shaken = copy.copy(t)
+        shaken.start = pos
+        self._walk = walk
+        self._run = _Search(shaken)
 
 
 def _actions(t: _Discs, states: list[_State], s: int) -> list[Action]:

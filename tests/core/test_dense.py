@@ -256,16 +256,17 @@ def _one_goal_dropped(seed: int):
 
 def test_without_a_goal_for_every_disc_only_forward_searches_run():
     forwards = sum(factor for _, backwards, _, _, factor in dense.MORE if not backwards)
-    # No plan: the forward search's budget, then the forward further searches', and no backward search at all.
+    # No plan: the forward search's budget, the shaken restarts' (forwards too), then the forward further searches',
+    # and no backward search at all.
     pr = disc_problem(_one_goal_dropped(22))
     assert not dense._reversible(dense._Discs(pr))
-    assert dense.search(pr, 40, None) == (None, 40 + forwards * 40)
+    assert dense.search(pr, 40, None) == (None, 40 + dense.SHAKES * 40 + forwards * 40)
     # A plan the forward search misses in 40 states, found by a further forward search; valid.
     c = _one_goal_dropped(5)
     pr = disc_problem(c)
     assert dense._Search(dense._Discs(pr)).run(40, None)[0] is None
     actions, expanded = dense.search(pr, 40, None)
-    assert actions is not None and 40 < expanded <= 40 + forwards * 40
+    assert actions is not None and 40 < expanded <= 40 + dense.SHAKES * 40 + forwards * 40
     assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
 
 
@@ -329,15 +330,44 @@ def test_where_the_proof_refuses_the_corner_search_finds_nothing():
 
 
 def test_each_further_search_stops_at_its_own_budget():
-    # Five discs at 59 %, no plan: the first two searches spend their budget, then each further search its own
-    # multiple of it (the backward one of MORE stops at one budget, the others go on), all states counted once.
+    # Five discs at 59 %, no plan: the first two searches spend their budget, then each shaken restart the same
+    # budget, then each further search its own multiple of it (the backward one of MORE stops at one budget, the
+    # others go on), all states counted once.
     c = _packed(12, 5, 0.59)
     pr = disc_problem(c)
     assert dense._reversible(dense._Discs(pr))
     assert [m[-1] for m in dense.MORE] == [dense.MORE_FACTOR, 1, dense.MORE_FACTOR]
-    assert dense.search(pr, 30, None) == (None, 2 * 30 + sum(m[-1] for m in dense.MORE) * 30)
+    total = 2 * 30 + dense.SHAKES * 30 + sum(m[-1] for m in dense.MORE) * 30
+    assert dense.search(pr, 30, None) == (None, total)
     # The turns of one search of several caps: each run ends at its own cap.
     t, back = dense._Discs(pr), dense._Discs(pr, reverse=True)
     runs = [dense._Search(t), dense._Search(back), dense._Search(t, 3.0)]
     assert dense._take_turns(runs, [40, 7, 300], None) == (None, 347)
     assert [r.expanded for r in runs] == [40, 7, 300]
+
+
+def test_a_shaken_restart_plans_where_every_corner_search_is_stuck():
+    # TRLB's D = 0.6, n = 7, files 2/3 (its coordinates in mm): no corner search plans it from the start (the first
+    # two spend their budget, the further ones 19 500 states in all), while the discs change places freely under
+    # random moves. A restart's walk moves discs to random free places, and the forward search from where it ends
+    # plans; the walk followed by that plan is a valid plan, and the same each time.
+    start = [(515.4, 486.0), (531.9, 829.2), (172.8, 829.2), (829.2, 644.2), (829.2, 172.8), (374.3, 172.8),
+             (172.8, 455.0)]
+    goal = [(829.2, 678.9), (516.4, 829.2), (541.5, 475.5), (172.8, 450.7), (775.1, 172.8), (378.9, 172.8),
+            (172.8, 829.2)]
+    c = disc_case(start, goal, 165.17779672231737)
+    pr = disc_problem(c)
+    t = dense._Discs(pr)
+    assert dense._Search(t).run(dense.budget(7), None)[0] is None
+    assert dense._Search(dense._Discs(pr, reverse=True)).run(dense.budget(7), None)[0] is None
+    run = dense._Shaken(t, dense.budget(7))
+    actions, expanded = run.run(dense.SHAKES * dense.budget(7), None)
+    assert actions is not None and expanded <= dense.SHAKES * dense.budget(7)
+    assert len(actions) > dense.WALK // 2  # the walk's moves come first
+    assert check(c.scene, c.goals, PlanSpec(solved=True, actions=actions, goals=c.goals)).valid
+    again, _ = dense._Shaken(t, dense.budget(7)).run(dense.SHAKES * dense.budget(7), None)
+    assert again is not None and [x.model_dump() for x in again] == [x.model_dump() for x in actions]
+    # A table where no disc has a free place anywhere: every walk is empty, so no restart searches at all.
+    tight = disc_problem(disc_case([(100.0, 100.0), (300.0, 100.0)], [(300.0, 100.0), (100.0, 100.0)], 100.0,
+                                   width=400.0, height=200.0))
+    assert dense._Shaken(dense._Discs(tight), 50).run(400, None) == (None, 0)
