@@ -71,7 +71,9 @@ demo-arm: install demo-deps
 
 # Lint (ruff), types (mypy) and the quick tests (-m "not slow", about 80 s on
 # 2 cores); what each leaves out and why: docs/design.md, "Lint and types".
-check: install
+# The Debian packages first, as for `make test`: on a machine without OSMesa the
+# quick tests of the simulator could not even be collected.
+check: install system-deps
 	$(PY) -m ruff check .
 	$(PY) -m mypy
 	$(PY) -m pytest tests -m "not slow"
