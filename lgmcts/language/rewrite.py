@@ -687,8 +687,10 @@ def _next_to_one_side(m: re.Match[str]) -> str:
     sentence = before[max(before.rfind(c) for c in ".;!?") + 1 :]
     after = lexicon.words(m.string[m.end() :])[:6]
     if "shape" in lexicon.words(sentence) or m.group(1).lower() in ("the other", "the next", "the last") or (
-            {"left", "right", "side", "either"} & set(after)):
-        return m.group(0)  # a shape, "one beside the other", or a side said after ("left side or right side")
+            {"left", "right", "side", "either"} & set(after)) or before.rstrip().endswith(","):
+        # a shape, "one beside the other", a side said after ("left side or right side"), or an aside between
+        # commas ("line up the cans, beside the window, thanks": refused quoting it, never read as a side)
+        return m.group(0)
     return f"to the left of {m.group(1)}"
 
 
