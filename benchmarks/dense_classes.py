@@ -72,6 +72,15 @@ def pair_arguments(ap: argparse.ArgumentParser, ns: str) -> None:
     ap.add_argument("--pairs", type=int, default=5)
 
 
+def pairs_said(a: argparse.Namespace) -> list[tuple[float, int, str, Problem]] | None:
+    """The pairs the arguments of :func:`pair_arguments` choose, or None after a one-line error on stderr."""
+    try:
+        return dense_pairs(a.instances, a.density, a.ns, a.pairs)
+    except (ValueError, InputError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return None
+
+
 def dense_pairs(instances: str, density: float, ns_said: str, pairs: int
                 ) -> list[tuple[float, int, str, Problem]]:
     """TRLB's start/goal pairs at ``density`` for the object counts of ``ns_said`` ("6,9"): density, count, the
@@ -100,10 +109,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--plan", action="store_true",
                     help="also run the planner's corner search (its budget, no time limit) and label its plan's states")
     a = ap.parse_args(argv)
-    try:
-        todo = dense_pairs(a.instances, a.density, a.ns, a.pairs)
-    except (ValueError, InputError) as e:
-        print(f"error: {e}", file=sys.stderr)
+    todo = pairs_said(a)
+    if todo is None:
         return 2
     for d, n, pair, problem in todo:
         seen: dict[str, list[Counter[str]]] = {"ring": [], "grid": []}

@@ -22,9 +22,8 @@ import re
 import sys
 import time
 
-from dense_classes import dense_pairs, pair_arguments  # this folder: run as python benchmarks/dense_searches.py
+from dense_classes import pair_arguments, pairs_said  # this folder: run as python benchmarks/dense_searches.py
 
-from lgmcts.errors import InputError
 from lgmcts.planner import dense
 from lgmcts.planner.sequence import sequence_plan
 
@@ -52,9 +51,11 @@ def main(argv: list[str] | None = None) -> int:
     a = ap.parse_args(argv)
     try:
         searches = parse_searches(a.searches)
-        todo = dense_pairs(a.instances, a.density, a.ns, a.pairs)
-    except (ValueError, InputError) as e:
+    except ValueError as e:
         print(f"error: {e}", file=sys.stderr)
+        return 2
+    todo = pairs_said(a)
+    if todo is None:
         return 2
     for d, n, pair, problem in todo:
         if sequence_plan(problem) is not None:

@@ -24,15 +24,13 @@ labels the walks from both ends saw.
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 from collections import Counter
 
 import numpy as np
-from dense_classes import dense_pairs, pair_arguments, ring_label  # this folder: run as python benchmarks/...
+from dense_classes import pair_arguments, pairs_said, ring_label  # this folder: run as python benchmarks/...
 
 from lgmcts.confinement import contact_distance
-from lgmcts.errors import InputError
 from lgmcts.planner.problem import Problem
 
 #: The validator's allowance (m) of a footprint beyond the workspace edge (as :mod:`lgmcts.confinement`).
@@ -95,10 +93,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--inner", type=float, default=0.2, help="how near the middle a disc counts as inside (m)")
     ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args(argv)
-    try:
-        todo = dense_pairs(a.instances, a.density, a.ns, a.pairs)
-    except (ValueError, InputError) as e:
-        print(f"error: {e}", file=sys.stderr)
+    todo = pairs_said(a)
+    if todo is None:
         return 2
     for d, n, pair, problem in todo:
         seen: list[set[str]] = []

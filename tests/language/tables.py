@@ -18,3 +18,21 @@ def goals_of(scene, said: str) -> list[dict]:
     from lgmcts.language import parse
 
     return [g.model_dump(exclude_none=True) for g in parse(scene, said).goals]
+
+
+def assert_reads(scene, said: str, goals: list[dict] | None) -> None:
+    """``said`` on ``scene`` gives ``goals`` (in any order) with the rules parser, or is refused where ``goals`` is
+    None."""
+    import pytest
+
+    from lgmcts.errors import InputError
+    from lgmcts.formats import to_dict
+    from lgmcts.language.matcher import default_matcher
+    from lgmcts.language.rules import parse_rules
+
+    if goals is None:
+        with pytest.raises(InputError):
+            parse_rules(scene, said, matcher=default_matcher())
+        return
+    got = to_dict(parse_rules(scene, said, matcher=default_matcher()))["goals"]
+    assert sorted(got, key=str) == sorted(goals, key=str)
