@@ -29,13 +29,13 @@ from .vocabulary import tokenize
 
 __all__ = ["bracketed"]
 
-_OPEN = {"(": ")", "[": "]"}
+_OPEN = {"(": ")"}  # the tokens keep no square brackets
 _PRONOUNS = (("it",), ("them",), ("that", "one"), ("this", "one"), ("the", "other", "one"))
 _MEAN = (("i", "mean"), ("that", "is"), ("i", "e"), ("ie",), ("meaning",))
 
 
 def _spans(toks: Sequence[Token]) -> list[tuple[int, int]]:
-    """Token indices (open, close) of each bracketed span, outermost, not nested."""
+    """Token indices (open, close) of each span in parentheses, not nested."""
     out: list[tuple[int, int]] = []
     k = 0
     while k < len(toks):
@@ -62,7 +62,7 @@ def _without_mean(words: list[str]) -> list[str]:
         n = len(phrase)
         if tuple(words[:n]) == phrase:
             words = words[n:]
-        if n and tuple(words[-n:]) == phrase:
+        if tuple(words[-n:]) == phrase:
             words = words[:-n]
     return words
 

@@ -427,18 +427,19 @@ def _story(body: Sequence[str], object_word: Callable[[str], bool], request_word
 _PAST = frozenset({"built", "made", "came", "went", "got", "took", "brought", "broke", "fell", "did", "had", "left",
                    "knocked", "played"})
 #: The nouns of the arrangements (:data:`.lexicon.SHAPE_NOUNS`).
-_ARRANGEMENT_NOUNS = frozenset(w for nouns in lexicon.SHAPE_NOUNS.values() for w in nouns)
+_ARRANGEMENT_NOUNS = lexicon.ARRANGEMENT_NOUNS
 
 
 def _told(head: Sequence[str]) -> bool:
     """Whether ``head`` tells something rather than names things: a subject and a verb of telling in at least
     four words ("the groceries finally came"), not a list of objects ("the saucer and the red can")."""
     body = [w for w in head if w not in _LEAD]
-    told = _subject_end(body) and not any(w in _WISHING or w in _CTX["asking"] for w in body)
+    subject = _subject_end(body)
+    told = subject and not any(w in _WISHING or w in _CTX["asking"] for w in body)
     past = next((j for j, w in enumerate(body) if told and (w in _PAST or (w.endswith("ed") and len(w) > 4))),
                 len(body))  # "the previous operator left the star close to the front edge": where it was
-    if told and _subject_end(body) >= 2 and body[_subject_end(body) - 1] in _CTX["people"]:
-        past = min(past, _subject_end(body))  # "my son put the star on the left yesterday"
+    if told and subject >= 2 and body[subject - 1] in _CTX["people"]:
+        past = min(past, subject)  # "my son put the star on the left yesterday"
     if any(w in lexicon.DIRECTIONS and not (w == "back" and j and body[j - 1] in _BACK_FROM)
            and not (w == "left" and j and body[j - 1] in _LEAVERS) and j <= past for j, w in enumerate(body)):
         return False  # "the teapot is to be placed diagonally behind": where, not a story ("i just got back" is)
@@ -446,7 +447,7 @@ def _told(head: Sequence[str]) -> bool:
            for j, w in enumerate(body)):
         return False  # "the teapot should go on the tray": a request about an object the scene lacks
     return len(body) >= 4 and (any(w in _TELLING or (w.endswith("ed") and len(w) > 4) for w in body[1:]) or (
-        _subject_end(body) >= 2 and body[_subject_end(body) - 1] in _CTX["people"]))  # "my granddaughter set these"
+        subject >= 2 and body[subject - 1] in _CTX["people"]))  # "my granddaughter set these letters out"
 
 
 #: Words after which "left" is the verb ("my nephew left his stuff out", "she just left").

@@ -70,6 +70,8 @@ HUES: frozenset[str] = frozenset(_C["hues"])
 COLOUR_WORDS: frozenset[str] = frozenset([*_C["hues"], *_C["more"], *_C["textures"]])
 #: Pattern name -> the nouns that name it in the rewrite rules (each one of the pattern's keys).
 SHAPE_NOUNS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _DATA["shapes"].items()}
+#: Every arrangement noun, of any pattern ("line", "row", "ring", "stack" ...).
+ARRANGEMENT_NOUNS: frozenset[str] = frozenset(w for nouns in SHAPE_NOUNS.values() for w in nouns)
 #: Size word -> small / medium / large.
 SIZES: dict[str, str] = {w: size for size, words in _DATA["sizes"].items() for w in words}
 _R = _DATA["regions"]

@@ -678,10 +678,6 @@ def _either_side(m: re.Match[str]) -> str:
     return f"{first} to the left of {anchor} and {second} to the right of {anchor}"
 
 
-#: The nouns of the arrangements: "next to X" after one ("the cans in a line next to the plate") is left as said.
-_ARRANGEMENT_NOUNS = frozenset(w for nouns in lexicon.SHAPE_NOUNS.values() for w in nouns)
-
-
 @replacer("next-to-one-side")
 def _next_to_one_side(m: re.Match[str]) -> str:
     """"put the star next to the pan" (no side said): to the left of it, as "either side" is read; left as said
@@ -690,7 +686,7 @@ def _next_to_one_side(m: re.Match[str]) -> str:
     before = m.string[: m.start()]
     sentence = before[max(before.rfind(c) for c in ".;!?") + 1 :]
     after = lexicon.words(m.string[m.end() :])[:6]
-    if {"shape", *_ARRANGEMENT_NOUNS} & set(lexicon.words(sentence)) or m.group(1).lower() in ("the other", "the next", "the last") or (
+    if {"shape", *lexicon.ARRANGEMENT_NOUNS} & set(lexicon.words(sentence)) or m.group(1).lower() in ("the other", "the next", "the last") or (
             {"left", "right", "side", "either"} & set(after)) or before.rstrip().endswith(","):
         # a shape, "one beside the other", a side said after ("left side or right side"), or an aside between
         # commas ("line up the cans, beside the window, thanks": refused quoting it, never read as a side)

@@ -33,7 +33,6 @@ _STARTS = frozenset({"the", "all", "both", "those", "these", "each", "every", "l
 _OPENERS = frozenset({"first", "firstly", "next", "then", "now", "step", "and", "so", "ok", "okay", "please", ","})
 #: Words by which a step picks from the group found before it ("the red one", "the other one", "the rest").
 _PICKS = frozenset({"one", "ones", "other", "others", "former", "latter", "rest", "remaining", "first", "second"})
-_SHAPE_WORDS = frozenset(w for nouns in lexicon.SHAPE_NOUNS.values() for w in nouns)
 _OPEN_COMPARISONS = (("same", "colour"), ("same", "color"), ("that", "matches"), ("matching", "one"))
 
 
@@ -86,7 +85,7 @@ def _finding(toks: Sequence[Token], first: int, end: int,
     ref = [t.text for t in toks[k:stop]]
     if not ref or (ref[0] not in _STARTS and not ref[0][:1].isdigit()) or not any(object_word(w) for w in ref):
         return None
-    if any(w in lexicon.COMMAND_VERBS or w in _SHAPE_WORDS or w == "and" for w in ref):
+    if any(w in lexicon.COMMAND_VERBS or w in lexicon.ARRANGEMENT_NOUNS or w == "and" for w in ref):
         return None  # "find the cans and put them in a line": more than a finding step
     return verb_at, k
 
