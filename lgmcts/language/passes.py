@@ -106,7 +106,7 @@ _ANY_ONE = re.compile(r"^(?:which|whichever|any|either)(?: one| of them| of the 
 
 #: "leave X where it is", "don't move X": X stays where it is.
 _LEAVE = re.compile(r"^(?:so |and |but |just |please )*(?:leave|don't move|do not move|don't touch|do not touch|"
-                    r"never mind|ignore) (.+?)(?: where (?:it is|they are|it's|they're)| alone| in place| be| as (?:it is|"
+                    r"never mind|ignore) (.+?)(?: (?:exactly |just )?where (?:it is|they are|it's|they're)| alone| in place| be| as (?:it is|"
                     r"they are)| untouched| as is)?(?: please)?$")
 
 

@@ -35,7 +35,8 @@ FREE_ORDER = re.compile(r"however you (like|want|please)|(in )?(any|whatever|ran
 QUESTION = re.compile(r"(?i)^\s*(is|are|was|were|does|do|did|which|what|what's|where|where's|why|who|whose|"
                       r"how many|how much|how's|how is|how are)\b.*\?\s*$")
 #: Questions that ask for an action ("do you mind ...", "is it possible to ...").
-ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|are you able|do you (mind|think you could)|what about|how about)\b")
+ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|is it (ok|okay|alright|all right|fine) (to|for|if)|are you able|"
+                         r"do you (mind|think you could)|what about|how about)\b")
 
 _COMPASS = lexicon.COMPASS
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
@@ -93,8 +94,10 @@ def _remade(text: str) -> str:
 
 _ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move|stack|set|make|arrange|line|build|pile|lay|"
         r"could|can|would|will|get|grab|stick|pop|slide|shift|form|gather|group|bring|leave|keep|have|let|i'd|i want|i need)\b")
+#: People a purpose may be about ("so the players can grab them").
+_PEOPLE = tuple(lexicon.context_words()["people"])
 _PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since) "
-                            r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|people|everyone|nobody|no one|"
+                            r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|the " + lexicon.alternation(_PEOPLE) + r"|people|everyone|nobody|no one|"
                             r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
                             r"they don't|they do not|they can|they could|they won't|they take|it takes|there's|there is|everything's|"
                             r"everything is|everything will|nothing|the (?:[a-z]+ ){1,2}?(?:is|are|isn't|aren't|won't|doesn't|"
@@ -170,6 +173,20 @@ def _perceived(clause: str) -> bool:
         and ws[k + 2 : k + 3] in (["that"], ["how"], ["which"], ["what"], ["whether"], ["if"])
 
 
+#: Verbs by which a purpose would still place something ("so the kids can put the cups behind it" is no reason).
+_PLACING = frozenset({"put", "place", "move", "stack", "set", "make", "arrange", "line", "build", "pile", "lay", "stand"})
+
+
+def _people_can(clause: str) -> bool:
+    """Whether a purpose clause says what people will be able to do ("the players can grab them on the way
+    past", "the kids could reach them"): its subject is people and its verb places nothing."""
+    ws = lexicon.words(clause)
+    k = 1 if ws[:1] == ["the"] else 0
+    return ws[k : k + 1] != [] and ws[k] in _PEOPLE and ws[k + 1 : k + 2] in (["can"], ["could"], ["will"], ["may"],
+                                                                             ["might"]) \
+        and ws[k + 2 : k + 3] != [] and ws[k + 2] not in _PLACING
+
+
 def _purposes(text: str) -> str:
     """The reasons people give with a request, which ask for nothing: "... so I
     can read the labels", "so the T is hidden from the camera", "to get the
@@ -177,7 +194,7 @@ def _purposes(text: str) -> str:
     Only a clause with no word that could ask for a goal is dropped ("so that
     the blue mug ends up on its left" is a goal)."""
     text = _PURPOSE_AFTER.sub(lambda m: m.group(0) if says(m.group("c"), "goal") and not _perceived(m.group("c"))
-                              else "", text)
+                              and not _people_can(m.group("c")) else "", text)
     text = _PURPOSE_BEFORE.sub(lambda m: m.group(0) if _asks(m.group("c")) else m.group(1), text)
     # Kept where the request after it says "them" / "it": its subject may be what they mean ("the cans are
     # everywhere, so put them in a row").

@@ -68,6 +68,8 @@ from .selection import _Selecting
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
 #: Words that may follow a way to stand an object ("upside down, then ...", "on its side behind the plate").
+#: Words after which a pouring verb asks for the pouring (:meth:`_Parser._tilt`).
+_BEFORE_POUR = frozenset({".", ",", ";", "!", "?", "you", "u", "please", "mind", "then", "and", "just", "now"})
 _AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "next", "beside", "at", "to", "please",
                          "too", "as", "so", "with", "near", "by", "left", "right", "front", "facing", "all", "but",
                          "if", "or", "like", "for", "now", "again", "instead", "under", "over", "above", "below"})
@@ -331,6 +333,10 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
             if end == len(toks) or not toks[end][0].isalpha() or toks[end] in _AFTER_TILT:
                 raise InputError(f"'{' '.join(toks[i:end])}': a goal keeps every object upright and sets only which "
                                  f"way it faces on the table; say the command without it")
+        for i, end, _ in lexicon.phrase_spans([t.lower() for t in toks], "pour"):
+            if i == 0 or toks[i - 1] in _BEFORE_POUR or (i >= 2 and toks[i - 2 : i] == ["to", "be"]):
+                raise InputError(f"'{' '.join(toks[i:end])}': pouring is not a pick-and-place goal; say where the "
+                                 f"objects should stand")
 
     def _stack_places_said(self, spec: GoalSpec) -> GoalSpec:
         """Refuse a place in a stack said by its number from the bottom or the top ("the green block fourth

@@ -43,7 +43,11 @@ _CHATTER = frozenset(
     um uh hmm er erm oh great awesome cool nice-to-have lol appreciated sir ta""".split()
 )
 _CHATTER_SEQ = (
-    ("would", "it", "be", "possible", "to"), ("i'd", "love", "it", "if"), ("i'd", "like", "it", "if"),
+    ("would", "it", "be", "possible", "to"), ("would", "it", "be", "all", "right", "to"), ("would", "it", "be", "alright", "to"),
+    ("would", "it", "be", "okay", "to"), ("would", "it", "be", "ok", "to"), ("would", "it", "be", "fine", "to"),
+    ("is", "it", "okay", "to"), ("is", "it", "ok", "to"), ("is", "it", "alright", "to"), ("is", "it", "all", "right", "to"),
+    ("would", "it", "be", "all", "right", "for"), ("would", "it", "be", "alright", "for"), ("would", "it", "be", "okay", "for"),
+    ("would", "it", "be", "ok", "for"), ("is", "it", "okay", "for"), ("is", "it", "ok", "for"), ("i'd", "love", "it", "if"), ("i'd", "like", "it", "if"),
     ("it", "would", "be", "great", "if"), ("it", "would", "be", "nice", "if"),
     ("would", "you", "mind"), ("do", "you", "mind"), ("thank", "you"), ("if", "you", "can"), ("if", "you", "could"),
     ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),

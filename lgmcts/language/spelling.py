@@ -16,7 +16,8 @@ purpose, since a wrong correction is a wrong goal:
   eight letters or more; of two known words at the same distance, the one
   the word is with a letter left out wins ("stak": stack, not star), and
   then the one the word is with a letter typed twice ("bowll": bowl, not
-  bowls), then the one of the scene's own words ("forc": fork where the
+  bowls), then the one with two neighbouring letters swapped ("tabel": table,
+  not label), then the one of the scene's own words ("forc": fork where the
   scene has a fork); any other tie leaves the word as it is;
 * a rare English word (:data:`RARE_RANK`) one dropped letter away from
   exactly one of the scene's names or colours or a pattern noun is that word
@@ -317,9 +318,10 @@ class Corrector:
         fixed = w
         if len(best) > 1:
             # A letter left out is the commonest slip ("stak" is "stack" before "star"), then a letter typed
-            # twice ("bowll" is "bowl" before "bowls"), then the scene's own word ("forc" is "fork" on a table
-            # with a fork, before "form").
-            for prefer in (lambda t: _dropped_letter(w, t), lambda t: _doubled(w, t), lambda t: t in self.scene):
+            # twice ("bowll" is "bowl" before "bowls"), then two neighbouring letters swapped ("tabel" is "table"
+            # before "label"), then the scene's own word ("forc" is "fork" on a table with a fork, before "form").
+            for prefer in (lambda t: _dropped_letter(w, t), lambda t: _doubled(w, t), lambda t: _swapped(w, t),
+                           lambda t: t in self.scene):
                 if sum(map(prefer, best)) == 1:
                     fixed = next(t for t in best if prefer(t))
                     break
