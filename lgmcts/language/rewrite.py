@@ -36,7 +36,7 @@ QUESTION = re.compile(r"(?i)^\s*(is|are|was|were|does|do|did|which|what|what's|w
                       r"how many|how much|how's|how is|how are)\b.*\?\s*$")
 #: Questions that ask for an action ("do you mind ...", "is it possible to ...").
 ASKS_TO_ACT = re.compile(r"(?i)^\s*(is it possible|is it (ok|okay|alright|all right|fine) (to|for|if)|are you able|"
-                         r"do you (mind|think you could)|what about|how about)\b")
+                         r"do you (mind|think you could)|is there any (chance|way)|what about|how about)\b")
 
 _COMPASS = lexicon.COMPASS
 #: A correction: "left of the plate, no wait, right of the plate" keeps the second.
