@@ -50,6 +50,8 @@ _CHATTER_SEQ = (
     ("would", "it", "be", "all", "right", "for"), ("would", "it", "be", "alright", "for"), ("would", "it", "be", "okay", "for"),
     ("would", "it", "be", "ok", "for"), ("is", "it", "okay", "for"), ("is", "it", "ok", "for"), ("i'd", "love", "it", "if"), ("i'd", "like", "it", "if"),
     ("it", "would", "be", "great", "if"), ("it", "would", "be", "nice", "if"),
+    ("i'd", "really", "appreciate", "it", "if"), ("i'd", "appreciate", "it", "if"), ("i", "would", "appreciate", "it", "if"),
+    ("i'd", "be", "grateful", "if"), ("would", "it", "trouble", "you", "too", "much", "to"), ("would", "it", "trouble", "you", "to"),
     ("would", "you", "mind", "terribly"), ("would", "you", "mind", "awfully"), ("would", "you", "mind"), ("do", "you", "mind"), ("thank", "you"), ("if", "you", "can"), ("if", "you", "could"),
     ("when", "you", "can"), ("for", "me"), ("i", "want"), ("i'd", "like"), ("i", "would", "like"), ("i", "need"),
     ("i'd", "love"), ("i", "wanna"), ("go", "ahead", "and"), ("be", "a", "dear", "and"), ("be", "a", "love", "and"), ("how", "about"),

@@ -39,7 +39,8 @@ purpose, since a wrong correction is a wrong goal:
   "positoned"), and not where a commoner English word is the same kind of slip away;
 * else two words typed without the space, where exactly one cut gives two words the parser knows
   of three letters or more, one of them the scene's or the parser's own ("redcan", "frontedge",
-  "putthe"), or a side and "of"/"to" ("frontof", "nextto").
+  "putthe"), or a side and "of"/"to" ("frontof", "nextto"), or else a colour of the scene and one of its
+  names with a letter left out ("bluebock").
 
 An inflection read by :func:`english_rank` doubles the last consonant of a base of one syllable
 ("letter", never "leter"), and a word with "re" or "un" before an English word is English
@@ -383,6 +384,12 @@ class Corrector:
         cuts = [(w[:n], w[n:]) for n in range(3, len(w) - 2) if w[:n] in self.known and w[n:] in self.known
                 and (w[:n] in self.scene or w[:n] in self.targets or w[n:] in self.scene or w[n:] in self.targets)]
         cuts += [(w[:-2], w[-2:])] if w[:-2] in _SIDE_WORDS and w[-2:] in ("of", "to") else []
+        if not cuts:
+            # "bluebock": a colour of the scene, then one of its names with a letter left out
+            for n in range(3, len(w) - 2):
+                if w[:n] in self.colours and w[:n] in self.scene:
+                    names = [t for t in self.scene - self.colours if len(t) > 3 and _dropped_letter(w[n:], t)]
+                    cuts += [(w[:n], names[0])] if len(names) == 1 else []
         return " ".join(cuts[0]) if len(cuts) == 1 else None
 
     def text(self, text: str) -> str:

@@ -18,7 +18,7 @@ _SCENE = {"dish", "mug", "mugs", "bowl", "bowls", "box", "boxes", "heart", "hear
           "letters"}
 _LEX = {"behind", "front", "left", "right", "stack", "circle", "rectangle", "line", "row", "radius", "put", "place",
         "the", "in", "on", "of", "top", "bottom", "next", "square", "ring", "centre", "center", "move", "between",
-        "side", "edge", "meter", "lay"}
+        "side", "edge", "meter", "lay", "table", "label"}
 _NOUNS = {"circle", "line", "row", "ring", "rectangle", "square"}
 
 
@@ -69,6 +69,8 @@ def _fix(text: str) -> str:
     # two words without the space: one cut into two words the parser knows, one of them its own
     ("putthe redmug on the box", "put the red mug on the box"),
     ("the mugs along the frontedge", "the mugs along the front edge"),
+    ("the redfrk on the box", "the red fork on the box"),              # a colour, then a name with a letter left out
+    ("the mugs along the back of the tabel", "the mugs along the back of the table"),  # swapped before struck ('label')
     ("the leter A next to the box", "the letter A next to the box"),    # a letter left out: never 'leter' of 'let'
     ("the red mgu on the box", "the red mug on the box"),             # two letters swapped in a three-letter name
     ("the mugs either sde of the box", "the mugs either side of the box"),   # a letter left out of a word of three

@@ -1,0 +1,84 @@
+"""Requests said as the end state wanted, as polite wonders, and in a coach's drill words (issue 24, round 17).
+
+End to end through :func:`lgmcts.language.rules.parse_rules` on the ``home`` and ``toys`` scenes of
+``fresh17_cases.jsonl``: each case a sentence of the kind the round's writers used (none of theirs) with the
+goals it must give, or None where it must be refused; then the cases the new rows must leave alone.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from lgmcts.errors import InputError
+from lgmcts.formats import parse_scene
+from lgmcts.language.matcher import default_matcher
+from lgmcts.language.rules import parse_rules
+from tables import assert_reads
+
+_ROWS = map(json.loads, (Path(__file__).parent / "fresh17_cases.jsonl").read_text().splitlines())
+_SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in _ROWS if "scene_id" in r}
+
+# home: 1 red mug, 2 blue mug, 3 white bowl, 5 blue bowl, 7 blue bottle, 8 white plate, 9 fork, 10 knife,
+# 11 spoon, 12 red can, 13 white can, 14 green can; toys: letters 1-4.
+_CASES = [
+    # the end state, said as what the speaker comes back to or expects
+    ("home", "I'd like to come back to a table where the cans are in a row along the back.",
+     [{"pattern": "line", "objects": [12, 13, 14], "region": "top"}]),
+    ("home", "When I'm back, the red can should be sitting behind the white can.",
+     [{"pattern": "behind", "objects": [12], "anchor": 13}]),
+    ("home", "The green can shouldn't move. The red can should end up behind it.",
+     [{"pattern": "behind", "objects": [12], "anchor": 14}]),
+    ("home", "The cans in a row, 10 cm apart from one another.",
+     [{"pattern": "line", "objects": [12, 13, 14], "size": 0.2}]),
+    # polite wonders
+    ("home", "Would it be all right to put the red can behind the white can?",
+     [{"pattern": "behind", "objects": [12], "anchor": 13}]),
+    ("home", "I was wondering whether the robot might put the red mug behind the white bowl?",
+     [{"pattern": "behind", "objects": [1], "anchor": 3}]),
+    ("home", "If at all possible, could the mugs go in a line? No rush at all.",
+     [{"pattern": "line", "objects": [1, 2]}]),
+    # a coach's words
+    ("home", "Cans, line abreast along the back edge!", [{"pattern": "line", "objects": [12, 13, 14], "region": "top"}]),
+    ("home", "Knife, fork and spoon in a huddle, come on, bring it in!",
+     [{"pattern": "circle", "objects": [10, 9, 11]}]),
+    ("toys", "Square the letters up out on the left wing.",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "region": "left"}]),
+    # references
+    ("home", "The can that matches the red mug goes in front of that mug.",
+     [{"pattern": "front", "objects": [12], "anchor": 1}]),
+    ("home", "Whatever's the same colour as the blue mug, put it behind the plate.",
+     [{"pattern": "behind", "objects": [5, 7], "anchor": 8}]),
+    ("home", "The red can and the white can in a line with the green can between them.",
+     [{"pattern": "line", "objects": [12, 14, 13]}]),
+    # pouring is no goal
+    ("home", "Pour the blue bottle into the red mug.", None),
+    ("home", "Would you mind pouring the blue bottle into the white bowl?", None),
+]
+
+
+@pytest.mark.parametrize("scene, said, goals", _CASES, ids=[c[1][:40] for c in _CASES])
+def test_reads(scene: str, said: str, goals: list[dict] | None) -> None:
+    assert_reads(_SCENES[scene], said, goals)
+
+
+def test_pouring_said_as_a_purpose_is_no_refusal() -> None:
+    """"so I can pour the tea" tells why; only a pouring asked for is refused."""
+    assert_reads(_SCENES["home"], "Could you put the red mug left of the plate so I can pour the tea?",
+                 [{"pattern": "left", "objects": [1], "anchor": 8}])
+    with pytest.raises(InputError, match="pouring"):
+        parse_rules(_SCENES["home"], "Pour the blue bottle into the red mug.", matcher=default_matcher())
+
+
+def test_the_reference_is_kept_where_whatever_is_the_object() -> None:
+    """As an object ("stack up whatever is the same colour as X") the group keeps X, as older sets want."""
+    got = parse_rules(_SCENES["home"], "Stack up whatever is the same colour as the blue mug.", matcher=default_matcher())
+    assert sorted(got.goals[0].objects) == [2, 5, 7]
+
+
+def test_a_circle_said_with_up_before_a_place_is_no_huddle() -> None:
+    """"a little circle up in the far right corner": a small circle there, not "circle up"."""
+    assert_reads(_SCENES["home"], "the bowls in a little circle up in the far right corner",
+                 [{"pattern": "circle", "objects": [3, 4, 5], "region": "top right", "size": "small"}])
