@@ -101,7 +101,7 @@ _STOP = frozenset({
     "should", "must", "needs", "put", "move", "place", "set", "stack", "make", "left", "right", "front", "near",
     "nearest", "closest", "furthest", "farthest", "from", "please", "it", "them", "one", "that", "which", "who",
     "ends", "end", "stays", "has", "have", "will", "would", "up", "out", "as", "for", "of", "except", "but",
-    "going", "counting", "gets", "get", "be", "most", "all",
+    "going", "counting", "gets", "get", "be", "most", "all", "could", "might", "shall", "let's", "lets", "okay", "ok",
 }) | lexicon.COMMAND_VERBS | {"take", "grab", "pick", "bring", "slide", "shift", "push", "pull", "position", "carry"}
 _ARTICLES = frozenset({"the", "a", "an"})
 _WHATEVER = frozenset({"whatever", "whichever", "whoever"})

@@ -174,7 +174,10 @@ def _perceived(clause: str) -> bool:
 
 
 #: Verbs by which a purpose would still place something ("so the kids can put the cups behind it" is no reason).
-_PLACING = frozenset({"put", "place", "move", "stack", "set", "make", "arrange", "line", "build", "pile", "lay", "stand"})
+_PLACING = frozenset({"put", "place", "move", "stack", "set", "make", "arrange", "line", "build", "pile", "lay", "stand",
+                      "go", "sit", "face", "point", "end", "form", "be", "fit", "stay", "turn", "rotate"})
+#: Speakers and people a purpose may name by a pronoun ("so she can find them in the morning").
+_PERSONS = frozenset({"i", "we", "you", "he", "she", "they"})
 
 
 def _people_can(clause: str) -> bool:
@@ -182,7 +185,7 @@ def _people_can(clause: str) -> bool:
     past", "the kids could reach them"): its subject is people and its verb places nothing."""
     ws = lexicon.words(clause)
     k = 1 if ws[:1] == ["the"] else 0
-    return ws[k : k + 1] != [] and ws[k] in _PEOPLE and ws[k + 1 : k + 2] in (["can"], ["could"], ["will"], ["may"],
+    return ws[k : k + 1] != [] and (ws[k] in _PEOPLE or (k == 0 and ws[k] in _PERSONS)) and ws[k + 1 : k + 2] in (["can"], ["could"], ["will"], ["may"],
                                                                              ["might"]) \
         and ws[k + 2 : k + 3] != [] and ws[k + 2] not in _PLACING
 

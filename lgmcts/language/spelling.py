@@ -160,7 +160,9 @@ def english_rank(word: str) -> int | None:
     for suffix, repl in _SUFFIXES:
         if len(word) > len(suffix) + 2 and word.endswith(suffix):
             base = word[: -len(suffix)]
-            for b in (base + repl, base[:-1] if len(base) > 3 and base[-1] == base[-2] else None):
+            # a doubled last letter only before an ending with a vowel ("stopped", "bigger"; "bowlls" is no "bowls")
+            doubled = len(base) > 3 and base[-1] == base[-2] and suffix[0] in "aeiouy"
+            for b in (base + repl, base[:-1] if doubled else None):
                 if b and b in eng and not (b == base and suffix[0] in "aeiouy" and _doubles_its_end(base)):
                     return eng[b]
     return None
