@@ -1,4 +1,5 @@
-"""Requests said as the end state wanted, as polite wonders, and in a coach's drill words (issue 24, round 17).
+"""Requests said as the end state wanted, as polite wonders, in a coach's drill words (issue 24, round 17), by a
+fed-up user, in a warehouse's words and in a German speaker's English (round 18).
 
 End to end through :func:`lgmcts.language.rules.parse_rules` on the ``home`` and ``toys`` scenes of
 ``fresh17_cases.jsonl``: each case a sentence of the kind the round's writers used (none of theirs) with the
@@ -19,10 +20,12 @@ from lgmcts.language.rules import parse_rules
 from tables import assert_reads
 
 _ROWS = map(json.loads, (Path(__file__).parent / "fresh17_cases.jsonl").read_text().splitlines())
+# (fresh18_cases.jsonl has the same five scenes)
 _SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in _ROWS if "scene_id" in r}
 
 # home: 1 red mug, 2 blue mug, 3 white bowl, 5 blue bowl, 7 blue bottle, 8 white plate, 9 fork, 10 knife,
-# 11 spoon, 12 red can, 13 white can, 14 green can; toys: letters 1-4.
+# 11 spoon, 12 red can, 13 white can, 14 green can; toys: letters 1-4 (A, R, T, E), blocks 5-8 (red, blue, yellow,
+# green); pantry: cans 1-4, bowls 5-7.
 _CASES = [
     # the end state, said as what the speaker comes back to or expects
     ("home", "I'd like to come back to a table where the cans are in a row along the back.",
@@ -53,6 +56,25 @@ _CASES = [
      [{"pattern": "behind", "objects": [5, 7], "anchor": 8}]),
     ("home", "The red can and the white can in a line with the green can between them.",
      [{"pattern": "line", "objects": [12, 14, 13]}]),
+    # a fed-up user: the request said again, and asides that ask nothing
+    ("home", "Line up the three cans. A straight line. Is that so hard?", [{"pattern": "line", "objects": [12, 13, 14]}]),
+    ("home", "The bowls in a circle. Not a square. A circle.", [{"pattern": "circle", "objects": [3, 4, 5]}]),
+    ("home", "Put all the cutlery to the left of the plate, apart from the knife. Leave the damn knife.",
+     [{"pattern": "left", "objects": [9, 11], "anchor": 8}]),
+    # a warehouse's words
+    ("pantry", "Get the four cans into one lane for me.", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "Four cans, one in each corner of a square.", [{"pattern": "rectangle", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "Stage the three bowls in a lane with 10 cm between each slot.",
+     [{"pattern": "line", "objects": [5, 6, 7], "size": 0.2}]),
+    ("home", "Put the red mug behind the plate with its handle facing east.",
+     [{"pattern": "behind", "objects": [1], "anchor": 8, "facing": "east"}]),
+    ("toys", "Stack the four blocks two high - red on blue, yellow on green.",
+     [{"pattern": "tower", "objects": [6, 5]}, {"pattern": "tower", "objects": [8, 7]}]),
+    # a German speaker's English
+    ("pantry", "The cans shall build a rectangle, 40 times 20 cm.",
+     [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "size": 0.4}]),
+    ("home", "Put both mugs right from the plate.", [{"pattern": "right", "objects": [1, 2], "anchor": 8}]),
+    ("toys", "Make a circle from all letters, only the E not.", [{"pattern": "circle", "objects": [1, 2, 3]}]),
     # pouring is no goal
     ("home", "Pour the blue bottle into the red mug.", None),
     ("home", "Would you mind pouring the blue bottle into the white bowl?", None),
