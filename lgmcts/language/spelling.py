@@ -57,7 +57,8 @@ __all__ = ["INFORMAL", "RARE_RANK", "SOUNDS_LIKE", "Corrector", "correct_text", 
 
 #: Informal spellings with one reading, whole words only.
 INFORMAL: dict[str, str] = {
-    "teh": "the", "hte": "the", "infront": "in front", "infrontof": "in front of", "bak": "back", "cn": "can", "b4": "before", "bc": "because",
+    "teh": "the", "hte": "the", "infront": "in front", "infrontof": "in front of", "bak": "back", "kans": "cans",
+    "lang": "long", "cn": "can", "b4": "before", "bc": "because",
     "cuz": "because", "coz": "because", "nxt": "next", "abt": "about", "tmrw": "tomorrow", "ppl": "people",
     "pl0x": "please", "plss": "please", "pleasee": "please", "ontop": "on top", "frm": "from", "wth": "with",
     "betwen": "between", "behing": "behind", "alot": "a lot", "bttm": "bottom", "btm": "bottom",
