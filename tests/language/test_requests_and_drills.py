@@ -70,6 +70,10 @@ _CASES = [
      [{"pattern": "behind", "objects": [1], "anchor": 8, "facing": "east"}]),
     ("toys", "Stack the four blocks two high - red on blue, yellow on green.",
      [{"pattern": "tower", "objects": [6, 5]}, {"pattern": "tower", "objects": [8, 7]}]),
+    ("toys", "Red block in front of the granite bowl, and the blue one in front of that.",
+     [{"pattern": "front", "objects": [5], "anchor": 9}, {"pattern": "front", "objects": [6], "anchor": 5}]),
+    ("toys", "Put the red block in front of the granite bowl, and the blue block behind that same bowl.",
+     [{"pattern": "front", "objects": [5], "anchor": 9}, {"pattern": "behind", "objects": [6], "anchor": 9}]),
     # a German speaker's English
     ("pantry", "The cans shall build a rectangle, 40 times 20 cm.",
      [{"pattern": "rectangle", "objects": [1, 2, 3, 4], "size": 0.4}]),
