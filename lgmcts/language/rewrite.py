@@ -185,9 +185,11 @@ def _people_can(clause: str) -> bool:
     past", "the kids could reach them"): its subject is people and its verb places nothing."""
     ws = lexicon.words(clause)
     k = 1 if ws[:1] == ["the"] else 0
-    return ws[k : k + 1] != [] and (ws[k] in _PEOPLE or (k == 0 and ws[k] in _PERSONS)) and ws[k + 1 : k + 2] in (["can"], ["could"], ["will"], ["may"],
-                                                                             ["might"]) \
-        and ws[k + 2 : k + 3] != [] and ws[k + 2] not in _PLACING
+    if len(ws) < k + 3:
+        return False
+    subject, modal, verb = ws[k : k + 3]
+    people = subject in _PEOPLE or (k == 0 and subject in _PERSONS)
+    return people and modal in ("can", "could", "will", "may", "might") and verb not in _PLACING
 
 
 def _purposes(text: str) -> str:

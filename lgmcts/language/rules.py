@@ -67,9 +67,9 @@ from .selection import _Selecting
 
 __all__ = ["RulesOptions", "parse_rules", "split_clauses", "goal_dicts"]
 
-#: Words that may follow a way to stand an object ("upside down, then ...", "on its side behind the plate").
 #: Words after which a pouring verb asks for the pouring (:meth:`_Parser._tilt`).
 _BEFORE_POUR = frozenset({".", ",", ";", "!", "?", "you", "u", "please", "mind", "then", "and", "just", "now"})
+#: Words that may follow a way to stand an object ("upside down, then ...", "on its side behind the plate").
 _AFTER_TILT = frozenset({"and", "then", "on", "in", "into", "onto", "behind", "next", "beside", "at", "to", "please",
                          "too", "as", "so", "with", "near", "by", "left", "right", "front", "facing", "all", "but",
                          "if", "or", "like", "for", "now", "again", "instead", "under", "over", "above", "below"})
