@@ -94,8 +94,9 @@ def _remade(text: str) -> str:
 
 _ACT = (r"(?:please |just |now |then |for now |first |kindly )*(?:put|place|move|stack|set|make|arrange|line|build|pile|lay|"
         r"could|can|would|will|get|grab|stick|pop|slide|shift|form|gather|group|bring|leave|keep|have|let|i'd|i want|i need)\b")
+_CONTEXT = lexicon.context_words()
 #: People a purpose may be about ("so the players can grab them").
-_PEOPLE = tuple(lexicon.context_words()["people"])
+_PEOPLE = tuple(_CONTEXT["people"])
 _PURPOSE_AFTER = re.compile(r"(?i)\s*,?\s*\b(?:so that|so|in order that|because|since) "
                             r"(?P<c>(?:i|we|you|my|our|he|she|the kids|the children|the " + lexicon.alternation(_PEOPLE) + r"|people|everyone|nobody|no one|"
                             r"it's|it is|it'll|it doesn't|it does not|it won't|it will|it can|they're|they are|they'll|"
@@ -177,7 +178,7 @@ def _perceived(clause: str) -> bool:
 _PLACING = frozenset({"put", "place", "move", "stack", "set", "make", "arrange", "line", "build", "pile", "lay", "stand",
                       "go", "sit", "face", "point", "end", "form", "be", "fit", "stay", "turn", "rotate"})
 #: Speakers and people a purpose may name by a pronoun ("so she can find them in the morning").
-_PERSONS = frozenset({"i", "we", "you", "he", "she", "they"})
+_PERSONS = frozenset(_CONTEXT["person_pronouns"]) | {"you", "they"}
 
 
 def _people_can(clause: str) -> bool:

@@ -327,7 +327,8 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
     @staticmethod
     def _tilt(text: str) -> None:
         """Refuse a way to stand an object that no goal holds ("the cans in a row, upside down"); said before
-        a noun it is a name, not a way to stand ("upside-down challenge!")."""
+        a noun it is a name, not a way to stand ("upside-down challenge!"). Refuse a pouring asked for ("Pour
+        the bottle into the cup"), not one said as a purpose ("so I can pour the tea")."""
         toks = [t.text for t in tokenize(text) if t.text != "-"]
         for i, end, _ in lexicon.phrase_spans(toks, "tilt"):
             if end == len(toks) or not toks[end][0].isalpha() or toks[end] in _AFTER_TILT:

@@ -389,10 +389,11 @@ class Corrector:
         cuts += [(w[:-2], w[-2:])] if w[:-2] in _SIDE_WORDS and w[-2:] in ("of", "to") else []
         if not cuts:
             # "bluebock": a colour of the scene, then one of its names with a letter left out
+            names = [t for t in self.scene - self.colours if len(t) > 3]
             for n in range(3, len(w) - 2):
                 if w[:n] in self.colours and w[:n] in self.scene:
-                    names = [t for t in self.scene - self.colours if len(t) > 3 and _dropped_letter(w[n:], t)]
-                    cuts += [(w[:n], names[0])] if len(names) == 1 else []
+                    hits = [t for t in names if _dropped_letter(w[n:], t)]
+                    cuts += [(w[:n], hits[0])] if len(hits) == 1 else []
         return " ".join(cuts[0]) if len(cuts) == 1 else None
 
     def text(self, text: str) -> str:
