@@ -38,7 +38,11 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-__all__ = ["TABLE", "TABLES", "Rule", "apply", "expand", "replacer", "rules", "step", "trace"]
+# A pattern's parse tree and its opcodes, for the literal words of Rule.could_match (no public name).
+import re._constants as _sre  # type: ignore[import-not-found]
+import re._parser as _sre_parse  # type: ignore[import-not-found]
+
+__all__ = ["TABLE", "TABLES", "Rule", "apply", "expand", "literal_needs", "replacer", "rules", "step", "trace"]
 
 #: The table of rewrites, in order.
 TABLE = Path(__file__).with_name("data") / "rewrites.toml"
@@ -99,8 +103,21 @@ class Rule:
     unless: tuple[re.Pattern[str], ...]
     note: str
     examples: tuple[tuple[str, str], ...]
+    #: Sets of lower-case words of which the text must hold one of each for ``pattern`` and every ``when`` to
+    #: find anything (:func:`literal_needs`); tested on plain ASCII text only.
+    needs: tuple[frozenset[str], ...] = ()
+
+    def could_match(self, text: str) -> bool:
+        """False only where the row surely leaves ``text`` as it is: a word its pattern or a ``when`` needs is
+        missing (a substring test, much cheaper than the search)."""
+        if not self.needs or not text.isascii():
+            return True
+        low = text.lower()
+        return all(any(w in low for w in words) for words in self.needs)
 
     def __call__(self, text: str) -> str:
+        if not self.could_match(text):
+            return text
         if not all(w.search(text) for w in self.when) or any(u.search(text) for u in self.unless):
             return text
         if self.step is not None:
@@ -138,8 +155,52 @@ def _compile(row: dict, n: int, macros: dict[str, str]) -> Rule:
     st = _STEPS[row["step"]] if "step" in row else None
     examples = tuple((str(a), str(b)) for a, b in row.get("examples", ()))
     pattern = re.compile(expand(row["pattern"], macros)) if "pattern" in row else None
-    return Rule(rid, pattern, row.get("replace"), fn, st, int(row.get("count", 0)), rxs("when"), rxs("unless"),
-                str(row.get("note", "")), examples)
+    when = rxs("when")
+    needs = tuple(n for n in map(literal_needs, ([pattern] if pattern is not None else []) + list(when)) if n)
+    return Rule(rid, pattern, row.get("replace"), fn, st, int(row.get("count", 0)), when, rxs("unless"),
+                str(row.get("note", "")), examples, needs)
+
+
+def literal_needs(pattern: re.Pattern[str]) -> frozenset[str]:
+    """Lower-case strings of which every ASCII text that ``pattern`` finds anything in holds at least one, once
+    lowered; empty where none is known. Read from the pattern's parse tree: a run of literal characters is
+    needed where it stands outside any optional part, a branch needs one of its branches' needs, a group or a
+    repeat of at least one its own; lookarounds that must fail, classes and back references need nothing.
+    Of the needs of one sequence the one with the longest shortest string is kept."""
+    try:
+        return _needs(list(_sre_parse.parse(pattern.pattern, pattern.flags)))
+    except Exception:  # an unforeseen tree: no quick test, the row is always searched
+        return frozenset()
+
+
+def _needs(items: list) -> frozenset[str]:
+    best: frozenset[str] = frozenset()
+    run = ""
+
+    def keep(cand: frozenset[str]) -> None:
+        nonlocal best
+        if cand and (not best or min(map(len, cand)) > min(map(len, best))):
+            best = cand
+
+    for op, av in items:
+        if op is _sre.LITERAL and av < 128:
+            run += chr(av).lower()
+            continue
+        if op is _sre.AT:  # zero-width: the run goes on
+            continue
+        keep(frozenset([run]) if run else frozenset())
+        run = ""
+        if op is _sre.SUBPATTERN:
+            keep(_needs(list(av[3])))
+        elif op is _sre.BRANCH:
+            subs = [_needs(list(b)) for b in av[1]]
+            keep(frozenset().union(*subs) if all(subs) else frozenset())
+        elif op in (_sre.MAX_REPEAT, _sre.MIN_REPEAT, _sre.POSSESSIVE_REPEAT) and av[0] >= 1:
+            keep(_needs(list(av[2])))
+        elif op is _sre.ASSERT:
+            keep(_needs(list(av[1])))
+    keep(frozenset([run]) if run else frozenset())
+    return best
 
 
 #: The tables of the file, by name.

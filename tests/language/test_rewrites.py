@@ -63,3 +63,43 @@ def test_when_and_unless_guard_a_row():
     first = next(r for r in RULES if r.id == "stack-without-its-word")
     assert first("the plate on the bottom, then the bowl") == "build a tower with the plate on the bottom, then the bowl"
     assert first("stack: the plate on the bottom, then the bowl") == "stack: the plate on the bottom, then the bowl"
+
+
+def test_literal_needs_reads_the_words_a_pattern_cannot_do_without():
+    needs = normalise.literal_needs
+    assert needs(re.compile(r"(?i)\bin (?:the )?foreground\b")) == {"foreground"}
+    assert needs(re.compile(r"(?i)\b(handles?|labels?) to")) == {"handle", "label"}
+    assert needs(re.compile(r"(?i)(?<=facing )left")) == {"facing "}
+    assert needs(re.compile(r"(?:fore|back)(?:ground)+")) == {"ground"}
+    # nothing is needed where a part may be missing, a lookaround must fail, or a class stands alone
+    assert needs(re.compile(r"(?:the )?x")) == {"x"}
+    assert needs(re.compile(r"(?:left|)")) == frozenset()
+    assert needs(re.compile(r"[a-z]+(?! of)")) == frozenset()
+
+
+@pytest.mark.parametrize("said", [
+    "Put the BLUE Block in the FOREGROUND please", "stack the red on teh blue", "mugs at the front, handles left",
+    "put the cups in a row at the front, the row facing west", "Stack purple, red and green so that purple is lowest",
+    "square them up", "line them up, café style",  # a text that is not plain ASCII is always searched
+])
+def test_the_quick_test_never_skips_a_row_that_would_change_the_text(said):
+    import dataclasses
+
+    for table in normalise.TABLES:
+        text = said
+        for rule in normalise.rules(table):
+            searched = dataclasses.replace(rule, needs=())(text)
+            assert rule(text) == searched, rule.id
+            if searched != text:
+                assert rule.could_match(text)
+            text = searched
+
+
+def test_every_example_is_read_the_same_with_and_without_the_quick_test():
+    import dataclasses
+
+    for rule in RULES:
+        plain = dataclasses.replace(rule, needs=())
+        for said, _ in rule.examples:
+            for upper in (said, said.upper()):
+                assert rule(upper) == plain(upper), (rule.id, upper)
