@@ -107,7 +107,8 @@ def split_clauses(words: tuple[str, ...], nouns: frozenset[str] = frozenset()) -
             parts.append([])
         bare = bool(parts[-1]) and parts[-1][0] in _HUES and not any(x in _OBJECT_START for x in parts[-1])
         if (w == "," and words[i + 1 : i + 2] in (("and",), ("plus",)) and _asks_after_object(parts[-1], nouns, hues=bare)
-                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True, hues=bare)):
+                and _asks_after_object(list(words[i + 2 : _next_stop(words, i + 2)]), nouns, start=True, hues=bare,
+                                       noun_after_hue=words[i - 1] not in _HUES)):
             # "the bowl on the plate, and the mug, cup and bottle in a row": two goals said without verbs.
             parts.append([])
             i += 2
@@ -200,11 +201,13 @@ def _next_stop(words: tuple[str, ...], i: int, comma: bool = False) -> int:
 
 
 def _asks_after_object(part: list[str], nouns: frozenset[str] = frozenset(), start: bool = False,
-                       hues: bool = False) -> bool:
+                       hues: bool = False, noun_after_hue: bool = False) -> bool:
     """Whether ``part`` names objects and then an arrangement or relation for them (``start``: and
     begins with the objects). ``nouns``: the scene's category words ("the green ring" is an object).
-    ``hues``: a bare colour may begin the part ("red on blue, and green left of yellow")."""
-    first = next((k for k, w in enumerate(part) if w in _OBJECT_START or (hues and k == 0 and w in _HUES)), None)
+    ``hues``: a bare colour may begin the part ("red on blue, and green left of yellow"); ``noun_after_hue``: a
+    colour and a noun may ("..., and green block behind the yellow block")."""
+    first = next((k for k, w in enumerate(part) if w in _OBJECT_START or (k == 0 and w in _HUES and (
+        hues or (noun_after_hue and len(part) > 1 and _stem(part[1]) in nouns)))), None)
     if first is None or (start and first != 0):
         return False
     if start and len(part) > first + 1 and part[first + 1] in _GOAL_WORDS and part[first + 1] not in nouns \

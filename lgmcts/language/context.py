@@ -298,7 +298,8 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             continue  # "table six, two-top, mains", "12-top coming in at eight": a party of guests, no place
         if part[j + 1 : j + 2] and part[j + 1] in _POSSESSIVES:
             continue  # "under my feet", "on her way": of a person, not of the table
-        if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and timed):
+        if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and (timed or (
+                j > 1 and part[j - 1] == "for" and part[j - 2] in _COMING))):  # "guests are coming for dinner"
             return False
     return True
 
@@ -344,7 +345,7 @@ def _without_chatter(sent: tuple[str, ...], object_word: Callable[[str], bool],
                 object_word(w) or request_word(w) for w in tail):
             while tail and tail[0] in _LEAD:
                 tail = tail[1:]
-            return tail
+            return _without_chatter(tuple(tail), object_word, request_word)  # "... and my mom said ... so can you"
         if any(object_word(w) for w in sent[:k]):
             break
     first = next((k for k, w in enumerate(sent) if object_word(w) and not _article(sent, k)), None)

@@ -742,6 +742,39 @@ def _world_colour(m: re.Match[str]) -> str:
     return colour
 
 
+@replacer("world-colour-said-before")
+def _world_colour_before(m: re.Match[str]) -> str:
+    """"the sky block", "the froggy bowl", "the strawberry one": a thing of the world said before an object's
+    noun is its colour (lexicon ``[world_colours]``); any other word is left as it is."""
+    colour = lexicon.WORLD_COLOURS.get(m.group(2).lower())
+    return m.group(0) if colour is None else f"{m.group(1)} {colour} "
+
+
+@replacer("names-given")
+def _names_given(m: re.Match[str]) -> str:
+    """"Call the red block A and the blue block B. Place A to the left of B.", "Let S be the set of all blocks.
+    Make S collinear.": the sentence that gives the names goes, and each name said after it is what it names."""
+    names: dict[str, str] = {}
+    if m.group("let") is not None:
+        said = m.group("what").strip()
+        for lead in ("the set of ", "the collection of ", "the group of "):
+            if said.lower().startswith(lead):
+                said = said[len(lead):]
+        names[m.group("let")] = said.split(", the ")[0] if said.endswith(" itself included") else said
+    else:
+        for part in (m.group("first") + m.group("more")).replace(", and ", " and ").split(" and "):
+            part = part.strip(" ,")
+            part = part[5:] if part.lower().startswith("call ") else part
+            np, _, name = part.rpartition(" ")
+            if np and name:
+                names[name] = np
+    out = []
+    for tok in m.group("rest").split(" "):
+        core = tok.strip(".,;:!?()")
+        out.append(tok.replace(core, names[core], 1) if core in names else tok)
+    return " ".join(out)
+
+
 @replacer("whose-colour")
 def _whose_colour(m: re.Match[str]) -> str:
     """"whose colour matches that of": that is the same colour as ("whose colours ...": that are)."""

@@ -396,8 +396,8 @@ def by_position(text: str, find: Callable[[tuple[str, ...]], list], ids_of: Call
         if ids is None or (ref.side_said and ref.count >= len(ids)):
             continue  # names nothing (left for the parser to refuse), or all of them: a place ("the two mugs on the left")
         single = len(ids) == 1 and ref.count == 1 and ref.of is None
-        if single and ref.key.anchor is None:
-            continue  # one object already: "the side of the white bowl nearest me"
+        if single and ref.key.anchor is None and ref.rank in (0, -1) and "from" not in words[ref.start : ref.end]:
+            continue  # one object already: "the side of the white bowl nearest me" (not "the first bowl from ...")
         # One object and a reference object ("the mug nearest the kettle" with one mug): the phrase is that
         # object; its reference object is no object of the goal.
         lent = next(((head[k:], borrowed[head[k:]]) for k in range(len(head)) if borrowed and head[k:] in borrowed), None)
