@@ -251,7 +251,10 @@ class Encoder:
 
     def encode(self, texts: list[str] | tuple[str, ...]) -> np.ndarray:
         """Unit-normalised embeddings, shape ``(len(texts), 384)``."""
-        missing = [t for t in dict.fromkeys(texts) if t not in self._cache]
+        # The vectors are gathered here, not read back from the cache: the cache may be emptied below, when it
+        # is full, after some of ``texts`` were found in it.
+        found = {t: v for t in dict.fromkeys(texts) if (v := self._cache.get(t)) is not None}
+        missing = [t for t in dict.fromkeys(texts) if t not in found]
         if missing:
             self.load()
             with self._lock:
@@ -259,8 +262,8 @@ class Encoder:
             if len(self._cache) + len(missing) > self._cache_size:
                 self._cache.clear()
             for t, v in zip(missing, vecs):
-                self._cache[t] = np.asarray(v, dtype=np.float32)
-        return np.stack([self._cache[t] for t in texts]) if texts else np.zeros((0, 384), np.float32)
+                found[t] = self._cache[t] = np.asarray(v, dtype=np.float32)
+        return np.stack([found[t] for t in texts]) if texts else np.zeros((0, 384), np.float32)
 
 
 def _f1(a: tuple[str, ...], b: tuple[str, ...]) -> float:

@@ -163,3 +163,25 @@ def test_cli_plan_from_a_goal_file_loads_no_language_stack(tmp_path):
     assert r.returncode in (0, 1), r.stderr
     assert json.loads(r.stdout)["actions"] is not None
     assert _loaded(mods, HEAVY + LANGUAGE) == []
+
+
+def test_a_full_phrase_cache_is_emptied_without_losing_the_phrases_asked_for():
+    """Some phrases found in the cache and some new ones that fill it: the cache is emptied before the new ones
+    are stored, and the answer still holds every phrase asked for (it raised KeyError)."""
+    from lgmcts.language.matcher import Encoder
+
+    class Model:
+        calls: list[list[str]] = []
+
+        def encode(self, texts):
+            self.calls.append(list(texts))
+            return [np.full(384, len(t), np.float32) for t in texts]
+
+    enc = Encoder(cache_size=3)
+    enc._model = Model()
+    first = enc.encode(["a", "bb"])
+    got = enc.encode(["a", "ccc", "dddd", "a"])
+    assert got.shape == (4, 384)
+    assert [float(v[0]) for v in got] == [1.0, 3.0, 4.0, 1.0]
+    assert float(first[1][0]) == 2.0
+    assert Model.calls == [["a", "bb"], ["ccc", "dddd"]]
