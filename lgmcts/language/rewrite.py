@@ -501,7 +501,11 @@ def _next_box_left_left(m: re.Match[str]) -> str:
 
 @replacer("upstage-downstage")
 def _upstage_downstage(m: re.Match[str]) -> str:
-    return "at the back" if m.group(1).lower() == "up" else "at the front"
+    """"upstage": at the back ("facing upstage": facing away from me); "downstage": at the front (facing me)."""
+    up = m.group(1).lower() == "up"
+    if m.string[: m.start()].rstrip().lower().endswith(("facing", "pointing", "turned", "face")):
+        return "away from me" if up else "me"
+    return "at the back" if up else "at the front"
 
 
 _THIRDS = {"top": "at the back", "upper": "at the back", "back": "at the back", "far": "at the back",
@@ -773,6 +777,113 @@ def _names_given(m: re.Match[str]) -> str:
         core = tok.strip(".,;:!?()")
         out.append(tok.replace(core, names[core], 1) if core in names else tok)
     return " ".join(out)
+
+
+#: The viewer's side for a stage side: the audience (the viewer) faces the actors, so stage left is the viewer's
+#: right; house left is the audience's own left.
+_STAGE_SIDE = {("stage", "left"): "right", ("stage", "right"): "left", ("house", "left"): "left",
+               ("house", "right"): "right"}
+
+
+def _stage_side(m: re.Match[str]) -> str:
+    """The viewer's side said by a stage side in ``m`` ("stage left": right)."""
+    said = m.group(0).lower().replace("-", " ").split()
+    kind = "house" if "house" in said else "stage"
+    return _STAGE_SIDE[kind, "left" if "left" in said else "right"]
+
+
+@replacer("stage-corner")
+def _stage_corner(m: re.Match[str]) -> str:
+    """"upstage right": in the back left corner."""
+    return f"in the {'back' if m.group(1).lower() == 'up' else 'front'} {_stage_side(m)} corner"
+
+
+@replacer("stage-diagonal-of")
+def _stage_diagonal_of(m: re.Match[str]) -> str:
+    """"upstage left of": behind and to the right of."""
+    return f"{'behind' if m.group(1).lower() == 'up' else 'in front of'} and to the {_stage_side(m)} of"
+
+
+@replacer("stage-side-of")
+def _stage_side_of(m: re.Match[str]) -> str:
+    """"stage left of": to the right of."""
+    return f"to the {_stage_side(m)} of"
+
+
+@replacer("stage-side")
+def _stage_side_bare(m: re.Match[str]) -> str:
+    """"stage left": on the right ("facing stage left": facing right)."""
+    before = m.string[: m.start()].rstrip().lower()
+    return _stage_side(m) if before.endswith(("facing", "pointing", "turned", "face")) else f"on the {_stage_side(m)}"
+
+
+@replacer("up-down-stage-of")
+def _up_down_stage_of(m: re.Match[str]) -> str:
+    """"upstage of": behind; "downstage of": in front of."""
+    return "behind" if m.group(1).lower() == "up" else "in front of"
+
+
+@replacer("centre-stage")
+def _centre_stage(m: re.Match[str]) -> str:
+    """"centre stage": in the middle of the table; "down centre": at the front centre; "midstage": in the middle
+    row."""
+    if m.group(1):
+        return "in the middle of the table"
+    if m.group(2):
+        return f"at the {'back' if m.group(2).lower() == 'up' else 'front'} centre"
+    return "in the middle row"
+
+
+@replacer("stage-furthest")
+def _stage_furthest(m: re.Match[str]) -> str:
+    """"furthest downstage": nearest the front; "furthest upstage": furthest back; "furthest stage left": furthest
+    to the right."""
+    if m.group(1):
+        return "furthest back" if m.group(1).lower() == "up" else "nearest the front"
+    return f"furthest to the {_stage_side(m)}"
+
+
+@replacer("in-from-stage-side")
+def _in_from_stage_side(m: re.Match[str]) -> str:
+    """"second can in from house left": second can from the left."""
+    return f"{m.group(1)} {m.group(2)}from the {_stage_side(m)}"
+
+
+@replacer("against-the-wall")
+def _against_the_wall(m: re.Match[str]) -> str:
+    """"against the back wall": at the back, or nothing after a place said already ("along the back edge")."""
+    back = m.group(1).lower() in ("back", "far")
+    before = m.string[: m.start()].lower()
+    said = ("the back" in before or "the far" in before) if back else ("the front" in before or "the near" in before)
+    return "" if said else f" at the {'back' if back else 'front'}"
+
+
+#: Headings of the table's axes: +y is away from the viewer.
+_AXIS_HEADING = {("+", "y"): "north", ("-", "y"): "south", ("+", "x"): "east", ("-", "x"): "west"}
+
+
+@replacer("axis-heading")
+def _axis_heading(m: re.Match[str]) -> str:
+    """"facing +y": facing north."""
+    return f"{m.group(1)} {_AXIS_HEADING[m.group(2), m.group(3).lower()]}"
+
+
+@replacer("the-corner-of-behind")
+def _the_corner_of_behind(m: re.Match[str]) -> str:
+    """"the corner of behind at the left": the back left corner; "of the right, the one in front": the front right;
+    "more near to me, the right one": the near right."""
+    if m.group(1):
+        return f"the back {m.group(1)} corner"
+    if m.group(2):
+        return f"the front {m.group(2)} corner"
+    return f"the near {m.group(3)} corner"
+
+
+@replacer("below-of-all")
+def _below_of_all(m: re.Match[str]) -> str:
+    """"below of all": at the bottom; "above of all", "in the top": on top; "in the bottom": at the bottom."""
+    low = m.group(1) is not None or (m.group(2) or "").lower() == "bottom"
+    return "at the bottom" if low else "on top"
 
 
 @replacer("whose-colour")

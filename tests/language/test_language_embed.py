@@ -170,11 +170,11 @@ def test_a_full_phrase_cache_is_emptied_without_losing_the_phrases_asked_for():
     are stored, and the answer still holds every phrase asked for (it raised KeyError)."""
     from lgmcts.language.matcher import Encoder
 
-    class Model:
-        calls: list[list[str]] = []
+    calls: list[list[str]] = []
 
+    class Model:
         def encode(self, texts):
-            self.calls.append(list(texts))
+            calls.append(list(texts))
             return [np.full(384, len(t), np.float32) for t in texts]
 
     enc = Encoder(cache_size=3)
@@ -184,4 +184,4 @@ def test_a_full_phrase_cache_is_emptied_without_losing_the_phrases_asked_for():
     assert got.shape == (4, 384)
     assert [float(v[0]) for v in got] == [1.0, 3.0, 4.0, 1.0]
     assert float(first[1][0]) == 2.0
-    assert Model.calls == [["a", "bb"], ["ccc", "dddd"]]
+    assert calls == [["a", "bb"], ["ccc", "dddd"]]
