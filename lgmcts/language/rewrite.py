@@ -814,7 +814,8 @@ def _stage_side_of(m: re.Match[str]) -> str:
 def _stage_side_bare(m: re.Match[str]) -> str:
     """"stage left": on the right ("facing stage left": facing right)."""
     before = m.string[: m.start()].rstrip().lower()
-    return _stage_side(m) if before.endswith(("facing", "pointing", "turned", "face")) else f"on the {_stage_side(m)}"
+    facing = before.endswith(("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed"))
+    return _stage_side(m) if facing else f"on the {_stage_side(m)}"
 
 
 @replacer("up-down-stage-of")
@@ -884,6 +885,45 @@ def _below_of_all(m: re.Match[str]) -> str:
     """"below of all": at the bottom; "above of all", "in the top": on top; "in the bottom": at the bottom."""
     low = m.group(1) is not None or (m.group(2) or "").lower() == "bottom"
     return "at the bottom" if low else "on top"
+
+
+@replacer("from-up-to-down")
+def _from_up_to_down(m: re.Match[str]) -> str:
+    """"from up to down": from top to bottom."""
+    return "from top to bottom" if m.group(1).lower() == "up" else "from bottom to top"
+
+
+@replacer("n-in-spacing")
+def _n_in_spacing(m: re.Match[str]) -> str:
+    """"w/ 4in spacing": 4 inches apart."""
+    unit = m.group(2).lower()
+    return f"{m.group(1)} {'inches' if unit.startswith('in') else unit} apart"
+
+
+@replacer("of-diameter")
+def _of_diameter(m: re.Match[str]) -> str:
+    """"of 40 cm of diameter": 40 cm across; "of 15 cm of radius": with a radius of 15 cm."""
+    return f"{m.group(1)} across" if m.group(2).lower() == "diameter" else f"with a radius of {m.group(1)}"
+
+
+@replacer("at-the-side-of")
+def _at_the_side_of(m: re.Match[str]) -> str:
+    """"at the side of": next to; "at each side of": on each side of."""
+    return "next to" if m.group(1).lower() == "the" else f"on {m.group(1)} side of"
+
+
+@replacer("where-colour-is-not")
+def _where_colour_is_not(m: re.Match[str]) -> str:
+    """"blocks where color != red": the blocks that are not red."""
+    return f"the {m.group(1)} that are {'not ' if m.group(2) == '!=' else ''}{m.group(3)}"
+
+
+@replacer("nearest-the-house")
+def _nearest_the_house(m: re.Match[str]) -> str:
+    """"nearest the house": nearest the front; "most upstage": backmost; "most downstage": frontmost."""
+    if m.group(1):
+        return f"{m.group(1)} the front"
+    return "backmost" if m.group(2).lower() == "up" else "frontmost"
 
 
 @replacer("whose-colour")
