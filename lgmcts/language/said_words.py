@@ -1,0 +1,199 @@
+"""Replacement functions of the rows of ``data/rewrites.toml`` for the words of a trade or of a speaker's own
+English, which say a place, a side or a reference in other words than the viewer's.
+
+* a stage's directions (the viewer is the audience: "stage left" is the viewer's right, "upstage" the back);
+* a programmer's axes, counts and filters ("facing +y", "w/ 4in spacing", "blocks where color != red");
+* a Spanish speaker's comparisons, corners and levels ("from up to down", "the corner of behind at the left",
+  "below of all", "of 40 cm of diameter", "at the side of");
+* a child's colour names said by things everybody knows ("the sky block");
+* names a mathematician gives first ("Call the red block A ...", "Let S be ...").
+
+Each function is registered with :func:`.normalise.replacer` under the name its row gives in ``fn``; the rows,
+with their examples, say what each reads. Importing :mod:`.rewrite` imports this module.
+"""
+
+from __future__ import annotations
+
+import re
+
+from . import lexicon
+from .normalise import replacer
+
+@replacer("world-colour-said-before")
+def _world_colour_before(m: re.Match[str]) -> str:
+    """"the sky block", "the froggy bowl", "the strawberry one": a thing of the world said before an object's
+    noun is its colour (lexicon ``[world_colours]``); any other word is left as it is."""
+    colour = lexicon.WORLD_COLOURS.get(m.group(2).lower())
+    return m.group(0) if colour is None else f"{m.group(1)} {colour} "
+
+
+@replacer("names-given")
+def _names_given(m: re.Match[str]) -> str:
+    """"Call the red block A and the blue block B. Place A to the left of B.", "Let S be the set of all blocks.
+    Make S collinear.": the sentence that gives the names goes, and each name said after it is what it names."""
+    names: dict[str, str] = {}
+    if m.group("let") is not None:
+        said = m.group("what").strip()
+        for lead in ("the set of ", "the collection of ", "the group of "):
+            if said.lower().startswith(lead):
+                said = said[len(lead):]
+        names[m.group("let")] = said.split(", the ")[0] if said.endswith(" itself included") else said
+    else:
+        for part in (m.group("first") + m.group("more")).replace(", and ", " and ").split(" and "):
+            part = part.strip(" ,")
+            part = part[5:] if part.lower().startswith("call ") else part
+            np, _, name = part.rpartition(" ")
+            if np and name:
+                names[name] = np
+    out = []
+    for tok in m.group("rest").split(" "):
+        core = tok.strip(".,;:!?()")
+        out.append(tok.replace(core, names[core], 1) if core in names else tok)
+    return " ".join(out)
+
+
+#: The viewer's side for a stage side: the audience (the viewer) faces the actors, so stage left is the viewer's
+#: right; house left is the audience's own left.
+_STAGE_SIDE = {("stage", "left"): "right", ("stage", "right"): "left", ("house", "left"): "left",
+               ("house", "right"): "right"}
+
+
+def _stage_side(m: re.Match[str]) -> str:
+    """The viewer's side said by a stage side in ``m`` ("stage left": right)."""
+    said = m.group(0).lower().replace("-", " ").split()
+    kind = "house" if "house" in said else "stage"
+    return _STAGE_SIDE[kind, "left" if "left" in said else "right"]
+
+
+@replacer("stage-corner")
+def _stage_corner(m: re.Match[str]) -> str:
+    """"upstage right": in the back left corner."""
+    return f"in the {'back' if m.group(1).lower() == 'up' else 'front'} {_stage_side(m)} corner"
+
+
+@replacer("stage-diagonal-of")
+def _stage_diagonal_of(m: re.Match[str]) -> str:
+    """"upstage left of": behind and to the right of."""
+    return f"{'behind' if m.group(1).lower() == 'up' else 'in front of'} and to the {_stage_side(m)} of"
+
+
+@replacer("stage-side-of")
+def _stage_side_of(m: re.Match[str]) -> str:
+    """"stage left of": to the right of."""
+    return f"to the {_stage_side(m)} of"
+
+
+@replacer("stage-side")
+def _stage_side_bare(m: re.Match[str]) -> str:
+    """"stage left": on the right ("facing stage left": facing right)."""
+    before = m.string[: m.start()].rstrip().lower()
+    facing = before.endswith(("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed"))
+    return _stage_side(m) if facing else f"on the {_stage_side(m)}"
+
+
+@replacer("up-down-stage-of")
+def _up_down_stage_of(m: re.Match[str]) -> str:
+    """"upstage of": behind; "downstage of": in front of."""
+    return "behind" if m.group(1).lower() == "up" else "in front of"
+
+
+@replacer("centre-stage")
+def _centre_stage(m: re.Match[str]) -> str:
+    """"centre stage": in the middle of the table; "down centre": at the front centre; "midstage": in the middle
+    row."""
+    if m.group(1):
+        return "in the middle of the table"
+    if m.group(2):
+        return f"at the {'back' if m.group(2).lower() == 'up' else 'front'} centre"
+    return "in the middle row"
+
+
+@replacer("stage-furthest")
+def _stage_furthest(m: re.Match[str]) -> str:
+    """"furthest downstage": nearest the front; "furthest upstage": furthest back; "furthest stage left": furthest
+    to the right."""
+    if m.group(1):
+        return "furthest back" if m.group(1).lower() == "up" else "nearest the front"
+    return f"furthest to the {_stage_side(m)}"
+
+
+@replacer("in-from-stage-side")
+def _in_from_stage_side(m: re.Match[str]) -> str:
+    """"second can in from house left": second can from the left."""
+    return f"{m.group(1)} {m.group(2)}from the {_stage_side(m)}"
+
+
+@replacer("against-the-wall")
+def _against_the_wall(m: re.Match[str]) -> str:
+    """"against the back wall": at the back, or nothing after a place said already ("along the back edge")."""
+    back = m.group(1).lower() in ("back", "far")
+    before = m.string[: m.start()].lower()
+    said = ("the back" in before or "the far" in before) if back else ("the front" in before or "the near" in before)
+    return "" if said else f" at the {'back' if back else 'front'}"
+
+
+#: Headings of the table's axes: +y is away from the viewer.
+_AXIS_HEADING = {("+", "y"): "north", ("-", "y"): "south", ("+", "x"): "east", ("-", "x"): "west"}
+
+
+@replacer("axis-heading")
+def _axis_heading(m: re.Match[str]) -> str:
+    """"facing +y": facing north."""
+    return f"{m.group(1)} {_AXIS_HEADING[m.group(2), m.group(3).lower()]}"
+
+
+@replacer("the-corner-of-behind")
+def _the_corner_of_behind(m: re.Match[str]) -> str:
+    """"the corner of behind at the left": the back left corner; "of the right, the one in front": the front right;
+    "more near to me, the right one": the near right."""
+    if m.group(1):
+        return f"the back {m.group(1)} corner"
+    if m.group(2):
+        return f"the front {m.group(2)} corner"
+    return f"the near {m.group(3)} corner"
+
+
+@replacer("below-of-all")
+def _below_of_all(m: re.Match[str]) -> str:
+    """"below of all": at the bottom; "above of all", "in the top": on top; "in the bottom": at the bottom."""
+    low = m.group(1) is not None or (m.group(2) or "").lower() == "bottom"
+    return "at the bottom" if low else "on top"
+
+
+@replacer("from-up-to-down")
+def _from_up_to_down(m: re.Match[str]) -> str:
+    """"from up to down": from top to bottom."""
+    return "from top to bottom" if m.group(1).lower() == "up" else "from bottom to top"
+
+
+@replacer("n-in-spacing")
+def _n_in_spacing(m: re.Match[str]) -> str:
+    """"w/ 4in spacing": 4 inches apart."""
+    unit = m.group(2).lower()
+    return f"{m.group(1)} {'inches' if unit.startswith('in') else unit} apart"
+
+
+@replacer("of-diameter")
+def _of_diameter(m: re.Match[str]) -> str:
+    """"of 40 cm of diameter": 40 cm across; "of 15 cm of radius": with a radius of 15 cm."""
+    return f"{m.group(1)} across" if m.group(2).lower() == "diameter" else f"with a radius of {m.group(1)}"
+
+
+@replacer("at-the-side-of")
+def _at_the_side_of(m: re.Match[str]) -> str:
+    """"at the side of": next to; "at each side of": on each side of."""
+    return "next to" if m.group(1).lower() == "the" else f"on {m.group(1)} side of"
+
+
+@replacer("where-colour-is-not")
+def _where_colour_is_not(m: re.Match[str]) -> str:
+    """"blocks where color != red": the blocks that are not red."""
+    return f"the {m.group(1)} that are {'not ' if m.group(2) == '!=' else ''}{m.group(3)}"
+
+
+@replacer("nearest-the-house")
+def _nearest_the_house(m: re.Match[str]) -> str:
+    """"nearest the house": nearest the front; "most upstage": backmost; "most downstage": frontmost."""
+    if m.group(1):
+        return f"{m.group(1)} the front"
+    return "backmost" if m.group(2).lower() == "up" else "frontmost"
