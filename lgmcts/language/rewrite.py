@@ -499,15 +499,6 @@ def _next_box_left_left(m: re.Match[str]) -> str:
     return {'far': 'behind ', 'near': 'in front of '}.get(side.lower(), f'to the {side} of ') + m.group(1)
 
 
-@replacer("upstage-downstage")
-def _upstage_downstage(m: re.Match[str]) -> str:
-    """"upstage": at the back ("facing upstage": facing away from me); "downstage": at the front (facing me)."""
-    up = m.group(1).lower() == "up"
-    if m.string[: m.start()].rstrip().lower().endswith(("facing", "pointing", "turned", "face")):
-        return "away from me" if up else "me"
-    return "at the back" if up else "at the front"
-
-
 _THIRDS = {"top": "at the back", "upper": "at the back", "back": "at the back", "far": "at the back",
            "rear": "at the back", "bottom": "at the front", "lower": "at the front", "front": "at the front",
            "near": "at the front", "left": "on the left", "right": "on the right", "left-hand": "on the left",

@@ -19,6 +19,15 @@ import re
 from . import lexicon
 from .normalise import replacer
 
+#: Verbs after which a side or a stage direction is a facing ("facing stage left", "pointed house left").
+_FACING_VERBS = ("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed")
+
+
+def _after_facing(m: re.Match[str]) -> bool:
+    """Whether the words just before ``m`` are a verb of facing."""
+    return m.string[: m.start()].rstrip().lower().endswith(_FACING_VERBS)
+
+
 @replacer("world-colour-said-before")
 def _world_colour_before(m: re.Match[str]) -> str:
     """"the sky block", "the froggy bowl", "the strawberry one": a thing of the world said before an object's
@@ -86,9 +95,7 @@ def _stage_side_of(m: re.Match[str]) -> str:
 @replacer("stage-side")
 def _stage_side_bare(m: re.Match[str]) -> str:
     """"stage left": on the right ("facing stage left": facing right)."""
-    before = m.string[: m.start()].rstrip().lower()
-    facing = before.endswith(("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed"))
-    return _stage_side(m) if facing else f"on the {_stage_side(m)}"
+    return _stage_side(m) if _after_facing(m) else f"on the {_stage_side(m)}"
 
 
 @replacer("up-down-stage-of")
@@ -197,3 +204,12 @@ def _nearest_the_house(m: re.Match[str]) -> str:
     if m.group(1):
         return f"{m.group(1)} the front"
     return "backmost" if m.group(2).lower() == "up" else "frontmost"
+
+
+@replacer("upstage-downstage")
+def _upstage_downstage(m: re.Match[str]) -> str:
+    """"upstage": at the back ("facing upstage": facing away from me); "downstage": at the front (facing me)."""
+    up = m.group(1).lower() == "up"
+    if _after_facing(m):
+        return "away from me" if up else "me"
+    return "at the back" if up else "at the front"
