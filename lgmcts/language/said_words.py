@@ -28,11 +28,18 @@ def _after_facing(m: re.Match[str]) -> bool:
     return m.string[: m.start()].rstrip().lower().endswith(_FACING_VERBS)
 
 
+#: Things of the world that, said before an object's noun, say what it holds or is for, not its colour ("the coffee
+#: mug", "the milk bottle").
+_CONTENTS = frozenset({"coffee", "milk", "chocolate", "soil", "egg", "tea"})
+
+
 @replacer("world-colour-said-before")
 def _world_colour_before(m: re.Match[str]) -> str:
     """"the sky block", "the froggy bowl", "the strawberry one": a thing of the world said before an object's
-    noun is its colour (lexicon ``[world_colours]``); any other word is left as it is."""
-    colour = lexicon.WORLD_COLOURS.get(m.group(2).lower())
+    noun is its colour (lexicon ``[world_colours]``); any other word, and a content ("the coffee mug"), is left as
+    it is."""
+    thing = m.group(2).lower()
+    colour = None if thing in _CONTENTS else lexicon.WORLD_COLOURS.get(thing)
     return m.group(0) if colour is None else f"{m.group(1)} {colour} "
 
 

@@ -63,3 +63,11 @@ _CASES = [
 @pytest.mark.parametrize("scene, said, goals", _CASES, ids=[c[1][:40] for c in _CASES])
 def test_reads(scene: str, said: str, goals: list[dict] | None) -> None:
     assert_reads(_SCENES[scene], said, goals)
+
+
+def test_a_content_before_the_noun_is_no_colour() -> None:
+    """"the coffee mug" holds coffee; it is not a brown mug (the row reads "the sky bowl" as the blue bowl)."""
+    from lgmcts.language import normalise
+
+    assert normalise.apply("put the coffee mug and the sky bowl in a row", "plain") == \
+        "put the coffee mug and the blue bowl in a row"
