@@ -12,6 +12,7 @@ from ..errors import InputError
 from ..formats import RELATIONS
 from .assembly import _Pending, _direction
 from .clauses import _DIR_WORDS, _NOT_PATTERN, _ON_WORDS, _numbers
+from .context import meal_visited
 from .grounding import COLOUR_WORDS, Choice
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .passes import _GENERIC_KEY_WORDS
@@ -31,9 +32,6 @@ _EVERYTHING = frozenset({"everything", "all", "all of it", "it all", "the lot", 
 #: "a dinner party"); "dinner time!" still asks for one.
 _NOT_A_SETTING = frozenset({("party",), ("parties",), ("guests",), ("ladies",), ("lady",), ("bell",),
                             ("money",), ("queue",), ("staff",), ("break",), ("hall",)})
-#: Words before "for dinner" that say who comes to it, not what to lay ("guests are coming for dinner").
-_COMING_FOR = frozenset({"coming", "come", "comes", "came", "over", "round", "around", "here", "home", "staying",
-                         "stay", "stays", "joining", "join", "joins", "out", "going", "go", "goes", "in"})
 
 
 class _Arrangements(ParserHost):
@@ -242,7 +240,7 @@ class _Arrangements(ParserHost):
         return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s
                      and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))
                      and not (s == ("dinner",) and words[i + 1 : i + 2] in _NOT_A_SETTING)
-                     and not (s == ("dinner",) and i > 1 and words[i - 1] == "for" and words[i - 2] in _COMING_FOR)),
+                     and not (s == ("dinner",) and meal_visited(words, i))),
                     None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:

@@ -40,7 +40,7 @@ from collections.abc import Callable, Sequence
 
 from . import lexicon
 
-__all__ = ["TIME_OPENERS", "drop_context", "person_remark"]
+__all__ = ["TIME_OPENERS", "drop_context", "meal_visited", "person_remark"]
 
 #: Words that open a time clause.
 TIME_OPENERS = frozenset({"after", "before", "once", "when", "whenever", "while", "until", "till", "by", "tonight",
@@ -298,8 +298,7 @@ def _asks_nothing(part: Sequence[str], object_word: Callable[[str], bool],
             continue  # "table six, two-top, mains", "12-top coming in at eight": a party of guests, no place
         if part[j + 1 : j + 2] and part[j + 1] in _POSSESSIVES:
             continue  # "under my feet", "on her way": of a person, not of the table
-        if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and (timed or (
-                j > 1 and part[j - 1] == "for" and part[j - 2] in _COMING))):  # "guests are coming for dinner"
+        if request_word(w) and w not in _CHATTER_PARTICLES and not (w in _MEALS and (timed or meal_visited(part, j))):
             return False
     return True
 
@@ -310,6 +309,18 @@ _CHATTER_PARTICLES = frozenset({"over", "on", "at", "in", "up", "off", "out", "d
 #: Verbs of a visit, after which "round" is a particle ("coming round", "popped round").
 _COMING = frozenset({"come", "comes", "coming", "came", "pop", "pops", "popping", "popped", "drop", "dropping",
                      "dropped", "swing", "swinging", "bring", "bringing", "going", "go", "goes", "went"})
+#: Words before "for dinner" that say someone comes to the meal: a verb of a visit or the place it goes to
+#: ("guests are coming (over) for dinner", "she's staying for lunch").
+_VISITING = _COMING | {"over", "round", "around", "here", "home", "staying", "stay", "stays", "joining", "join",
+                       "joins", "out", "in"}
+
+
+def meal_visited(words: Sequence[str], j: int) -> bool:
+    """Whether the meal word at ``j`` is one someone comes to ("guests are coming for dinner"), so that it asks for
+    no place setting."""
+    return j > 1 and words[j - 1] == "for" and words[j - 2] in _VISITING
+
+
 #: Words of a time of day or a day, by which chatter before a request is told apart ("it's almost noon and ...").
 _DAY_WORDS = frozenset({"morning", "evening", "afternoon", "night", "tonight", "tomorrow", "today", "weekend",
                         "noon", "midnight", "lunchtime", "dinnertime"})
