@@ -74,6 +74,11 @@ _STAGE_SIDE = {("stage", "left"): "right", ("stage", "right"): "left", ("house",
                ("house", "right"): "right"}
 
 
+def _up(m: re.Match[str], group: int = 1) -> bool:
+    """Whether the "up" / "down" captured in ``group`` is "up" ("upstage": the back; "from up to down")."""
+    return (m.group(group) or "").lower() == "up"
+
+
 def _stage_side(m: re.Match[str]) -> str:
     """The viewer's side said by a stage side in ``m`` ("stage left": right)."""
     said = m.group(0).lower().replace("-", " ").split()
@@ -84,13 +89,13 @@ def _stage_side(m: re.Match[str]) -> str:
 @replacer("stage-corner")
 def _stage_corner(m: re.Match[str]) -> str:
     """"upstage right": in the back left corner."""
-    return f"in the {'back' if m.group(1).lower() == 'up' else 'front'} {_stage_side(m)} corner"
+    return f"in the {'back' if _up(m) else 'front'} {_stage_side(m)} corner"
 
 
 @replacer("stage-diagonal-of")
 def _stage_diagonal_of(m: re.Match[str]) -> str:
     """"upstage left of": behind and to the right of."""
-    return f"{'behind' if m.group(1).lower() == 'up' else 'in front of'} and to the {_stage_side(m)} of"
+    return f"{'behind' if _up(m) else 'in front of'} and to the {_stage_side(m)} of"
 
 
 @replacer("stage-side-of")
@@ -108,7 +113,7 @@ def _stage_side_bare(m: re.Match[str]) -> str:
 @replacer("up-down-stage-of")
 def _up_down_stage_of(m: re.Match[str]) -> str:
     """"upstage of": behind; "downstage of": in front of."""
-    return "behind" if m.group(1).lower() == "up" else "in front of"
+    return "behind" if _up(m) else "in front of"
 
 
 @replacer("centre-stage")
@@ -118,7 +123,7 @@ def _centre_stage(m: re.Match[str]) -> str:
     if m.group(1):
         return "in the middle of the table"
     if m.group(2):
-        return f"at the {'back' if m.group(2).lower() == 'up' else 'front'} centre"
+        return f"at the {'back' if _up(m, 2) else 'front'} centre"
     return "in the middle row"
 
 
@@ -127,7 +132,7 @@ def _stage_furthest(m: re.Match[str]) -> str:
     """"furthest downstage": nearest the front; "furthest upstage": furthest back; "furthest stage left": furthest
     to the right."""
     if m.group(1):
-        return "furthest back" if m.group(1).lower() == "up" else "nearest the front"
+        return "furthest back" if _up(m) else "nearest the front"
     return f"furthest to the {_stage_side(m)}"
 
 
@@ -177,7 +182,7 @@ def _below_of_all(m: re.Match[str]) -> str:
 @replacer("from-up-to-down")
 def _from_up_to_down(m: re.Match[str]) -> str:
     """"from up to down": from top to bottom."""
-    return "from top to bottom" if m.group(1).lower() == "up" else "from bottom to top"
+    return "from top to bottom" if _up(m) else "from bottom to top"
 
 
 @replacer("n-in-spacing")
@@ -210,13 +215,13 @@ def _nearest_the_house(m: re.Match[str]) -> str:
     """"nearest the house": nearest the front; "most upstage": backmost; "most downstage": frontmost."""
     if m.group(1):
         return f"{m.group(1)} the front"
-    return "backmost" if m.group(2).lower() == "up" else "frontmost"
+    return "backmost" if _up(m, 2) else "frontmost"
 
 
 @replacer("upstage-downstage")
 def _upstage_downstage(m: re.Match[str]) -> str:
     """"upstage": at the back ("facing upstage": facing away from me); "downstage": at the front (facing me)."""
-    up = m.group(1).lower() == "up"
+    up = _up(m)
     if _after_facing(m):
         return "away from me" if up else "me"
     return "at the back" if up else "at the front"
