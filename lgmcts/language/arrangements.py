@@ -34,6 +34,11 @@ _NOT_A_SETTING = frozenset({("party",), ("parties",), ("guests",), ("ladies",), 
                             ("money",), ("queue",), ("staff",), ("break",), ("hall",)})
 
 
+#: Verbs that ask for the table to be set when "the dinner table" is said ("set up a dinner table"); without one
+#: it is only the table ("the dinner table looks very nice").
+_SETTING_VERBS = frozenset({"set", "lay", "prepare", "ready", "arrange", "make", "do", "sort", "get", "fix"})
+
+
 class _Arrangements(ParserHost):
     """Pattern choice, shape goals and the place setting."""
 
@@ -240,7 +245,8 @@ class _Arrangements(ParserHost):
         return next((i for i in range(len(words)) for s in self._DINNER if words[i : i + len(s)] == s
                      and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))
                      and not (s == ("dinner",) and words[i + 1 : i + 2] in _NOT_A_SETTING)
-                     and not (s == ("dinner",) and meal_visited(words, i))),
+                     and not (s == ("dinner",) and meal_visited(words, i))
+                     and not (s == ("dinner",) and words[i + 1 : i + 2] == ("table",) and _SETTING_VERBS.isdisjoint(words))),
                     None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:

@@ -19,6 +19,10 @@ import re
 from . import lexicon
 from .normalise import replacer
 
+#: The stage's words the rows read that are no words of the English vocabulary, so that the spelling stage
+#: knows them ("upstgae", "dwnstage").
+STAGE_WORDS = frozenset({"upstage", "downstage", "midstage", "centerstage", "centrestage", "offstage"})
+
 #: Verbs after which a side or a stage direction is a facing ("facing stage left", "pointed house left").
 _FACING_VERBS = ("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed")
 
@@ -225,3 +229,30 @@ def _upstage_downstage(m: re.Match[str]) -> str:
     if _after_facing(m):
         return "away from me" if up else "me"
     return "at the back" if up else "at the front"
+
+
+@replacer("most-right-one")
+def _most_right_one(m: re.Match[str]) -> str:
+    """"the most right block", "the thing at most left side": the rightmost block, the leftmost thing."""
+    noun, side = (m.group(1), m.group(2)) if m.group(1) else (m.group(4), m.group(3))
+    return f"{m.group(0)[:3]} {side.lower()}most {noun}"  # "the" or "The", as said
+
+
+_DIGITS = {"zero": "0", "oh": "0", "one": "1", "two": "2", "three": "3", "four": "4", "five": "5", "six": "6",
+           "seven": "7", "eight": "8", "nine": "9", "niner": "9"}
+
+
+@replacer("digits-read-one-by-one")
+def _digits_read_one_by_one(m: re.Match[str]) -> str:
+    """"one five" before a unit: 15 (a number read digit by digit)."""
+    return "".join(_DIGITS[w] for w in m.group(1).lower().replace("-", " ").split())
+
+
+_CLOCK_FACING = {"twelve": "north", "12": "north", "three": "east", "3": "east", "six": "south", "6": "south",
+                 "nine": "west", "9": "west"}
+
+
+@replacer("clock-facing")
+def _clock_facing(m: re.Match[str]) -> str:
+    """"pointing twelve o'clock": facing north (twelve is away from the viewer, three to the right)."""
+    return f"facing {_CLOCK_FACING[m.group(2).lower()]}"

@@ -36,7 +36,8 @@ purpose, since a wrong correction is a wrong goal:
 * a word no nearer to any of those is one of the words the parser reads in its tables, or a
   protected word of four letters or more, by the commonest slips only: a letter left out, a
   letter typed twice or two neighbouring letters swapped ("requred", "respectivly", "shal",
-  "positoned"), and not where a commoner English word is the same kind of slip away;
+  "positoned"), and not where a commoner English word is the same kind of slip away; or else an informal
+  spelling of six letters or more by the same slips ("infornt": in front);
 * else two words typed without the space, where exactly one cut gives two words the parser knows
   of three letters or more, one of them the scene's or the parser's own ("redcan", "frontedge",
   "putthe"), or a side and "of"/"to" ("frontof", "nextto"), or else a colour of the scene and one of its
@@ -151,7 +152,7 @@ def english_rank(word: str) -> int | None:
     An inflected form ("crowding", "stacked", "tidier") has the rank of its base word, and so has the word
     said again or undone ("repositioned", "unstacked"); a base of one syllable ending in a vowel and a
     consonant doubles that consonant before an ending with a vowel ("letter", "putting"), so "leter" is no
-    form of "let"."""
+    form of "let", and a base's silent "e" goes before such an ending ("facing"), so "faceing" is no form of "face"."""
     eng = _english()
     if word in eng:
         return eng[word]
@@ -164,7 +165,8 @@ def english_rank(word: str) -> int | None:
             # a doubled last letter only before an ending with a vowel ("stopped", "bigger"; "bowlls" is no "bowls")
             doubled = len(base) > 3 and base[-1] == base[-2] and suffix[0] in "aeiouy"
             for b in (base + repl, base[:-1] if doubled else None):
-                if b and b in eng and not (b == base and suffix[0] in "aeiouy" and _doubles_its_end(base)):
+                if b and b in eng and not (b == base and suffix[0] in "aeiouy" and (
+                        _doubles_its_end(base) or (base[-1] == "e" and base[-2:-1] not in ("e", "o", "y")))):
                     return eng[b]
     return None
 
@@ -225,6 +227,14 @@ def _sound(w: str) -> str:
 def _swapped(w: str, t: str) -> bool:
     """Whether ``w`` is ``t`` with two neighbouring letters swapped ("mgu": mug)."""
     return len(w) == len(t) and any(w == t[:k] + t[k + 1] + t[k] + t[k + 2 :] for k in range(len(t) - 1)) and w != t
+
+
+def _slip_of_informal(w: str) -> str | None:
+    """The reading of the one informal spelling of six letters or more (:data:`INFORMAL`) that ``w`` is with
+    two neighbouring letters swapped, a letter left out or one typed twice ("infornt": in front), or None."""
+    hits = {v for k, v in INFORMAL.items() if len(k) >= 6 and abs(len(k) - len(w)) <= 1
+            and (_swapped(w, k) or _dropped_letter(w, k) or _doubled(w, k))}
+    return hits.pop() if len(hits) == 1 else None
 
 
 def _one_edit(w: str) -> set[str]:
@@ -318,7 +328,7 @@ class Corrector:
             elif d == best_d:
                 best.append(t)
         if best_d > cap:
-            return self._slip_of_read(w) or self._run_together(w) or w
+            return self._slip_of_read(w) or _slip_of_informal(w) or self._run_together(w) or w
         fixed = w
         if len(best) > 1:
             # A letter left out is the commonest slip ("stak" is "stack" before "star"), then a letter typed

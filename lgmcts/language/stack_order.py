@@ -117,6 +117,11 @@ def _item(words: list[str], i: int, prev: str | None, then: str = ""
     return None
 
 
+def _relation_at(words: list[str], k: int) -> bool:
+    """Whether a relation to another colour ("on", "on top of", "under") is said at ``k``."""
+    return any(tuple(words[k : k + len(seq)]) == seq for seq, _ in _RELATIONS)
+
+
 def _colours(items: list[tuple[str, str, str | int]]) -> tuple[str, ...]:
     """The colours a list names, in the order said: the items' own and those they are placed on or under."""
     return tuple(dict.fromkeys([c for c, _, _ in items] + [str(w)[:-1] for _, k, w in items if k != "place"]))
@@ -155,6 +160,11 @@ def _list_at(words: list[str], i: int) -> tuple[list[tuple[str, str, str | int]]
         items.append(got[0])
         prev = got[0][0]
         k = got[1]
+        if got[0][1] == "rel" and str(got[0][2])[:-1] in lexicon.HUES and _relation_at(words, k):
+            # a chain, "red on yellow on blue": the colour just said is the next item's object
+            k = max(j for j in range(i, k) if words[j] in lexicon.HUES)
+            then = ""
+            continue
         j = k
         while j < len(words) and words[j] in _SEPARATORS:
             j += 1
@@ -212,8 +222,11 @@ def stack_orders(text: str) -> str:
         for s in range(h + 1, min(len(words), h + 8)):
             if words[s] in (".", "!", "?"):
                 break
-            if words[s] not in _OPENERS:
-                continue  # "w/" is read as "w": the tokens keep no slash
+            if words[s] not in _OPENERS and not (words[s].endswith("s") and words[s + 1 : s + 2] and
+                                                 words[s + 1] in lexicon.HUES):
+                # "w/" is read as "w" (the tokens keep no slash); a list may follow the group's noun right away
+                # ("stack the blocks red on yellow on blue")
+                continue
             start = s + 1
             items, end = _list_at(words, start)
             if len(items) < 2 or len(_colours(items)) < 2 or not any(kind == "rel" for _, kind, _ in items):
@@ -230,6 +243,7 @@ def stack_orders(text: str) -> str:
                 # base": a group said before, or nouns said with some items only, are left to the readings
                 return text
             named = [f"the {c} {nouns[c]}" if c in nouns else c for c in orders[0]]
-            return text[: toks[s].start].rstrip() + ", from the bottom up: " + ", ".join(named) + \
+            cut = toks[s].start if words[s] in _OPENERS else toks[s].end
+            return text[:cut].rstrip() + ", from the bottom up: " + ", ".join(named) + \
                 text[toks[end - 1].end :]
     return text

@@ -57,6 +57,9 @@ _CASES = [
     ("dinner", "Friends are coming over for dinner tonight. Put the spoon to the right of the plate.",
      [{"pattern": "right", "objects": [5], "anchor": 1}]),
     ("dinner", "Guests are coming for dinner at seven.", None),  # was a whole place setting
+    # a stage's words with a slip: the spelling stage knows them
+    ("home", "put the red mug upstgae of the white bowl", [{"pattern": "behind", "objects": [1], "anchor": 3}]),
+    ("pantry", "the two cups in a row dwnstage", [{"pattern": "line", "objects": [8, 9], "region": "bottom"}]),
 ]
 
 
