@@ -36,6 +36,8 @@ _NOT_A_SETTING = frozenset({("party",), ("parties",), ("guests",), ("ladies",), 
 
 #: Verbs that ask for the table to be set when "the dinner table" is said ("set up a dinner table"); without one
 #: it is only the table ("the dinner table looks very nice").
+#: Words before "dinner set" that make it the tableware ("this dinner set", "my dinner set").
+_OWNING = frozenset({"this", "that", "the", "my", "our", "your", "a", "new", "whole"})
 _SETTING_VERBS = frozenset({"set", "lay", "prepare", "ready", "arrange", "make", "do", "sort", "get", "fix"})
 
 
@@ -246,7 +248,9 @@ class _Arrangements(ParserHost):
                      and not (s == ("dinner",) and i and words[i - 1] in ("before", "after", "until", "till", "since"))
                      and not (s == ("dinner",) and words[i + 1 : i + 2] in _NOT_A_SETTING)
                      and not (s == ("dinner",) and meal_visited(words, i))
-                     and not (s == ("dinner",) and words[i + 1 : i + 2] == ("table",) and _SETTING_VERBS.isdisjoint(words))),
+                     and not (s == ("dinner",) and words[i + 1 : i + 2] == ("table",) and _SETTING_VERBS.isdisjoint(words))
+                     and not (s == ("dinner",) and words[i + 1 : i + 2] == ("set",) and words[i + 2 : i + 3] != ("up",)
+                              and i and words[i - 1] in _OWNING)),
                     None)
 
     def _setting_only(self, words: tuple[str, ...]) -> bool:

@@ -287,7 +287,11 @@ def _colour_without_noun(vocab: Vocabulary, words: tuple[str, ...], i: int, j: i
         if words[k] in _NOT_NOUN or words[k] in STOPWORDS:
             break
         k += 1
-    coordinated = (j < n and words[j] in _COORD) or (i > 0 and words[i - 1] in _COORD)
+    # a comma after a list of colours ends it where no colour, article or noun follows ("line up red blue
+    # green, 10 cm apart", "red yellow orange, all facing me")
+    ends = j < n and words[j] == "," and len(colors) > 1 and (j + 1 >= n or not (
+        words[j + 1] in COLOUR_WORDS or words[j + 1] in ("the", "a", "and") or (words[j + 1],) in vocab.categories))
+    coordinated = (j < n and words[j] in _COORD and not ends) or (i > 0 and words[i - 1] in _COORD)
     if k == j and (coordinated or det == "the") and det in ("the", "all", "both", "other", "") and not nested:
         # "the red and the blue blocks", "the red block and the blue": the
         # noun is shared with a coordinated neighbour (resolved in find_mentions);
@@ -298,7 +302,7 @@ def _colour_without_noun(vocab: Vocabulary, words: tuple[str, ...], i: int, j: i
             sum(c == oc for _, _, oc in vocab.objects) == 1 for c in colors):
         # "purple, orange, yellow": each colour is the one object that has it.
         return Mention(i, j, " ".join(words[i:j]), "all", True, None, colors, color_order)
-    if k == j and det == "" and not nested and not (j < n and words[j] in _COORD):
+    if k == j and det == "" and not nested and not (j < n and words[j] in _COORD and not ends):
         # A bare colour standing for its object ("stack red on blue"): the
         # one object of that colour; where more objects have it, the noun
         # comes from the rest of the command ("stack the cans: green first").

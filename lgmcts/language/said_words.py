@@ -256,3 +256,20 @@ _CLOCK_FACING = {"twelve": "north", "12": "north", "three": "east", "3": "east",
 def _clock_facing(m: re.Match[str]) -> str:
     """"pointing twelve o'clock": facing north (twelve is away from the viewer, three to the right)."""
     return f"facing {_CLOCK_FACING[m.group(2).lower()]}"
+
+
+_PLURAL = {"box": "boxes", "knife": "knives"}
+
+
+@replacer("number-singular-noun")
+def _number_singular_noun(m: re.Match[str]) -> str:
+    """"two can", "all block": the plural ("two cans", "all blocks")."""
+    noun = m.group(2)
+    return f"{m.group(1)} {_PLURAL.get(noun.lower(), noun + 's')}"
+
+
+@replacer("anchor-at-the-back")
+def _anchor_at_the_back(m: re.Match[str]) -> str:
+    """"behind the can at the very back": behind the can furthest back ("at the front": nearest the front)."""
+    where = "furthest back" if m.group(3).lower() == "back" else "nearest the front"
+    return f"{m.group(1)} the {m.group(2)} {where}"

@@ -13,7 +13,7 @@ from ..errors import InputError
 from .clauses import _COMMAND_VERBS, _DIR_WORDS, _is_number
 from .grounding import COLOUR_WORDS, Choice, GROUPS, Mention, NUMBERS, candidates, find_mentions, select
 from .matcher import FILLERS, STOPWORDS, _stem
-from .places import BAND_MARKS, POINTING_PARTS
+from .places import BAND_MARKS
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES
 from typing import TYPE_CHECKING
 
@@ -198,8 +198,6 @@ class _Selecting(ParserHost):
                 continue
             if _stem(w) in self.key_vocab or self._pattern_word(w):
                 continue
-            if w in POINTING_PARTS and words[k - 2 : k] in (("with", "the"), ("and", "the")):
-                continue  # "with the labels facing left": the objects' part, its facing read before
             nxt = [words[x] for x in range(k + 1, min(k + 4, len(words)))]
             if nxt[:1] == ["of"] and any(_stem(x) in self.key_vocab or self._free_word(x) for x in nxt[1:]):
                 continue  # "each corner of a square", "the perimeter of a circle": a part of the shape

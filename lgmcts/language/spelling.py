@@ -21,7 +21,8 @@ purpose, since a wrong correction is a wrong goal:
   scene has a fork); any other tie leaves the word as it is;
 * a rare English word (:data:`RARE_RANK`) one dropped letter away from
   exactly one of the scene's names or colours or a pattern noun is that word
-  ("blu" blue, "hart" heart when the scene has a heart, "lin" line);
+  ("blu" blue, "hart" heart when the scene has a heart, "lin" line), or else
+  two neighbouring letters swapped from exactly one known word ("handels");
   a common word is never corrected; a three-letter word only ever becomes a
   colour or a pattern noun;
 * a word that is no English word and is exactly one of the scene's words, colours or
@@ -79,6 +80,9 @@ INFORMAL: dict[str, str] = {
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
     "bowlz": "bowls",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
+    "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
+    # a short word run into "the": "behind ofthe plate"
+    "ofthe": "of the", "tothe": "to the", "onthe": "on the", "inthe": "in the", "atthe": "at the",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
 }
 #: Words that sound like one of the scene's names: the name, but only where the scene has it ("plait" is
@@ -152,7 +156,8 @@ def english_rank(word: str) -> int | None:
     An inflected form ("crowding", "stacked", "tidier") has the rank of its base word, and so has the word
     said again or undone ("repositioned", "unstacked"); a base of one syllable ending in a vowel and a
     consonant doubles that consonant before an ending with a vowel ("letter", "putting"), so "leter" is no
-    form of "let", and a base's silent "e" goes before such an ending ("facing"), so "faceing" is no form of "face"."""
+    form of "let", and a base's silent "e" goes before such an ending ("facing"), so "faceing" is no form of "face", and an
+    adverb of a word in -al ends in -ally ("actually"), so "actualy" is none."""
     eng = _english()
     if word in eng:
         return eng[word]
@@ -166,7 +171,8 @@ def english_rank(word: str) -> int | None:
             doubled = len(base) > 3 and base[-1] == base[-2] and suffix[0] in "aeiouy"
             for b in (base + repl, base[:-1] if doubled else None):
                 if b and b in eng and not (b == base and suffix[0] in "aeiouy" and (
-                        _doubles_its_end(base) or (base[-1] == "e" and base[-2:-1] not in ("e", "o", "y")))):
+                        _doubles_its_end(base) or (base[-1] == "e" and base[-2:-1] not in ("e", "o", "y"))
+                        or (suffix == "y" and base.endswith("al")))):
                     return eng[b]
     return None
 
@@ -249,7 +255,7 @@ def _one_edit(w: str) -> set[str]:
 
 
 #: Words of a side that a preposition may be typed onto ("frontof", "nextto").
-_SIDE_WORDS = frozenset({"front", "left", "right", "back", "next", "top", "behind", "close", "near"})
+_SIDE_WORDS = frozenset({"front", "left", "right", "back", "next", "top", "behind", "close", "near", "side"})
 #: The words of :attr:`Corrector.read` (and the protected ones) have this many letters or more.
 _READ_LETTERS = 4
 
@@ -297,7 +303,7 @@ class Corrector:
         if r is not None:
             if r < RARE_RANK:
                 return w
-            hits = [t for t in self.nouns if _dropped_letter(w, t)]
+            hits = [t for t in self.nouns if _dropped_letter(w, t)] or [t for t in self.targets if _swapped(w, t)]
             return hits[0] if len(hits) == 1 else w
         if not w.isalpha():
             return w
