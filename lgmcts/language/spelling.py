@@ -25,8 +25,10 @@ purpose, since a wrong correction is a wrong goal:
   two neighbouring letters swapped from exactly one known word ("handels");
   a common word is never corrected; a three-letter word only ever becomes a
   colour or a pattern noun;
-* a word that is no English word and is exactly one of the scene's words, colours or
-  pattern nouns with some of its vowels left out is that word ("orng" orange, "prpl"
+* a word that is no English word and is exactly one of the scene's words with two neighbouring
+  letters swapped is that word ("blcok": block, though "black" has the same consonants); else one
+  that is exactly one of the scene's words, colours or pattern nouns with some of its vowels left
+  out is that word ("orng" orange, "prpl"
   purple, "bwl" bowl); a plural said with a final z is the plural ("bowlz");
 * a correction by a letter struck for another or one letter too many, into no word of the
   scene and no pattern noun, is not made where a common English word the parser does not know
@@ -80,7 +82,7 @@ INFORMAL: dict[str, str] = {
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
     "bowlz": "bowls",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
-    "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
+    "lil": "little", "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
     # a short word run into "the": "behind ofthe plate"
     "ofthe": "of the", "tothe": "to the", "onthe": "on the", "inthe": "in the", "atthe": "at the",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
@@ -309,6 +311,9 @@ class Corrector:
             return w
         if w.endswith("z") and w[:-1] + "s" in self.scene:
             return w[:-1] + "s"  # "bowlz", "cupz": a plural said with a z
+        swaps = [t for t in self.scene if _swapped(w, t)]
+        if len(swaps) == 1:
+            return swaps[0]  # "blcok": the block, before a colour with the same consonants ("black")
         skeleton = [t for t in self.scene | self.colours | self.nouns if _vowels_dropped(w, t)]
         if len(skeleton) == 1:
             return skeleton[0]  # "orng", "prpl", "grn": a scene word or colour with its vowels left out

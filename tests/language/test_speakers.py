@@ -80,6 +80,15 @@ _CASES = [
     # the facing was dropped
     ("dinner", "spoon and fork, put em on either side of the bowl, one each",
      [{"pattern": "left", "objects": [5], "anchor": 2}, {"pattern": "right", "objects": [3], "anchor": 2}]),
+    ("toys", "Put the star on the tiger pan, the pan forming the base of the stack.",
+     [{"pattern": "tower", "objects": [12, 10]}]),
+    ("blocks", "The green block (the \"Base\") shall bear the red block, which in turn shall bear the blue block.",
+     [{"pattern": "tower", "objects": [3, 1, 2]}]),
+    ("blocks", "Stack the red block upon the blue block; the said tower shall be placed in the near left corner.",
+     [{"pattern": "tower", "objects": [2, 1], "region": "bottom left"}]),
+    ("blocks", "my lil brother knocked it all over, can u stack the blocks back, purple bottom, then red, blue, green, "
+     "yellow, orange top", [{"pattern": "tower", "objects": [6, 1, 2, 3, 4, 5]}]),
+    ("blocks", "stakc the purpel blcok on the yelow one", [{"pattern": "tower", "objects": [4, 6]}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
