@@ -61,7 +61,7 @@ _COMMAND_VERBS = frozenset(
     {"put", "place", "move", "set", "stack", "arrange", "line", "make", "build", "form", "pile", "align",
      "position", "lay", "gather", "organize", "organise", "create", "sort", "bring", "group", "leave", "keep",
      "get", "take", "slide", "push", "shift", "rearrange", "drop", "stand", "select", "pick", "choose", "grab",
-     "use", "find", "stick", "pop", "plonk", "shove", "chuck", "station"}
+     "use", "find", "stick", "pop", "plonk", "shove", "chuck", "station", "whack", "slap", "park", "plant"}
 )
 
 

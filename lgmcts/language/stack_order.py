@@ -16,8 +16,10 @@ and:
 * where several do, or the list is not wholly such items, leaves the text
   to the later stages.
 
-Only lists with at least one item relative to another colour are taken: a
-list of places alone (bottom, top) is read by the later stages as before.
+Only lists with at least one item relative to another colour, or said down
+from the top with "then" ("green on top, then yellow, then blue, and red at
+the base"), are taken: a list of places alone (bottom, top) is read by the later stages as
+before.
 """
 
 from __future__ import annotations
@@ -229,8 +231,9 @@ def stack_orders(text: str) -> str:
                 continue
             start = s + 1
             items, end = _list_at(words, start)
-            if len(items) < 2 or len(_colours(items)) < 2 or not any(kind == "rel" for _, kind, _ in items):
-                continue  # places and "then" alone are read by the readings after
+            downward = items[:1] and items[0][1:] == ("place", "top") and any(kind == "then" for _, kind, _ in items)
+            if len(items) < 2 or len(_colours(items)) < 2 or not (any(kind == "rel" for _, kind, _ in items) or downward):
+                continue  # places alone are read by the readings after
             orders = _orders(items)
             said = text[toks[s].start : toks[end - 1].end]
             if not orders:

@@ -89,6 +89,23 @@ _CASES = [
     ("blocks", "my lil brother knocked it all over, can u stack the blocks back, purple bottom, then red, blue, green, "
      "yellow, orange top", [{"pattern": "tower", "objects": [6, 1, 2, 3, 4, 5]}]),
     ("blocks", "stakc the purpel blcok on the yelow one", [{"pattern": "tower", "objects": [4, 6]}]),
+    ("toys", "Tower of the blocks: yellow on top, then green, then red, and blue at the base.",
+     [{"pattern": "tower", "objects": [6, 5, 8, 7]}]),  # was another order: a wrong goal
+    ("dinner", "Lay the knife and the spoon in a row, 15 cm apart in each case.",
+     [{"pattern": "line", "objects": [4, 5], "size": 0.15}]),
+    ("pantry", "The cans (hereinafter, the \"Cans\") shall be arranged in a circle.",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "Put the box left of the white bowl. No, strike that: right of the white bowl.",
+     [{"pattern": "right", "objects": [10], "anchor": 5}]),
+    ("home", "cans in a row facing me so chat can see them", [{"pattern": "line", "objects": [12, 13, 14], "facing": "south"}]),
+    ("home", "phone in front of the plate, have it face north",
+     [{"pattern": "front", "objects": [15], "anchor": 8, "facing": "north"}]),
+    ("toys", "all the blocks in a circle, leave out the red one and the green one",
+     None),  # two left: too few for a circle
+    ("pantry", "whack the box behind the white bowl and she'll be right", [{"pattern": "behind", "objects": [10], "anchor": 5}]),
+    ("pantry", "cans in a row ngl", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "so tired lol. anyway the box in front of the orange cup, W",
+     [{"pattern": "front", "objects": [10], "anchor": 9}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
