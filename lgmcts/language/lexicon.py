@@ -110,6 +110,8 @@ HESITATIONS: frozenset[str] = frozenset(_P["hesitations"])
 ECHO_NEUTRAL: frozenset[str] = frozenset(_P["echo_neutral"])
 QUESTION_TAGS: tuple[tuple[str, ...], ...] = tuple(tuple(p.split()) for p in _P["tags"])
 SAME_WORD: dict[str, str] = dict(_P["same"])
+#: Words of a dialect with one reading each ("pit": put, "tae": to), read by the spelling stage (:mod:`.spelling`).
+DIALECT: dict[str, str] = dict(_DATA["dialect"])
 #: The colour of things of the world ("a banana": yellow), for a colour said by comparison (:mod:`.rewrite`).
 WORLD_COLOURS: dict[str, str] = {k.replace("_", " "): v for k, v in _DATA["world_colours"].items()}
 #: Verbs of a step that only picks objects out (:mod:`.steps`), as word tuples, longest first.

@@ -273,3 +273,83 @@ def _anchor_at_the_back(m: re.Match[str]) -> str:
     """"behind the can at the very back": behind the can furthest back ("at the front": nearest the front)."""
     where = "furthest back" if m.group(3).lower() == "back" else "nearest the front"
     return f"{m.group(1)} the {m.group(2)} {where}"
+
+
+@replacer("o-apostrophe-of")
+def _o_apostrophe_of(m: re.Match[str]) -> str:
+    """"o'" and "o" before "the": of; "an'": and."""
+    return "and" if (m.group(1) or "").lower() == "an" else "of" if m.group(1) else "of "
+
+
+#: A boat's words for the table's sides, the viewer at the helm looking toward the back: port is the viewer's left,
+#: the bow (for'ard) the back of the table, the stern (aft) the front.
+_NAUTICAL = {"port": "left", "starboard": "right", "forard": "back", "for'ard": "back", "forward": "back",
+             "bow": "back", "fore": "back", "aft": "front", "after": "front", "stern": "front", "astern": "front"}
+_NAUTICAL_FACING = {"left": "west", "right": "east", "back": "north", "front": "south"}
+
+
+def _sea(word: str) -> str:
+    """The table's side a boat's word says ("port": left, "for'ard": back)."""
+    return _NAUTICAL[word.lower().replace("\u2019", "'")]
+
+
+@replacer("nautical-corner")
+def _nautical_corner(m: re.Match[str]) -> str:
+    """"the for'ard port corner": the back left corner."""
+    a, b = _sea(m.group(1)), _sea(m.group(2))
+    fore_aft, side = (a, b) if a in ("back", "front") else (b, a)
+    return f"the {fore_aft} {side} corner"
+
+
+@replacer("nautical-off-the-bow")
+def _nautical_off_the_bow(m: re.Match[str]) -> str:
+    """"off the port bow of": behind and to the left of; "off the starboard quarter of": in front of and to the
+    right of."""
+    fore = "behind" if m.group(2).lower() == "bow" else "in front of"
+    return f"{fore} and to the {_sea(m.group(1))} of"
+
+
+@replacer("nautical-side-of")
+def _nautical_side_of(m: re.Match[str]) -> str:
+    """"to port of", "on the starboard side of": to the left (right) of; "for'ard of": behind; "astern of": in front
+    of."""
+    side = _sea(m.group(1))
+    return {"back": "behind", "front": "in front of"}.get(side, f"to the {side} of")
+
+
+@replacer("nautical-facing")
+def _nautical_facing(m: re.Match[str]) -> str:
+    """"pointing for'ard": facing north; "to port": west."""
+    return f"facing {_NAUTICAL_FACING[_sea(m.group(1))]}"
+
+
+@replacer("nautical-edge-any")
+def _nautical_edge_any(m: re.Match[str]) -> str:
+    """"the stern edge of the table", "the bow of the table": the front edge, the back edge."""
+    return f"the {_sea(m.group(1) or m.group(2))} edge"
+
+
+@replacer("nautical-abeam-on-its-side")
+def _nautical_abeam(m: re.Match[str]) -> str:
+    """"abeam of the white one, on its starboard side": to the right of it."""
+    return f"to the {_sea(m.group(2))} of {m.group(1)}"
+
+
+@replacer("nautical-most")
+def _nautical_most(m: re.Match[str]) -> str:
+    """"aftmost": frontmost; "furthest for'ard": furthest back; "furthest to starboard": furthest to the right
+    ("forward" is left out: said ashore, "the block farthest forward" is the one nearest the viewer)."""
+    if m.group(1):
+        return "frontmost"
+    side = _sea(m.group(3))
+    nearest = "nearer" if m.group(2).lower() in ("further", "farther") else "nearest"
+    return {"back": f"{m.group(2)} back", "front": f"{nearest} the front"}.get(side, f"{m.group(2)} to the {side}")
+
+
+@replacer("corner-at-the-back-on-the-left")
+def _corner_at_the_back(m: re.Match[str]) -> str:
+    """"in the corner at the back, on the left": in the back left corner; "in the right corner, the one in front of
+    me": in the front right corner."""
+    if m.group(1):
+        return f"in the {m.group(1).lower()} {m.group(2).lower()} corner"
+    return f"in the front {m.group(3).lower()} corner"

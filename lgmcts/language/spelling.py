@@ -8,7 +8,8 @@ purpose, since a wrong correction is a wrong goal:
   database's words, the parser's own closed-class words) is never changed,
   so "bowl" never becomes "box" even in a scene with a box and no bowl;
 * informal spellings come from a short table (:data:`INFORMAL`: "teh",
-  "infront", "cn", "b4" ...);
+  "infront", "cn", "b4" ...), and a dialect's words from the lexicon's
+  ``[dialect]`` table ("pit": put, "tae": to, "aw": all);
 * a word that is no English word (not a whole word of the sentence model's
   vocabulary) is corrected when exactly one known word lies one edit away
   (an insertion, a deletion, a substitution or two neighbouring letters
@@ -57,6 +58,8 @@ import re
 from collections.abc import Callable, Collection
 from functools import lru_cache
 
+from .lexicon import DIALECT
+
 __all__ = ["INFORMAL", "RARE_RANK", "SOUNDS_LIKE", "Corrector", "correct_text", "edit_distance", "english_rank"]
 
 #: Informal spellings with one reading, whole words only.
@@ -82,7 +85,7 @@ INFORMAL: dict[str, str] = {
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
     "bowlz": "bowls",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
-    "lil": "little", "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
+    "lil": "little", "lign": "line", "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
     # a short word run into "the": "behind ofthe plate"
     "ofthe": "of the", "tothe": "to the", "onthe": "on the", "inthe": "in the", "atthe": "at the",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
@@ -299,6 +302,8 @@ class Corrector:
             return SOUNDS_LIKE[w]
         if w in INFORMAL:
             return INFORMAL[w]
+        if w in DIALECT:
+            return DIALECT[w]
         if len(w) < 3:
             return w
         r = self.rank(w)

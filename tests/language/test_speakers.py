@@ -106,6 +106,27 @@ _CASES = [
     ("pantry", "cans in a row ngl", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
     ("pantry", "so tired lol. anyway the box in front of the orange cup, W",
      [{"pattern": "front", "objects": [10], "anchor": 9}]),
+    # round 23: a Scots speaker's words (lexicon [dialect]), a sailor's sides, a French speaker's English
+    ("pantry", "Pit the box tae the left o' the white bowl.", [{"pattern": "left", "objects": [10], "anchor": 5}]),
+    ("blocks", "Aw the blocks bar the green an' the yellow, in a line.", [{"pattern": "line", "objects": [1, 2, 5, 6]}]),
+    ("dinner", "Pit the cup on the richt o the plate.", [{"pattern": "right", "objects": [7], "anchor": 1}]),
+    ("pantry", "Stow the cans in a row along the stern edge of the table.",
+     [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "bottom"}]),
+    ("pantry", "Put the box astern of the yellow cup.", [{"pattern": "front", "objects": [10], "anchor": 8}]),
+    ("pantry", "The orange cup goes to starboard of the box.", [{"pattern": "right", "objects": [9], "anchor": 10}]),
+    ("home", "The phone off the port bow of the plate.", [{"pattern": "left_behind", "objects": [15], "anchor": 8}]),
+    ("pantry", "Bowls in a row in the aft starboard corner.", [{"pattern": "line", "objects": [5, 6, 7], "region": "bottom right"}]),
+    ("home", "Line up the cans amidships, all pointing for'ard.",
+     [{"pattern": "line", "objects": [12, 13, 14], "region": "middle center", "facing": "north"}]),
+    ("blocks", "Put the red block left of the block farthest forward.", [{"pattern": "left", "objects": [1], "anchor": 4}]),
+    # ashore, "farthest forward" is nearest the viewer
+    ("home", "Make a circle with the ensemble of the bowls.", [{"pattern": "circle", "objects": [3, 4, 5]}]),
+    ("pantry", "Align the cans with 5 cm of distance between two neighbours.",
+     [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.15}]),
+    ("pantry", "Put the cups in line in the corner at the back, on the right.",
+     [{"pattern": "line", "objects": [8, 9], "region": "top right"}]),
+    ("home", "The cans in a row, and the row should make 30 cm from the first to the last.",
+     [{"pattern": "line", "objects": [12, 13, 14], "size": 0.3}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
