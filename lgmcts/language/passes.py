@@ -33,7 +33,7 @@ from .same_change import other_side
 from .places import POINTING_PARTS
 from .normalise import pattern_words
 from .rewrite import FREE_ORDER
-from .said_words import STAGE_WORDS
+from .said_words import TRADE_WORDS
 from .spelling import english_rank
 from .selection import _ASIDE_KEEP, _COMPASS_LEFT, _FACING_CUES, _ROLE_WORDS
 from .shapes import COLS, FACINGS, REGION_NOUNS, ROWS, SIZES, take_params
@@ -125,9 +125,9 @@ _SHAPES_PROTECT = frozenset({"lol", "haha", "ok", "okay", "thanks", "thank", "he
 
 @lru_cache(maxsize=1)
 def _table_words() -> frozenset[str]:
-    """The English words the rewrite tables read ("required", "aforementioned") and the stage's words, which a
+    """The English words the rewrite tables read ("required", "aforementioned") and a trade's words, which a
     slip may stand for; not the stems a pattern spells its endings after ("arrang(?:e|ed)")."""
-    return frozenset(w for w in pattern_words() if english_rank(w) is not None) | STAGE_WORDS
+    return frozenset(w for w in pattern_words() if english_rank(w) is not None) | TRADE_WORDS
 
 
 #: Superlatives of a side, words the spelling corrector knows (read by :mod:`.positions`).

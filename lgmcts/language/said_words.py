@@ -19,9 +19,10 @@ import re
 from . import lexicon
 from .normalise import replacer
 
-#: The stage's words the rows read that are no words of the English vocabulary, so that the spelling stage
-#: knows them ("upstgae", "dwnstage").
-STAGE_WORDS = frozenset({"upstage", "downstage", "midstage", "centerstage", "centrestage", "offstage"})
+#: A trade's words the rows read that are no words of the English vocabulary, so that the spelling stage
+#: knows them ("upstgae", "dwnstage", "abaem").
+TRADE_WORDS = frozenset({"upstage", "downstage", "midstage", "centerstage", "centrestage", "offstage", "abeam",
+                         "astern", "starboard", "amidships", "aftmost", "masthead"})
 
 #: Verbs after which a side or a stage direction is a facing ("facing stage left", "pointed house left").
 _FACING_VERBS = ("facing", "pointing", "pointed", "points", "turned", "face", "faces", "aimed")
@@ -353,3 +354,36 @@ def _corner_at_the_back(m: re.Match[str]) -> str:
     if m.group(1):
         return f"in the {m.group(1).lower()} {m.group(2).lower()} corner"
     return f"in the front {m.group(3).lower()} corner"
+
+
+@replacer("from-the-top-to-the-bottom-list")
+def _from_the_top_list(m: re.Match[str]) -> str:
+    """", from the top to the bottom, red, white, blue": ", from the top down: red, white, blue"."""
+    return ", from the top down: " if m.group(1).lower() == "top" else ", from the bottom up: "
+
+
+@replacer("at-the-summit")
+def _at_the_summit(m: re.Match[str]) -> str:
+    """"at the summit", "up at the masthead": on top; "down at the keel", "the plate under,": at the bottom."""
+    said = m.group(0).lower()
+    return " at the bottom" if said == " under" else "at the bottom" if "keel" in said else "on top"
+
+
+@replacer("must-be-the-base")
+def _must_be_the_base(m: re.Match[str]) -> str:
+    """"must be the base": at the bottom; "and the purple one the top": and the purple one on top."""
+    place = (m.group(1) or m.group(3)).lower()
+    said = "on top" if place == "top" else "at the bottom"
+    return f"{m.group(2)} {said}" if m.group(2) else said
+
+
+@replacer("not-the-x-itself")
+def _not_the_x_itself(m: re.Match[str]) -> str:
+    """"no' the": not the; "itsel'": itself."""
+    return "not " if m.group(0).lower().startswith("no") else "itself"
+
+
+@replacer("fore-and-aft")
+def _fore_and_aft(m: re.Match[str]) -> str:
+    """"running fore and aft": running from front to back; "end to end" (of a measure): long."""
+    return "long" if m.group(0).lower() == "end to end" else "running from front to back"

@@ -127,6 +127,23 @@ _CASES = [
      [{"pattern": "line", "objects": [8, 9], "region": "top right"}]),
     ("home", "The cans in a row, and the row should make 30 cm from the first to the last.",
      [{"pattern": "line", "objects": [12, 13, 14], "size": 0.3}]),
+    ("pantry", "A tower of the cups: from the top to the bottom, yellow, orange.",
+     [{"pattern": "tower", "objects": [9, 8]}]),  # the colours were dropped: a wrong goal
+    ("pantry", "Put the three bowls in line, 10 cm apart one from the other.",
+     [{"pattern": "line", "objects": [5, 6, 7], "size": 0.2}]),
+    ("home", "The three cans in a column in the central band of the table.",
+     [{"pattern": "line", "objects": [12, 13, 14], "region": "center column"}]),
+    ("dinner", "Stack the plate and the bowl: the plate under, and the bowl at the summit.",
+     [{"pattern": "tower", "objects": [1, 2]}]),
+    ("blocks", "Make a tower of the red, blue and green blocks; the green one must be the base and the red one the top.",
+     [{"pattern": "tower", "objects": [3, 2, 1]}]),
+    ("home", "Phone behind the white bowl, turned round to face me.",
+     [{"pattern": "behind", "objects": [15], "anchor": 3, "facing": "south"}]),
+    ("home", "Lay the cutlery in a row, every piece pointing toward the stern.",
+     [{"pattern": "line", "objects": [9, 10, 11], "facing": "south"}]),  # was every object of the table
+    ("toys", "Put the star behind the granite bowl and the heart behind the pair of them.", None),
+    ("blocks", "Build a tower: red block down at the keel, then green, and blue up at the masthead.",
+     [{"pattern": "tower", "objects": [1, 3, 2]}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
