@@ -144,6 +144,23 @@ _CASES = [
     ("toys", "Put the star behind the granite bowl and the heart behind the pair of them.", None),
     ("blocks", "Build a tower: red block down at the keel, then green, and blue up at the masthead.",
      [{"pattern": "tower", "objects": [1, 3, 2]}]),
+    # round 24: an office's words, Nigerian English, an Irish grandmother's
+    ("pantry", "Would you ever pour the yellow cup into the white bowl for me", None),  # was a tower: a wrong goal
+    ("toys", "Put the star on top the tiger pan.", [{"pattern": "tower", "objects": [12, 10]}]),
+    ("home", "Would you ever put the phone down in front of the plate, like a good lad, God love you.",
+     [{"pattern": "front", "objects": [15], "anchor": 8}]),
+    ("pantry", "Line up the cups, let the line be 8 inches long.", [{"pattern": "line", "objects": [8, 9], "size": 0.2032}]),
+    ("pantry", "The cans in a circle with a radius of ten centimetres, measured from the middle out to each can.",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4], "size": 0.1}]),
+    ("dinner", "Can we get the bowl stacked on the plate by EOD?", [{"pattern": "tower", "objects": [1, 2]}]),
+    ("pantry", "Let's loop in the box: the yellow cup goes on its left.", [{"pattern": "left", "objects": [8], "anchor": 10}]),
+    ("pantry", "All the cans now, bar the white one, would you put the rest of them in a row for me.",
+     [{"pattern": "line", "objects": [1, 3, 4]}]),  # "the rest" was every object: a wrong goal
+    ("home", "The white bowl, d'you see it, put the phone behind it.", [{"pattern": "behind", "objects": [15], "anchor": 3}]),
+    ("home", "The three cans in a row there, and leave five centimetres between each one and the next, the same gap "
+     "every time.", [{"pattern": "line", "objects": [12, 13, 14], "size": 0.1}]),
+    ("home", "put the red mug over on the right-hand side of the plate", [{"pattern": "right", "objects": [1], "anchor": 8}]),
+    # was "the table hand" (a row read "over on the right" before "-hand side of the plate")
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
