@@ -387,3 +387,11 @@ def _not_the_x_itself(m: re.Match[str]) -> str:
 def _fore_and_aft(m: re.Match[str]) -> str:
     """"running fore and aft": running from front to back; "end to end" (of a measure): long."""
     return "long" if m.group(0).lower() == "end to end" else "running from front to back"
+
+
+@replacer("beside-it-by-the-right")
+def _beside_it_by_the_right(m: re.Match[str]) -> str:
+    """"beside the red mug by the right": to the right of the red mug; "by the left of": to the left of."""
+    if m.group(1):
+        return f"to the {m.group(2).lower()} of {m.group(1)}"
+    return f"to the {m.group(3).lower()} of"

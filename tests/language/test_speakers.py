@@ -161,6 +161,14 @@ _CASES = [
      "every time.", [{"pattern": "line", "objects": [12, 13, 14], "size": 0.1}]),
     ("home", "put the red mug over on the right-hand side of the plate", [{"pattern": "right", "objects": [1], "anchor": 8}]),
     # was "the table hand" (a row read "over on the right" before "-hand side of the plate")
+    ("pantry", "Put the orange cup opposite the box, in front of it.", [{"pattern": "front", "objects": [9], "anchor": 10}]),
+    # was the box moved: a wrong goal
+    ("pantry", "All the cans except the blue one, I can't stand the blue one, in a row.",
+     [{"pattern": "line", "objects": [1, 2, 4]}]),  # the blue can was put back: a wrong goal
+    ("toys", "All the blocks only the red, leave the red alone, put the others in a circle.",
+     [{"pattern": "circle", "objects": [6, 7, 8]}]),  # "the others" was every object: a wrong goal
+    ("home", "put the cans in a row, ah no, never mind, she's gone off to bed now, leave them where they are.", None),
+    ("pantry", "Put the box beside the white bowl by the right.", [{"pattern": "right", "objects": [10], "anchor": 5}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
 ]
