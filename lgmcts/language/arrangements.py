@@ -34,10 +34,10 @@ _NOT_A_SETTING = frozenset({("party",), ("parties",), ("guests",), ("ladies",), 
                             ("money",), ("queue",), ("staff",), ("break",), ("hall",)})
 
 
-#: Verbs that ask for the table to be set when "the dinner table" is said ("set up a dinner table"); without one
-#: it is only the table ("the dinner table looks very nice").
 #: Words before "dinner set" that make it the tableware ("this dinner set", "my dinner set").
 _OWNING = frozenset({"this", "that", "the", "my", "our", "your", "a", "new", "whole"})
+#: Verbs that ask for the table to be set when "the dinner table" is said ("set up a dinner table"); without one
+#: it is only the table ("the dinner table looks very nice").
 _SETTING_VERBS = frozenset({"set", "lay", "prepare", "ready", "arrange", "make", "do", "sort", "get", "fix"})
 
 

@@ -284,8 +284,8 @@ def _o_apostrophe_of(m: re.Match[str]) -> str:
 
 #: A boat's words for the table's sides, the viewer at the helm looking toward the back: port is the viewer's left,
 #: the bow (for'ard) the back of the table, the stern (aft) the front.
-_NAUTICAL = {"port": "left", "starboard": "right", "forard": "back", "for'ard": "back", "forward": "back",
-             "bow": "back", "fore": "back", "aft": "front", "after": "front", "stern": "front", "astern": "front"}
+_NAUTICAL = {"port": "left", "starboard": "right", "for'ard": "back", "forard": "back", "bow": "back", "fore": "back",
+             "aft": "front", "abaft": "front", "stern": "front", "astern": "front"}
 _NAUTICAL_FACING = {"left": "west", "right": "east", "back": "north", "front": "south"}
 
 

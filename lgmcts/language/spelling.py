@@ -85,7 +85,8 @@ INFORMAL: dict[str, str] = {
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
     "bowlz": "bowls",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
-    "lil": "little", "lign": "line", "idc": "i don't care", "idk": "i don't know", "inchs": "inches", "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
+    "lil": "little", "lign": "line", "idc": "i don't care", "idk": "i don't know", "inchs": "inches",
+    "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",
     # a short word run into "the": "behind ofthe plate"
     "ofthe": "of the", "tothe": "to the", "onthe": "on the", "inthe": "in the", "atthe": "at the",
     "1st": "first", "2nd": "second", "3rd": "third", "4th": "fourth", "5th": "fifth", "6th": "sixth",
@@ -161,8 +162,8 @@ def english_rank(word: str) -> int | None:
     An inflected form ("crowding", "stacked", "tidier") has the rank of its base word, and so has the word
     said again or undone ("repositioned", "unstacked"); a base of one syllable ending in a vowel and a
     consonant doubles that consonant before an ending with a vowel ("letter", "putting"), so "leter" is no
-    form of "let", and a base's silent "e" goes before such an ending ("facing"), so "faceing" is no form of "face", and an
-    adverb of a word in -al ends in -ally ("actually"), so "actualy" is none."""
+    form of "let"; a base's silent "e" goes before such an ending ("facing"), so "faceing" is no form of
+    "face"; and an adverb of a word in -al ends in -ally ("actually"), so "actualy" is none."""
     eng = _english()
     if word in eng:
         return eng[word]

@@ -185,3 +185,21 @@ def test_a_silent_e_goes_before_an_ending() -> None:
 
     assert english_rank("faceing") is None and english_rank("makeing") is None
     assert english_rank("facing") is not None and english_rank("seeing") is not None
+
+
+@pytest.mark.parametrize("word", ["port", "starboard", "for'ard", "forard", "for\u2019ard", "fore", "bow", "aft", "abaft",
+                                  "stern", "astern"])
+def test_every_boat_word_reads(word: str) -> None:
+    """Each word a sailor's rows match is in their table of sides: a command with it is read or refused, never a
+    crash."""
+    from lgmcts.errors import InputError
+    from lgmcts.language.matcher import default_matcher
+    from lgmcts.language.rules import parse_rules
+
+    for said in (f"put the box {word} of the white bowl", f"the cans in a row in the {word} port corner",
+                 f"cans in a row, all pointing {word}", f"the can furthest {word} behind the box",
+                 f"the box off the {word} bow of the white bowl", f"cans in a row along the {word} edge of the table"):
+        try:
+            parse_rules(_SCENES["pantry"], said, matcher=default_matcher())
+        except InputError:
+            pass
