@@ -4,6 +4,17 @@ gives on one (imported by the test modules of this folder; ``conftest.py`` puts 
 from __future__ import annotations
 
 
+def scenes_of(case_file: str) -> dict:
+    """The scenes of a case file of this folder by id (its rows with a ``scene_id``: "home", "toys" ...)."""
+    import json
+    from pathlib import Path
+
+    from lgmcts.formats import parse_scene
+
+    rows = map(json.loads, (Path(__file__).parent / case_file).read_text().splitlines())
+    return {r["scene_id"]: parse_scene(r["scene"]) for r in rows if "scene_id" in r}
+
+
 def cylinders(objects: list[tuple[str, str, float, float]]):
     """A scene of small cylinders (name, colour, x, y), ids from 1 in order."""
     from lgmcts.formats import parse_scene

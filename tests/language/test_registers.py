@@ -8,16 +8,11 @@ goals it must give, or None where it must be refused.
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import pytest
 
-from lgmcts.formats import parse_scene
-from tables import assert_reads
+from tables import assert_reads, scenes_of
 
-_ROWS = map(json.loads, (Path(__file__).parent / "fresh17_cases.jsonl").read_text().splitlines())
-_SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in _ROWS if "scene_id" in r}
+_SCENES = scenes_of("fresh17_cases.jsonl")
 
 # home: 1 red mug, 2 blue mug, 3 white bowl, 4 green bowl, 5 blue bowl, 8 white plate, 9 fork, 10 knife, 11 spoon,
 # 12 red can, 13 white can (furthest back), 14 green can; toys: 5-8 red, blue, yellow, green block, 9 granite bowl

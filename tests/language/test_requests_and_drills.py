@@ -8,20 +8,14 @@ goals it must give, or None where it must be refused; then the cases the new row
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import pytest
 
 from lgmcts.errors import InputError
-from lgmcts.formats import parse_scene
 from lgmcts.language.matcher import default_matcher
 from lgmcts.language.rules import parse_rules
-from tables import assert_reads
+from tables import assert_reads, scenes_of
 
-_ROWS = map(json.loads, (Path(__file__).parent / "fresh17_cases.jsonl").read_text().splitlines())
-# (fresh18_cases.jsonl has the same five scenes)
-_SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in _ROWS if "scene_id" in r}
+_SCENES = scenes_of("fresh17_cases.jsonl")  # (fresh18_cases.jsonl has the same five scenes)
 
 # home: 1 red mug, 2 blue mug, 3 white bowl, 5 blue bowl, 7 blue bottle, 8 white plate, 9 fork, 10 knife,
 # 11 spoon, 12 red can, 13 white can, 14 green can; toys: letters 1-4 (A, R, T, E), blocks 5-8 (red, blue, yellow,

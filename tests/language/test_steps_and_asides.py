@@ -6,19 +6,14 @@ Each stage is tested on its own (a case it reads and one it must leave alone), t
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import pytest
 
-from lgmcts.formats import parse_scene
 from lgmcts.language.asides import bracketed
 from lgmcts.language.context import _reported
 from lgmcts.language.steps import finding_steps
-from tables import assert_reads
+from tables import assert_reads, scenes_of
 
-_ROWS = map(json.loads, (Path(__file__).parent / "fresh16_cases.jsonl").read_text().splitlines())
-_SCENES = {r["scene_id"]: parse_scene(r["scene"]) for r in _ROWS if "scene_id" in r}
+_SCENES = scenes_of("fresh16_cases.jsonl")
 _OBJ = {"mugs", "mug", "bowl", "can", "red", "cans", "star", "pan", "plate"}.__contains__
 _REQ = {"line", "back", "middle", "edge", "long", "order", "any", "behind", "left"}.__contains__
 
