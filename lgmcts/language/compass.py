@@ -148,9 +148,3 @@ def _heading(m: re.Match[str]) -> str:
         said = "".join(str(_DIGITS[w]) for w in said.replace("-", " ").split())
     facing = heading_facing(int(said))
     return f"facing {facing}" if facing else f"heading {said}"  # refused later, quoted, as a facing not read
-
-
-@replacer("port-starboard")
-def _port_starboard(m: re.Match[str]) -> str:
-    """"port" -> "left", "starboard" -> "right"."""
-    return "left" if m.group(1).lower() == "port" else "right"

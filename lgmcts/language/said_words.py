@@ -6,7 +6,9 @@ English, which say a place, a side or a reference in other words than the viewer
 * a Spanish speaker's comparisons, corners and levels ("from up to down", "the corner of behind at the left",
   "below of all", "of 40 cm of diameter", "at the side of");
 * a child's colour names said by things everybody knows ("the sky block");
-* names a mathematician gives first ("Call the red block A ...", "Let S be ...").
+* names a mathematician gives first ("Call the red block A ...", "Let S be ...");
+* a sailor's sides, the viewer at the helm (port the left, for'ard the back: one table, ``_NAUTICAL``), and the
+  words of other speakers of this and the later rounds ("the most right block", digits read one by one).
 
 Each function is registered with :func:`.normalise.replacer` under the name its row gives in ``fn``; the rows,
 with their examples, say what each reads. Importing :mod:`.rewrite` imports this module.
@@ -17,7 +19,10 @@ from __future__ import annotations
 import re
 
 from . import lexicon
+from .compass import _DIGITS, _hour, heading_facing
 from .normalise import replacer
+from .places import _EDGES
+from .vocabulary import _plural
 
 #: A trade's words the rows read that are no words of the English vocabulary, so that the spelling stage
 #: knows them ("upstgae", "dwnstage", "abaem").
@@ -239,34 +244,25 @@ def _most_right_one(m: re.Match[str]) -> str:
     return f"{m.group(0)[:3]} {side.lower()}most {noun}"  # "the" or "The", as said
 
 
-_DIGITS = {"zero": "0", "oh": "0", "one": "1", "two": "2", "three": "3", "four": "4", "five": "5", "six": "6",
-           "seven": "7", "eight": "8", "nine": "9", "niner": "9"}
-
-
 @replacer("digits-read-one-by-one")
 def _digits_read_one_by_one(m: re.Match[str]) -> str:
-    """"one five" before a unit: 15 (a number read digit by digit)."""
-    return "".join(_DIGITS[w] for w in m.group(1).lower().replace("-", " ").split())
-
-
-_CLOCK_FACING = {"twelve": "north", "12": "north", "three": "east", "3": "east", "six": "south", "6": "south",
-                 "nine": "west", "9": "west"}
+    """"one five" before a unit: 15 (a number read digit by digit, as a heading's digits are)."""
+    return "".join(str(_DIGITS[w]) for w in m.group(1).lower().replace("-", " ").split())
 
 
 @replacer("clock-facing")
 def _clock_facing(m: re.Match[str]) -> str:
-    """"pointing twelve o'clock": facing north (twelve is away from the viewer, three to the right)."""
-    return f"facing {_CLOCK_FACING[m.group(2).lower()]}"
-
-
-_PLURAL = {"box": "boxes", "knife": "knives"}
+    """"pointing twelve o'clock": facing north, the heading of the hour (twelve is away from the viewer, three to
+    the right); the row reads only the four hours that are a facing."""
+    hour = _hour(m.group(2))
+    facing = heading_facing(30 * hour) if hour else None
+    return f"facing {facing}" if facing else m.group(0)
 
 
 @replacer("number-singular-noun")
 def _number_singular_noun(m: re.Match[str]) -> str:
-    """"two can", "all block": the plural ("two cans", "all blocks")."""
-    noun = m.group(2)
-    return f"{m.group(1)} {_PLURAL.get(noun.lower(), noun + 's')}"
+    """"two can", "all block": the plural ("two cans", "all blocks", "two knives")."""
+    return f"{m.group(1)} {_plural(m.group(2))}"
 
 
 @replacer("anchor-at-the-back")
@@ -286,12 +282,17 @@ def _o_apostrophe_of(m: re.Match[str]) -> str:
 #: the bow (for'ard) the back of the table, the stern (aft) the front.
 _NAUTICAL = {"port": "left", "starboard": "right", "for'ard": "back", "forard": "back", "bow": "back", "fore": "back",
              "aft": "front", "abaft": "front", "stern": "front", "astern": "front"}
-_NAUTICAL_FACING = {"left": "west", "right": "east", "back": "north", "front": "south"}
 
 
 def _sea(word: str) -> str:
     """The table's side a boat's word says ("port": left, "for'ard": back)."""
     return _NAUTICAL[word.lower().replace("\u2019", "'")]
+
+
+@replacer("port-starboard")
+def _port_starboard(m: re.Match[str]) -> str:
+    """"port" -> "left", "starboard" -> "right" (the word alone, after the rows that read it with its object)."""
+    return _sea(m.group(1))
 
 
 @replacer("nautical-corner")
@@ -321,7 +322,7 @@ def _nautical_side_of(m: re.Match[str]) -> str:
 @replacer("nautical-facing")
 def _nautical_facing(m: re.Match[str]) -> str:
     """"pointing for'ard": facing north; "to port": west."""
-    return f"facing {_NAUTICAL_FACING[_sea(m.group(1))]}"
+    return f"facing {_EDGES[_sea(m.group(1))]}"
 
 
 @replacer("nautical-edge-any")
