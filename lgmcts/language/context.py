@@ -40,7 +40,7 @@ from collections.abc import Callable, Sequence
 
 from . import lexicon
 
-__all__ = ["TIME_OPENERS", "drop_context", "meal_visited", "person_remark"]
+__all__ = ["TIME_OPENERS", "drop_context", "meal_visited", "moves_unknown", "person_remark", "wishes"]
 
 #: Words that open a time clause.
 TIME_OPENERS = frozenset({"after", "before", "once", "when", "whenever", "while", "until", "till", "by", "tonight",
@@ -196,7 +196,7 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     for k, sent in enumerate(sentences):
         sent = _without_chatter(sent, object_word, request_word)
         body = tuple(w for w in sent if w not in _ENDS)
-        if body and (_idle(body, object_word, request_word) or (
+        if body and not wishes(body) and (_idle(body, object_word, request_word) or (
                 k < len(sentences) - 1 and _asks_nothing(body, object_word, request_word))):
             continue  # a background sentence ("it's been raining all week and the cat's been under my feet.")
         if k < len(sentences) - 1 and _reported(body):
@@ -212,6 +212,36 @@ def drop_context(words: tuple[str, ...], object_word: Callable[[str], bool],
     if not kept or not any(w not in _ENDS and w != "," for s in kept for w in s):
         return words
     return tuple(w for s in kept for w in s)
+
+
+def wishes(body: Sequence[str]) -> bool:
+    """Whether ``body`` says where a thing should go ("the teapot should go by the window"; not "which one should
+    go first"): a request about an object the scene may lack, for the parser to refuse, never background."""
+    return any(w in ("should", "must") and body[j + 1 : j + 2] and body[j + 1] in _GOING and (
+        j < 2 or body[j - 2] in ("the", "a", "an", "my", "our", "your", "this", "that")) for j, w in enumerate(body))
+
+
+_GOING = frozenset({"go", "be", "sit", "stand", "end", "move", "face", "point", "stay"})
+#: Verbs that place an object ("put the teapot by the window").
+_PLACING = frozenset({"put", "place", "move", "set", "stand", "lay", "bring", "stick", "pop"})
+
+
+def moves_unknown(clause: Sequence[str], unknown: frozenset[str]) -> bool:
+    """Whether ``clause`` asks to move an object the scene lacks (one of ``unknown``) to a place: "put the
+    teapot by the window", "the teapot should go on the tray" (a verb of placing or "should go", "the" and the
+    noun, then a preposition of place), never a heading ("set the props:") or an idiom ("leave the third where
+    it is").
+
+    >>> moves_unknown("put the teapot by the window".split(), frozenset({"teapot", "window"}))
+    True
+    >>> moves_unknown("set the props".split(), frozenset({"props"}))
+    False
+    """
+    for k in range(1, len(clause) - 1):
+        if clause[k - 1] == "the" and clause[k] in unknown and (
+                (k >= 2 and clause[k - 2] in _PLACING) or wishes(clause[k + 1 : k + 3])):
+            return any(w in _CTX["place_prepositions"] or w in lexicon.DIRECTIONS for w in clause[k + 1 :])
+    return False
 
 
 def _reported(body: Sequence[str]) -> bool:

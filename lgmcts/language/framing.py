@@ -404,12 +404,18 @@ class _Framing(ParserHost):
                         m.det == "pronoun" and m.text in ("it", "its") for m in own[2:]) and not any(
                         w in _DIR_WORDS or w in _VERT_WORDS - {"to", "of"} for w in sub[own[0].end : own[1].start]):
                     self._first = own[0]
+                said = next((k for k, m in enumerate(own) if m.det == "pronoun"), len(own))
+                # "set the red, the blue and the yellow block in a row with them four inches apart": "them" after
+                # the objects of its own part, where nothing was named before, is those objects again.
+                self._them_again = not self.state.last and said >= 2 and said < len(own) and own[said].text in (
+                    "them", "they") and not any(m.det == "pronoun" for m in own[said + 1 :])
                 read = self.clause(sub)
                 pending.extend(read)
                 if read:
                     self._last_read = read[-1]
                 self._implicit = None
                 self._first = None
+                self._them_again = False
                 try:
                     named = self._find(sub)
                 except InputError:

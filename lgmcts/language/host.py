@@ -41,6 +41,7 @@ class ParserHost:
     _implicit: tuple | None
     _it_beside: bool
     _first: Mention | None
+    _them_again: bool
     _named_in: list[tuple[tuple[str, ...], list[Mention]]]
     _said: str
     _measures: list

@@ -28,7 +28,7 @@ from .qualifiers import _ATTRS
 from .lexicon import HUES as _HUES, TABLE_WORDS, VIEWER_WORDS, context_words
 from .matcher import FILLERS, STOPWORDS, _forms, _stem
 from .measures import UNITS
-from .context import person_remark
+from .context import moves_unknown, person_remark
 from .same_change import other_side
 from .places import POINTING_PARTS
 from .normalise import pattern_words
@@ -420,6 +420,8 @@ class _TokenPasses(ParserHost):
             for k, w in enumerate(clause))
         if goal or (lead in ("only", "just") and any(m is not None for m in named)):
             return False  # "oh, only the blue and the green ones": which objects, never a remark
+        if moves_unknown(clause, frozenset(self._unknown_nouns(clause, []))):
+            return False  # "put the teapot by the window", "the teapot should go ...": a request the scene cannot meet
         try:
             ms = self._find(clause)
         except InputError:

@@ -247,7 +247,7 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
     ws = tuple(words)
     compared = {k for k, w in enumerate(ws) if w in _COMPARATIVES and not _said_apart(ws, k)}
     if not compared:
-        return scan(ws, _ref_at)
+        return [_of_one(ws, ref) for ref in scan(ws, _ref_at)]
     mapped = tuple(_COMPARATIVES.get(w, w) for w in ws)
     out: list[PositionRef] = []
     for ref in scan(mapped, _ref_at):
@@ -259,7 +259,18 @@ def find_position_refs(words: tuple[str, ...]) -> list[PositionRef]:
             continue  # "move the cup closer to the plate": a placing, left for the parser
         else:
             out.append(ref if ref.of is not None else replace(ref, of=2))
-    return out
+    return [_of_one(ws, ref) for ref in out]
+
+
+def _of_one(ws: tuple[str, ...], ref: PositionRef) -> PositionRef:
+    """``ref`` with the head "one" where it is said after "the one that is" ("the block nearest me and the one
+    that's second closest": a block, as the noun said before), the phrase from "the one" on, else ``ref``."""
+    lead = " ".join(ws[max(0, ref.start - 3) : ref.start]).replace("that's", "that is").split()[-3:]
+    if not ref.head and len(lead) == 3 and lead[0] in ("one", "ones") and lead[1] == "that" and lead[2] in ("is", "are"):
+        one = max(k for k in range(max(0, ref.start - 3), ref.start) if ws[k] == lead[0])
+        start = one - 1 if one and ws[one - 1] == "the" else one  # the whole phrase is the object picked
+        return replace(ref, start=start, head=(lead[0],))
+    return ref
 
 
 def _whatever_ref(ws: tuple[str, ...], i: int) -> PositionRef | None:

@@ -43,13 +43,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import asides, formal, lexicon, poses, repairs, stages, steps
+from . import asides, backdrop, formal, lexicon, poses, repairs, stages, steps
 from .positions import TOO_CLOSE
 from .stack_order import stack_orders
 from ..errors import InputError
 from ..formats import GoalSpec, RELATIONS, SceneSpec
 from .assembly import _Pending
-from .clauses import _bare_letter, _merged_moves, _predicate_split, split_clauses
+from .clauses import _bare_letter, _command_verb, _merged_moves, _predicate_split, split_clauses
 from .grounding import COLOUR_WORDS, Choice, Mention, Vocabulary, tokenize
 from .lexicon import HUES
 
@@ -228,6 +228,9 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         #: what "it" later in the part means ("the brown box needs to end up with both white
         #: things in front of it").
         self._first: Mention | None = None
+        #: The part being read names two objects or more, then "them" (and nothing before the part): "them"
+        #: names those objects again, and nothing more.
+        self._them_again = False
         #: Each part read with its references, for the check that every object named by itself is
         #: used; the rewritten text.
         self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
@@ -607,11 +610,23 @@ def parse_rules(
     InputError
         With one line saying what was not understood.
     """
-    parser = _Parser(spec, matcher, options or RulesOptions())
+    return _read_command(spec, text, matcher, options or RulesOptions(), 2)
+
+
+def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: RulesOptions, tries: int) -> GoalSpec:
+    """:meth:`_Parser.command`, read again without a backdrop sentence its refusal blames (:mod:`.backdrop`,
+    at most ``tries`` times); the first refusal stands where the second reading fails too."""
+    parser = _Parser(spec, matcher, options)
     try:
         return parser.command(text)
     except InputError as err:
         said = stages.unmark(str(err), parser._measures)
+        again = backdrop.without_backdrop(text, said, parser._object_word, _command_verb) if tries else None
+        if again is not None:
+            try:
+                return _read_command(spec, again, matcher, options, tries - 1)
+            except InputError:
+                pass
         if said == str(err):
             raise
         raise InputError(said) from None

@@ -111,6 +111,8 @@ class _Selecting(ParserHost):
                 got = self._select(self._first)
                 if isinstance(got, list) and len(got) == 1:
                     return got
+            if not self.state.last and self._them_again and m.text in ("them", "they"):
+                return []
             if not self.state.last:
                 raise InputError(f"'{m.text}' refers to nothing named before it")
             last = self.state.last

@@ -433,9 +433,17 @@ class Corrector:
         for k, m in enumerate(found):
             w = m.group(0)
             if m.start() and text[m.start() - 1] in "'\u2019":
+                if "'" + w.lower() in DIALECT:  # "'cept": a dialect's word said with its apostrophe
+                    out.append(text[at : m.start() - 1] + DIALECT["'" + w.lower()])
+                    at = m.end()
                 continue  # "'em", "'round": said with its apostrophe, read as it is
             if text[m.end() : m.end() + 1] == "/":
                 continue  # "w/", "b/c": read by the rewrite table
+            if w.lower().endswith("in") and text[m.end() : m.end() + 1] in ("'", "\u2019") and len(w) > 3 and (
+                    self.rank(w.lower() + "g") is not None):  # "matchin'", "pointin'": a dropped g
+                out.append(text[at : m.start()] + w + "g")
+                at = m.end() + 1
+                continue
             fixed = self._in_context(said, k) or self.word(w.lower())
             if fixed != w.lower():
                 out.append(text[at : m.start()] + (fixed[0].upper() + fixed[1:] if w[0].isupper() else fixed))

@@ -1,5 +1,6 @@
-"""A Mandarin speaker's English, a pilot's radio words and a fast typist's slips (issue 24, round 21), and the
-wrong goals the round found in code.
+"""A Mandarin speaker's English, a pilot's radio words and a fast typist's slips (issue 24, round 21), the
+rounds after it (to round 25: a Japanese engineer, an occupational therapist, a Texan), and the wrong goals the
+rounds found in code.
 
 End to end through :func:`lgmcts.language.rules.parse_rules` on the scenes of ``fresh17_cases.jsonl`` (the same
 five scenes as round 21's): each case a sentence of the kind the round's writers used (none of theirs) with the
@@ -166,6 +167,41 @@ _CASES = [
     ("pantry", "Put the box beside the white bowl by the right.", [{"pattern": "right", "objects": [10], "anchor": 5}]),
     # wrong goals of before, mended in code
     ("dinner", "the dinner table is very clean today, thank you", None),  # was a whole place setting
+    # round 25: a Japanese engineer's English, an occupational therapist's clinic, a Texan's Southern words
+    ("home", "Kindly place the phone beside the blue mug cup.", [{"pattern": "left", "objects": [15], "anchor": 2}]),
+    ("dinner", "line up the mug cup and bottle", [{"pattern": "line", "objects": [6, 7, 8]}]),  # a list, no mug cup
+    ("home", "About the cans, the one on the most right goes behind the plate.",
+     [{"pattern": "behind", "objects": [13], "anchor": 8}]),
+    ("toys", "Put the heart behind the star, and the heart should point to the east.",
+     [{"pattern": "behind", "objects": [11], "anchor": 10, "facing": "east"}]),
+    ("toys", "Put the heart behind the star, and the star should point to the east.", None),  # the star is not moved
+    ("toys", "Stack the block that matches to letter A on the green block.", [{"pattern": "tower", "objects": [8, 5]}]),
+    ("pantry", "Line the bowls up for this afternoon's session, within her reach.",
+     [{"pattern": "line", "objects": [5, 6, 7]}]),
+    ("pantry", "Put the yellow cup to the right of the box so Mr. Okafor has to cross his midline.",
+     [{"pattern": "right", "objects": [8], "anchor": 10}]),
+    ("pantry", "Stack the cans; from the top down it should go white, blue, red, green.",
+     [{"pattern": "tower", "objects": [4, 1, 3, 2]}]),
+    ("home", "Set them cans in a row 'cept the green one.", [{"pattern": "line", "objects": [12, 13]}]),
+    ("home", "Line them bowls up real nice, about a foot long from one end to the other.",
+     [{"pattern": "line", "objects": [3, 4, 5], "size": 0.3048}]),
+    ("blocks", "Put the orange block right beside the purple one.",
+     [{"pattern": "left", "objects": [5], "anchor": 6}]),  # "right" only stresses; no side said
+    ("blocks", "Set the red, the green and the purple block in a row with them facing me.",
+     [{"pattern": "line", "objects": [1, 3, 6], "facing": "south"}]),
+    ("pantry", "The bowls that got a can matchin' their color, circle 'em up.", [{"pattern": "circle", "objects": [5, 6, 7]}]),
+    ("dinner", "Lay the fork out in front of the plate, pointin' away from me toward the back wall.",
+     [{"pattern": "front", "objects": [3], "anchor": 1, "facing": "north"}]),  # was a region too
+    ("toys", "the block closest to the front and the one that's second closest, stack them, the closest one at the bottom",
+     [{"pattern": "tower", "objects": [8, 6]}]),  # "the one" was any object: the star
+    ("dinner", "Now the mug and the cup, I'd like them in a small line, in a row I mean.",
+     [{"pattern": "line", "objects": [6, 7]}]),  # the wording said again goes with its size word
+    # a story before the request, read again without it (lgmcts.language.backdrop)
+    ("pantry", "My late husband won that box at a raffle in '92. Put the yellow cup behind it.",
+     [{"pattern": "behind", "objects": [8], "anchor": 10}]),
+    ("home", "We were out at the rodeo till late last night. Set the cans in a line.",
+     [{"pattern": "line", "objects": [12, 13, 14]}]),
+    ("home", "The teapot should go by the window. Set the cans in a line.", None),  # it asks: never dropped
 ]
 
 
