@@ -621,6 +621,7 @@ class _TokenPasses(ParserHost):
         dropped = 0
         for sent in sentences[:-1]:
             if self._people_remark(sent[:-1]):
+                self._remember_subject(sent[:-1])  # "my son loves the red block. put it ...": the block
                 dropped += len(sent)  # "i'm trying to teach the little one colours.": about the people
                 continue
             if not self._describes(sent[:-1]):

@@ -83,7 +83,7 @@ INFORMAL: dict[str, str] = {
     "exc": "except", "excl": "except", "xcept": "except", "exept": "except", "excpet": "except", "excpt": "except",
     "exsept": "except", "eksept": "except", "smal": "small", "smol": "small", "smll": "small", "larg": "large",
     "lrg": "large", "medum": "medium", "meduim": "medium", "mediun": "medium", "frunt": "front", "lain": "line",
-    "bowlz": "bowls",
+    "bowlz": "bowls", "neer": "near",
     "2gether": "together", "u": "you", "k": "okay", "kk": "okay", "ty": "thanks", "tysm": "thanks", "ta": "thanks",
     "lil": "little", "lign": "line", "idc": "i don't care", "idk": "i don't know", "inchs": "inches",
     "lineup": "line up", "oclok": "o'clock", "oclock": "o'clock",

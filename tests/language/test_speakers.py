@@ -196,6 +196,9 @@ _CASES = [
      [{"pattern": "tower", "objects": [8, 6]}]),  # "the one" was any object: the star
     ("dinner", "Now the mug and the cup, I'd like them in a small line, in a row I mean.",
      [{"pattern": "line", "objects": [6, 7]}]),  # the wording said again goes with its size word
+    ("pantry", "Set the cans in a row, and keep 'em two inches apart.", [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.1524}]),
+    ("pantry", "Put the box neer the back wall.", None),  # a place said without an arrangement
+    ("pantry", "Put the cans in a row neer the back wall.", [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "top"}]),
     # a story before the request, read again without it (lgmcts.language.backdrop)
     ("pantry", "My late husband won that box at a raffle in '92. Put the yellow cup behind it.",
      [{"pattern": "behind", "objects": [8], "anchor": 10}]),
