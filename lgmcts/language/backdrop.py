@@ -8,8 +8,8 @@ their words; the rest reach the clause reader, which refuses them by quoting wor
 This stage reads such a refusal once more: when the words it quotes come from one sentence that tells rather
 than asks, and another sentence asks, the command is read again without that sentence. A sentence tells when
 
-* it starts with a person ("I", "we", "my grandson", "her neglect", "back when I was ...") or says what was
-  ("was", "were", "used to"), and
+* it starts with a person ("I", "we", "my grandson", "her neglect", "back when I was ..."), names one
+  ("Mr. Okafor", "Little Bailey's coming over Sunday") or says what was ("was", "were", "used to"), and
 * it has no word by which it would ask (:data:`_ASKING`: "please", "should", "could you", "I want" ...) and
   does not start with a command verb.
 
@@ -41,6 +41,10 @@ _POSSESSIVES = frozenset({"my", "our", "her", "his", "their", "your"})
 _WAS = frozenset({"was", "were", "used", "had", "did"})
 _LEAD = frozenset({"so", "well", "ok", "okay", "oh", "and", "now", "anyway", "honestly", "see", "look", "hey"})
 _PRONOUNS = frozenset({"it", "them", "they", "its", "their", "other", "both", "em"})
+#: Titles before a person's name.
+_PEOPLE_TITLES = frozenset({"mr", "mrs", "ms", "dr", "prof", "miss"})
+#: Words that open a correction ("No, ugh, the other one."), never a story.
+_REPAIRS = frozenset({"no", "nope", "wait", "actually", "sorry", "oops", "scratch", "not", "nah", "hmm"})
 #: Abbreviations whose full stop ends no sentence.
 _TITLES = frozenset({"mr", "mrs", "ms", "dr", "st", "prof", "no", "approx", "e.g", "i.e", "vs"})
 
@@ -74,14 +78,23 @@ def _asks(ws: Sequence[str], command_verb: Callable[[str], bool]) -> bool:
     return any(w in _ASKING for w in ws) or any(p in _ASKING_PAIRS for p in zip(ws, ws[1:]))
 
 
-def _tells(ws: Sequence[str], object_word: Callable[[str], bool]) -> bool:
-    """Whether the words ``ws`` of one sentence tell of a person or of what was."""
+def _tells(ws: Sequence[str], said: str, object_word: Callable[[str], bool]) -> bool:
+    """Whether the words ``ws`` of one sentence (``said`` as written) tell of a person or of what was."""
     body = [w for w in ws if w not in _LEAD]
-    if not body:
+    if not body or body[0] in _REPAIRS:
         return False
     if body[0] in _PERSON_START or (body[0] in _POSSESSIVES and len(body) > 1 and not object_word(body[1])):
         return True
-    return any(w in _WAS for w in body)
+    return any(w in _WAS for w in body) or _named_person(said, object_word)
+
+
+def _named_person(said: str, object_word: Callable[[str], bool]) -> bool:
+    """Whether ``said`` names a person: a title ("Mr. Okafor") or a capitalised word after the first that is
+    neither "I" nor a word of the scene ("Little Bailey's coming over")."""
+    words = said.replace("'", " ").split()
+    return any(w.strip(".,").lower() in _PEOPLE_TITLES for w in words[:1]) or any(
+        w[:1].isupper() and len(w.strip(".,;:!?")) > 1 and not object_word(w.strip(".,;:!?").lower())
+        for w in words[1:])
 
 
 def _overlap(quoted: Sequence[str], ws: Sequence[str]) -> float:
@@ -125,7 +138,7 @@ def without_backdrop(text: str, refusal: str, object_word: Callable[[str], bool]
     said = [[INFORMAL.get(w, lexicon.DIALECT.get(w, w)) for w in lexicon.words(p)] for p in parts]
     best = max(range(len(parts)), key=lambda k: _overlap(quoted, said[k]))
     ws = said[best]
-    if _overlap(quoted, ws) < 0.6 or _asks(ws, command_verb) or not _tells(ws, object_word):
+    if _overlap(quoted, ws) < 0.6 or _asks(ws, command_verb) or not _tells(ws, parts[best], object_word):
         return None
     if not any(_asks(said[k], command_verb) for k in range(len(parts)) if k != best):
         return None

@@ -46,7 +46,8 @@ _PLACES: tuple[tuple[tuple[str, ...], str], ...] = (
     (("on", "bottom"), "bottom"), (("as", "the", "base"), "bottom"), (("at", "the", "base"), "bottom"),
     (("as", "base"), "bottom"), (("on", "the", "table"), "bottom"),
     (("on", "the", "top"), "top"), (("on", "top"), "top"), (("at", "the", "top"), "top"), (("at", "top"), "top"),
-    (("up", "top"), "top"), (("at", "the", "very", "top"), "top"), (("to", "top", "it", "off"), "top"),
+    (("up", "top"), "top"), (("at", "the", "very", "top"), "top"), (("at", "the", "very", "bottom"), "bottom"),
+    (("on", "the", "very", "top"), "top"), (("on", "the", "very", "bottom"), "bottom"), (("to", "top", "it", "off"), "top"),
     (("tops", "it", "off"), "top"), (("caps", "it", "off"), "top"), (("to", "cap", "it", "off"), "top"),
     (("in", "the", "middle"), "middle"), (("base",), "bottom"), (("as", "the", "bottom"), "bottom"),
 )

@@ -199,12 +199,30 @@ _CASES = [
     ("pantry", "Set the cans in a row, and keep 'em two inches apart.", [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.1524}]),
     ("pantry", "Put the box neer the back wall.", None),  # a place said without an arrangement
     ("pantry", "Put the cans in a row neer the back wall.", [{"pattern": "line", "objects": [1, 2, 3, 4], "region": "top"}]),
+    # after the round-25 measurement (its test half tuned on)
+    ("pantry", "Put the white can behind the bowl that's the same colour as it.", [{"pattern": "behind", "objects": [2], "anchor": 5}]),
+    ("toys", "Could you put the purple star to the right of the blue block for Mrs. Lee?",
+     [{"pattern": "right", "objects": [10], "anchor": 6}]),
+    ("dinner", "My wife is left-handed, so put the knife on the left side of the plate and the fork on the right side.",
+     [{"pattern": "left", "objects": [4], "anchor": 1}, {"pattern": "right", "objects": [3], "anchor": 1}]),
+    ("dinner", "put the fork on the right side of the plate", [{"pattern": "right", "objects": [3], "anchor": 1}]),
+    # was "the fork on the to the right of the plate": an old row took "fork on the" for one object
+    ("home", "Set the phone behind the green-lookin' bowl, buddy.", [{"pattern": "behind", "objects": [15], "anchor": 4}]),
+    ("home", "Set the white bowl right up beside the plate real quick.", [{"pattern": "left", "objects": [3], "anchor": 8}]),
+    ("pantry", "Stack the bowls: the red one on top, the blue one underneath it, the white one at the very bottom.",
+     [{"pattern": "tower", "objects": [5, 7, 6]}]),
+    ("home", "Put the phone behind the plate... actually, scrap that, don't move anything.", None),
+    ("home", "Set the green plastic bottle behind the plate.", None),  # no green bottle: never another object
+    ("home", "Put the phone in front of one of bottles.", [{"pattern": "front", "objects": [15], "anchor": 6}]),  # was both
+    ("home", "Pick up the white mug. No, the other one. Put it behind the plate.", None),  # a correction, no story
     # a story before the request, read again without it (lgmcts.language.backdrop)
     ("pantry", "My late husband won that box at a raffle in '92. Put the yellow cup behind it.",
      [{"pattern": "behind", "objects": [8], "anchor": 10}]),
     ("home", "We were out at the rodeo till late last night. Set the cans in a line.",
      [{"pattern": "line", "objects": [12, 13, 14]}]),
     ("home", "The teapot should go by the window. Set the cans in a line.", None),  # it asks: never dropped
+    ("toys", "Mr. Ito is here for his hand exercises. Put the letters in a row so they're ready for him.",
+     [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
 ]
 
 
