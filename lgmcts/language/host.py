@@ -42,6 +42,7 @@ class ParserHost:
     _it_beside: bool
     _first: Mention | None
     _them_again: bool
+    _slips: bool
     _named_in: list[tuple[tuple[str, ...], list[Mention]]]
     _said: str
     _measures: list

@@ -390,7 +390,7 @@ class _TokenPasses(ParserHost):
                                        "everything", "object", "objects", "please", "square", "center", "centre"})
         nouns = {w for w in self.key_vocab if w.isalpha() and len(w) > 2} - STOPWORDS - FILLERS
         protect = STOPWORDS | FILLERS | NUMBERS.keys() | _SHAPES_PROTECT | _ATTRS.keys()
-        return stages.spell(text, self.vocab, lexicon, nouns, protect, _table_words() | {"respectively"})
+        return stages.spell(text, self.vocab, lexicon, nouns, protect, _table_words() | {"respectively"}, self._slips)
 
     def _remember(self, clause: tuple[str, ...]) -> None:
         """Let later pronouns and bare colours refer to what a dropped remark names."""

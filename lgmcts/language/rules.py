@@ -43,7 +43,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import re
 
-from . import asides, backdrop, formal, lexicon, poses, repairs, stages, steps
+from . import asides, backdrop, formal, lexicon, poses, repairs, spelling, stages, steps
 from .positions import TOO_CLOSE
 from .stack_order import stack_orders
 from ..errors import InputError
@@ -231,6 +231,8 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         #: The part being read names two objects or more, then "them" (and nothing before the part): "them"
         #: names those objects again, and nothing more.
         self._them_again = False
+        #: A second reading: real words one slip from a scene noun read as that noun (.spelling.Corrector).
+        self._slips = False
         #: Each part read with its references, for the check that every object named by itself is
         #: used; the rewritten text.
         self._named_in: list[tuple[tuple[str, ...], list[Mention]]] = []
@@ -266,7 +268,7 @@ class _Parser(_TokenPasses, _GroupPasses, _Selecting, _Arrangements, _Framing, _
         are refused. Also the stacking order by an attribute said, if one is ("in order of size")."""
         # A stack ordered by an attribute ("in order of size"): which object goes
         # lowest is not fixed by the words read here; refused below if a stack results.
-        text = formal.said_actively(self._spelled_right(text))
+        text = formal.said_actively(self._spelled_right(spelling.starred(text)))
         text = steps.finding_steps(asides.bracketed(text, self._object_word, self._request_word), self._object_word)
         text = plain_words(stack_orders(repairs.repaired(text)))
         self._tilt(text)
@@ -615,7 +617,8 @@ def parse_rules(
 
 def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: RulesOptions, tries: int) -> GoalSpec:
     """:meth:`_Parser.command`, read again without a backdrop sentence its refusal blames (:mod:`.backdrop`,
-    at most ``tries`` times); the first refusal stands where the second reading fails too."""
+    at most ``tries`` times) or with real words one slip from a scene noun read as that noun; the first refusal
+    stands where the second reading fails too."""
     parser = _Parser(spec, matcher, options)
     try:
         return parser.command(text)
@@ -625,6 +628,13 @@ def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: 
         if again is not None:
             try:
                 return _read_command(spec, again, matcher, options, tries - 1)
+            except InputError:
+                pass
+        slipped = _Parser(spec, matcher, options)
+        slipped._slips = True  # "line up the cams pls": a phone's autocorrect, read only where nothing else reads
+        if tries and slipped._spelled_right(text) != parser._spelled_right(text):
+            try:
+                return slipped.command(text)
             except InputError:
                 pass
         if said == str(err):

@@ -60,7 +60,7 @@ from functools import lru_cache
 
 from .lexicon import DIALECT
 
-__all__ = ["INFORMAL", "RARE_RANK", "SOUNDS_LIKE", "Corrector", "correct_text", "edit_distance", "english_rank"]
+__all__ = ["INFORMAL", "RARE_RANK", "SOUNDS_LIKE", "Corrector", "correct_text", "edit_distance", "english_rank", "starred"]
 
 #: Informal spellings with one reading, whole words only.
 INFORMAL: dict[str, str] = {
@@ -105,6 +105,20 @@ _BEFORE_A_THING = {"read": "red", "blew": "blue", "too": "two", "for": "four", "
 #: Those of :data:`_BEFORE_A_THING` that sound like a colour ("the read bowl", "the blew can").
 _COLOUR_SOUNDS = frozenset({"red", "blue"})
 _SIDE_SOUNDS = {"write": "right", "rite": "right", "wright": "right"}
+#: Real words a phone's autocorrect puts for a word of place, read as that word only beside the words of a place
+#: (the word, the words before it, the words after it): "lest of the bowl", "the back tight corner", "behold the plate".
+_AUTOCORRECTED: dict[str, tuple[str, frozenset[str], frozenset[str]]] = {
+    "lest": ("left", frozenset({"the", "to", "on", "far", "top", "bottom", "back", "front"}),
+             frozenset({"of", "side", "corner", "edge", "hand", "end"})),
+    "tight": ("right", frozenset({"to", "far", "top", "bottom", "back", "front"}),
+              frozenset({"of", "side", "corner", "edge", "hand", "end"})),
+    "behold": ("behind", frozenset(), frozenset({"the", "it", "them", "that", "each", "both", "my", "your"})),
+    "font": ("front", frozenset({"in", "the", "to"}), frozenset({"of", "edge", "row", "corner", "left", "right"})),
+}
+#: Words after which a noun comes, so that a real word one slip from a scene noun there is that noun ("the cams").
+_DETERMINERS = frozenset({"the", "both", "two", "three", "four", "all", "these", "those", "each", "every", "my"})
+#: Known words that never follow "the" ("the for and knife": the fork).
+_NEVER_AFTER_THE = frozenset({"for", "soon", "of", "to", "on"})
 #: Words after which a "2" said between words is "to" ("closest 2 me", "2 the right", "needs 2 be").
 _AFTER_TO = frozenset({"the", "me", "us", "be", "look", "you", "u", "my", "them", "its", "their", "face", "point",
                        "his", "her", "left", "right"})
@@ -283,7 +297,7 @@ class Corrector:
 
     def __init__(self, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),
                  rank: Callable[[str], int | None] = english_rank, protect: Collection[str] = (),
-                 colours: Collection[str] = (), read: Collection[str] = ()) -> None:
+                 colours: Collection[str] = (), read: Collection[str] = (), slips: bool = False) -> None:
         self.scene = frozenset(w for w in scene if w.isalpha())
         self.targets = frozenset(w for w in lexicon if w.isalpha()) - self.scene
         self.known = self.scene | self.targets | frozenset(protect)
@@ -294,6 +308,9 @@ class Corrector:
         self.nouns = frozenset(nouns) | self.scene
         self.colours = frozenset(colours)
         self.rank = rank
+        #: Whether a real word one slip from a scene noun after "the" is that noun ("line up the cams"): for a
+        #: second reading only, as "the cat", "the latter" and "my mum" are words of their own.
+        self.slips = slips
 
     def word(self, w: str) -> str:
         """The correction of one lower-case word (itself where none is sure)."""
@@ -467,11 +484,45 @@ class Corrector:
                 return want
         if w in _SIDE_SOUNDS and (nxt == "of" or (k and said[k - 1] in ("the", "to"))):
             return _SIDE_SOUNDS[w]
+        prev = said[k - 1] if k else ""
+        if w in _AUTOCORRECTED and (prev in _AUTOCORRECTED[w][1] or nxt in _AUTOCORRECTED[w][2]):
+            return _AUTOCORRECTED[w][0]  # a phone's autocorrect: "put it lest of the bowl", "behold the plate"
+        if self.slips and prev in _DETERMINERS and w.isalpha() and len(w) >= 3 and (w not in self.known or w in _NEVER_AFTER_THE):
+            near = [t for t in self.scene - self.colours if edit_distance(w, t, 2) == 1 and len(t) >= 3]
+            near = [t for t in near if t.endswith("s") == w.endswith("s")] if len(near) > 1 else near
+            if len(near) == 1 and english_rank(w) is not None:
+                return near[0]  # "line up the cams", "the blow", "both cops": a real word one slip from a scene noun
         if w == "w" and nxt in ("the", "a", "an", "one", "my", "its", "their", "his", "her", "them", "it", "any"):
             return "with"  # texting: "share a color w one of the bowls"
         if w == "2" and nxt in _AFTER_TO and k and not said[k - 1].isdigit():
             return "to"  # texting: "closest 2 me", "slide it 2 the right", "needs 2 be"
         return None
+
+
+def starred(text: str) -> str:
+    """``text`` with a texter's correction sent after it ("take the blow and put it on the plate *bowl") put in
+    place: the word before it nearest in spelling (two edits at most; of those, the nearest in length, then the
+    last) becomes the starred word, which goes.
+
+    >>> starred("take the blow and put it on the plate *bowl")
+    'take the bowl and put it on the plate'
+    >>> starred("line up the clocks, all facing away from me *blocks")
+    'line up the blocks, all facing away from me'
+    """
+    words = text.split()
+    fixes = [w[1:].strip(".,!?") for w in words if w.startswith("*") and w[1:].strip(".,!?").isalpha()]
+    if not fixes:
+        return text
+    kept = [w for w in words if not (w.startswith("*") and w[1:].strip(".,!?").isalpha())]
+    for fix in fixes:
+        scored = [(edit_distance(w.strip(".,!?;:").lower(), fix.lower()), abs(len(w.strip(".,!?;:")) - len(fix)), -k)
+                  for k, w in enumerate(kept) if w.strip(".,!?;:").isalpha() and w.strip(".,!?;:").lower() != fix.lower()]
+        best = min(scored, default=(3, 0, 0))
+        if best[0] <= 2:
+            k = -best[2]
+            bare = kept[k].strip(".,!?;:")
+            kept[k] = kept[k].replace(bare, fix)
+    return " ".join(kept)
 
 
 def correct_text(text: str, scene: Collection[str], lexicon: Collection[str], nouns: Collection[str] = (),

@@ -34,8 +34,8 @@ from .vocabulary import tokenize
 __all__ = ["stack_orders"]
 
 _HEADS = frozenset({"stack", "stacked", "tower", "pile", "piled"})
-_OPENERS = frozenset({",", ":", "with", "w", "-", ";"})
-_SEPARATORS = frozenset({",", "and", "then", ";", "so"})
+_OPENERS = frozenset({",", ":", "with", "w", "-", ";", "that"})
+_SEPARATORS = frozenset({",", "and", "then", ";", "so", "with"})
 #: Words between an item's object and its place ("the green one's in the middle", "red goes on blue").
 _LINKS = frozenset({"is", "goes", "go", "sits", "sit", "should", "be", "ends", "up", "stays", "must", "will"})
 #: Words that may open a sentence that is only a list of roles.
@@ -57,6 +57,8 @@ _RELATIONS: tuple[tuple[tuple[str, ...], int], ...] = (
     (("underneath",), -1), (("under",), -1), (("below",), -1), (("beneath",), -1),
 )
 _BACK = (("that", "one"), ("it",), ("that",), ("this",))
+#: The places of a stack of three, from the bottom up.
+_PLACE_SAID = ("at the bottom", "in the middle", "on top")
 #: Words said before a place that add nothing to it ("right at the top", "all the way at the bottom").
 _INTENSIFIERS = frozenset({"right", "directly", "just", "very", "way", "all", "the", "up"})
 #: Words after a colour that are not its noun.
@@ -130,10 +132,12 @@ def _colours(items: list[tuple[str, str, str | int]]) -> tuple[str, ...]:
     return tuple(dict.fromkeys([c for c, _, _ in items] + [str(w)[:-1] for _, k, w in items if k != "place"]))
 
 
-def _orders(items: list[tuple[str, str, str | int]]) -> list[tuple[str, ...]]:
-    """Every bottom-up order of the items' colours that keeps every item."""
+def _orders(items: list[tuple[str, str, str | int]], size: int = 0) -> list[tuple[str, ...]]:
+    """Every bottom-up order of the items' colours that keeps every item (in a stack of ``size``, the places
+    of the objects no item names said "?")."""
     out: list[tuple[str, ...]] = []
-    for order in permutations(_colours(items)):
+    said = list(_colours(items))
+    for order in dict.fromkeys(permutations(said + ["?"] * max(0, size - len(said)))):
         pos = {c: n for n, c in enumerate(order)}
         ok = True
         for c, kind, what in items:
@@ -235,6 +239,16 @@ def stack_orders(text: str) -> str:
             downward = items[:1] and items[0][1:] == ("place", "top") and any(kind == "then" for _, kind, _ in items)
             if len(items) < 2 or len(_colours(items)) < 2 or not (any(kind == "rel" for _, kind, _ in items) or downward):
                 continue  # places alone are read by the readings after
+            counted = [lexicon.NUMBERS.get(x, int(x) if x.isdigit() else 0) for x in words[h + 1 : start]]
+            if max(counted, default=0) > len(_colours(items)):
+                # "stack the three bowls, the red one in the middle, the blue one under it": one object unnamed;
+                # where three places are fixed all the same, each named one is said by its place
+                fixed = _orders(items, 3) if max(counted) == 3 else []
+                if len(fixed) != 1:
+                    continue
+                cut = toks[s].start if words[s] in _OPENERS else toks[s].end
+                places = [f"{c} {_PLACE_SAID[n]}" for n, c in enumerate(fixed[0]) if c != "?"]
+                return text[:cut].rstrip() + ", " + ", ".join(places) + text[toks[end - 1].end :]
             orders = _orders(items)
             said = text[toks[s].start : toks[end - 1].end]
             if not orders:

@@ -60,7 +60,7 @@ def _plural(word: str) -> str:
 
 
 def spell(text: str, vocab: Vocabulary, lexicon: Iterable[str], nouns: Iterable[str], protect: Iterable[str],
-          read: Iterable[str] = ()) -> str:
+          read: Iterable[str] = (), slips: bool = False) -> str:
     """``text`` with misspellings corrected against the scene's words and the parser's words (.spelling)."""
     scene: set[str] = set()
     for key in vocab.categories:
@@ -68,7 +68,7 @@ def spell(text: str, vocab: Vocabulary, lexicon: Iterable[str], nouns: Iterable[
         scene.add(_plural(key[-1]))
     scene.update(vocab.color_words)
     return Corrector(scene, set(lexicon), set(nouns), protect=set(protect),
-                     colours=set(vocab.color_words) | COLOUR_WORDS, read=set(read)).text(text)
+                     colours=set(vocab.color_words) | COLOUR_WORDS, read=set(read), slips=slips).text(text)
 
 
 #: Words that may stand between a measure and the same measure said again ("30 cm across, i mean thirty

@@ -215,6 +215,24 @@ _CASES = [
     ("home", "Set the green plastic bottle behind the plate.", None),  # no green bottle: never another object
     ("home", "Put the phone in front of one of bottles.", [{"pattern": "front", "objects": [15], "anchor": 6}]),  # was both
     ("home", "Pick up the white mug. No, the other one. Put it behind the plate.", None),  # a correction, no story
+    # round 26: Singapore English, a phone's autocorrect, a museum art handler
+    ("home", "Eh can put the white bowl behind the plate? Thanks ah", [{"pattern": "behind", "objects": [3], "anchor": 8}]),
+    ("home", "Line up all the can, about 30cm long can?", [{"pattern": "line", "objects": [12, 13, 14], "size": 0.3}]),
+    ("home", "The bowl that same colour as the blue mug, put behind the plate", [{"pattern": "behind", "objects": [5], "anchor": 8}]),
+    ("pantry", "line up the cams pls", [{"pattern": "line", "objects": [1, 2, 3, 4]}]),
+    ("pantry", "put the box lest of the white bowl", [{"pattern": "left", "objects": [10], "anchor": 5}]),
+    ("pantry", "put the box behold the white bowl", [{"pattern": "behind", "objects": [10], "anchor": 5}]),
+    ("pantry", "take the blow that is red and put it behind the box *bowl", [{"pattern": "behind", "objects": [6], "anchor": 10}]),
+    ("pantry", "the cat keeps knocking the cans, put the box behind the red can", [{"pattern": "behind", "objects": [10], "anchor": 1}]),
+    ("toys", "The star sits on the viewer's left of the pan.", [{"pattern": "left", "objects": [10], "anchor": 12}]),
+    ("pantry", "Install the four cans in a row with 10 cm between centres.", [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.3}]),
+    ("pantry", "The cans in a row, 10 cm apart on centre.", [{"pattern": "line", "objects": [1, 2, 3, 4], "size": 0.3}]),
+    ("pantry", "Tower, reading from the base: 1. blue bowl, 2. white bowl, 3. red bowl.",
+     [{"pattern": "tower", "objects": [7, 5, 6]}]),
+    ("pantry", "Stack the three bowls so that the white one ends up in the middle, with the red one underneath it.",
+     [{"pattern": "tower", "objects": [6, 5, 7]}]),  # was a stack of two: the unnamed bowl dropped
+    ("pantry", "The registrar wants the cups behind the box, so please install them that way.",
+     [{"pattern": "behind", "objects": [8, 9], "anchor": 10}]),
     # a story before the request, read again without it (lgmcts.language.backdrop)
     ("pantry", "My late husband won that box at a raffle in '92. Put the yellow cup behind it.",
      [{"pattern": "behind", "objects": [8], "anchor": 10}]),
