@@ -47,7 +47,7 @@ def case_files() -> list[Path]:
 
 #: Held-out halves not measured yet: left out of the golden, so that neither a check nor a rewrite of the
 #: file shows what the parser gives on them before their one measurement (then the entry is removed).
-UNSEEN: dict[str, str] = {"tests/language/fresh26_cases.jsonl": "test"}
+UNSEEN: dict[str, str] = {}
 
 
 _QUOTED = re.compile(r"'[^']*'|\"[^\"]*\"")
