@@ -108,7 +108,8 @@ _SIDE_SOUNDS = {"write": "right", "rite": "right", "wright": "right"}
 #: Real words a phone's autocorrect puts for a word of place, read as that word only beside the words of a place
 #: (the word, the words before it, the words after it): "lest of the bowl", "the back tight corner", "behold the plate".
 _AUTOCORRECTED: dict[str, tuple[str, frozenset[str], frozenset[str]]] = {
-    "lest": ("left", frozenset({"the", "to", "on", "far", "top", "bottom", "back", "front"}),
+    "lest": ("left", frozenset({"the", "to", "on", "far", "top", "bottom", "back", "front", "face", "facing", "point",
+                                "pointing", "turned"}),
              frozenset({"of", "side", "corner", "edge", "hand", "end"})),
     "tight": ("right", frozenset({"to", "far", "top", "bottom", "back", "front"}),
               frozenset({"of", "side", "corner", "edge", "hand", "end"})),
@@ -487,7 +488,7 @@ class Corrector:
         prev = said[k - 1] if k else ""
         if w in _AUTOCORRECTED and (prev in _AUTOCORRECTED[w][1] or nxt in _AUTOCORRECTED[w][2]):
             return _AUTOCORRECTED[w][0]  # a phone's autocorrect: "put it lest of the bowl", "behold the plate"
-        if self.slips and prev in _DETERMINERS and w.isalpha() and len(w) >= 3 and (w not in self.known or w in _NEVER_AFTER_THE):
+        if self.slips and (prev in _DETERMINERS or prev in self.colours) and w.isalpha() and len(w) >= 3 and (w not in self.known or w in _NEVER_AFTER_THE):
             near = [t for t in self.scene - self.colours if edit_distance(w, t, 2) == 1 and len(t) >= 3]
             near = [t for t in near if t.endswith("s") == w.endswith("s")] if len(near) > 1 else near
             if len(near) == 1 and english_rank(w) is not None:
@@ -501,8 +502,8 @@ class Corrector:
 
 def starred(text: str) -> str:
     """``text`` with a texter's correction sent after it ("take the blow and put it on the plate *bowl") put in
-    place: the word before it nearest in spelling (two edits at most; of those, the nearest in length, then the
-    last) becomes the starred word, which goes.
+    place: the word before it nearest in spelling (two edits at most, or half the word's letters; of those, the
+    nearest in length, then the last) becomes the starred word, which goes.
 
     >>> starred("take the blow and put it on the plate *bowl")
     'take the bowl and put it on the plate'
@@ -518,7 +519,7 @@ def starred(text: str) -> str:
         scored = [(edit_distance(w.strip(".,!?;:").lower(), fix.lower()), abs(len(w.strip(".,!?;:")) - len(fix)), -k)
                   for k, w in enumerate(kept) if w.strip(".,!?;:").isalpha() and w.strip(".,!?;:").lower() != fix.lower()]
         best = min(scored, default=(3, 0, 0))
-        if best[0] <= 2:
+        if best[0] <= max(2, len(fix) // 2):
             k = -best[2]
             bare = kept[k].strip(".,!?;:")
             kept[k] = kept[k].replace(bare, fix)

@@ -233,6 +233,17 @@ _CASES = [
      [{"pattern": "tower", "objects": [6, 5, 7]}]),  # was a stack of two: the unnamed bowl dropped
     ("pantry", "The registrar wants the cups behind the box, so please install them that way.",
      [{"pattern": "behind", "objects": [8, 9], "anchor": 10}]),
+    # after the round-26 measurement (its test half tuned on)
+    ("blocks", "The six block make a circle, everything face toward the back",
+     [{"pattern": "circle", "objects": [1, 2, 3, 4, 5, 6], "facing": "north"}]),  # was every object of the table
+    ("home", "The cans in a row, each piece oriented away from the viewer.",
+     [{"pattern": "line", "objects": [12, 13, 14], "facing": "north"}]),  # was every object of the table
+    ("blocks", "Put the red block on the blue block then... eh forget it, don't need already", None),
+    ("pantry", "White can go behind the box lah", [{"pattern": "behind", "objects": [2], "anchor": 10}]),
+    ("pantry", "The cans in a row, all pointing to the viewer's left.", [{"pattern": "line", "objects": [1, 2, 3, 4], "facing": "west"}]),
+    ("pantry", "got 5 min before the bus. put the box left of the white bowl pls", [{"pattern": "left", "objects": [10], "anchor": 5}]),
+    ("pantry", "box behind the red bowl, turned to face lest", [{"pattern": "behind", "objects": [10], "anchor": 6, "facing": "west"}]),
+    ("pantry", "line up the lettuce pls *letters", None),  # no letters here: the correction names nothing either
     # a story before the request, read again without it (lgmcts.language.backdrop)
     ("pantry", "My late husband won that box at a raffle in '92. Put the yellow cup behind it.",
      [{"pattern": "behind", "objects": [8], "anchor": 10}]),
