@@ -597,9 +597,7 @@ def _taken_back(text: str) -> None:
 def goal_dicts(spec: SceneSpec, text: str, *, matcher: PatternMatcher, options: RulesOptions | None = None) -> list[dict]:
     """The goals the parser reads, as dicts with their parameters (region, size, facing) even where the
     goal format does not take them yet."""
-    p = _Parser(spec, matcher, options or RulesOptions())
-    p.command(text)
-    return p.goal_dicts
+    return _read_command(spec, text, matcher, options or RulesOptions(), 2)[1].goal_dicts
 
 
 def parse_rules(
@@ -612,16 +610,17 @@ def parse_rules(
     InputError
         With one line saying what was not understood.
     """
-    return _read_command(spec, text, matcher, options or RulesOptions(), 2)
+    return _read_command(spec, text, matcher, options or RulesOptions(), 2)[0]
 
 
-def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: RulesOptions, tries: int) -> GoalSpec:
-    """:meth:`_Parser.command`, read again without a backdrop sentence its refusal blames (:mod:`.backdrop`,
-    at most ``tries`` times) or with real words one slip from a scene noun read as that noun; the first refusal
-    stands where the second reading fails too."""
+def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: RulesOptions,
+                  tries: int) -> tuple[GoalSpec, _Parser]:
+    """:meth:`_Parser.command` and the parser that read it, read again without a backdrop sentence its refusal
+    blames (:mod:`.backdrop`, at most ``tries`` times) or with real words one slip from a scene noun read as that
+    noun; the first refusal stands where the second reading fails too."""
     parser = _Parser(spec, matcher, options)
     try:
-        return parser.command(text)
+        return parser.command(text), parser
     except InputError as err:
         said = stages.unmark(str(err), parser._measures)
         again = backdrop.without_backdrop(text, said, parser._object_word, _command_verb) if tries else None
@@ -634,7 +633,7 @@ def _read_command(spec: SceneSpec, text: str, matcher: PatternMatcher, options: 
         slipped._slips = True  # "line up the cams pls": a phone's autocorrect, read only where nothing else reads
         if tries and slipped._spelled_right(text) != parser._spelled_right(text):
             try:
-                return slipped.command(text)
+                return slipped.command(text), slipped
             except InputError:
                 pass
         if said == str(err):
