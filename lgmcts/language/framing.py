@@ -405,10 +405,11 @@ class _Framing(ParserHost):
                         w in _DIR_WORDS or w in _VERT_WORDS - {"to", "of"} for w in sub[own[0].end : own[1].start]):
                     self._first = own[0]
                 said = next((k for k, m in enumerate(own) if m.det == "pronoun"), len(own))
-                # "set the red, the blue and the yellow block in a row with them four inches apart": "them" after
-                # the objects of its own part, where nothing was named before, is those objects again.
-                self._them_again = not self.state.last and said >= 2 and said < len(own) and own[said].text in (
-                    "them", "they") and not any(m.det == "pronoun" for m in own[said + 1 :])
+                # "set the red, the blue and the yellow block in a row with them four inches apart": "with them"
+                # after the objects of its own part, where nothing was named before, is those objects again.
+                self._them_again = not self.state.last and 2 <= said < len(own) and own[said].text in (
+                    "them", "they") and sub[own[said].start - 1 : own[said].start] == ("with",) and not any(
+                    m.det == "pronoun" for m in own[said + 1 :])
                 read = self.clause(sub)
                 pending.extend(read)
                 if read:
